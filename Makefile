@@ -1,0 +1,142 @@
+# microcontact - plain Makefile (no autotools).
+#
+#   make run     install missing Debian packages, build, run cases/default.ini
+#   make check   install missing packages, build, unit tests + fast verification suites
+#   make verify  all verification suites (writes reports/<suite>/)
+#   make bench   benchmark report (reports/bench/)
+#   make check-sanitize   unit tests + fast suites under AddressSanitizer and UBSan
+#   make fuzz FUZZ_SECONDS=N   libFuzzer targets (clang)
+#
+# Variants: BUILD=build (default) or any directory; SAN=1 builds with ASan+UBSan.
+
+CC       ?= gcc
+BUILD    ?= build
+SAN      ?= 0
+FUZZ_SECONDS ?= 30
+
+DEB_PACKAGES = pkg-config libfftw3-dev libgsl-dev libinih-dev libjansson-dev check libsubunit-dev \
+               gnuplot-nox clang libclang-rt-14-dev
+
+OPT      ?= -O2
+CFLAGS_BASE = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $(OPT) -g -fopenmp \
+              -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes \
+              -Isrc -Iverify -Ibench
+LIBS     = -linih -ljansson -lgsl -lgslcblas -lfftw3_omp -lfftw3 -lm
+TESTLIBS = -lcheck_pic -lsubunit -lrt -lpthread
+
+ifeq ($(SAN),1)
+  CFLAGS_BASE += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+  LDFLAGS_SAN = -fsanitize=address,undefined
+endif
+CFLAGS  ?=
+ALL_CFLAGS = $(CFLAGS_BASE) $(CFLAGS)
+LDFLAGS += -fopenmp $(LDFLAGS_SAN)
+
+LIB_SRC   = $(wildcard src/*.c)
+CLI_SRC   = $(wildcard src/cli/*.c) $(wildcard verify/*.c) $(wildcard bench/*.c)
+TEST_SRC  = $(wildcard tests/*.c)
+
+LIB_OBJ   = $(LIB_SRC:%.c=$(BUILD)/%.o)
+CLI_OBJ   = $(CLI_SRC:%.c=$(BUILD)/%.o)
+TEST_OBJ  = $(TEST_SRC:%.c=$(BUILD)/%.o)
+
+LIBRARY   = $(BUILD)/libmicrocontact.a
+ifeq ($(BUILD),build)
+  PROGRAM = bin/microcontact
+else
+  PROGRAM = $(BUILD)/bin/microcontact
+endif
+TESTS     = $(BUILD)/tests/run_tests
+
+.PHONY: all deps run check _check verify bench reports check-sanitize fuzz clean bless help
+
+all: $(LIBRARY) $(PROGRAM)
+
+help:
+	@sed -n '2,12p' Makefile
+
+# ---- dependencies: check first (fast when present), install only what is missing -----------
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "make deps: installing$$missing"; \
+	  if [ "$$(id -u)" != 0 ]; then SUDO=sudo; else SUDO=; fi; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null || \
+	    { echo "make deps: apt-get failed for:$$missing" >&2; exit 1; }; \
+	fi
+
+# ---- build ----------------------------------------------------------------------------------
+$(BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -MMD -MP -c $< -o $@
+
+$(LIBRARY): $(LIB_OBJ)
+	@mkdir -p $(dir $@)
+	rm -f $@ && ar rcs $@ $^
+
+$(PROGRAM): $(CLI_OBJ) $(LIBRARY)
+	@mkdir -p $(dir $@)
+	$(CC) $(LDFLAGS) -o $@ $(CLI_OBJ) $(LIBRARY) $(LIBS)
+
+$(BUILD)/tests/suites.inc: $(TEST_SRC)
+	@mkdir -p $(dir $@)
+	@for f in $(filter tests/test_%.c,$(TEST_SRC)); do \
+	  n=$$(basename $$f .c); n=$${n#test_}; [ "$$n" = util ] || echo "SUITE($$n)"; done > $@.tmp && mv $@.tmp $@
+
+$(BUILD)/tests/%.o: tests/%.c $(BUILD)/tests/suites.inc
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Itests -I$(BUILD)/tests -MMD -MP -c $< -o $@
+
+$(TESTS): $(TEST_OBJ) $(LIBRARY)
+	@mkdir -p $(dir $@)
+	$(CC) $(LDFLAGS) -o $@ $(TEST_OBJ) $(LIBRARY) $(TESTLIBS) $(LIBS)
+
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_OBJ:.o=.d)
+
+# ---- front doors ----------------------------------------------------------------------------
+run: deps
+	@$(MAKE) --no-print-directory all
+	./$(PROGRAM) run cases/default.ini
+
+check: deps
+	@$(MAKE) --no-print-directory _check
+
+_check: $(PROGRAM) $(TESTS)
+	CK_DEFAULT_TIMEOUT=600 ./$(TESTS)
+	./$(PROGRAM) verify --fast --reports $(BUILD)/reports-fast
+
+verify: deps
+	@$(MAKE) --no-print-directory all
+	./$(PROGRAM) verify --reports reports
+
+bench: deps
+	@$(MAKE) --no-print-directory all
+	./$(PROGRAM) bench --reports reports
+
+reports: verify bench
+
+check-sanitize: deps
+	@$(MAKE) --no-print-directory BUILD=build/san SAN=1 OPT=-O1 _check
+
+# ---- fuzzing (clang libFuzzer) --------------------------------------------------------------
+FUZZ_TARGETS = $(patsubst tests/fuzz/%.c,build/fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))
+FUZZ_LIB_SRC = src/error.c src/alloc.c src/units.c src/case.c src/scene.c src/npy.c src/grid.c \
+               src/heightmap.c
+build/fuzz/%: tests/fuzz/%.c $(FUZZ_LIB_SRC)
+	@mkdir -p $(dir $@)
+	clang -g -O1 -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -Wall -Wextra -Werror \
+	  -Wno-unknown-pragmas -fsanitize=fuzzer,address,undefined $^ -o $@ -linih -ljansson -lgsl -lgslcblas -lm
+
+fuzz: deps
+	@$(MAKE) --no-print-directory $(FUZZ_TARGETS)
+	@set -e; for t in $(FUZZ_TARGETS); do \
+	  name=$$(basename $$t); mkdir -p build/fuzz/corpus-$$name; \
+	  echo "fuzz: $$name for $(FUZZ_SECONDS) s"; \
+	  $$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 build/fuzz/corpus-$$name tests/fuzz/corpus/$$name 2>&1 | \
+	    grep -E 'stat::number_of_executed_units|ERROR|SUMMARY' ; \
+	done
+
+clean:
+	rm -rf build bin

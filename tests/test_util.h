@@ -1,0 +1,34 @@
+/* test_util.h - shared helpers and named tolerance tiers for the unit tests.
+ *
+ * Tolerances are tiered and named (GSL's TEST_TOL idea): round-off (multiples of machine epsilon
+ * times the problem size), solver (what a converged iterative solve recovers), discretisation
+ * (derived from the mesh in each test). No bare literals in assertions.
+ */
+#ifndef MC_TEST_UTIL_H
+#define MC_TEST_UTIL_H
+
+#include <check.h>
+#include <float.h>
+#include <math.h>
+#include <stddef.h>
+
+#define TOL_ROUNDOFF 1e-12 /* dual backends, identities: a few hundred eps on O(1e4) terms */
+#define TOL_TIGHT 1e-14    /* closed forms evaluated two ways */
+
+/* Path of the shared physics dossier (reference CSV tables); MC_PHYSICS_DIR overrides. */
+const char *test_physics_dir(void);
+
+/* Read a numeric CSV (lines starting with '#' and one header line skipped). Returns rows, fills
+ * *cols; data is malloc'ed row-major (caller frees). Fails the test on any error. */
+int test_read_csv(const char *name, double **data, int *cols, char header[][32], int max_cols);
+
+/* max |a-b| / max |b| over n values (0/0 -> 0). */
+double test_rel_maxdiff(const double *a, const double *b, size_t n);
+
+/* Deterministic pseudo-random values in [-1, 1) (splitmix64), for property tests. */
+void test_random_field(double *f, size_t n, unsigned long long seed);
+
+/* A fresh empty temporary directory (mkdtemp); path valid until the process exits. */
+const char *test_tmpdir(void);
+
+#endif
