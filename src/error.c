@@ -28,7 +28,8 @@ int mc_error_prefix(mc_error *err, const char *fmt, ...)
     vsnprintf(head, sizeof head, fmt, ap);
     va_end(ap);
     memcpy(old, err->msg, sizeof old);
-    snprintf(err->msg, sizeof err->msg, "%s%s", head, old);
+    if (snprintf(err->msg, sizeof err->msg, "%s%s", head, old) >= (int)sizeof err->msg)
+        err->msg[sizeof err->msg - 1] = '\0'; /* truncated: the context head is kept */
     return (int)err->code;
 }
 
