@@ -2,11 +2,15 @@
  *
  * A scene is plain data (no owned pointers), filled by case.c from an INI file plus overrides,
  * or directly by verification suites and benchmarks. mc_scene_defaults() gives every optional
- * key its documented default; mc_scene_check() validates cross-key rules.
+ * key its documented default (docs/case-format.md); keys without a default (mesh size, load,
+ * radii, ...) are left 0, which mc_scene_check() rejects until the caller sets them.
+ * mc_scene_check() validates every rule a scene must satisfy however it was built, including the
+ * cross-key ones (force_per_length needs periodic_y, pressure_cap > lubricant_pressure, ...).
  */
 #ifndef MC_SCENE_H
 #define MC_SCENE_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "error.h"
@@ -62,9 +66,9 @@ typedef struct {
         mc_roughness_type type;
         double rq;                           /* rms height, m (gaussian, self_affine) */
         double correlation_x, correlation_y; /* gaussian: ACF exp(-(tx/lx)^2-(ty/ly)^2), m */
-        double hurst;                        /* self_affine: Hurst exponent, 0..1 */
+        double hurst;                        /* self_affine: Hurst exponent, 0 < H < 1 (0.8) */
         double rms_slope;                    /* self_affine: alternative to rq (0 = unused) */
-        double lambda_long, lambda_short;    /* self_affine cut-off wavelengths, m (0 = auto) */
+        double lambda_long, lambda_short;    /* self_affine cut-offs, m (0: mc_scene_cutoffs) */
         uint64_t seed;                       /* generator seed (reproducible) */
         char file[MC_PATH_MAX];              /* file: height map path (relative to the case) */
     } roughness;
@@ -83,15 +87,15 @@ typedef struct {
         mc_backend op;            /* operator backend (default fft) */
         mc_contact_method method; /* default cg */
         double tolerance;         /* relative stopping tolerance (default 1e-8) */
-        int max_iterations;       /* default 1000 */
+        int max_iterations;       /* default 2000 */
         int threads;              /* 0 = all cores */
     } solver;
 
     struct { /* [stress]; the stage runs only when enabled (section present) */
-        int enabled;
-        double depth_min, depth_max; /* m */
-        int layers;
-        mc_spacing spacing;
+        int enabled;                 /* default 0; case files: 1 when [stress] is present */
+        double depth_min, depth_max; /* m (linear, geometric spacing) */
+        int layers;                  /* linear, geometric; default 32 */
+        mc_spacing spacing;          /* MC_SPACING_LIST: use depths[] below */
         int ndepths;                 /* number of entries in depths (MC_SPACING_LIST) */
         double depths[MC_MAX_DEPTHS];
         mc_stress_kernel kernel;     /* default patch */
@@ -99,21 +103,41 @@ typedef struct {
     } stress;
 
     struct { /* [output] */
-        char dir[MC_PATH_MAX]; /* default "out/<case name>" */
+        char dir[MC_PATH_MAX]; /* "": derive from path (mc_scene_output_dir); case files fill it */
         int vtk;               /* write field.vti */
     } output;
 } mc_scene;
 
-/* Fill every field with its documented default (shape flat, no roughness, steel bodies, ...). */
+/* Fill every field with its documented default: shape flat, no roughness (seed 1, hurst 0.8),
+ * steel bodies (E = 210 GPa, nu = 0.3), no pressure cap (+inf), fft + cg, tolerance 1e-8, 2000
+ * iterations, stress disabled (32 linear layers from 0), output dir "". */
 void mc_scene_defaults(mc_scene *s);
 
-/* Cross-key validation (e.g. force_per_length needs periodic_y); MC_ERR_INPUT with a message. */
+/* Validate the scene: grid, shape radii, roughness parameters, materials, a load (> 0 or a file),
+ * force_per_length => periodic_y, pressure_cap > lubricant_pressure >= 0, solver settings, and,
+ * when stress is enabled, its depths (depth_max > depth_min >= 0, geometric => depth_min > 0,
+ * lists strictly increasing). MC_OK or MC_ERR_INPUT with a message "[section] key ...". */
 int mc_scene_check(const mc_scene *s, mc_error *err);
 
-/* Combined modulus E* of the scene's two bodies, Pa. */
+/* Same, and on failure names the key at fault (*section, *key: static strings; either pointer
+ * may be NULL), so that the case reader can point at the line that set it. */
+int mc_scene_check_key(const mc_scene *s, mc_error *err, const char **section, const char **key);
+
+/* Combined modulus E* of the scene's two bodies, Pa (kernel.h mc_combined_modulus). */
 double mc_scene_estar(const mc_scene *s);
 
-/* Resolved depth list of the stress stage (ndepths <= MC_MAX_DEPTHS); MC_ERR_INPUT if invalid. */
+/* Resolved depth list of the stress stage, m (depths must hold MC_MAX_DEPTHS): linear
+ * z_k = depth_min + k (depth_max - depth_min)/(layers - 1) (layers = 1: depth_min alone);
+ * geometric z_k = depth_min (depth_max/depth_min)^(k/(layers - 1)); list: as given. The ends are
+ * exact. MC_ERR_INPUT (as mc_scene_check) if the stress settings are invalid. */
 int mc_scene_depths(const mc_scene *s, double *depths, int *ndepths, mc_error *err);
+
+/* Effective self-affine cut-off wavelengths, m: the scene's values, or for 0 the defaults
+ * lambda_long = max(nx dx, ny dy) and lambda_short = 2 max(dx, dy). */
+void mc_scene_cutoffs(const mc_scene *s, double *lambda_long, double *lambda_short);
+
+/* Output directory: s->output.dir, or when it is "" "out/<file name of s->path without .ini>"
+ * ("out/scene" when path is "" too). MC_ERR_INPUT if it does not fit in len bytes. */
+int mc_scene_output_dir(const mc_scene *s, char *buf, size_t len, mc_error *err);
 
 #endif
