@@ -1,0 +1,42 @@
+/* bench.c - the benchmark suite: its sections in report order (see bench.h). */
+#include "bench.h"
+
+#include <stdlib.h>
+
+#include "operator.h"
+#include "pipeline.h"
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double mc_bench_time(void (*fn)(void *), void *arg, int reps)
+{
+    double t[64];
+    if (reps > 64)
+        reps = 64;
+    if (reps < 1)
+        reps = 1;
+    fn(arg);
+    for (int k = 0; k < reps; k++) {
+        double t0 = mc_clock();
+        fn(arg);
+        t[k] = mc_clock() - t0;
+    }
+    qsort(t, (size_t)reps, sizeof t[0], cmp_double);
+    return t[reps / 2];
+}
+
+static int run_bench(vf_ctx *ctx, int quick)
+{
+    vf_text(ctx, "All times on this machine (%d threads unless stated), measured in this run; the "
+                 "ratios are what counts, absolute times drift with the machine's load.\n\n",
+            mc_get_threads());
+    int rc = mc_bench_operator(ctx, quick);
+    return rc;
+}
+
+const vf_suite mc_bench_suite = {"bench", "Benchmarks: run time against error and against FFTW",
+                                 run_bench};

@@ -1,0 +1,17 @@
+/* bench.h - the benchmark report (`microcontact bench`, `make bench`): run time against error
+ * and against the bare FFTW cost of the same size, all measured in one run, as ratios. It runs
+ * through the verification harness, so its targets are checks and its tables a report. */
+#ifndef MC_BENCH_H
+#define MC_BENCH_H
+
+#include "harness.h"
+
+extern const vf_suite mc_bench_suite;
+
+/* Sections (bench_*.c), each adding its tables, CSV and figures to the report. */
+int mc_bench_operator(vf_ctx *ctx, int quick);
+
+/* Median wall time (s) of reps calls of fn(arg) after one warm-up call. */
+double mc_bench_time(void (*fn)(void *), void *arg, int reps);
+
+#endif

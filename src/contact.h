@@ -1,0 +1,88 @@
+/* contact.h - frictionless normal contact of two elastic half-spaces (combined into one with E*).
+ *
+ * Unknowns: the pressure p (Pa, per cell) and the rigid approach delta (m). With the initial gap
+ * h (plus an optional extra term such as a residual plastic displacement) and the influence
+ * operator K (operator.h, Love kernel / E*):
+ *
+ *     g = h + h_extra + K p - delta                    (gap, m)
+ *     p_lower <= p <= p_cap                             (p_lower: lubricant pressure, may vary)
+ *     g >= 0 where p = p_lower,  g = 0 where p_lower < p < p_cap,  g <= 0 where p = p_cap
+ *     A * sum(p) = W  (force control)   or   delta given (approach control)
+ *
+ * The lubricant pressure acts outside solid contact and deforms the surface too (elastic.md 6.3):
+ * the solvers work on the excess q = p - p_lower with h~ = h + h_extra + K p_lower.
+ *
+ * Methods (a row each in a table; all use the operator through mc_operator_apply only, so they
+ * run on either backend):
+ *   cg         - constrained conjugate gradients with an FFT-based preconditioner (the inverse
+ *                of the continuum Love symbol on the contact's bounding box, restricted to the
+ *                free cells; after Vollebregt, J. Comput. Phys. 257 (2014) 333-351) and a load
+ *                projection; bounds by gradient projection with restart. With a pressure cap
+ *                it runs nested: bound-constrained inner solves at fixed delta, delta from the
+ *                load by a safeguarded secant (elastic.md 6.4, "robust nested variant").
+ *   pk         - plain Polonsky & Keer (1999) as in elastic.md 6.2, with the lower bound of 6.3
+ *                and the free-set cap variant of 6.4 (falls back to nested when the free set
+ *                empties).
+ *   active-set - the paper's algorithm (Mevissen et al. 2025, Fig. 3-1): dense influence matrix,
+ *                GSL LU solve of the free cells plus the load equation, cells with p < p_lower
+ *                leave, penetrating cells re-enter (plastic-lubrication.md 5); O(N^3): refused
+ *                above MC_ACTIVE_SET_MAX_CELLS.
+ *
+ * Stopping rule (scale-free): with the gap scale s_g = max(delta - min h~, max h~ - min h~ over
+ * the solid contact, tiny) and the load W,
+ *     residual = max( max_free |g| / s_g,  max_{p=p_lower} (-g) / s_g,  max_{p=p_cap} g / s_g,
+ *                     |A sum p - W| / W  (force control) )
+ * and the solve stops when residual <= tolerance. Non-convergence after max_iterations returns
+ * MC_NOT_CONVERGED with the best iterate and converged = 0 in the summary (not hidden).
+ */
+#ifndef MC_CONTACT_H
+#define MC_CONTACT_H
+
+#include "error.h"
+#include "operator.h"
+#include "results.h"
+#include "scene.h"
+
+#define MC_ACTIVE_SET_MAX_CELLS 4096 /* dense O(N^3) reference: 4096 cells = 128 MiB matrix */
+
+typedef enum { MC_CONTROL_FORCE, MC_CONTROL_APPROACH } mc_control;
+
+typedef struct {
+    const double *h;       /* initial gap at zero approach, m (ny*nx); required */
+    const double *h_extra; /* added to h (e.g. residual plastic displacement), m; NULL = none */
+    const double *p_lower; /* per-cell lower bound, Pa; NULL = the uniform p_lub */
+    double p_lub;          /* uniform lower bound (lubricant pressure), Pa, >= 0 */
+    double p_cap;          /* upper bound, Pa; INFINITY = none */
+    mc_control control;
+    double load;           /* force control: total load A*sum(p), N */
+    double approach;       /* approach control: delta, m */
+    const double *p_start; /* warm start (ny*nx, Pa) or NULL; e.g. the previous load step */
+} mc_contact_problem;
+
+typedef struct {
+    mc_contact_method method; /* scene.h: MC_METHOD_CG | MC_METHOD_PK | MC_METHOD_ACTIVE_SET */
+    double tolerance;         /* see the stopping rule above; e.g. 1e-8 */
+    int max_iterations;
+} mc_contact_options;
+
+typedef struct mc_contact_solver mc_contact_solver;
+
+/* Plan a solver over operator K (not owned; must outlive the solver): allocates every workspace
+ * once, so solves never allocate in their loops. MC_ERR_LIMIT for active-set above its size. */
+int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_solver **out,
+                      mc_error *err);
+
+/* Solve. Outputs (ny*nx each, caller-owned): p (Pa), and optionally u (= K p, m) and gap (m);
+ * u and gap may be NULL. sum receives the contact summary. Returns MC_OK, MC_NOT_CONVERGED (all
+ * outputs still filled with the last iterate), MC_ERR_INPUT (bad problem) or MC_ERR_NUMERIC. */
+int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, double *p, double *u,
+                     double *gap, mc_contact_summary *sum, mc_error *err);
+
+void mc_contact_destroy(mc_contact_solver **s);
+
+/* Number of operator applications of the last solve (for benchmarks). */
+long mc_contact_last_applies(const mc_contact_solver *s);
+
+const char *mc_contact_method_name(mc_contact_method m);
+
+#endif

@@ -1,0 +1,153 @@
+/* contact_active.c - the paper's reference solver (Mevissen et al. 2025, Fig. 3-1): a dense
+ * influence matrix and direct solves on the set C of free cells.
+ *
+ *   1. C = all cells.
+ *   2. Solve K_CC q_C = delta 1 - h~_C - K_CU cap_U, with A sum(q) = W for force control (the
+ *      "constant part" of cells held at a bound moves to the right-hand side).
+ *   3. Cells of C with q < 0 leave C (held at the lower bound); with q > cap they leave to the cap.
+ *   4. Cells held at the lower bound that penetrate (g < 0), or held at the cap with g > 0,
+ *      re-enter C: the rule the paper's description omits (plastic-lubrication.md 5, step 4).
+ *   5. Repeat until nothing changes.
+ * K_CC is symmetric positive definite: Cholesky (GSL), with the load equation eliminated by
+ * superposition, q_C = x1 + delta x2. The matrix is assembled from impulse responses of the
+ * operator, so the reference sees exactly the kernel of the backend it runs on.
+ */
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
+#include <math.h>
+#include <string.h>
+
+#include "alloc.h"
+#include "contact_internal.h"
+
+enum { AT_FREE = 0, AT_LOWER = 1, AT_CAP = 2 };
+
+int mc_contact_active_set_prepare(mc_contact_solver *s, mc_error *err)
+{
+    const size_t n = s->n;
+    size_t nn;
+    if (!mc_size_mul(n, n, &nn) || !(s->dense = mc_malloc(nn * sizeof(double))) ||
+        !(s->factor = mc_malloc(nn * sizeof(double))) || !(s->map = mc_malloc(n * sizeof(size_t))))
+        return mc_fail(err, MC_ERR_NOMEM, "active-set: out of memory for a %zu x %zu matrix", n, n);
+    /* column j = K e_j; K is symmetric, so rows equal columns */
+    memset(s->tmp, 0, n * sizeof *s->tmp);
+    for (size_t j = 0; j < n; j++) {
+        s->tmp[j] = 1.0;
+        mc_operator_apply(s->K, s->tmp, s->dense + j * n);
+        s->tmp[j] = 0.0;
+    }
+    return MC_OK;
+}
+
+/* Solve the free block by Cholesky; returns the new q on C in q and the approach. */
+static int solve_free(mc_contact_solver *s, const mc_qproblem *qp, const unsigned char *state,
+                      double *q, double *delta, mc_error *err)
+{
+    const size_t n = s->n;
+    size_t m = 0, *map = s->map;
+    double *x1 = s->r, *x2 = s->z;
+    for (size_t i = 0; i < n; i++)
+        if (state[i] == AT_FREE)
+            map[m++] = i;
+    if (m == 0)
+        return MC_OK;
+    double *F = s->factor;
+    for (size_t a = 0; a < m; a++) {
+        const double *row = s->dense + map[a] * n;
+        double b = -qp->h[map[a]];
+        for (size_t j = 0; j < n; j++)
+            if (state[j] == AT_CAP)
+                b -= row[j] * qp->cap[j];
+        x1[a] = b;
+        x2[a] = 1.0;
+        for (size_t c = 0; c < m; c++)
+            F[a * m + c] = row[map[c]];
+    }
+    gsl_matrix_view Fv = gsl_matrix_view_array(F, m, m);
+    gsl_vector_view v1 = gsl_vector_view_array(x1, m), v2 = gsl_vector_view_array(x2, m);
+    int st = gsl_linalg_cholesky_decomp1(&Fv.matrix);
+    if (!st)
+        st = gsl_linalg_cholesky_svx(&Fv.matrix, &v1.vector);
+    if (!st)
+        st = gsl_linalg_cholesky_svx(&Fv.matrix, &v2.vector);
+    if (st)
+        return mc_fail(err, MC_ERR_NUMERIC, "active-set: Cholesky failed (%s) on %zu free cells",
+                       gsl_strerror(st), m);
+    double d = qp->delta;
+    if (qp->control == MC_CONTROL_FORCE) {
+        double held = 0, s1 = 0, s2 = 0;
+        for (size_t i = 0; i < n; i++)
+            if (state[i] == AT_CAP)
+                held += qp->cap[i];
+        for (size_t a = 0; a < m; a++) {
+            s1 += x1[a];
+            s2 += x2[a];
+        }
+        d = (qp->W / s->A - held - s1) / s2;
+    }
+    for (size_t i = 0; i < n; i++)
+        q[i] = state[i] == AT_CAP ? qp->cap[i] : 0.0;
+    for (size_t a = 0; a < m; a++)
+        q[map[a]] = x1[a] + d * x2[a];
+    *delta = d;
+    return MC_OK;
+}
+
+int mc_contact_active_set(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
+                          mc_error *err)
+{
+    const size_t n = s->n;
+    unsigned char *state = s->mask;
+    double delta = qp->delta;
+    mc_gsl_quiet();
+    memset(state, AT_FREE, n);
+    res->converged = 0;
+    int it = 0;
+    for (;;) {
+        int rc = solve_free(s, qp, state, q, &delta, err);
+        if (rc != MC_OK)
+            return rc;
+        it++;
+        int changed = 0;
+        for (size_t i = 0; i < n; i++) {
+            if (state[i] != AT_FREE)
+                continue;
+            if (q[i] < 0) {
+                state[i] = AT_LOWER;
+                q[i] = 0;
+                changed = 1;
+            } else if (qp->cap && q[i] > qp->cap[i]) {
+                state[i] = AT_CAP;
+                q[i] = qp->cap[i];
+                changed = 1;
+            }
+        }
+        /* gap from the dense matrix; re-entry of penetrating or opening held cells */
+        for (size_t i = 0; i < n; i++) {
+            const double *row = s->dense + i * n;
+            double ui = 0;
+            for (size_t j = 0; j < n; j++)
+                ui += row[j] * q[j];
+            s->u[i] = ui;
+        }
+        if (!changed) {
+            for (size_t i = 0; i < n; i++) {
+                double g = qp->h[i] + s->u[i] - delta;
+                if ((state[i] == AT_LOWER && g < 0) || (state[i] == AT_CAP && g > 0)) {
+                    state[i] = AT_FREE;
+                    changed = 1;
+                }
+            }
+        }
+        if (!changed) {
+            res->converged = 1;
+            break;
+        }
+        if (it >= s->opt.max_iterations)
+            break;
+    }
+    qp->delta = delta;
+    res->iterations = it;
+    res->residual = mc_contact_residual(s, qp, q, s->u, delta);
+    return res->converged ? MC_OK : MC_NOT_CONVERGED;
+}

@@ -1,0 +1,65 @@
+/* contact_internal.h - shared state of the contact methods (not a public header).
+ *
+ * Every method solves the SHIFTED problem in the excess pressure q = p - p_lower >= 0:
+ *     g = h~ + K q - delta,   0 <= q <= cap,   A sum(q) = W (force control) or delta given,
+ * where h~ = h + h_extra + K p_lower. contact.c does the shift and the bookkeeping.
+ */
+#ifndef MC_CONTACT_INTERNAL_H
+#define MC_CONTACT_INTERNAL_H
+
+#include <stddef.h>
+
+#include "contact.h"
+#include "precond.h"
+
+typedef struct {
+    const double *h;   /* h~, m */
+    const double *cap; /* per-cell upper bound of q, Pa; NULL = none */
+    mc_control control;
+    double W;          /* force control: target A*sum(q), N */
+    double delta;      /* approach control: input; force control: output */
+} mc_qproblem;
+
+typedef struct {
+    int iterations;
+    double residual;
+    int converged;
+} mc_qresult;
+
+struct mc_contact_solver {
+    mc_operator *K;
+    mc_grid g;
+    size_t n;
+    double A; /* cell area, m^2 */
+    mc_contact_options opt;
+    /* workspaces, n each, allocated once */
+    double *htil, *plow, *capq, *q, *u, *r, *z, *d, *w, *tmp;
+    unsigned char *mask, *mask_old;
+    mc_precond *pc;
+    long applies;
+    /* active-set reference: dense influence matrix and factor workspace (n*n each) */
+    double *dense, *factor;
+    size_t *map; /* free-cell indices */
+};
+
+/* u = K in, counted. */
+void mc_contact_apply(mc_contact_solver *s, const double *in, double *out);
+
+/* Gap scale of the stopping rule: delta - min(h~), floored so it is never zero. */
+double mc_contact_gap_scale(const mc_contact_solver *s, const mc_qproblem *qp, double delta);
+
+/* The scale-free KKT residual of contact.h for q, u = K q and delta. */
+double mc_contact_residual(const mc_contact_solver *s, const mc_qproblem *qp, const double *q,
+                           const double *u, double delta);
+
+/* Methods: q holds the start on entry (feasible: 0 <= q <= cap) and the solution on exit; s->u
+ * holds K q on exit; qp->delta is set for force control. MC_NOT_CONVERGED leaves the last iterate. */
+int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err);
+int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err);
+int mc_contact_nested(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
+                      mc_error *err);
+int mc_contact_active_set(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
+                          mc_error *err);
+int mc_contact_active_set_prepare(mc_contact_solver *s, mc_error *err);
+
+#endif

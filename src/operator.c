@@ -1,0 +1,112 @@
+/* operator.c - conv + one kernel: what a solver plans, applies and destroys; and the thread
+ * settings shared with FFTW (see operator.h). */
+#include <fftw3.h>
+#include <omp.h>
+
+#include "alloc.h"
+#include "operator.h"
+
+struct mc_operator {
+    mc_conv *conv;
+    double *kspec; /* the transformed kernel */
+    double *lspec; /* workspace: the transformed load of the current apply */
+};
+
+static int n_threads;        /* 0: not set, all cores */
+static int fftw_threads_on; /* fftw_init_threads has succeeded */
+
+void mc_set_threads(int n)
+{
+    n_threads = n > 0 ? n : 0;
+    omp_set_num_threads(mc_get_threads());
+}
+
+int mc_get_threads(void) { return n_threads > 0 ? n_threads : omp_get_num_procs(); }
+
+int mc_fftw_prepare(mc_error *err)
+{
+    if (!fftw_threads_on) {
+        if (!fftw_init_threads())
+            return mc_fail(err, MC_ERR_INTERNAL, "FFTW could not initialise its threads");
+        fftw_threads_on = 1;
+    }
+    fftw_plan_with_nthreads(mc_get_threads());
+    return MC_OK;
+}
+
+/* Takes ownership of conv (destroyed on failure too). */
+static int plan_with_conv(mc_conv *conv, const mc_kernel_table *t, mc_operator **out,
+                          mc_error *err)
+{
+    const size_t n = mc_conv_spectrum_len(conv);
+    mc_operator *op = mc_calloc(1, sizeof *op);
+    int rc;
+    if (!op || !(op->kspec = mc_malloc(n * sizeof *op->kspec)) ||
+        !(op->lspec = mc_malloc(n * sizeof *op->lspec)))
+        rc = mc_fail(err, MC_ERR_NOMEM, "operator: out of memory for %zu-double spectra", n);
+    else
+        rc = mc_conv_kernel(conv, t, op->kspec, err);
+    if (rc) {
+        if (op) {
+            mc_free(op->kspec);
+            mc_free(op->lspec);
+            mc_free(op);
+        }
+        mc_conv_destroy(&conv);
+        return rc;
+    }
+    op->conv = conv;
+    *out = op;
+    return MC_OK;
+}
+
+int mc_operator_plan(const mc_grid *g, const mc_kernel_table *t, mc_backend b, mc_operator **out,
+                     mc_error *err)
+{
+    *out = NULL;
+    mc_conv *conv;
+    int rc = mc_conv_create(g, b, &conv, err);
+    return rc ? rc : plan_with_conv(conv, t, out, err);
+}
+
+int mc_operator_plan_love(const mc_grid *g, double Estar, mc_backend b, mc_operator **out,
+                          mc_error *err)
+{
+    *out = NULL;
+    mc_conv *conv;
+    int rc = mc_conv_create(g, b, &conv, err);
+    if (rc)
+        return rc;
+    int tx, ty;
+    mc_conv_table_dims(conv, &tx, &ty);
+    mc_kernel_table t;
+    if ((rc = mc_kernel_table_love(g, tx, ty, Estar, &t, err))) {
+        mc_conv_destroy(&conv);
+        return rc;
+    }
+    rc = plan_with_conv(conv, &t, out, err);
+    mc_kernel_table_free(&t);
+    return rc;
+}
+
+void mc_operator_apply(mc_operator *op, const double *in, double *out)
+{
+    /* load first: in is read completely before out is written, so in == out is fine */
+    mc_conv_load(op->conv, in, op->lspec);
+    const double *k = op->kspec, *l = op->lspec;
+    mc_conv_apply(op->conv, 1, &k, &l, out);
+}
+
+void mc_operator_destroy(mc_operator **op)
+{
+    if (!op || !*op)
+        return;
+    mc_conv_destroy(&(*op)->conv);
+    mc_free((*op)->kspec);
+    mc_free((*op)->lspec);
+    mc_free(*op);
+    *op = NULL;
+}
+
+const mc_grid *mc_operator_grid(const mc_operator *op) { return mc_conv_grid(op->conv); }
+mc_backend mc_operator_backend(const mc_operator *op) { return mc_conv_backend(op->conv); }

@@ -1,0 +1,284 @@
+/* test_contact.c - normal contact solvers: agreement between methods and backends, and the
+ * complementarity conditions of the solution (contact.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "alloc.h"
+#include "contact.h"
+#include "test_util.h"
+
+/* Solver tier: a solve stopped at residual 1e-13 (gap scale) reproduces the exact LCP solution to
+ * about cond(K_CC)*1e-13; 1e-8 of p_max is the required agreement (issue: CG vs active set). */
+#define TIGHT 1e-13
+#define TOL_METHODS 1e-8
+/* Backends differ by ~1e-15 per operator application; iterating keeps the same active sets, so
+ * the two solutions agree to a few hundred eps relative. */
+#define TOL_BACKENDS 1e-11
+/* KKT check tier: the stopping rule guarantees residual <= tolerance (plus round-off). */
+#define KKT_SLACK 10.0
+
+typedef struct {
+    const char *name;
+    int nx, ny;
+    double rough;   /* rms of the sinusoidal roughness relative to the smooth interference */
+    double lub;     /* lubricant pressure / mean nominal pressure */
+    double cap;     /* pressure cap / Hertz p0 (0: none) */
+    int approach;   /* approach control instead of force control */
+} scene_t;
+
+static const scene_t scenes[] = {
+    {"smooth", 20, 20, 0.0, 0.0, 0.0, 0},
+    {"rough", 24, 24, 0.3, 0.0, 0.0, 0},
+    {"rough_lub", 24, 24, 0.3, 0.3, 0.0, 0},
+    {"rough_cap", 24, 24, 0.3, 0.0, 1.1, 0},
+    {"rough_lub_cap", 24, 24, 0.3, 0.3, 1.1, 0},
+    {"rough_approach", 24, 20, 0.3, 0.0, 0.0, 1},
+    {"rough_approach_cap", 21, 24, 0.3, 0.1, 1.1, 1},
+};
+#define NSCENES (int)(sizeof scenes / sizeof scenes[0])
+
+static const double E_STAR = 115.4e9, R = 0.01;
+
+/* A sphere of radius R plus a deterministic sum of sinusoids (a few random phases). */
+static mc_grid make_topo(const scene_t *sc, double *h, double *W, double *p0)
+{
+    mc_grid g = {sc->nx, sc->ny, 2e-6, 2.2e-6, 0, 0};
+    const double a = 0.35 * sc->nx * g.dx; /* Hertz radius: contact covers most of the grid */
+    const double delta = a * a / R;
+    double ph[8];
+    test_random_field(ph, 8, 42);
+    for (int j = 0; j < g.ny; j++)
+        for (int i = 0; i < g.nx; i++) {
+            double x = mc_grid_x(&g, i), y = mc_grid_y(&g, j);
+            double z = 0;
+            for (int k = 0; k < 4; k++)
+                z += sin(2 * M_PI * (k + 2) * x / (g.nx * g.dx) + 3 * ph[2 * k]) *
+                     cos(2 * M_PI * (k + 3) * y / (g.ny * g.dy) + 3 * ph[2 * k + 1]);
+            h[(size_t)j * g.nx + i] = (x * x + y * y) / (2 * R) - sc->rough * delta * z / 2;
+        }
+    *W = 4.0 * E_STAR * a * a * a / (3.0 * R);
+    *p0 = 3.0 * *W / (2.0 * M_PI * a * a);
+    return g;
+}
+
+typedef struct {
+    double *p, *u, *gap;
+    mc_contact_summary sum;
+    int rc;
+} solution;
+
+static void solve(const scene_t *sc, mc_contact_method m, mc_backend b, double tol, solution *out)
+{
+    double *h = mc_zeros((size_t)sc->nx * sc->ny);
+    double W, p0;
+    mc_grid g = make_topo(sc, h, &W, &p0);
+    size_t n = mc_grid_cells(&g);
+    mc_operator *K = NULL;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, b, &K, &err), MC_OK);
+    mc_contact_options opt = {m, tol, 20000};
+    mc_contact_solver *s = NULL;
+    ck_assert_msg(mc_contact_create(K, &opt, &s, &err) == MC_OK, "%s", err.msg);
+    double pm = W / (n * mc_grid_cell_area(&g));
+    mc_contact_problem prob = {.h = h,
+                               .p_lub = sc->lub * pm,
+                               .p_cap = sc->cap > 0 ? sc->cap * p0 : INFINITY,
+                               .control = sc->approach ? MC_CONTROL_APPROACH : MC_CONTROL_FORCE,
+                               .load = W,
+                               .approach = 0.6 * (0.35 * sc->nx * g.dx) * (0.35 * sc->nx * g.dx) / R};
+    out->p = mc_zeros(n);
+    out->u = mc_zeros(n);
+    out->gap = mc_zeros(n);
+    out->rc = mc_contact_solve(s, &prob, out->p, out->u, out->gap, &out->sum, &err);
+    ck_assert_msg(out->rc == MC_OK, "%s %s/%s: %s", sc->name, mc_contact_method_name(m),
+                  mc_backend_name(b), err.msg);
+    /* complementarity, bounds and load, independently of the solver's own residual */
+    double A = mc_grid_cell_area(&g), sum = 0, sg = out->sum.approach;
+    double hmin = INFINITY;
+    for (size_t i = 0; i < n; i++)
+        hmin = fmin(hmin, h[i] + 0 * out->u[i]);
+    /* gap scale: interference including the lubricant's displacement is >= approach - min h */
+    sg = fmax(fabs(out->sum.approach - hmin), 1e-12);
+    double lo = prob.p_lub, cap = prob.p_cap;
+    for (size_t i = 0; i < n; i++) {
+        double p = out->p[i], gp = out->gap[i];
+        ck_assert_msg(p >= lo - 1e-12 * p0 && p <= cap + 1e-12 * p0, "%s: p out of bounds", sc->name);
+        ck_assert_msg(fabs(gp - (h[i] + out->u[i] - out->sum.approach)) <= 1e-12 * sg,
+                      "%s: gap is not h + u - approach", sc->name);
+        if (p <= lo)
+            ck_assert_msg(gp >= -KKT_SLACK * tol * sg, "%s: penetration %g at a free cell",
+                          sc->name, gp / sg);
+        else if (p >= cap)
+            ck_assert_msg(gp <= KKT_SLACK * tol * sg, "%s: open capped cell", sc->name);
+        else
+            ck_assert_msg(fabs(gp) <= KKT_SLACK * tol * sg, "%s: gap %g in contact", sc->name,
+                          gp / sg);
+        sum += p;
+    }
+    if (!sc->approach)
+        ck_assert_msg(fabs(A * sum - W) <= KKT_SLACK * tol * W, "%s: load %g vs %g", sc->name,
+                      A * sum, W);
+    ck_assert(out->sum.converged);
+    mc_contact_destroy(&s);
+    mc_operator_destroy(&K);
+    mc_free(h);
+}
+
+static void release(solution *s)
+{
+    mc_free(s->p);
+    mc_free(s->u);
+    mc_free(s->gap);
+}
+
+static double max_abs_diff(const double *a, const double *b, size_t n)
+{
+    double m = 0;
+    for (size_t i = 0; i < n; i++)
+        m = fmax(m, fabs(a[i] - b[i]));
+    return m;
+}
+
+START_TEST(cg_matches_active_set)
+{
+    const scene_t *sc = &scenes[_i];
+    solution a, b;
+    solve(sc, MC_METHOD_CG, MC_BACKEND_FFT, TIGHT, &a);
+    solve(sc, MC_METHOD_ACTIVE_SET, MC_BACKEND_FFT, TIGHT, &b);
+    size_t n = (size_t)sc->nx * sc->ny;
+    double d = max_abs_diff(a.p, b.p, n) / b.sum.p_max;
+    ck_assert_msg(d <= TOL_METHODS, "%s: cg vs active-set %.3e of p_max", sc->name, d);
+    ck_assert_msg(fabs(a.sum.approach - b.sum.approach) <= TOL_METHODS * fabs(b.sum.approach) + 1e-18,
+                  "%s: approach %g vs %g", sc->name, a.sum.approach, b.sum.approach);
+    release(&a);
+    release(&b);
+}
+END_TEST
+
+START_TEST(pk_matches_active_set)
+{
+    const scene_t *sc = &scenes[_i];
+    solution a, b;
+    solve(sc, MC_METHOD_PK, MC_BACKEND_FFT, TIGHT, &a);
+    solve(sc, MC_METHOD_ACTIVE_SET, MC_BACKEND_DIRECT, TIGHT, &b);
+    size_t n = (size_t)sc->nx * sc->ny;
+    double d = max_abs_diff(a.p, b.p, n) / b.sum.p_max;
+    ck_assert_msg(d <= TOL_METHODS, "%s: pk vs active-set %.3e of p_max", sc->name, d);
+    release(&a);
+    release(&b);
+}
+END_TEST
+
+START_TEST(cg_backends_agree)
+{
+    const scene_t *sc = &scenes[_i];
+    solution a, b;
+    solve(sc, MC_METHOD_CG, MC_BACKEND_FFT, TIGHT, &a);
+    solve(sc, MC_METHOD_CG, MC_BACKEND_DIRECT, TIGHT, &b);
+    size_t n = (size_t)sc->nx * sc->ny;
+    double d = max_abs_diff(a.p, b.p, n) / b.sum.p_max;
+    ck_assert_msg(d <= TOL_BACKENDS, "%s: fft vs direct %.3e of p_max", sc->name, d);
+    release(&a);
+    release(&b);
+}
+END_TEST
+
+START_TEST(default_tolerance_kkt)
+{
+    const scene_t *sc = &scenes[_i];
+    solution a;
+    solve(sc, MC_METHOD_CG, MC_BACKEND_FFT, 1e-8, &a); /* KKT asserted inside solve() */
+    ck_assert(a.sum.residual <= 1e-8);
+    release(&a);
+}
+END_TEST
+
+START_TEST(active_set_refuses_large_grid)
+{
+    mc_grid g = {128, 64, 1e-6, 1e-6, 0, 0};
+    mc_operator *K = NULL;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
+    mc_contact_options opt = {MC_METHOD_ACTIVE_SET, 1e-8, 100};
+    mc_contact_solver *s = NULL;
+    ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_ERR_LIMIT);
+    ck_assert_ptr_null(s);
+    ck_assert_msg(strstr(err.msg, "4096") && strstr(err.msg, "cg"), "%s", err.msg);
+    mc_operator_destroy(&K);
+}
+END_TEST
+
+START_TEST(lubricant_carries_everything)
+{
+    /* lubricant pressure times area above the load: no solid contact, reported, not iterated */
+    const scene_t sc = {"lub_only", 16, 16, 0.0, 0.0, 0.0, 0};
+    double *h = mc_zeros(256), W, p0;
+    mc_grid g = make_topo(&sc, h, &W, &p0);
+    mc_operator *K = NULL;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
+    mc_contact_options opt = {MC_METHOD_CG, 1e-8, 100};
+    mc_contact_solver *s = NULL;
+    ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
+    double plub = 2.0 * W / (256 * mc_grid_cell_area(&g));
+    mc_contact_problem prob = {.h = h, .p_lub = plub, .p_cap = INFINITY,
+                               .control = MC_CONTROL_FORCE, .load = W};
+    double *p = mc_zeros(256);
+    mc_contact_summary sum;
+    ck_assert_int_eq(mc_contact_solve(s, &prob, p, NULL, NULL, &sum, &err), MC_OK);
+    ck_assert_int_eq(sum.iterations, 0);
+    ck_assert(sum.solid_load == 0 && sum.area == 0);
+    for (int i = 0; i < 256; i++)
+        ck_assert(p[i] == plub);
+    mc_free(p);
+    mc_free(h);
+    mc_contact_destroy(&s);
+    mc_operator_destroy(&K);
+}
+END_TEST
+
+START_TEST(not_converged_is_reported)
+{
+    const scene_t *sc = &scenes[1];
+    double *h = mc_zeros(24 * 24), W, p0;
+    mc_grid g = make_topo(sc, h, &W, &p0);
+    mc_operator *K = NULL;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
+    mc_contact_options opt = {MC_METHOD_PK, 1e-12, 2};
+    mc_contact_solver *s = NULL;
+    ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
+    mc_contact_problem prob = {.h = h, .p_cap = INFINITY, .control = MC_CONTROL_FORCE, .load = W};
+    double *p = mc_zeros(24 * 24);
+    mc_contact_summary sum;
+    ck_assert_int_eq(mc_contact_solve(s, &prob, p, NULL, NULL, &sum, &err), MC_NOT_CONVERGED);
+    ck_assert(!sum.converged && sum.iterations == 2 && sum.residual > 1e-12);
+    ck_assert_msg(strstr(err.msg, "did not converge"), "%s", err.msg);
+    for (int i = 0; i < 24 * 24; i++)
+        ck_assert(isfinite(p[i]));
+    mc_free(p);
+    mc_free(h);
+    mc_contact_destroy(&s);
+    mc_operator_destroy(&K);
+}
+END_TEST
+
+Suite *suite_contact(void);
+Suite *suite_contact(void)
+{
+    Suite *s = suite_create("contact");
+    TCase *t = tcase_create("methods");
+    tcase_set_timeout(t, 300);
+    tcase_add_loop_test(t, cg_matches_active_set, 0, NSCENES);
+    tcase_add_loop_test(t, pk_matches_active_set, 0, NSCENES);
+    tcase_add_loop_test(t, cg_backends_agree, 0, NSCENES);
+    tcase_add_loop_test(t, default_tolerance_kkt, 0, NSCENES);
+    suite_add_tcase(s, t);
+    TCase *e = tcase_create("edges");
+    tcase_add_test(e, active_set_refuses_large_grid);
+    tcase_add_test(e, lubricant_carries_everything);
+    tcase_add_test(e, not_converged_is_reported);
+    suite_add_tcase(s, e);
+    return s;
+}
