@@ -97,8 +97,8 @@ int mc_kernel_table_build(const mc_grid *g, int tx, int ty, const mc_kernel_fn *
             double s = 0.0;
             for (int l = -my; l <= my; l++)
                 for (int m = -mx; m <= mx; m++)
-                    s += fn->value((ox + (double)m * g->nx) * g->dx, (oy + (double)l * g->ny) * g->dy,
-                                   fn->ctx);
+                    s += fn->value((ox + (double)m * g->nx) * g->dx,
+                                   (oy + (double)l * g->ny) * g->dy, fn->ctx);
             if (tail)
                 s += fn->tail(ox * g->dx, oy * g->dy, g, images, fn->ctx);
             k[(size_t)jt * tx + it] = s;
@@ -121,7 +121,8 @@ static double love_far(double x, double y, double a, double b)
     const double dxxxx = 35.0 * x2 * x2 - 30.0 * x2 * r2 + 3.0 * r2 * r2;
     const double dyyyy = 35.0 * y2 * y2 - 30.0 * y2 * r2 + 3.0 * r2 * r2;
     const double dxxyy = 35.0 * x2 * y2 - 4.0 * r2 * r2;
-    const double d4 = 3.0 * ir9 * (a2 * a2 / 120.0 * dxxxx + b2 * b2 / 120.0 * dyyyy + a2 * b2 / 36.0 * dxxyy);
+    const double d4 =
+        3.0 * ir9 * (a2 * a2 / 120.0 * dxxxx + b2 * b2 / 120.0 * dyyyy + a2 * b2 / 36.0 * dxxyy);
     return 4.0 * a * b / M_PI * (ir + d2 + d4);
 }
 
@@ -200,7 +201,8 @@ static double tail_two_axes(double x, double y, const mc_grid *g, int images)
     const double iyy = corner_q(y + Hy, x + Hx) - corner_q(y - Hy, x + Hx) -
                        corner_q(y + Hy, x - Hx) + corner_q(y - Hy, x - Hx);
     /* c/A = 1/(pi nx ny) with c = dx dy/pi, A = Lx Ly */
-    return (-M_PI * mc_love_uz(x, y, Hx, Hy) + bx * ixx + by * iyy) / (M_PI * g->nx * (double)g->ny);
+    return (-M_PI * mc_love_uz(x, y, Hx, Hy) + bx * ixx + by * iyy) /
+           (M_PI * g->nx * (double)g->ny);
 }
 
 static double love_value(double ox, double oy, const void *ctx)
@@ -255,7 +257,7 @@ static inline double lattice_love(const double *f, int np, int m, int l)
     return (hi[m + 1] - lo[m + 1] - hi[m] + lo[m]) / M_PI;
 }
 
-/* Both axes free: the kernel is even in both offsets, so only |ox| < nx, |oy| < ny are evaluated. */
+/* Both axes free: the kernel is even in both offsets; only |ox| < nx, |oy| < ny are evaluated. */
 static int love_free(const mc_grid *g, double *k, int tx, int ty, mc_error *err)
 {
     const int np = g->nx + 1;
@@ -278,8 +280,7 @@ static int love_free(const mc_grid *g, double *k, int tx, int ty, mc_error *err)
 /* One periodic axis. Axis f is free (nf cells of df), axis p periodic (npd cells of dp); swap says
  * the periodic axis is x. The kernel is even in both offsets: the quarter |of| < nf, |op| <= npd/2
  * is computed row by row (central image on the corner lattice, further images exact near and
- * multipole far in loops over the free offset that vectorise, the tail from its corner values) and
- * mirrored into the table. */
+ * multipole far, the tail from its corner values) and mirrored into the table. */
 static int love_one_periodic(const mc_grid *g, double *k, int tx, int ty, mc_error *err)
 {
     const int swap = g->periodic_x;
@@ -311,7 +312,6 @@ static int love_one_periodic(const mc_grid *g, double *k, int tx, int ty, mc_err
                 const int near = rest < 0.0 ? 0 : (int)fmin(nf, floor(sqrt(rest) / df) + 1.0);
                 for (int of = 0; of < near; of++)
                     row[of] += mc_love_uz(of * df, yy, a, b);
-#pragma omp simd
                 for (int of = near; of < nf; of++)
                     row[of] += love_far(of * df, yy, a, b);
             }
@@ -423,7 +423,8 @@ static int love_ewald(const mc_grid *g, double *k, mc_error *err)
                 for (int v = 0; v < EWALD_GAUSS; v++) {
                     const double sx = x - a * gx[u], sy = y - b * gx[v];
                     const double r = sqrt(sx * sx + sy * sy);
-                    smooth += gw[u] * gw[v] * (r > 0.0 ? erf(alpha * r) / r : 2.0 * alpha / sqrt(M_PI));
+                    const double h = r > 0.0 ? erf(alpha * r) / r : 2.0 * alpha / sqrt(M_PI);
+                    smooth += gw[u] * gw[v] * h;
                 }
             const int i = ((ox % nx) + nx) % nx, j = ((oy % ny) + ny) % ny;
             k[(size_t)j * nx + i] += mc_love_uz(x, y, a, b) - smooth * a * b / M_PI;

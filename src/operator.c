@@ -9,7 +9,7 @@
 struct mc_operator {
     mc_conv *conv;
     double *kspec; /* the transformed kernel */
-    double *lspec; /* workspace: the transformed load of the current apply */
+    double *lspec; /* workspace of mc_conv_convolve */
 };
 
 static int n_threads;        /* 0: not set, all cores */
@@ -91,10 +91,7 @@ int mc_operator_plan_love(const mc_grid *g, double Estar, mc_backend b, mc_opera
 
 void mc_operator_apply(mc_operator *op, const double *in, double *out)
 {
-    /* load first: in is read completely before out is written, so in == out is fine */
-    mc_conv_load(op->conv, in, op->lspec);
-    const double *k = op->kspec, *l = op->lspec;
-    mc_conv_apply(op->conv, 1, &k, &l, out);
+    mc_conv_convolve(op->conv, op->kspec, in, out, op->lspec);
 }
 
 void mc_operator_destroy(mc_operator **op)

@@ -3,8 +3,8 @@
  *
  *     u[j][i] = sum_{j',i'} K(i - i', j - j') f[j'][i']      (offsets FIELD minus SOURCE)
  *
- * Two backends behind one interface (rows {name, create, kernel, load, apply, destroy} of a table,
- * chosen by name; callers never ask which one they have):
+ * Two backends behind one interface (rows {name, create, kernel, load, apply, convolve, destroy} of
+ * a table, chosen by name; callers never ask which one they have):
  *   direct - plain O(N^2) summation over the kernel table, written for clarity: the reference;
  *   fft    - DC-FFT (Liu, Wang & Liu 2000): zero padding along free axes, cyclic along periodic
  *            axes, real transforms (FFTW r2c/c2r), kernel spectrum built once per plan.
@@ -44,8 +44,9 @@ typedef struct {
 } mc_kernel_table;
 
 /* Offset in cells of table entry t (0 <= t < len) along an axis with n cells and table length len
- * (len == n: periodic axis, nearest image, +n/2 for even n; len >= 2n - 1: free axis). Sets *used
- * (if not NULL) to 0 for the padding slots of a free axis (then the offset is meaningless), else 1. */
+ * (len == n: periodic axis, nearest image, +n/2 for even n; len >= 2n - 1: free axis). Sets
+ * *used (if not NULL) to 0 for the padding slots of a free axis (then the offset is meaningless),
+ * else to 1. */
 int mc_table_offset(int t, int n, int len, int *used);
 
 /* A scalar kernel for the generic table builder. */
@@ -74,22 +75,26 @@ void mc_kernel_table_free(mc_kernel_table *t); /* frees t->k and sets it NULL; N
  * cell), tx, ty as from mc_conv_table_dims, E* > 0 in Pa. Free axes hold Love's rectangle itself
  * (evaluated on the corner lattice, elastic.md 3.5). Periodic axes hold the periodic Green's
  * function of the pixel load, whose plain image sum diverges like the 1/r kernel (elastic.md 5.2):
- *  - both axes periodic: Ewald summation (no image truncation; relative error ~1e-14). The mean of
- *    the table is removed (K^(0) = 0): the mean displacement of a fully periodic problem is
- *    undefined, the rigid approach absorbs it.
+ *  - both axes periodic: Ewald summation, no image truncation (the table changes by < 5e-15 of its
+ *    largest entry when the splitting parameter changes; it is the limit of mc_kernel_fn_love's
+ *    image sum). The mean of the table is removed (K^(0) = 0): the mean displacement of a fully
+ *    periodic problem is undefined, the rigid approach absorbs it.
  *  - one periodic axis (period L = n d): the image sum over |k| <= MC_LOVE_IMAGES periods plus the
- *    tail of mc_kernel_fn_love. The divergent constant is dropped, which leaves the table defined
- *    up to a constant (the approach absorbs it): far along the free axis it tends to the
- *    plane-strain strip kernel -(2 d/(pi E* L)) [(x+a) ln|x+a| - (x-a) ln|x-a| - 2a] (x in m;
- *    a the free half-width; ln of metres, so the constant depends on the unit of length).
+ *    tail of mc_kernel_fn_love (truncation < 2e-11, see MC_LOVE_IMAGES). The divergent constant
+ *    of the 1/r image sum is dropped, so the table is defined up to a constant, which the approach
+ *    absorbs. The convention chosen: summed over one period along the periodic axis the table is
+ *    the plane-strain strip kernel -(2/(pi E*)) [(x+a) ln|x+a| - (x-a) ln|x-a| - 2a] (x the free
+ *    offset in m, a the free half-width; ln of metres, so the constant depends on the unit of
+ *    length), and each entry tends to 1/n of it far along the free axis.
  * Allocates out->k. Returns MC_OK, MC_ERR_INPUT (bad sizes or E*), MC_ERR_NOMEM. */
 int mc_kernel_table_love(const mc_grid *g, int tx, int ty, double Estar, mc_kernel_table *out,
                          mc_error *err);
 
 /* Images per side along a single periodic axis used by mc_kernel_table_love. The truncation error
- * of the image sum with the continued tail falls like M^-6; measured (mc_kernel_fn_love, M vs the
- * M = 512 limit) <= 6e-11 of the largest entry at M = 16 over n = 2..16 and dx/dy = 0.2..5; exact
- * for n = 1 (the cells tile the strip). */
+ * of the image sum with the continued tail falls like M^-6; measured against M = 512, relative to
+ * max |K - mean K| (unit-independent, unlike the largest entry: the constant is arbitrary), over
+ * n = 2..64 and dx/dy = 0.2..5: <= 6.3e-11 at M = 16, <= 1.7e-11 at M = 20. Exact for n = 1 (the
+ * cells tile the strip). */
 #define MC_LOVE_IMAGES 20
 
 /* Context of mc_kernel_fn_love: rectangle half-sides a = dx/2, b = dy/2 (m) and E* (Pa). */
@@ -102,9 +107,9 @@ typedef struct {
  * sum_{|k|>M} f(kL) ~ (1/L) int_{|s|>H} (1 + beta2 d^2/ds^2 + beta4 d^4/ds^4) f, H = (M+1/2) L
  * (midpoint Euler-Maclaurin, with the pixel's own extent folded in), applied to the point kernel
  * c/r, c = dx dy/(pi E*), divergent constants dropped:
- *  - one periodic axis (y; x likewise with the axes exchanged), u± = H ± y:
- *      tail = (c/L) <J0 + beta2 J2 + beta4 J4>_x,   J0 = -sum± ln(u + sqrt(u^2 + x^2)),
- *      J2 = sum± u/rho^3, J4 = -sum± 3u(3x^2 - 2u^2)/rho^7, rho = sqrt(u^2 + x^2),
+ *  - one periodic axis (y; x likewise with the axes exchanged), u+- = H +- y:
+ *      tail = (c/L) <J0 + beta2 J2 + beta4 J4>_x,   J0 = -sum+- ln(u + sqrt(u^2 + x^2)),
+ *      J2 = sum+- u/rho^3, J4 = -sum+- 3u(3x^2 - 2u^2)/rho^7, rho = sqrt(u^2 + x^2),
  *      <>_x the exact average over the pixel width |x' - x| <= a, beta2 = (1 - n^2) dy^2/24,
  *      beta4 = [(1 - n^4)/120 + n^2 (n^2 - 1)/36] b^4 (both 0 for n = 1); error ~ M^-6;
  *  - both axes periodic, box half-sides Hx = (M+1/2) Lx, Hy = (M+1/2) Ly:
@@ -145,6 +150,12 @@ void mc_conv_load(mc_conv *c, const double *field, double *lspec);
  * (nterms >= 1). Never allocates; not reentrant per engine; out may alias none of the inputs. */
 void mc_conv_apply(mc_conv *c, int nterms, const double *const *kspec, const double *const *lspec,
                    double *out);
+
+/* out (nx*ny) = K (*) field for one transformed kernel: mc_conv_load + mc_conv_apply fused, without
+ * the intermediate spectrum (the operator's hot path). work: mc_conv_spectrum_len doubles of
+ * caller-owned scratch; field may be out. Never allocates; not reentrant per engine. */
+void mc_conv_convolve(mc_conv *c, const double *kspec, const double *field, double *out,
+                      double *work);
 
 mc_backend mc_conv_backend(const mc_conv *c);
 const mc_grid *mc_conv_grid(const mc_conv *c);

@@ -7,6 +7,7 @@
 
 #include "alloc.h"
 #include "fftsize.h"
+#include "operator.h"
 
 #define PLAN_CACHE 6
 
@@ -109,6 +110,12 @@ static box_plan *plan_for(mc_precond *pc, int fx, int fy, mc_error *err)
     b->fx = fx;
     b->fy = fy;
     b->symbol = mc_malloc(sizeof(double) * (size_t)fy * (size_t)(fx / 2 + 1));
+    if (mc_fftw_prepare(err) != MC_OK) {
+        free_plan(b);
+        if (fresh_slot)
+            pc->ncached--;
+        return NULL;
+    }
     b->fwd = fftw_plan_dft_r2c_2d(fy, fx, pc->real, pc->spec, FFTW_ESTIMATE);
     b->inv = fftw_plan_dft_c2r_2d(fy, fx, pc->spec, pc->real, FFTW_ESTIMATE);
     if (!b->symbol || !b->fwd || !b->inv) {

@@ -1,6 +1,8 @@
 /* surface.c - shapes, synthetic roughness and statistics (see surface.h). */
 #include "surface.h"
 
+#include "operator.h"
+
 #include <fftw3.h>
 #include <math.h>
 #include <string.h>
@@ -119,9 +121,18 @@ static int synthesize(const mc_grid *g, uint64_t seed, const psd_params *p, doub
         mc_free(W);
         return mc_fail(err, MC_ERR_NOMEM, "roughness: no memory for a %d x %d spectrum", ny, nx);
     }
-    /* ESTIMATE plans do not touch the arrays and are the same on every run. */
+    /* ESTIMATE plans do not touch the arrays and are the same on every run; one thread, so the
+     * surface of a seed does not depend on the thread count either. */
+    int prep = mc_fftw_prepare(err);
+    if (prep != MC_OK) {
+        mc_free(w);
+        mc_free(W);
+        return prep;
+    }
+    fftw_plan_with_nthreads(1);
     fftw_plan fwd = fftw_plan_dft_r2c_2d(ny, nx, w, W, FFTW_ESTIMATE);
     fftw_plan bwd = fftw_plan_dft_c2r_2d(ny, nx, W, w, FFTW_ESTIMATE);
+    mc_fftw_prepare(NULL); /* back to the configured thread count */
     if (!fwd || !bwd) {
         if (fwd)
             fftw_destroy_plan(fwd);
