@@ -41,6 +41,97 @@ void mc_contact_apply(mc_contact_solver *s, const double *in, double *out)
 
 long mc_contact_last_applies(const mc_contact_solver *s) { return s->applies; }
 
+long mc_contact_last_coarse_applies(const mc_contact_solver *s)
+{
+    long n = 0;
+    for (const mc_contact_solver *c = s->coarse; c; c = c->coarse)
+        n += c->applies;
+    return n;
+}
+
+/* ---- nested start: restriction to, and prolongation from, a 2:1 coarser grid ------------- */
+
+static int coarsen_factor(int n, int periodic)
+{
+    return n >= MC_COARSEN_MIN && (!periodic || n % 2 == 0) ? 2 : 1;
+}
+
+/* Block average over the fine cells of each coarse cell (partial blocks at odd ends). */
+static void restrict_field(const mc_contact_solver *s, const double *fine, const double *extra,
+                           double uniform, double *coarse)
+{
+    const mc_grid *g = &s->g, *cg = &s->coarse->g;
+    for (int J = 0; J < cg->ny; J++)
+        for (int I = 0; I < cg->nx; I++) {
+            double sum = 0;
+            int m = 0;
+            for (int j = J * s->fy; j < (J + 1) * s->fy && j < g->ny; j++)
+                for (int i = I * s->fx; i < (I + 1) * s->fx && i < g->nx; i++) {
+                    size_t k = (size_t)j * g->nx + i;
+                    sum += (fine ? fine[k] : uniform) + (extra ? extra[k] : 0.0);
+                    m++;
+                }
+            coarse[(size_t)J * cg->nx + I] = sum / m;
+        }
+}
+
+static void prolong_field(const mc_contact_solver *s, const double *coarse, double *fine)
+{
+    const mc_grid *g = &s->g;
+    const int cnx = s->coarse->g.nx;
+    for (int j = 0; j < g->ny; j++)
+        for (int i = 0; i < g->nx; i++)
+            fine[(size_t)j * g->nx + i] = coarse[(size_t)(j / s->fy) * cnx + i / s->fx];
+}
+
+static int create_coarse(mc_contact_solver *s, mc_operator *K, mc_error *err)
+{
+    const mc_grid *g = mc_operator_grid(K);
+    s->fx = coarsen_factor(g->nx, g->periodic_x);
+    s->fy = coarsen_factor(g->ny, g->periodic_y);
+    if (s->opt.method != MC_METHOD_CG || !(s->opt.estar > 0) || (s->fx == 1 && s->fy == 1))
+        return MC_OK;
+    mc_grid cg = *g;
+    cg.nx = (g->nx + s->fx - 1) / s->fx;
+    cg.ny = (g->ny + s->fy - 1) / s->fy;
+    cg.dx = g->dx * s->fx;
+    cg.dy = g->dy * s->fy;
+    int rc = mc_operator_plan_love(&cg, s->opt.estar, mc_operator_backend(K), &s->coarse_op, err);
+    if (rc != MC_OK)
+        return rc;
+    mc_contact_options copt = s->opt;
+    /* the coarse solution is only a start: a modest tolerance suffices */
+    if (copt.tolerance < 1e-5)
+        copt.tolerance = 1e-5;
+    rc = mc_contact_create(s->coarse_op, &copt, &s->coarse, err);
+    if (rc != MC_OK)
+        return rc;
+    size_t nc = mc_grid_cells(&cg);
+    if (!(s->coarse_h = mc_zeros(nc)) || !(s->coarse_low = mc_zeros(nc)) ||
+        !(s->coarse_p = mc_zeros(nc)) || !(s->start = mc_zeros(s->n)))
+        return mc_fail(err, MC_ERR_NOMEM, "contact solver: out of memory for the coarse grid");
+    return MC_OK;
+}
+
+/* Solve the problem on the coarse grid and prolong its pressure into s->start. */
+static int coarse_start(mc_contact_solver *s, const mc_contact_problem *p, mc_error *err)
+{
+    restrict_field(s, p->h, p->h_extra, 0.0, s->coarse_h);
+    restrict_field(s, p->p_lower, NULL, p->p_lub, s->coarse_low);
+    mc_contact_problem cp = *p;
+    cp.h = s->coarse_h;
+    cp.h_extra = NULL;
+    cp.p_lower = s->coarse_low;
+    cp.p_start = NULL;
+    mc_contact_summary sum;
+    int rc = mc_contact_solve(s->coarse, &cp, s->coarse_p, NULL, NULL, &sum, err);
+    if (rc != MC_OK && rc != MC_NOT_CONVERGED)
+        return rc;
+    mc_error_clear(err);
+    prolong_field(s, s->coarse_p, s->start);
+    return MC_OK;
+}
+
 int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_solver **out,
                       mc_error *err)
 {
@@ -85,6 +176,8 @@ int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_
         rc = mc_precond_create(g, &s->pc, err);
     else
         rc = mc_contact_active_set_prepare(s, err);
+    if (rc == MC_OK)
+        rc = create_coarse(s, K, err);
     if (rc != MC_OK) {
         mc_contact_destroy(&s);
         return rc;
@@ -105,6 +198,12 @@ void mc_contact_destroy(mc_contact_solver **sp)
     mc_free(s->mask);
     mc_free(s->mask_old);
     mc_free(s->map);
+    mc_free(s->coarse_h);
+    mc_free(s->coarse_low);
+    mc_free(s->coarse_p);
+    mc_free(s->start);
+    mc_contact_destroy(&s->coarse);
+    mc_operator_destroy(&s->coarse_op);
     mc_precond_destroy(&s->pc);
     mc_free(s);
     *sp = NULL;
@@ -224,15 +323,24 @@ static void start_value(mc_contact_solver *s, const mc_contact_problem *p, const
         q[i] = qp->cap && v > qp->cap[i] ? qp->cap[i] : v;
 }
 
-int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *p, double *pout, double *uout,
-                     double *gapout, mc_contact_summary *sum, mc_error *err)
+int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, double *pout,
+                     double *uout, double *gapout, mc_contact_summary *sum, mc_error *err)
 {
     const size_t n = s->n;
     s->applies = 0;
     memset(sum, 0, sizeof *sum);
-    int rc = check_problem(s, p, err);
+    int rc = check_problem(s, prob, err);
     if (rc != MC_OK)
         return rc;
+    mc_contact_problem nested = *prob;
+    const mc_contact_problem *p = prob;
+    if (s->coarse && !prob->p_start) {
+        rc = coarse_start(s, prob, err);
+        if (rc != MC_OK)
+            return rc;
+        nested.p_start = s->start;
+        p = &nested;
+    }
 
     /* shift to the excess pressure: the lubricant pressure loads the half-space too */
     int any_lower = 0;

@@ -28,6 +28,10 @@
  *                leave, penetrating cells re-enter (plastic-lubrication.md 5); O(N^3): refused
  *                above MC_ACTIVE_SET_MAX_CELLS.
  *
+ * Start: a warm start if given; else, for cg with opt.estar > 0 on a large grid, the solution of
+ * the same problem on a 2:1 coarser grid (topography, bounds and extra term block-averaged, the
+ * load kept), itself started the same way; else the uniform pressure.
+ *
  * Stopping rule (scale-free): with the gap scale s_g = max(delta - min h~, max h~ - min h~ over
  * the solid contact, tiny) and the load W,
  *     residual = max( max_free |g| / s_g,  max_{p=p_lower} (-g) / s_g,  max_{p=p_cap} g / s_g,
@@ -63,7 +67,14 @@ typedef struct {
     mc_contact_method method; /* scene.h: MC_METHOD_CG | MC_METHOD_PK | MC_METHOD_ACTIVE_SET */
     double tolerance;         /* see the stopping rule above; e.g. 1e-8 */
     int max_iterations;
+    /* Combined modulus E* (Pa) of the Love operator K. When > 0, method cg starts a solve
+     * without a warm start from the solution on a grid coarsened 2:1 (recursively, while an axis
+     * has >= MC_COARSEN_MIN cells): nested iteration, which spares the fine grid most of the
+     * iterations that only shrink the contact set. 0 = start from the uniform pressure. */
+    double estar;
 } mc_contact_options;
+
+#define MC_COARSEN_MIN 96 /* an axis with fewer cells is not coarsened */
 
 typedef struct mc_contact_solver mc_contact_solver;
 
@@ -80,8 +91,10 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
 
 void mc_contact_destroy(mc_contact_solver **s);
 
-/* Number of operator applications of the last solve (for benchmarks). */
+/* Operator applications of the last solve on this grid, and on all coarser grids of the
+ * nested start (for benchmarks). */
 long mc_contact_last_applies(const mc_contact_solver *s);
+long mc_contact_last_coarse_applies(const mc_contact_solver *s);
 
 const char *mc_contact_method_name(mc_contact_method m);
 

@@ -37,6 +37,11 @@ struct mc_contact_solver {
     unsigned char *mask, *mask_old;
     mc_precond *pc;
     long applies;
+    /* nested start (cg): the same problem on a 2:1 coarser grid (NULL when not coarsened) */
+    mc_contact_solver *coarse;
+    mc_operator *coarse_op;
+    int fx, fy;                    /* coarsening factor per axis (1 or 2) */
+    double *coarse_h, *coarse_low, *coarse_p, *start; /* coarse arrays, and the fine start */
     /* active-set reference: dense influence matrix and factor workspace (n*n each) */
     double *dense, *factor;
     size_t *map; /* free-cell indices */

@@ -72,7 +72,8 @@ static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_e
     const mc_grid *g = &res->grid;
     mc_contact_options opt = {.method = sc->solver.method,
                               .tolerance = sc->solver.tolerance,
-                              .max_iterations = sc->solver.max_iterations};
+                              .max_iterations = sc->solver.max_iterations,
+                              .estar = mc_scene_estar(sc)};
     mc_contact_problem prob = {.h = res->topography,
                                .p_lub = sc->load.lubricant_pressure,
                                .p_cap = sc->load.pressure_cap};

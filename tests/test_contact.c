@@ -77,7 +77,7 @@ static void solve(const scene_t *sc, mc_contact_method m, mc_backend b, double t
     mc_operator *K = NULL;
     mc_error err = {0};
     ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, b, &K, &err), MC_OK);
-    mc_contact_options opt = {m, tol, 20000};
+    mc_contact_options opt = {m, tol, 20000, 0};
     mc_contact_solver *s = NULL;
     ck_assert_msg(mc_contact_create(K, &opt, &s, &err) == MC_OK, "%s", err.msg);
     double pm = W / (n * mc_grid_cell_area(&g));
@@ -200,7 +200,7 @@ START_TEST(active_set_refuses_large_grid)
     mc_operator *K = NULL;
     mc_error err = {0};
     ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
-    mc_contact_options opt = {MC_METHOD_ACTIVE_SET, 1e-8, 100};
+    mc_contact_options opt = {MC_METHOD_ACTIVE_SET, 1e-8, 100, 0};
     mc_contact_solver *s = NULL;
     ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_ERR_LIMIT);
     ck_assert_ptr_null(s);
@@ -218,7 +218,7 @@ START_TEST(lubricant_carries_everything)
     mc_operator *K = NULL;
     mc_error err = {0};
     ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
-    mc_contact_options opt = {MC_METHOD_CG, 1e-8, 100};
+    mc_contact_options opt = {MC_METHOD_CG, 1e-8, 100, 0};
     mc_contact_solver *s = NULL;
     ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
     double plub = 2.0 * W / (256 * mc_grid_cell_area(&g));
@@ -246,7 +246,7 @@ START_TEST(not_converged_is_reported)
     mc_operator *K = NULL;
     mc_error err = {0};
     ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
-    mc_contact_options opt = {MC_METHOD_PK, 1e-12, 2};
+    mc_contact_options opt = {MC_METHOD_PK, 1e-12, 2, 0};
     mc_contact_solver *s = NULL;
     ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
     mc_contact_problem prob = {.h = h, .p_cap = INFINITY, .control = MC_CONTROL_FORCE, .load = W};
@@ -260,6 +260,49 @@ START_TEST(not_converged_is_reported)
     mc_free(p);
     mc_free(h);
     mc_contact_destroy(&s);
+    mc_operator_destroy(&K);
+}
+END_TEST
+
+/* The nested (coarse-grid) start changes where cg starts, not what it converges to: both starts
+ * give the same pressure to the solver tier, and the nested one needs fewer fine iterations. */
+START_TEST(nested_start_same_answer)
+{
+    const int N = 129;
+    mc_grid g = {N, 2 * N - 20, 1.5e-6, 1.2e-6, 0, 0};
+    size_t n = mc_grid_cells(&g);
+    double *h = mc_zeros(n), *p1 = mc_zeros(n), *p2 = mc_zeros(n), ph[8];
+    test_random_field(ph, 8, 7);
+    for (int j = 0; j < g.ny; j++)
+        for (int i = 0; i < g.nx; i++) {
+            double x = mc_grid_x(&g, i), y = mc_grid_y(&g, j);
+            h[(size_t)j * g.nx + i] = (x * x + y * y) / (2 * R) +
+                                      2e-8 * sin(9e4 * x + 3 * ph[0]) * cos(7e4 * y + 3 * ph[1]);
+        }
+    mc_operator *K = NULL;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
+    mc_contact_summary s1, s2;
+    int it[2];
+    for (int k = 0; k < 2; k++) {
+        mc_contact_options opt = {MC_METHOD_CG, TIGHT, 5000, k ? E_STAR : 0};
+        mc_contact_solver *s = NULL;
+        ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
+        mc_contact_problem prob = {.h = h, .p_cap = INFINITY, .control = MC_CONTROL_FORCE,
+                                   .load = 0.5};
+        ck_assert_int_eq(mc_contact_solve(s, &prob, k ? p2 : p1, NULL, NULL, k ? &s2 : &s1, &err),
+                         MC_OK);
+        it[k] = (k ? s2 : s1).iterations;
+        if (k)
+            ck_assert_msg(mc_contact_last_coarse_applies(s) > 0, "no coarse solve happened");
+        mc_contact_destroy(&s);
+    }
+    double d = max_abs_diff(p1, p2, n) / s1.p_max;
+    ck_assert_msg(d <= TOL_METHODS, "nested vs uniform start differ by %.3e of p_max", d);
+    ck_assert_msg(it[1] < it[0], "nested start took %d fine iterations, uniform %d", it[1], it[0]);
+    mc_free(h);
+    mc_free(p1);
+    mc_free(p2);
     mc_operator_destroy(&K);
 }
 END_TEST
@@ -279,6 +322,7 @@ Suite *suite_contact(void)
     tcase_add_test(e, active_set_refuses_large_grid);
     tcase_add_test(e, lubricant_carries_everything);
     tcase_add_test(e, not_converged_is_reported);
+    tcase_add_test(e, nested_start_same_answer);
     suite_add_tcase(s, e);
     return s;
 }
