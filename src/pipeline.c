@@ -9,6 +9,7 @@
 #include "contact.h"
 #include "heightmap.h"
 #include "operator.h"
+#include "stress.h"
 #include "surface.h"
 
 double mc_clock(void)
@@ -138,6 +139,17 @@ int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
     else
         rc = run_contact(sc, K, res, err);
     mc_operator_destroy(&K);
+    /* stresses of an unconverged solve are still worth writing; its status stays */
+    if ((rc == MC_OK || rc == MC_NOT_CONVERGED) && sc->stress.enabled) {
+        mc_error serr = {0};
+        t0 = mc_clock();
+        int src = mc_stress_stage(sc, res, &serr);
+        res->timing.stress_s = mc_clock() - t0;
+        if (src != MC_OK) {
+            *err = serr;
+            rc = src;
+        }
+    }
     res->timing.total_s = mc_clock() - t_start;
     return rc;
 }

@@ -21,9 +21,12 @@
  *     MC_STRESS_FAR_EDGE * max(Lx, Ly), where the in-plane stresses of the strip have converged to
  *     ~1e-12), corrected by the midpoint Euler-Maclaurin terms in the second and fourth derivatives
  *     along the axis (finite differences of the corner functions at H, with the pixel's own width
- *     folded in). Per axis M is chosen from n (see stress_table.c); n = 1 is the exact strip;
+ *     folded in). Per axis and depth M is chosen from n and z/L so that the table changes by
+ *     <= 5e-10 of its largest entry from M to 2M (M ~ 2..24, see stress_table.c); n = 1 is the
+ *     exact strip (plane strain);
  *   - at depths z >= MC_STRESS_SMEAR_DEPTH * L the whole image sum along that axis is the smeared
- *     load (Poisson summation: the first omitted mode is ~(2 pi z/L) e^(-2 pi z/L) < 1e-9);
+ *     load (Poisson summation: the first omitted mode is ~(2 pi z/L) e^(-2 pi z/L); measured
+ *     <= 3e-10 of the largest table entry at 4.5 L, 4e-9 at 4 L);
  *   - both axes periodic: the two 1-D rules multiply (images x images, images x strips, strips x
  *     strips). The mean (Fourier mode 0) of each table is then set exactly: sigma_zz, sigma_xz,
  *     sigma_yz keep the equilibrium values (mean sigma_zz = -mean p, mean sigma_xz = -mean q_x,
@@ -45,7 +48,7 @@ enum { MC_LOAD_P = 1, MC_LOAD_QX = 2, MC_LOAD_QY = 4 };
 /* Far edge of the smeared strips of periodic axes, in units of max(Lx, Ly). */
 #define MC_STRESS_FAR_EDGE 1e12
 /* Depth (in periods of an axis) from which the image sum along that axis is the smeared load. */
-#define MC_STRESS_SMEAR_DEPTH 4.0
+#define MC_STRESS_SMEAR_DEPTH 4.5
 
 /* ---- kernel tables of one depth (the lower layer; used by the operator below) -------------- */
 
@@ -53,8 +56,9 @@ typedef struct mc_stress_tables mc_stress_tables;
 
 /* Plan the table builder for grid g and table sizes tx, ty (as from mc_conv_table_dims: a free
  * axis >= 2n - 1, a periodic axis = n), kernel, Poisson ratio nu in (-1, 0.5]. images: images per
- * side M on periodic axes, or <= 0 for the automatic choice (see stress_table.c; tests use it to
- * measure the tail's convergence). Workspaces for mc_get_threads() threads are allocated here.
+ * side M on periodic axes at every depth above the smearing depth (values below 2 are raised to
+ * 2), or <= 0 for the automatic depth-dependent choice (tests use it to measure the tail's
+ * convergence). Workspaces for mc_get_threads() threads are allocated here.
  * *out is NULL on failure. MC_OK, MC_ERR_INPUT (bad grid, sizes, kernel or nu), MC_ERR_NOMEM. */
 int mc_stress_tables_create(const mc_grid *g, int tx, int ty, mc_stress_kernel kernel, double nu,
                             int images, mc_stress_tables **out, mc_error *err);
@@ -122,10 +126,10 @@ void mc_stress_destroy(mc_stress_op **op); /* frees, sets *op = NULL; NULL-safe 
 /* ---- the pipeline stage -------------------------------------------------------------------- */
 
 /* Stresses of the scene's [stress] section under the contact result: depths from mc_scene_depths;
- * loads p = res->pressure and, when friction > 0, the traction q_x = friction * p on the lower body
- * (body 1, z >= 0) in +x: the counter body slides in +x relative to it (elastic.md 0); Poisson ratio
- * of body 1 (the stresses are body 1's; for body 2 mirror the problem); kernel from the scene;
- * backend scene->solver.op. Fills res->nlayers, depths, stress[6], von_mises, hydrostatic, tresca
+ * loads p = res->pressure and, when friction > 0, the traction q_x = friction * p on the lower
+ * body (body 1, z >= 0) in +x: the counter body slides in +x relative to it (elastic.md 0);
+ * Poisson ratio of body 1 (the stresses are body 1's; for body 2 mirror the problem); kernel from
+ * the scene; backend scene->solver.op; the grid of res (that of the pressure). Fills res->nlayers, depths, stress[6], von_mises, hydrostatic, tresca
  * (invariants.h) and stress_summary (maxima of von Mises and Tresca, first found in volume order,
  * with their cell-centre (x, y, z); the hydrostatic stress at the von Mises maximum). Stress
  * members already present in res are replaced. On failure res's stress members are unchanged.

@@ -1,29 +1,28 @@
 /* stress_table.c - kernel tables of the subsurface stresses at one depth (see stress.h).
  *
- * A table entry is a sum of 1-D "stencils" along x and y applied to a 2-D function. Along an axis
- * the entry of cell offset o (field minus source) is
- *   free axis:      f(o + 1/2) - f(o - 1/2)                         (corner positions in cells)
- *   periodic axis:  sum_{|k| <= M} [f(o + kn + 1/2) - f(o + kn - 1/2)]              (images)
- *                   + (1/n) { f(o + F) - f(o - F) - [f(o + H) - f(o - H)]
- *                             - e2 [d2 f(o + H) - d2 f(o - H)] - e4 [d4 f(o + H) - d4 f(o - H)] }
- * with H = (M + 1/2) n the edge of the smeared strips, F their far edge, d2 and d4 the central
- * second and fourth differences (step one cell). The braces are the uniform load 2b/L = 1/n per
- * unit length replacing the images |k| > M, with the midpoint Euler-Maclaurin corrections: for a
- * pixel of width 2b repeated with period L = 2bn and a corner function G (the pixel's stress is
- * G(y + b) - G(y - b)),
+ * A table entry is a 1-D "stencil" along x times one along y applied to a 2-D function. Along an
+ * axis the entry of cell offset o (field minus source, in cells) is
+ *   free axis:      f(o + 1/2) - f(o - 1/2)                          (corner positions)
+ *   periodic axis:  sum_{|k| <= M} [f(o + kn + 1/2) - f(o + kn - 1/2)]               (images)
+ *                   + (1/n) { f(o + F) - f(o - F) - [C f(o + H) - C f(o - H)] }       (strips)
+ * with H = (M + 1/2) n the edge of the smeared strips, F their far edge and C f(u) =
+ * f(u) + e2 d2 f(u) + e4 d4 f(u), d2 and d4 the central second and fourth differences of step s
+ * cells. The braces are the load 2b/L = 1/n per unit length replacing the images |k| > M, with the
+ * midpoint Euler-Maclaurin corrections: for a pixel of width 2b repeated with period L = 2bn and
+ * a corner function G (the pixel's stress is G(y + b) - G(y - b)),
  *   sum_{k > M} = (2b/L) [G(y - H) - G(y - F)] + (2b/L) [c2 G''(y - H) + c4 G''''(y - H)] + ...,
  *   c2 = (1 - n^2) (2b)^2/24,   c4 = b^4 [1/120 - n^2/36 + 7 n^4/360]
  * (both vanish for n = 1: the pixels tile the strip), and the images k < -M mirror it. The
- * differences replace the derivatives: e2 = c2/d^2, e4 = c4/d^4 - e2/12. The 2-D table is the
- * product of the x and y stencils applied to the corner function of kernel.h (patch kernel): the
- * images x images, images x strips and strips x strips parts of the plane.
+ * differences replace the derivatives: G'' = (d2 - d4/12)/h^2, G'''' = d4/h^4, h = s d. The 2-D
+ * table is the product of the x and y stencils applied to the corner function of kernel.h (patch
+ * kernel): the images x images, images x strips and strips x strips parts of the plane.
  *
- * Evaluation streams over table rows (y offsets o, OpenMP blocks of consecutive o): a "row" is the
- * x stencil of every x entry applied to the corner function on one line Y = const (the corner
- * function evaluated once per distinct X: the corner lattice of elastic.md 3.5, plus the strip
- * points); each row is used by all table rows whose y stencil contains its Y, which for
- * consecutive o are shared (the upper corner of o is the lower corner of o + 1, the strip points
- * slide by one), so every distinct (X, Y) is evaluated once per block.
+ * Evaluation streams over lines Y = const ("rows"): a row is the x stencil of every x entry
+ * applied to the corner function on that line, evaluated once per distinct X (the corner lattice
+ * of elastic.md 3.5 plus the strip points). Table rows are split into OpenMP blocks of consecutive
+ * y offsets; a block computes each distinct Y its stencils need once (the upper corner of o is the
+ * lower corner of o + 1, strip points are shared by neighbours) and adds the row, weighted, to
+ * every table row of the block whose stencil holds it.
  *
  * The point kernel: its images are point forces (mc_point_stress_* times dx dy), summed directly;
  * its smeared strips are those of the patch kernel (the same loads smeared; the pixel's own width
@@ -37,24 +36,28 @@
 #include "kernel.h"
 #include "stress.h"
 
-/* Above this many cells per period the fourth-difference correction is skipped: its round-off,
- * ~ e4/n * 16 eps |f| ~ 0.02 n^3 eps |f| (|f| <= ~30 for the logs of the corner functions), would
- * pass 1e-10 of a unit kernel, while the term it corrects is already below 1e-11 there. */
-#define FOURTH_DIFF_MAX_N 128
+/* Step of the difference stencils of the strip corrections, cells: max(1, n/DIFF_STEP_DIV). At one
+ * cell the fourth difference times e4 ~ n^4/800 would amplify the round-off of the corner
+ * functions (|f| up to ~30 for their logs) to ~ n^3 eps; at n/8 cells it stays ~ eps, while the
+ * truncation error of the differences, O((s d/H)^4) of a correction that is itself small, is
+ * negligible. */
+#define DIFF_STEP_DIV 8
 
 typedef void (*stress_fn)(double X, double Y, double z, double nu, double f[MC_NSTRESS]);
 
 static const stress_fn corner_fns[3] = {mc_rect_corner_p, mc_rect_corner_qx, mc_rect_corner_qy};
 static const stress_fn point_fns[3] = {mc_point_stress_p, mc_point_stress_qx, mc_point_stress_qy};
 
+#define NSTRIP 5 /* points of the strip stencil per side, offsets j s for j = -2..2 */
+
 typedef struct {
     int n, len, periodic;
-    double d;      /* cell size, m */
-    int olo, ohi;  /* cell offsets of the used table entries (contiguous) */
-    int *index;    /* table index of offset o: index[o - olo] */
-    int M;         /* images per side at depths above the smearing depth (periodic axes) */
-    int J;         /* half-width of the difference stencils: 2 (d2, d4) or 1 (d2) */
-    double e2, e4; /* Euler-Maclaurin coefficients of d2 and d4 */
+    double d;             /* cell size, m */
+    int olo, ohi;         /* cell offsets of the used table entries (contiguous) */
+    int *index;           /* table index of offset o: index[o - olo] */
+    int images;           /* forced images per side (> 0), or 0: automatic (depth dependent) */
+    int s;                /* step of the strip stencil, cells */
+    double cs[NSTRIP];    /* strip stencil: f(H + js) weights, value + Euler-Maclaurin terms */
 } axis;
 
 /* The stencil of one axis at one depth. */
@@ -66,10 +69,8 @@ typedef struct {
 } rule;
 
 typedef struct {
-    double *fv;   /* corner function at the x points of one row, 6 per point */
-    double *rows; /* row buffers, 6*tx each */
-    double **lo, **up, **hp, **hm, *farp, *farm;
-    double **ptr; /* pointer storage for lo, up, hp, hm */
+    double *fv;  /* corner function at the x points of one row, 6 per point */
+    double *row; /* one row, 6*tx */
 } workspace;
 
 struct mc_stress_tables {
@@ -81,37 +82,49 @@ struct mc_stress_tables {
     axis ax[2];
     int nthreads;
     workspace *ws;
-    size_t nfv;   /* doubles of fv */
-    size_t nrows; /* rows per workspace */
+    size_t nfv; /* doubles of fv */
 };
 
-/* Images per side along a periodic axis of n cells. The strip error after the fourth-order
- * correction falls like M^-6 (M^-4 with the second-order one used for n > FOURTH_DIFF_MAX_N);
- * measured in tests/test_stress.c as the table change from M to 2M. At least 2, so that the strip
- * stencil (H - 2 cells) stays clear of the singular lines X = 0, Y = 0 at z = 0. */
-static int auto_images(int n)
+/* Images per side along a periodic axis of n cells at depth z (period L = n d). The strip error,
+ * measured as the table change from M to 2M relative to the largest entry of the load's six
+ * tables (tests/test_stress.c), follows err(M) ~ E (4/M)^TAIL_ORDER with E = TAIL_SURF/n^2 +
+ * TAIL_DEPTH min(z/L, 1.5)^2 (fitted on n = 2..128, z/L = 0..4.5; the n^-2 term is the pixel
+ * effect near the surface, the other the smoothness of the far field); M is the smallest with
+ * err <= TAIL_TARGET, and at least 2, so that the strip stencil stays clear of the singular lines
+ * X = 0, Y = 0 at z = 0. Deep tables of large periods reach the round-off floor of the corner
+ * differences first (eps (z/d)^2, elastic.md 3.5). */
+#define TAIL_ORDER 6.6
+#define TAIL_SURF 7e-7
+#define TAIL_DEPTH 4e-6
+#define TAIL_TARGET 5e-10
+#define AUTO_IMAGES_MAX 24
+static int auto_images(int n, double zl)
 {
-    if (n <= 1)
-        return 0;
-    int m = (int)ceil(48.0 / n);
-    return m < 2 ? 2 : m;
+    const double q = fmin(zl, 1.5);
+    const double E = TAIL_SURF / ((double)n * n) + TAIL_DEPTH * q * q;
+    const int m = (int)ceil(4.0 * pow(E / TAIL_TARGET, 1.0 / TAIL_ORDER));
+    return m < 2 ? 2 : (m > AUTO_IMAGES_MAX ? AUTO_IMAGES_MAX : m);
+}
+
+/* The stencil of a periodic axis with M >= 0 images per side. */
+static rule images_rule(const axis *a, int M)
+{
+    rule r = {M, 1, (M + 0.5) * a->n, a->olo - M * a->n, a->ohi + M * a->n};
+    return r;
 }
 
 static rule axis_rule(const axis *a, double z)
 {
-    rule r = {0, 0, 0.0, a->olo, a->ohi};
-    if (!a->periodic)
-        return r;
-    r.strips = 1;
-    if (a->n == 1 || z >= MC_STRESS_SMEAR_DEPTH * a->n * a->d) {
-        r.M = -1;
+    if (!a->periodic) {
+        rule r = {0, 0, 0.0, a->olo, a->ohi};
         return r;
     }
-    r.M = a->M;
-    r.H = (a->M + 0.5) * a->n;
-    r.clo = a->olo - a->M * a->n;
-    r.chi = a->ohi + a->M * a->n;
-    return r;
+    const double zl = z / (a->n * a->d);
+    if (a->n == 1 || zl >= MC_STRESS_SMEAR_DEPTH) {
+        rule r = {-1, 1, 0.0, 0, 0};
+        return r;
+    }
+    return images_rule(a, a->images > 0 ? a->images : auto_images(a->n, zl));
 }
 
 static int axis_setup(axis *a, int n, int len, int periodic, double d, int images, mc_error *err)
@@ -136,21 +149,25 @@ static int axis_setup(axis *a, int n, int len, int periodic, double d, int image
         if (used)
             a->index[o - a->olo] = t;
     }
-    a->M = periodic ? (images > 0 ? images : auto_images(n)) : 0;
-    a->J = n <= FOURTH_DIFF_MAX_N ? 2 : 1;
-    const double nn = (double)n * n;
-    a->e2 = (1.0 - nn) / 24.0;
-    a->e4 = a->J == 2 ? (1.0 / 120.0 - nn / 36.0 + 7.0 * nn * nn / 360.0) / 16.0 - a->e2 / 12.0
-                      : 0.0;
+    a->images = images > 0 ? (images < 2 ? 2 : images) : 0; /* >= 2: see auto_images */
+    a->s = n / DIFF_STEP_DIV > 1 ? n / DIFF_STEP_DIV : 1;
+    /* c2 G'' + c4 G from differences of step h = s d: G = (d2 - d4/12)/h^2, G = d4/h^4 */
+    const double nn = (double)n * n, r2 = 1.0 / ((double)a->s * a->s);
+    const double e2 = (1.0 - nn) / 24.0 * r2;
+    const double c4 = (1.0 / 120.0 - nn / 36.0 + 7.0 * nn * nn / 360.0) / 16.0; /* c4 / d^4 */
+    const double e4 = c4 * r2 * r2 - e2 / 12.0;
+    static const double d2[NSTRIP] = {0, 1, -2, 1, 0}, d4[NSTRIP] = {1, -4, 6, -4, 1};
+    for (int j = 0; j < NSTRIP; j++)
+        a->cs[j] = (j == NSTRIP / 2) + e2 * d2[j] + e4 * d4[j];
     return MC_OK;
 }
 
 /* x points of a row, in buffer order: lattice corners, strip points at +H, at -H, far +, far -. */
 typedef struct {
-    int nlat;    /* lattice corners (0 if none) */
-    int nh;      /* strip points per side (0 if none) */
-    int hp, hm;  /* first strip point at +H, -H */
-    int fp, fm;  /* far points (-1 if none) */
+    int nlat;   /* lattice corners (0 if none) */
+    int nh;     /* strip points per side (0 if none): offsets olo - 2s ... ohi + 2s */
+    int hp, hm; /* first strip point at +H, -H */
+    int fp, fm; /* far points (-1 if none) */
     int total;
 } xpoints;
 
@@ -160,7 +177,7 @@ static xpoints x_layout(const axis *a, const rule *r)
     if (r->M >= 0)
         p.nlat = r->chi - r->clo + 2;
     if (r->strips && r->M >= 0)
-        p.nh = a->ohi - a->olo + 1 + 2 * a->J;
+        p.nh = a->ohi - a->olo + 1 + (NSTRIP - 1) * a->s;
     p.hp = p.nlat;
     p.hm = p.hp + p.nh;
     p.total = p.hm + p.nh;
@@ -172,25 +189,6 @@ static xpoints x_layout(const axis *a, const rule *r)
     return p;
 }
 
-/* The strip part of a stencil: (1/n){f(F) - f(-F) - [hp0 - hm0] - e2 [d2] - e4 [d4]}, applied to
- * values at stride s (the strip points at offsets j = -J..J around the centre c of each side). */
-static inline double strip_combine(const axis *a, const rule *r, double fp, double fm,
-                                   const double *hp, const double *hm, ptrdiff_t s)
-{
-    double t = fp - fm;
-    if (r->M >= 0) {
-        t -= hp[0] - hm[0];
-        const double d2 = (hp[s] - 2.0 * hp[0] + hp[-s]) - (hm[s] - 2.0 * hm[0] + hm[-s]);
-        t -= a->e2 * d2;
-        if (a->J == 2) {
-            const double d4 = (hp[2 * s] - 4.0 * hp[s] + 6.0 * hp[0] - 4.0 * hp[-s] + hp[-2 * s]) -
-                              (hm[2 * s] - 4.0 * hm[s] + 6.0 * hm[0] - 4.0 * hm[-s] + hm[-2 * s]);
-            t -= a->e4 * d4;
-        }
-    }
-    return t / a->n;
-}
-
 /* One row: g[c*tx + t] = the x stencil of the entry at table index t applied to the corner
  * function on the line Y (m). with_lattice = 0 drops the image part of the stencil (the point
  * kernel's images are added separately). Padding entries of g are left untouched (zero). */
@@ -199,20 +197,21 @@ static void make_row(const mc_stress_tables *tb, stress_fn fn, double z, const r
 {
     const axis *a = &tb->ax[0];
     const double d = a->d, nu = tb->nu;
-    const int tx = tb->tx;
+    const int tx = tb->tx, s = a->s, h = NSTRIP / 2;
     if (with_lattice)
         for (int q = 0; q < px->nlat; q++)
             fn((rx->clo + q - 0.5) * d, Y, z, nu, fv + 6 * q);
     for (int q = 0; q < px->nh; q++) {
-        const double o = a->olo - a->J + q;
-        fn((o + rx->H) * d, Y, z, nu, fv + 6 * (px->hp + q));
-        fn((o - rx->H) * d, Y, z, nu, fv + 6 * (px->hm + q));
+        const double u = a->olo - h * s + q;
+        fn((u + rx->H) * d, Y, z, nu, fv + 6 * (px->hp + q));
+        fn((u - rx->H) * d, Y, z, nu, fv + 6 * (px->hm + q));
     }
     if (rx->strips) {
         fn(tb->far, Y, z, nu, fv + 6 * px->fp);
         fn(-tb->far, Y, z, nu, fv + 6 * px->fm);
     }
-    const int lat = with_lattice && rx->M >= 0;
+    const int lat = with_lattice && rx->M >= 0, hstrip = rx->strips && rx->M >= 0;
+    const double w = 1.0 / a->n; /* smeared load per unit length: 2a/L */
     for (int o = a->olo; o <= a->ohi; o++) {
         const int t = a->index[o - a->olo];
         for (int c = 0; c < MC_NSTRESS; c++) {
@@ -223,88 +222,76 @@ static void make_row(const mc_stress_tables *tb, stress_fn fn, double z, const r
                     v += fv[6 * (q + 1) + c] - fv[6 * q + c];
                 }
             if (rx->strips) {
-                const double *hp = fv + 6 * (px->hp + o - a->olo + a->J) + c;
-                const double *hm = fv + 6 * (px->hm + o - a->olo + a->J) + c;
-                v += strip_combine(a, rx, fv[6 * px->fp + c], fv[6 * px->fm + c], hp, hm, 6);
+                double st = fv[6 * px->fp + c] - fv[6 * px->fm + c];
+                if (hstrip)
+                    for (int j = 0; j < NSTRIP; j++) {
+                        const int q = o - a->olo + j * s; /* offset o + (j - h) s */
+                        st -= a->cs[j] * (fv[6 * (px->hp + q) + c] - fv[6 * (px->hm + q) + c]);
+                    }
+                v += w * st;
             }
             g[(size_t)c * tx + t] = v;
         }
     }
 }
 
-/* Rotate a window of w row pointers left by one (the first becomes the last, to be refilled). */
-static void rotate(double **win, int w)
+/* k rows of offset o += wgt * g */
+static inline void add_row(const mc_stress_tables *tb, double *const k[6], int o, double wgt,
+                           const double *g)
 {
-    double *first = win[0];
-    memmove(win, win + 1, sizeof *win * (size_t)(w - 1));
-    win[w - 1] = first;
+    const axis *ay = &tb->ax[1];
+    const int tx = tb->tx;
+    const size_t t = (size_t)ay->index[o - ay->olo] * tx;
+    for (int c = 0; c < MC_NSTRESS; c++) {
+        double *out = k[c] + t;
+        const double *in = g + (size_t)c * tx;
+        for (int i = 0; i < tx; i++)
+            out[i] += wgt * in[i];
+    }
 }
 
-/* Table rows for the y offsets oa..ob (a block) from streamed rows. */
+/* Table rows of the y offsets oa..ob (a block): each streamed row is computed once and added to
+ * every row of the block whose y stencil holds its Y. */
 static void stream_block(const mc_stress_tables *tb, stress_fn fn, double z, const rule *rx,
                          const rule *ry, const xpoints *px, int lat_rows, int with_lattice_x,
-                         int oa, int ob, workspace *w, double *const k[6])
+                         int oa, int ob, workspace *ws, double *const k[6])
 {
     const axis *ay = &tb->ax[1];
     const double dy = ay->d;
-    const int tx = tb->tx, J = ay->J, W = 2 * J + 1;
-    const int nlatk = (lat_rows && ry->M >= 0) ? 2 * ry->M + 1 : 0;
-    const int hrows = ry->strips && ry->M >= 0;
+    const int tx = tb->tx, n = ay->n, s = ay->s, h = NSTRIP / 2;
+    for (int o = oa; o <= ob; o++)
+        for (int c = 0; c < MC_NSTRESS; c++)
+            memset(k[c] + (size_t)ay->index[o - ay->olo] * tx, 0, sizeof(double) * (size_t)tx);
     if (ry->strips) {
-        make_row(tb, fn, z, rx, px, tb->far, 1, w->fv, w->farp);
-        make_row(tb, fn, z, rx, px, -tb->far, 1, w->fv, w->farm);
-    }
-    for (int kk = 0; kk < nlatk; kk++) {
-        const int kimg = kk - ry->M;
-        make_row(tb, fn, z, rx, px, (oa + kimg * ay->n - 0.5) * dy, with_lattice_x, w->fv,
-                 w->lo[kk]);
-    }
-    if (hrows)
-        for (int j = 0; j < W - 1; j++) { /* window slots 0..W-2 hold o + j - J */
-            make_row(tb, fn, z, rx, px, (oa + j - J + ry->H) * dy, 1, w->fv, w->hp[j]);
-            make_row(tb, fn, z, rx, px, (oa + j - J - ry->H) * dy, 1, w->fv, w->hm[j]);
-        }
-    for (int o = oa; o <= ob; o++) {
-        for (int kk = 0; kk < nlatk; kk++) {
-            const int kimg = kk - ry->M;
-            make_row(tb, fn, z, rx, px, (o + kimg * ay->n + 0.5) * dy, with_lattice_x, w->fv,
-                     w->up[kk]);
-        }
-        if (hrows) {
-            make_row(tb, fn, z, rx, px, (o + J + ry->H) * dy, 1, w->fv, w->hp[W - 1]);
-            make_row(tb, fn, z, rx, px, (o + J - ry->H) * dy, 1, w->fv, w->hm[W - 1]);
-        }
-        const size_t t = (size_t)ay->index[o - ay->olo];
-        for (int c = 0; c < MC_NSTRESS; c++) {
-            double *out = k[c] + t * tx;
-            const size_t off = (size_t)c * tx;
-            for (int i = 0; i < tx; i++) {
-                double v = 0.0;
-                for (int kk = 0; kk < nlatk; kk++)
-                    v += w->up[kk][off + i] - w->lo[kk][off + i];
-                if (ry->strips) {
-                    double hp[5], hm[5]; /* the window at this entry, centred on index J */
-                    if (hrows)
-                        for (int j = 0; j < W; j++) {
-                            hp[j] = w->hp[j][off + i];
-                            hm[j] = w->hm[j][off + i];
-                        }
-                    v += strip_combine(ay, ry, w->farp[off + i], w->farm[off + i], hp + J, hm + J,
-                                       1);
+        const double w = 1.0 / n;
+        for (int side = 1; side >= -1; side -= 2) {
+            make_row(tb, fn, z, rx, px, side * tb->far, 1, ws->fv, ws->row);
+            for (int o = oa; o <= ob; o++)
+                add_row(tb, k, o, side * w, ws->row);
+            if (ry->M < 0)
+                continue;
+            /* strip points u + side H, u = o + (j - h) s */
+            for (int u = oa - h * s; u <= ob + h * s; u++) {
+                make_row(tb, fn, z, rx, px, (u + side * ry->H) * dy, 1, ws->fv, ws->row);
+                for (int j = 0; j < NSTRIP; j++) {
+                    const int o = u - (j - h) * s;
+                    if (o >= oa && o <= ob && ay->cs[j] != 0.0)
+                        add_row(tb, k, o, -side * w * ay->cs[j], ws->row);
                 }
-                out[i] = v;
             }
         }
-        for (int kk = 0; kk < nlatk; kk++) {
-            double *tmp = w->lo[kk];
-            w->lo[kk] = w->up[kk];
-            w->up[kk] = tmp;
-        }
-        if (hrows) {
-            rotate(w->hp, W);
-            rotate(w->hm, W);
-        }
     }
+    if (lat_rows && ry->M >= 0)
+        for (int kimg = -ry->M; kimg <= ry->M; kimg++)
+            /* corner c - 1/2 (c = o + kn) is the lower corner of cell c and the upper of c - 1 */
+            for (int c = oa + kimg * n; c <= ob + kimg * n + 1; c++) {
+                make_row(tb, fn, z, rx, px, (c - 0.5) * dy, with_lattice_x, ws->fv, ws->row);
+                const int o = c - kimg * n;
+                if (o <= ob)
+                    add_row(tb, k, o, -1.0, ws->row);
+                if (o - 1 >= oa)
+                    add_row(tb, k, o - 1, 1.0, ws->row);
+            }
 }
 
 /* The point kernel's images: k += dx dy sum over images of the point-force stresses. */
@@ -379,7 +366,8 @@ int mc_stress_tables_build(mc_stress_tables *tb, int load, double z, double *con
     const int stream = lat_rows || ry.strips;
     const int tx = tb->tx;
 
-    for (int t = 0; t < tb->ty; t++) { /* padding rows of a free y axis, and all rows if no stream */
+    /* padding rows of a free y axis, and all rows when nothing is streamed */
+    for (int t = 0; t < tb->ty; t++) {
         int used;
         mc_table_offset(t, ay->n, ay->len, &used);
         if (!used || !stream)
@@ -412,8 +400,7 @@ int mc_stress_tables_images(const mc_stress_tables *tb, int axis_id, double z)
 static void workspace_free(workspace *w)
 {
     mc_free(w->fv);
-    mc_free(w->rows);
-    mc_free(w->ptr);
+    mc_free(w->row);
 }
 
 void mc_stress_tables_destroy(mc_stress_tables **tbp)
@@ -431,31 +418,12 @@ void mc_stress_tables_destroy(mc_stress_tables **tbp)
     *tbp = NULL;
 }
 
-/* Row buffers for the largest stencils (the shallow-depth rules); zeroed, so padding entries of
- * every row stay 0. */
+/* One row buffer, zeroed: padding entries of every row stay 0. */
 static int workspace_alloc(mc_stress_tables *tb, workspace *w)
 {
-    const axis *ay = &tb->ax[1];
-    const int nlat = 2 * ay->M + 1, W = 2 * ay->J + 1;
-    const size_t rowlen = (size_t)MC_NSTRESS * tb->tx;
-    size_t nrows = 2 * (size_t)nlat + 2 * (size_t)W + 2, total;
-    if (!mc_size_mul(nrows, rowlen, &total))
-        return MC_ERR_NOMEM;
     w->fv = mc_zeros(tb->nfv);
-    w->rows = mc_zeros(total);
-    w->ptr = mc_calloc(2 * (size_t)nlat + 2 * (size_t)W, sizeof *w->ptr);
-    if (!w->fv || !w->rows || !w->ptr)
-        return MC_ERR_NOMEM;
-    w->lo = w->ptr;
-    w->up = w->lo + nlat;
-    w->hp = w->up + nlat;
-    w->hm = w->hp + W;
-    double *r = w->rows;
-    for (int i = 0; i < 2 * nlat + 2 * W; i++, r += rowlen)
-        w->ptr[i] = r;
-    w->farp = r;
-    w->farm = r + rowlen;
-    return MC_OK;
+    w->row = mc_zeros((size_t)MC_NSTRESS * tb->tx);
+    return w->fv && w->row ? MC_OK : MC_ERR_NOMEM;
 }
 
 int mc_stress_tables_create(const mc_grid *g, int tx, int ty, mc_stress_kernel kernel, double nu,
@@ -490,8 +458,10 @@ int mc_stress_tables_create(const mc_grid *g, int tx, int ty, mc_stress_kernel k
         mc_stress_tables_destroy(&tb);
         return rc;
     }
-    const rule r0 = axis_rule(&tb->ax[0], 0.0);
-    tb->nfv = (size_t)MC_NSTRESS * (size_t)x_layout(&tb->ax[0], &r0).total;
+    const axis *ax = &tb->ax[0];
+    const rule rmax = ax->periodic ? images_rule(ax, ax->images > 0 ? ax->images : AUTO_IMAGES_MAX)
+                                   : axis_rule(ax, 0.0); /* the largest x stencil */
+    tb->nfv = (size_t)MC_NSTRESS * (size_t)x_layout(ax, &rmax).total;
     if (!(tb->ws = mc_calloc((size_t)tb->nthreads, sizeof *tb->ws))) {
         mc_stress_tables_destroy(&tb);
         return mc_fail(err, MC_ERR_NOMEM, "stress tables: out of memory");
