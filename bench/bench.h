@@ -10,6 +10,12 @@ extern const vf_suite mc_bench_suite;
 
 /* Sections (bench_*.c), each adding its tables, CSV and figures to the report. */
 int mc_bench_operator(vf_ctx *ctx, int quick);
+int mc_bench_hertz(vf_ctx *ctx, int quick);
+int mc_bench_rough(vf_ctx *ctx, int quick);
+int mc_bench_stress(vf_ctx *ctx, int quick);
+int mc_bench_threads(vf_ctx *ctx, int quick);
+int mc_bench_memory(vf_ctx *ctx, int quick);
+int mc_bench_skips(vf_ctx *ctx, int quick);
 
 /* Median wall time (s) of reps calls of fn(arg) after one warm-up call. */
 double mc_bench_time(void (*fn)(void *), void *arg, int reps);

@@ -22,7 +22,12 @@ struct mc_conv {
     size_t speclen;      /* doubles per spectrum */
     double *rbuf;        /* fft: ty*tx real workspace (the padded field) */
     fftw_complex *cbuf;  /* fft: ty*(tx/2+1) half spectrum */
-    fftw_plan r2c, c2r;  /* fft: rbuf -> cbuf and back */
+    fftw_plan r2c, c2r;  /* fft: rbuf -> cbuf and back (2-D plans) */
+    /* fft, free y axis: the same transforms pruned of the all-zero padding rows — rows are
+     * transformed only where the field has data (forward) or where output is wanted (inverse),
+     * columns in full: 1/4 fewer butterflies than the 2-D pair, identical results to round-off */
+    int pruned;
+    fftw_plan row_r2c, col_fwd, col_bwd, row_c2r;
 };
 
 struct conv_ops {
@@ -59,16 +64,32 @@ static int fft_create(mc_conv *c, mc_error *err)
     c->c2r = fftw_plan_dft_c2r_2d(c->ty, c->tx, c->cbuf, c->rbuf, FFTW_ESTIMATE);
     if (!c->r2c || !c->c2r)
         return mc_fail(err, MC_ERR_NOMEM, "fft engine: FFTW could not plan %d x %d", c->tx, c->ty);
+    c->pruned = c->ty > c->g.ny;
+    if (c->pruned) {
+        const int hx = c->tx / 2 + 1, ny = c->g.ny;
+        int nrow[1] = {c->tx}, ncol[1] = {c->ty};
+        c->row_r2c = fftw_plan_many_dft_r2c(1, nrow, ny, c->rbuf, NULL, 1, c->tx, c->cbuf, NULL, 1,
+                                            hx, FFTW_ESTIMATE);
+        c->row_c2r = fftw_plan_many_dft_c2r(1, nrow, ny, c->cbuf, NULL, 1, hx, c->rbuf, NULL, 1,
+                                            c->tx, FFTW_ESTIMATE);
+        c->col_fwd = fftw_plan_many_dft(1, ncol, hx, c->cbuf, NULL, hx, 1, c->cbuf, NULL, hx, 1,
+                                        FFTW_FORWARD, FFTW_ESTIMATE);
+        c->col_bwd = fftw_plan_many_dft(1, ncol, hx, c->cbuf, NULL, hx, 1, c->cbuf, NULL, hx, 1,
+                                        FFTW_BACKWARD, FFTW_ESTIMATE);
+        if (!c->row_r2c || !c->row_c2r || !c->col_fwd || !c->col_bwd)
+            return mc_fail(err, MC_ERR_NOMEM, "fft engine: FFTW could not plan the pruned %d x %d",
+                           c->tx, c->ty);
+    }
     c->speclen = 2 * nc;
     return MC_OK;
 }
 
 static void fft_destroy(mc_conv *c)
 {
-    if (c->r2c)
-        fftw_destroy_plan(c->r2c);
-    if (c->c2r)
-        fftw_destroy_plan(c->c2r);
+    fftw_plan plans[] = {c->r2c, c->c2r, c->row_r2c, c->row_c2r, c->col_fwd, c->col_bwd};
+    for (size_t k = 0; k < sizeof plans / sizeof plans[0]; k++)
+        if (plans[k])
+            fftw_destroy_plan(plans[k]);
     mc_free(c->rbuf);
     mc_free(c->cbuf);
 }
@@ -84,10 +105,11 @@ static void fft_kernel(mc_conv *c, const double *table, double *kspec)
         kspec[q] = scale * s[q];
 }
 
-/* The zero-padded field into rbuf (the padding is rewritten each time: c2r leaves it dirty). */
+/* The zero-padded field into rbuf (the padding is rewritten each time: c2r leaves it dirty);
+ * the pruned transform reads only the first ny rows. */
 static void fft_fill(mc_conv *c, const double *field)
 {
-    const int nx = c->g.nx, ny = c->g.ny, tx = c->tx, ty = c->ty;
+    const int nx = c->g.nx, ny = c->g.ny, tx = c->tx, ty = c->pruned ? c->g.ny : c->ty;
     double *r = c->rbuf;
 #pragma omp parallel for schedule(static) if ((size_t)tx * ty > PAR_MIN)
     for (int j = 0; j < ty; j++) {
@@ -110,10 +132,34 @@ static void fft_crop(mc_conv *c, double *out)
         memcpy(out + (size_t)j * nx, c->rbuf + (size_t)j * tx, (size_t)nx * sizeof *out);
 }
 
+/* rbuf (field rows) -> cbuf (half spectrum) */
+static void fft_forward(mc_conv *c)
+{
+    if (!c->pruned) {
+        fftw_execute(c->r2c);
+        return;
+    }
+    const size_t hx = (size_t)(c->tx / 2 + 1);
+    fftw_execute(c->row_r2c);
+    memset(c->cbuf + (size_t)c->g.ny * hx, 0, (size_t)(c->ty - c->g.ny) * hx * sizeof *c->cbuf);
+    fftw_execute(c->col_fwd);
+}
+
+/* cbuf -> rbuf (at least the first ny rows); destroys cbuf */
+static void fft_inverse(mc_conv *c)
+{
+    if (!c->pruned) {
+        fftw_execute(c->c2r);
+        return;
+    }
+    fftw_execute(c->col_bwd);
+    fftw_execute(c->row_c2r);
+}
+
 static void fft_load(mc_conv *c, const double *field, double *lspec)
 {
     fft_fill(c, field);
-    fftw_execute(c->r2c);
+    fft_forward(c);
     const long n = 2 * (long)half_len(c);
     const double *s = (const double *)c->cbuf;
 #pragma omp parallel for schedule(static) if (n > 2 * PAR_MIN)
@@ -138,7 +184,7 @@ static void fft_apply(mc_conv *c, int nterms, const double *const *kspec,
         s[2 * q] = re;
         s[2 * q + 1] = im;
     }
-    fftw_execute(c->c2r); /* destroys cbuf: it is ours */
+    fft_inverse(c); /* destroys cbuf: it is ours */
     fft_crop(c, out);
 }
 
@@ -148,7 +194,7 @@ static void fft_convolve(mc_conv *c, const double *kspec, const double *field, d
 {
     (void)work;
     fft_fill(c, field);
-    fftw_execute(c->r2c);
+    fft_forward(c);
     const long nc = (long)half_len(c);
     double *s = (double *)c->cbuf;
 #pragma omp parallel for schedule(static) if (nc > PAR_MIN)
@@ -158,7 +204,7 @@ static void fft_convolve(mc_conv *c, const double *kspec, const double *field, d
         s[2 * q] = kr * lr - ki * li;
         s[2 * q + 1] = kr * li + ki * lr;
     }
-    fftw_execute(c->c2r);
+    fft_inverse(c);
     fft_crop(c, out);
 }
 

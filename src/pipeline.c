@@ -8,6 +8,7 @@
 #include "alloc.h"
 #include "contact.h"
 #include "heightmap.h"
+#include "memguard.h"
 #include "operator.h"
 #include "stress.h"
 #include "surface.h"
@@ -113,6 +114,9 @@ int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
     double t_start = mc_clock();
     memset(res, 0, sizeof *res);
     int rc = mc_scene_check(sc, err);
+    if (rc != MC_OK)
+        return rc;
+    rc = mc_memory_check(sc, err);
     if (rc != MC_OK)
         return rc;
     mc_set_threads(sc->solver.threads);

@@ -1,0 +1,129 @@
+/* bench_skips.c - what each skip saves, measured on a scene where it applies, and the effect of
+ * threads. A skip must not change results beyond its stated tolerance: the tests prove that
+ * (tests/test_contact.c, tests/test_stress.c, tests/test_operator.c); here only time is measured. */
+#include <math.h>
+#include <stdio.h>
+
+#include "alloc.h"
+#include "contact.h"
+#include "surface.h"
+#include "bench.h"
+#include "hertz.h"
+#include "operator.h"
+#include "pipeline.h"
+#include "vutil.h"
+
+static void hertz_scene(mc_scene *sc, int N)
+{
+    const double a = 186.6e-6;
+    vu_scene(sc, N, N, 3 * a / N, 3 * a / N);
+    sc->geometry.shape = MC_SHAPE_SPHERE;
+    sc->geometry.radius = 10e-3;
+    sc->load.kind = MC_LOAD_FORCE;
+    sc->load.value = 100;
+    sc->solver.tolerance = 1e-6;
+}
+
+static double run_time(const mc_scene *sc, double *contact_s, double *stress_s, int *iters)
+{
+    mc_results res;
+    mc_error err = {0};
+    int rc = mc_pipeline_run(sc, &res, &err);
+    double t = rc == MC_OK ? res.timing.total_s : NAN;
+    if (contact_s)
+        *contact_s = res.timing.contact_s;
+    if (stress_s)
+        *stress_s = res.timing.stress_s;
+    if (iters)
+        *iters = res.contact.iterations;
+    mc_results_free(&res);
+    return t;
+}
+
+typedef struct {
+    mc_operator *op;
+    double *f;
+} ap_arg;
+
+static void do_apply(void *a)
+{
+    ap_arg *x = a;
+    mc_operator_apply(x->op, x->f, x->f);
+}
+
+static double apply_time(int N, int periodic)
+{
+    mc_grid g = {N, N, 1e-6, 1e-6, periodic, periodic};
+    mc_error err = {0};
+    ap_arg a = {NULL, mc_zeros((size_t)N * N)};
+    double t = NAN;
+    if (a.f && mc_operator_plan_love(&g, 1e11, MC_BACKEND_FFT, &a.op, &err) == MC_OK)
+        t = mc_bench_time(do_apply, &a, 7);
+    mc_operator_destroy(&a.op);
+    mc_free(a.f);
+    return t;
+}
+
+/* Solver creation plus solve (s) of the scene's contact with or without the nested start. */
+static double contact_time(const mc_scene *sc, int nested, int *iters)
+{
+    const mc_grid *g = &sc->grid;
+    size_t n = mc_grid_cells(g);
+    double *h = mc_zeros(n), *p = mc_zeros(n), t = NAN;
+    mc_operator *K = NULL;
+    mc_contact_solver *s = NULL;
+    mc_error err = {0};
+    double estar = mc_scene_estar(sc);
+    if (h && p && mc_surface_topography(g, sc, h, &err) == MC_OK &&
+        mc_operator_plan_love(g, estar, MC_BACKEND_FFT, &K, &err) == MC_OK) {
+        mc_contact_options opt = {MC_METHOD_CG, sc->solver.tolerance, 5000, nested ? estar : 0};
+        mc_contact_problem prob = {.h = h, .p_cap = INFINITY, .control = MC_CONTROL_FORCE,
+                                   .load = sc->load.value};
+        mc_contact_summary sum;
+        double t0 = mc_clock();
+        if (mc_contact_create(K, &opt, &s, &err) == MC_OK &&
+            mc_contact_solve(s, &prob, p, NULL, NULL, &sum, &err) == MC_OK) {
+            t = mc_clock() - t0;
+            *iters = sum.iterations;
+        }
+    }
+    mc_contact_destroy(&s);
+    mc_operator_destroy(&K);
+    mc_free(h);
+    mc_free(p);
+    return t;
+}
+
+int mc_bench_skips(vf_ctx *ctx, int quick)
+{
+    int N = quick ? 256 : 512;
+    vf_text(ctx, "## Skips: what a scene does not need\n\n| skip | scene | with (s) | without (s) "
+                 "| saved |\n|---|---|---|---|---|\n");
+    mc_scene sc;
+    /* 1. no stress stage unless asked for */
+    hertz_scene(&sc, N);
+    double t_off = run_time(&sc, NULL, NULL, NULL);
+    sc.stress.enabled = 1;
+    sc.stress.depth_min = 0;
+    sc.stress.depth_max = 300e-6;
+    sc.stress.layers = 32;
+    double st = 0, t_on = run_time(&sc, NULL, &st, NULL);
+    vf_text(ctx, "| no stress stage without [stress] | Hertz %d², 32 layers asked or not | %.3f | "
+                 "%.3f | %.0f %% |\n",
+            N, t_off, t_on, 100 * (1 - t_off / t_on));
+    /* 2. nested coarse start: spares fine iterations that only shrink the contact set */
+    hertz_scene(&sc, quick ? 512 : 1024);
+    int i_nested = 0, i_plain = 0;
+    double c_nested = contact_time(&sc, 1, &i_nested), c_plain = contact_time(&sc, 0, &i_plain);
+    vf_text(ctx, "| coarse-grid (nested) start: spares the fine iterations that only shrink the "
+                 "contact set | Hertz %d², cg, solver set-up + solve | %.3f (%d fine it.) | %.3f "
+                 "(%d it.) | %.0f %% |\n",
+            sc.grid.nx, c_nested, i_nested, c_plain, i_plain, 100 * (1 - c_nested / c_plain));
+    /* 3. no padding along periodic axes */
+    int Np = quick ? 512 : 1024;
+    double t_free = apply_time(Np, 0), t_per = apply_time(Np, 1);
+    vf_text(ctx, "| no padding along periodic axes | operator apply %d² | %.4f | %.4f | %.0f %% |\n",
+            Np, t_per, t_free, 100 * (1 - t_per / t_free));
+    vf_text(ctx, "\n");
+    return 0;
+}

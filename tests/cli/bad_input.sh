@@ -1,0 +1,305 @@
+#!/bin/sh
+# bad_input.sh PROGRAM - bad input, end to end through the command line.
+#
+# Every row runs `PROGRAM run ...` on a malformed input (case files in tests/bad_input/, binary
+# .npy and text fixtures written here at test time) and asserts the output contract of DESIGN.md:
+#   - exit status 2;
+#   - nothing on stdout, one message on stderr (one line; two where the usage follows);
+#   - the message contains every expected fragment: the file, the line where there is one, the
+#     [section] key, and what is accepted;
+#   - no output file anywhere: the output directory is absent or empty (no results, no staging
+#     directory, no probe file) and nothing else appeared in the working directory.
+# Positive controls (valid fixtures from the same generator run and exit 0) prove that the rows
+# fail for the reason they test, and a solve limited to one iteration must exit 1 and still write
+# its results with "converged": false.
+#
+# Known defects (documented in the robustness report) are listed in KNOWN_DEFECTS, one
+# "row|faults" line each, faults being exactly what the row reports today: such a row is XFAIL
+# while it fails in exactly that way (any other fault fails it), and fails the script (XPASS)
+# once it passes, so that its line is removed with the fix.
+set -u
+
+if [ $# -ne 1 ] || [ ! -x "$1" ]; then
+    echo "usage: $0 PROGRAM (the microcontact executable)" >&2
+    exit 2
+fi
+PROG=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+CASES=$(cd "$(dirname "$0")/../bad_input" && pwd)
+T=$(mktemp -d "${TMPDIR:-/tmp}/mc_bad_input.XXXXXX") || exit 2
+trap 'rm -rf "$T"' EXIT INT TERM
+
+LACKS_KEY="; message lacks '[load] pressure_file'"
+KNOWN_DEFECTS="
+pressure_dir|$LACKS_KEY
+pressure_missing|$LACKS_KEY
+pressure_truncated|$LACKS_KEY
+pressure_dtype|$LACKS_KEY
+pressure_float32|$LACKS_KEY
+pressure_shape|$LACKS_KEY
+pressure_negative|$LACKS_KEY
+pressure_nan|$LACKS_KEY
+pressure_nan_text|$LACKS_KEY
+set_eq_too_many|; 2 lines on stderr, not 1; message lacks 'more than 256 --set options'
+"
+# ^ pressure_*: src/pipeline.c (run_prescribed) raises the errors of [load] pressure_file without
+#   the "[load] pressure_file: " prefix that src/surface.c gives to [roughness] file errors.
+# ^ set_eq_too_many: src/cli/cmd_run.c counts --set=... options only while there is room, so the
+#   257th is reported as an unknown option instead of "more than 256 --set options".
+
+cp "$CASES"/*.ini "$T"/ || exit 2
+cd "$T" || exit 2
+
+# ---- fixtures ----------------------------------------------------------------------------------
+# .npy 1.0: magic, version 1.0, header length 118 (little-endian uint16 0x76 0x00), the dict padded
+# with spaces to 117 bytes plus '\n' (10 + 118 = 128, a multiple of 64 as NumPy writes it).
+npy_header() { printf '\223NUMPY\001\000\166\000'; printf '%-117s\n' "$1"; }
+# n copies of one value given as printf octal escapes (little-endian bytes)
+# shellcheck disable=SC2059 # the value is a printf escape sequence by design
+values() { i=0; while [ "$i" -lt "$1" ]; do printf "$2"; i=$((i + 1)); done; }
+F8_ONE='\000\000\000\000\000\000\360\077'  # 1.0  = 0x3FF0000000000000
+F8_NEG='\000\000\000\000\000\000\360\277'  # -1.0 = 0xBFF0000000000000
+F8_NAN='\000\000\000\000\000\000\370\177'  # NaN  = 0x7FF8000000000000
+F4_ONE='\000\000\200\077'                  # 1.0f = 0x3F800000
+DICT16="{'descr': '<f8', 'fortran_order': False, 'shape': (16, 16), }"
+
+{ npy_header "$DICT16"; values 256 "$F8_ONE"; } > ones.npy
+{ npy_header "$DICT16"; values 100 "$F8_ONE"; } > truncated.npy
+{ npy_header "{'descr': '<i8', 'fortran_order': False, 'shape': (16, 16), }"; values 256 "$F8_ONE"; } > int64.npy
+{ npy_header "{'descr': '<f4', 'fortran_order': False, 'shape': (16, 16), }"; values 256 "$F4_ONE"; } > float32.npy
+{ npy_header "{'descr': '<f8', 'fortran_order': False, 'shape': (8, 16), }"; values 128 "$F8_ONE"; } > shape_8x16.npy
+{ npy_header "$DICT16"; values 100 "$F8_ONE"; values 1 "$F8_NEG"; values 155 "$F8_ONE"; } > negative.npy
+{ npy_header "$DICT16"; values 37 "$F8_ONE"; values 1 "$F8_NAN"; values 218 "$F8_ONE"; } > nan.npy
+# micro.npy: 16 x 16 heights of 1 um (1e-6 = 0x3EB0C6F7A0B5ED8D), a valid roughness map
+F8_MICRO='\215\355\265\240\367\306\260\076'
+{ npy_header "$DICT16"; values 256 "$F8_MICRO"; } > micro.npy
+# 16 x 16 text matrices of 1e-6: valid (control), and one with "nan" on line 4 (after a comment)
+row='1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6'
+bad='1e-6 1e-6 1e-6 1e-6 1e-6 nan 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6'
+rows() { j=0; while [ $j -lt "$1" ]; do echo "$row"; j=$((j + 1)); done; }
+{ echo "# 16 x 16 heights"; rows 16; } > micro_16x16.txt
+{ echo "# 16 x 16 heights"; rows 2; echo "$bad"; rows 13; } > nan_16x16.txt
+mkdir a_directory
+: > regular_file
+
+# ---- the harness -------------------------------------------------------------------------------
+pass=0 fail=0 xfail=0
+snapshot() { ls -A "$T" | grep -v -e '^stdout$' -e '^stderr$' -e '^before$' -e '^after$'; }
+
+# row NAME OUTDIR NLINES FRAGMENT... -- ARGS...: run `PROGRAM run ARGS` and check the contract.
+# OUTDIR: the directory the run would write (checked absent or empty). NLINES: stderr lines.
+row() {
+    name=$1 outdir=$2 nlines=$3
+    shift 3
+    nfrags=0
+    while [ $# -gt 0 ] && [ "$1" != "--" ]; do
+        nfrags=$((nfrags + 1))
+        eval "frag_$nfrags=\$1"
+        shift
+    done
+    shift
+    snapshot > before
+    "$PROG" run "$@" > stdout 2> stderr
+    status=$?
+    why=""
+    [ "$status" -eq 2 ] || why="$why; exit status $status, not 2"
+    [ -s stdout ] && why="$why; output on stdout"
+    n=$(wc -l < stderr)
+    [ "$n" -eq "$nlines" ] || why="$why; $n lines on stderr, not $nlines"
+    k=1
+    while [ $k -le $nfrags ]; do
+        eval "f=\$frag_$k"
+        grep -qF -- "$f" stderr || why="$why; message lacks '$f'"
+        k=$((k + 1))
+    done
+    if [ -e "$outdir" ]; then
+        if [ ! -d "$outdir" ]; then
+            [ "$outdir" = regular_file ] || why="$why; $outdir is not a directory"
+        elif [ -n "$(ls -A "$outdir")" ]; then
+            why="$why; $outdir is not empty: $(ls -A "$outdir" | tr '\n' ' ')"
+        fi
+        [ -d "$outdir" ] && rmdir "$outdir" 2> /dev/null
+    fi
+    snapshot > after
+    cmp -s before after || why="$why; files appeared: $(diff before after | grep '^>' | tr '\n' ' ')"
+    report "$name" "$why"
+}
+
+report() {
+    known=""
+    while IFS='|' read -r d f; do
+        [ "$d" = "$1" ] && known=$f
+    done << EOF
+$KNOWN_DEFECTS
+EOF
+    if [ -z "$2" ] && [ -z "$known" ]; then
+        pass=$((pass + 1))
+    elif [ -z "$2" ]; then
+        fail=$((fail + 1))
+        echo "XPASS $1: listed in KNOWN_DEFECTS but passes now; remove its line"
+    elif [ "$2" = "$known" ]; then
+        xfail=$((xfail + 1))
+        echo "XFAIL $1 (known defect)$2"
+        sed 's/^/        stderr: /' stderr
+    else
+        fail=$((fail + 1))
+        echo "FAIL  $1$2"
+        sed 's/^/        stderr: /' stderr
+    fi
+}
+
+# control NAME OUTDIR STATUS ARGS...: a valid input must exit STATUS and write summary.json.
+control() {
+    name=$1 outdir=$2 want=$3
+    shift 3
+    "$PROG" run "$@" > stdout 2> stderr
+    status=$?
+    why=""
+    [ "$status" -eq "$want" ] || why="$why; exit status $status, not $want"
+    [ -f "$outdir/summary.json" ] || why="$why; no $outdir/summary.json"
+    for f in pressure.npy gap.npy displacement.npy topography.npy profile_x.csv; do
+        [ -f "$outdir/$f" ] || why="$why; no $outdir/$f"
+    done
+    if [ "$want" -eq 1 ]; then
+        grep -q '"converged": *false' "$outdir/summary.json" 2> /dev/null ||
+            why="$why; summary.json lacks \"converged\": false"
+        grep -qF 'did not converge' stderr || why="$why; stderr does not say 'did not converge'"
+    elif [ -f "$outdir/summary.json" ]; then
+        grep -q '"converged": *true' "$outdir/summary.json" ||
+            why="$why; summary.json lacks \"converged\": true"
+    fi
+    ls -A "$outdir" 2> /dev/null | grep -q '^\.' &&
+        why="$why; hidden files left in $outdir: $(ls -A "$outdir" | grep '^\.' | tr '\n' ' ')"
+    report "$name" "$why"
+    rm -rf "$outdir"
+}
+
+LEN="a length is due (m, mm, um, nm)"
+
+# ---- positive controls: the base case and the fixture generator are valid ---------------------
+control control_good          o 0 good.ini --out o
+control control_pressure_npy  o 0 pressure_ok_npy.ini --out o
+control control_pressure_text o 0 pressure_ok_text.ini --out o
+control control_roughness_npy o 0 roughness_ok_npy.ini --out o
+control control_roughness_txt o 0 roughness_ok_text.ini --out o
+# a solve stopped by its iteration limit is a solver failure (1) that still writes its results
+control not_converged         o 1 good.ini --out o --set solver.max_iterations=1 --set solver.method=pk
+
+# ---- the case file ---------------------------------------------------------------------------
+row missing_case_file o 1 "does_not_exist.ini" "cannot open" "No such file or directory" \
+    -- does_not_exist.ini --out o
+row empty_file        o 1 "empty.ini" "empty case file" -- empty.ini --out o
+row unknown_section   o 1 "unknown_section.ini:10:" "unknown section [lod]" \
+    "known sections: mesh, geometry, roughness, body1, body2, load, solver, stress, output" \
+    -- unknown_section.ini --out o
+row unknown_key       o 1 "unknown_key.ini:4:" "[mesh] unknown key 'nz'" \
+    "keys of [mesh]: nx, ny, dx, dy, periodic_x, periodic_y" -- unknown_key.ini --out o
+row duplicate_key     o 1 "duplicate_key.ini:5:" "[mesh] nx given twice" "first on line 2" \
+    -- duplicate_key.ini --out o
+row bad_number        o 1 "bad_number.ini:4:" "[mesh] dx = four um" "'four um' is not a number" \
+    "$LEN" -- bad_number.ini --out o
+row bad_unit          o 1 "bad_unit.ini:4:" "[mesh] dx = 4 inch" "unknown unit 'inch'" "$LEN" \
+    -- bad_unit.ini --out o
+row unit_kind         o 1 "unit_kind.ini:4:" "[mesh] dx = 4 N" "unit 'N' is a force" "$LEN" \
+    -- unit_kind.ini --out o
+row nx_zero           o 1 "nx_zero.ini:2:" "[mesh] nx = 0" "must be an integer in 1..65536" \
+    -- nx_zero.ini --out o
+row dx_negative       o 1 "dx_negative.ini:4:" "[mesh] dx = -4 um" "must be a length > 0 and <= 1 m" \
+    -- dx_negative.ini --out o
+row nu_high           o 1 "nu_high.ini:12:" "[body1] nu = 0.6" "must be a number >= 0 and <= 0.5" \
+    -- nu_high.ini --out o
+row e_zero            o 1 "e_zero.ini:11:" "[body2] E = 0 GPa" "must be a pressure > 0 and <= 1e+13 Pa" \
+    -- e_zero.ini --out o
+row load_negative     o 1 "load_negative.ini:11:" "[load] force = -1 N" "must be a force > 0" \
+    -- load_negative.ini --out o
+row two_loads         o 1 "two_loads.ini:12:" "[load] approach" \
+    "give exactly one of force, force_per_length, approach, pressure_file" "force is on line 11" \
+    -- two_loads.ini --out o
+row value_nan         o 1 "value_nan.ini:11:" "[load] force = nan N" "NaN and infinity are not accepted" \
+    "a force is due (N, kN, mN)" -- value_nan.ini --out o
+row missing_key       o 1 "missing_key.ini:" "[mesh] ny is required" "an integer in 1..65536" \
+    -- missing_key.ini --out o
+row bad_header        o 1 "bad_header.ini:1:" "section header '[mesh' lacks its closing ']'" \
+    -- bad_header.ini --out o
+row not_utf8          o 1 "not_utf8.ini:11:" "is not UTF-8 text (byte 0xFF at column 15)" \
+    -- not_utf8.ini --out o
+row continued         o 1 "continued.ini:3:" "[mesh] nx" "continues nx from line 2" \
+    "takes a single value (remove the indentation)" -- continued.ini --out o
+# the default output directory (out/<case name>) must not appear either
+row default_out_dir   out/nx_zero 1 "nx_zero.ini:2:" "[mesh] nx = 0" -- nx_zero.ini
+
+# ---- data files: [load] pressure_file and [roughness] file ------------------------------------
+row pressure_dir       o 1 "a_directory" "cannot read: Is a directory" "[load] pressure_file" \
+    -- pressure_dir.ini --out o
+row pressure_missing   o 1 "does_not_exist.npy" "cannot open: No such file or directory" \
+    "[load] pressure_file" -- pressure_missing.ini --out o
+row pressure_truncated o 1 "truncated.npy" "truncated: header says 16 x 16 values (2048 bytes)" \
+    "file has 800 bytes of data" "[load] pressure_file" -- pressure_truncated.ini --out o
+row pressure_dtype     o 1 "int64.npy" "dtype '<i8' not supported; need float64 ('<f8')" \
+    "[load] pressure_file" -- pressure_dtype.ini --out o
+row pressure_float32   o 1 "float32.npy" "dtype '<f4' not supported; need float64 ('<f8')" \
+    "[load] pressure_file" -- pressure_float32.ini --out o
+row pressure_shape     o 1 "shape_8x16.npy" "shape 8 x 16, the mesh is 16 x 16 (ny x nx)" \
+    "[load] pressure_file" -- pressure_shape.ini --out o
+row pressure_negative  o 1 "negative.npy" "pressure -1 Pa at row 6, column 4 is negative" \
+    "must be >= 0" "[load] pressure_file" -- pressure_negative.ini --out o
+row pressure_nan       o 1 "nan.npy" "value [2, 5] (flat index 37) is NaN; values must be finite" \
+    "[load] pressure_file" -- pressure_nan.ini --out o
+row pressure_nan_text  o 1 "nan_16x16.txt:4:" "value 'nan' is not finite; values must be finite" \
+    "[load] pressure_file" -- pressure_nan_text.ini --out o
+row roughness_nan      o 1 "nan.npy" "value [2, 5] (flat index 37) is NaN; values must be finite" \
+    "[roughness] file" -- roughness_nan.ini --out o
+row roughness_nan_text o 1 "nan_16x16.txt:4:" "value 'nan' is not finite; values must be finite" \
+    "[roughness] file" -- roughness_nan_text.ini --out o
+row roughness_missing  o 1 "does_not_exist.txt" "cannot open: No such file or directory" \
+    "[roughness] file" -- roughness_missing.ini --out o
+# a pressure_file given by --set is relative to the current directory, not to the case file
+row pressure_override  o 1 "--set load.pressure_file=nan.npy" "[load] pressure_file" \
+    "give exactly one of force, force_per_length, approach, pressure_file" \
+    -- good.ini --out o --set load.pressure_file=nan.npy
+
+# ---- the output directory --------------------------------------------------------------------
+row out_below_file     regular_file 1 "output directory 'regular_file/out'" \
+    "cannot create 'regular_file'" "Not a directory" -- good.ini --out regular_file/out
+row out_empty          o 1 "output directory: empty path" -- good.ini --out ""
+
+# ---- --set overrides and options ---------------------------------------------------------------
+row set_no_dot         o 1 "--set nx=3" "expected section.key=value" -- good.ini --out o --set nx=3
+row set_no_equals      o 1 "--set mesh.nx" "expected section.key=value" -- good.ini --out o --set mesh.nx
+row set_empty_section  o 1 "--set .nx=3" "expected section.key=value" -- good.ini --out o --set .nx=3
+row set_unknown_sect   o 1 "--set mesh2.nx=3" "unknown section [mesh2]" "known sections: mesh," \
+    -- good.ini --out o --set mesh2.nx=3
+row set_unknown_key    o 1 "--set mesh.nz=3" "[mesh] unknown key 'nz'" "keys of [mesh]: nx, ny" \
+    -- good.ini --out o --set mesh.nz=3
+row set_bad_value      o 1 "--set mesh.nx=0" "[mesh] nx = 0" "must be an integer in 1..65536" \
+    -- good.ini --out o --set mesh.nx=0
+row set_unit_kind      o 1 "--set mesh.dx=3N" "[mesh] dx = 3N" "unit 'N' is a force" "$LEN" \
+    -- good.ini --out o --set mesh.dx=3N
+row set_empty_value    o 1 "--set load.force=" "[load] force" "a value is required (a force > 0)" \
+    -- good.ini --out o --set load.force=
+row set_bad_choice     o 1 "--set solver.method=newton" "[solver] method = newton" \
+    "must be one of cg, pk, active-set" -- good.ini --out o --set solver.method=newton
+row set_unused_key     o 1 "--set geometry.radius_x=1mm" "[geometry] radius_x is not used by shape = sphere" \
+    -- good.ini --out o --set geometry.radius_x=1mm
+row set_missing_arg    o 2 "'--set'" "usage: microcontact run CASE.ini" -- good.ini --out o --set
+row unknown_option     o 2 "unknown or incomplete option '--frobnicate'" \
+    "usage: microcontact run CASE.ini [--out DIR] [--set section.key=value]..." \
+    -- good.ini --out o --frobnicate
+row two_case_files     o 1 "one case file only" "'good.ini' and 'nu_high.ini'" \
+    -- good.ini nu_high.ini --out o
+row no_case_file       o 1 "usage: microcontact run CASE.ini" -- --out o
+row out_missing_arg    o 2 "unknown or incomplete option '--out'" "usage: microcontact run CASE.ini" \
+    -- good.ini --out
+row set_eq_bad_value   o 1 "--set mesh.ny=-3" "[mesh] ny = -3" "must be an integer in 1..65536" \
+    -- --out=o good.ini --set=mesh.ny=-3
+sets=""
+i=0
+while [ $i -lt 257 ]; do sets="$sets --set load.force=1N"; i=$((i + 1)); done
+# shellcheck disable=SC2086 # $sets is split into 257 options on purpose
+row set_too_many       o 1 "more than 256 --set options" -- good.ini --out o $sets
+sets=$(echo "$sets" | sed 's/--set /--set=/g')
+# shellcheck disable=SC2086
+row set_eq_too_many    o 1 "more than 256 --set options" -- good.ini --out o $sets
+
+total=$((pass + fail + xfail))
+echo "bad_input.sh: $pass passed, $fail failed, $xfail known defects (XFAIL), $total rows"
+[ "$fail" -eq 0 ]
