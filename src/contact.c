@@ -41,6 +41,9 @@ void mc_contact_apply(mc_contact_solver *s, const double *in, double *out)
 
 long mc_contact_last_applies(const mc_contact_solver *s) { return s->applies; }
 
+long mc_contact_last_box_cells(const mc_contact_solver *s) { return s->box_cells; }
+long mc_contact_last_box_applies(const mc_contact_solver *s) { return s->box_applies; }
+
 long mc_contact_last_coarse_applies(const mc_contact_solver *s)
 {
     long n = 0;
@@ -203,6 +206,11 @@ void mc_contact_destroy(mc_contact_solver **sp)
     mc_free(s->coarse_p);
     mc_free(s->start);
     mc_contact_destroy(&s->coarse);
+    mc_contact_destroy(&s->box);
+    mc_operator_destroy(&s->box_op);
+    mc_free(s->box_h);
+    mc_free(s->box_cap);
+    mc_free(s->box_q);
     mc_operator_destroy(&s->coarse_op);
     mc_precond_destroy(&s->pc);
     mc_free(s);
@@ -279,10 +287,11 @@ static int check_problem(const mc_contact_solver *s, const mc_contact_problem *p
         if (!(lo >= 0 && isfinite(lo)))
             return mc_fail(err, MC_ERR_INPUT, "contact: lower bound %g Pa at cell %zu must be >= 0",
                            lo, i);
-        if (!(p->p_cap > lo))
+        double hi = p->p_upper ? p->p_upper[i] : p->p_cap;
+        if (!(hi > lo))
             return mc_fail(err, MC_ERR_INPUT,
                            "contact: pressure cap %g Pa must exceed the lower bound %g Pa (cell %zu)",
-                           p->p_cap, lo, i);
+                           hi, lo, i);
     }
     return MC_OK;
 }
@@ -359,10 +368,10 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
     /* s->tmp keeps K p_lower until the end */
     double *ulow = s->tmp;
 
-    int capped = isfinite(p->p_cap);
+    int capped = p->p_upper || isfinite(p->p_cap);
     if (capped)
         for (size_t i = 0; i < n; i++)
-            s->capq[i] = p->p_cap - s->plow[i];
+            s->capq[i] = (p->p_upper ? p->p_upper[i] : p->p_cap) - s->plow[i];
     mc_qproblem qp = {.h = s->htil,
                       .cap = capped ? s->capq : NULL,
                       .control = p->control,
@@ -396,12 +405,20 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
                                p->load, p->load - qp.W + s->A * capacity);
         }
         start_value(s, p, &qp, q);
-        method_fn fn = p->control == MC_CONTROL_APPROACH ? methods[method].approach
-                       : capped                         ? methods[method].capped
-                                                        : methods[method].force;
-        rc = fn(s, &qp, q, &res, err);
+        int handled = 0;
+        rc = mc_contact_box_solve(s, &qp, q, &res, &handled, err);
         if (rc != MC_OK && rc != MC_NOT_CONVERGED)
             return rc;
+        if (!handled) {
+            int box_iterations = res.iterations;
+            method_fn fn = p->control == MC_CONTROL_APPROACH ? methods[method].approach
+                           : capped                         ? methods[method].capped
+                                                            : methods[method].force;
+            rc = fn(s, &qp, q, &res, err);
+            res.iterations += box_iterations;
+            if (rc != MC_OK && rc != MC_NOT_CONVERGED)
+                return rc;
+        }
     }
 
     /* back to the full pressure; summary */

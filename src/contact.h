@@ -28,6 +28,12 @@
  *                leave, penetrating cells re-enter (plastic-lubrication.md 5); O(N^3): refused
  *                above MC_ACTIVE_SET_MAX_CELLS.
  *
+ * Restriction (cg): when the contact found by the start (coarse solution or warm start) has a
+ * bounding box of at most MC_BOX_FRACTION of the grid, the solve runs on that box (plus a margin)
+ * with a box-sized operator; the full operator then checks the gap outside the box, and cells that
+ * penetrate there widen the box and the solve resumes. The result is the full-grid solution (the
+ * final residual is measured on the full grid); only the cost changes.
+ *
  * Start: a warm start if given; else, for cg with opt.estar > 0 on a large grid, the solution of
  * the same problem on a 2:1 coarser grid (topography, bounds and extra term block-averaged, the
  * load kept), itself started the same way; else the uniform pressure.
@@ -57,6 +63,7 @@ typedef struct {
     const double *p_lower; /* per-cell lower bound, Pa; NULL = the uniform p_lub */
     double p_lub;          /* uniform lower bound (lubricant pressure), Pa, >= 0 */
     double p_cap;          /* upper bound, Pa; INFINITY = none */
+    const double *p_upper; /* per-cell upper bound, Pa; NULL = the uniform p_cap */
     mc_control control;
     double load;           /* force control: total load A*sum(p), N */
     double approach;       /* approach control: delta, m */
@@ -72,9 +79,11 @@ typedef struct {
      * has >= MC_COARSEN_MIN cells): nested iteration, which spares the fine grid most of the
      * iterations that only shrink the contact set. 0 = start from the uniform pressure. */
     double estar;
+    int no_box; /* 1: never restrict the solve to the contact's bounding box (for comparison) */
 } mc_contact_options;
 
 #define MC_COARSEN_MIN 96 /* an axis with fewer cells is not coarsened */
+#define MC_BOX_FRACTION 0.25 /* restrict the solve to the contact's box below this area ratio */
 
 typedef struct mc_contact_solver mc_contact_solver;
 
@@ -95,6 +104,10 @@ void mc_contact_destroy(mc_contact_solver **s);
  * nested start (for benchmarks). */
 long mc_contact_last_applies(const mc_contact_solver *s);
 long mc_contact_last_coarse_applies(const mc_contact_solver *s);
+
+/* Cells of the box the last solve ran on (0: the whole grid), and its applications there. */
+long mc_contact_last_box_cells(const mc_contact_solver *s);
+long mc_contact_last_box_applies(const mc_contact_solver *s);
 
 const char *mc_contact_method_name(mc_contact_method m);
 

@@ -93,6 +93,34 @@ static int solve_free(mc_contact_solver *s, const mc_qproblem *qp, const unsigne
     return MC_OK;
 }
 
+/* Force control with every cell held at a bound: the load equation has no unknown left, so the
+ * approach is undetermined and the held load differs from W in general. Free the held cell
+ * nearest to switching (s->u = K q of the held values): the capped cell with the largest
+ * h~ + u when the held load exceeds W, else the lower-bound cell with the smallest. */
+static void release_one(mc_contact_solver *s, const mc_qproblem *qp, unsigned char *state,
+                        const double *q)
+{
+    const size_t n = s->n;
+    double held = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (state[i] == AT_FREE)
+            return;
+        held += q[i];
+    }
+    int over = s->A * held > qp->W;
+    size_t pick = n;
+    double best = over ? -INFINITY : INFINITY;
+    for (size_t i = 0; i < n; i++) {
+        double v = qp->h[i] + s->u[i];
+        if (over ? (state[i] == AT_CAP && v > best) : (state[i] == AT_LOWER && v < best)) {
+            best = v;
+            pick = i;
+        }
+    }
+    if (pick < n)
+        state[pick] = AT_FREE;
+}
+
 int mc_contact_active_set(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
                           mc_error *err)
 {
@@ -104,6 +132,8 @@ int mc_contact_active_set(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_q
     res->converged = 0;
     int it = 0;
     for (;;) {
+        if (qp->control == MC_CONTROL_FORCE)
+            release_one(s, qp, state, q);
         int rc = solve_free(s, qp, state, q, &delta, err);
         if (rc != MC_OK)
             return rc;
@@ -149,5 +179,8 @@ int mc_contact_active_set(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_q
     qp->delta = delta;
     res->iterations = it;
     res->residual = mc_contact_residual(s, qp, q, s->u, delta);
+    /* a stable active set is a solution only if it meets the stopping rule of contact.h */
+    if (!(res->residual <= s->opt.tolerance))
+        res->converged = 0;
     return res->converged ? MC_OK : MC_NOT_CONVERGED;
 }

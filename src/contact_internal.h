@@ -42,6 +42,12 @@ struct mc_contact_solver {
     mc_operator *coarse_op;
     int fx, fy;                    /* coarsening factor per axis (1 or 2) */
     double *coarse_h, *coarse_low, *coarse_p, *start; /* coarse arrays, and the fine start */
+    /* restriction to the contact's box (cg): built on demand, kept for the next solve */
+    mc_contact_solver *box;
+    mc_operator *box_op;
+    int bi0, bj0, bnx, bny;          /* the box of the last restricted solve (bnx = 0: none) */
+    long box_cells, box_applies;
+    double *box_h, *box_cap, *box_q; /* box-sized arrays (allocated with the box solver) */
     /* active-set reference: dense influence matrix and factor workspace (n*n each) */
     double *dense, *factor;
     size_t *map; /* free-cell indices */
@@ -66,5 +72,11 @@ int mc_contact_nested(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresu
 int mc_contact_active_set(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
                           mc_error *err);
 int mc_contact_active_set_prepare(mc_contact_solver *s, mc_error *err);
+
+/* The cg solve on the contact's bounding box when that is small (contact_box.c): *handled = 1
+ * with the full-grid q, s->u = K q and qp->delta when it ran; 0 when not applicable or when the
+ * box grew too large (q is then a warm start for the full solve). */
+int mc_contact_box_solve(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
+                         int *handled, mc_error *err);
 
 #endif

@@ -77,7 +77,7 @@ static void solve(const scene_t *sc, mc_contact_method m, mc_backend b, double t
     mc_operator *K = NULL;
     mc_error err = {0};
     ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, b, &K, &err), MC_OK);
-    mc_contact_options opt = {m, tol, 20000, 0};
+    mc_contact_options opt = {m, tol, 20000, 0, 0};
     mc_contact_solver *s = NULL;
     ck_assert_msg(mc_contact_create(K, &opt, &s, &err) == MC_OK, "%s", err.msg);
     double pm = W / (n * mc_grid_cell_area(&g));
@@ -123,6 +123,13 @@ static void solve(const scene_t *sc, mc_contact_method m, mc_backend b, double t
     mc_contact_destroy(&s);
     mc_operator_destroy(&K);
     mc_free(h);
+}
+
+/* Index of the cell whose centre is nearest to (x, y). */
+static size_t vu_center(const mc_grid *g, double x, double y)
+{
+    int i = (int)floor(x / g->dx + 0.5 * g->nx), j = (int)floor(y / g->dy + 0.5 * g->ny);
+    return (size_t)j * g->nx + i;
 }
 
 static void release(solution *s)
@@ -200,7 +207,7 @@ START_TEST(active_set_refuses_large_grid)
     mc_operator *K = NULL;
     mc_error err = {0};
     ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
-    mc_contact_options opt = {MC_METHOD_ACTIVE_SET, 1e-8, 100, 0};
+    mc_contact_options opt = {MC_METHOD_ACTIVE_SET, 1e-8, 100, 0, 0};
     mc_contact_solver *s = NULL;
     ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_ERR_LIMIT);
     ck_assert_ptr_null(s);
@@ -218,7 +225,7 @@ START_TEST(lubricant_carries_everything)
     mc_operator *K = NULL;
     mc_error err = {0};
     ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
-    mc_contact_options opt = {MC_METHOD_CG, 1e-8, 100, 0};
+    mc_contact_options opt = {MC_METHOD_CG, 1e-8, 100, 0, 0};
     mc_contact_solver *s = NULL;
     ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
     double plub = 2.0 * W / (256 * mc_grid_cell_area(&g));
@@ -246,7 +253,7 @@ START_TEST(not_converged_is_reported)
     mc_operator *K = NULL;
     mc_error err = {0};
     ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
-    mc_contact_options opt = {MC_METHOD_PK, 1e-12, 2, 0};
+    mc_contact_options opt = {MC_METHOD_PK, 1e-12, 2, 0, 0};
     mc_contact_solver *s = NULL;
     ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
     mc_contact_problem prob = {.h = h, .p_cap = INFINITY, .control = MC_CONTROL_FORCE, .load = W};
@@ -285,7 +292,7 @@ START_TEST(nested_start_same_answer)
     mc_contact_summary s1, s2;
     int it[2];
     for (int k = 0; k < 2; k++) {
-        mc_contact_options opt = {MC_METHOD_CG, TIGHT, 5000, k ? E_STAR : 0};
+        mc_contact_options opt = {MC_METHOD_CG, TIGHT, 5000, k ? E_STAR : 0, 1};
         mc_contact_solver *s = NULL;
         ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
         mc_contact_problem prob = {.h = h, .p_cap = INFINITY, .control = MC_CONTROL_FORCE,
@@ -307,6 +314,60 @@ START_TEST(nested_start_same_answer)
 }
 END_TEST
 
+/* The restriction to the contact's bounding box changes the cost, not the answer: a small contact
+ * on a large grid solved with and without the box agrees to the solver tier, and the box (not the
+ * whole grid) is what the iterations ran on. A warm start that covers too little makes the full
+ * operator find penetration outside the box, which must widen it. */
+START_TEST(box_restriction_same_answer)
+{
+    const int N = 200;
+    mc_grid g = {N, N - 10, 2e-6, 2e-6, 0, 0};
+    size_t n = mc_grid_cells(&g);
+    double *h = mc_zeros(n), *p[2] = {mc_zeros(n), mc_zeros(n)}, *start = mc_zeros(n);
+    for (int j = 0; j < g.ny; j++)
+        for (int i = 0; i < g.nx; i++) {
+            double x = mc_grid_x(&g, i) - 20e-6, y = mc_grid_y(&g, j) + 10e-6;
+            h[(size_t)j * g.nx + i] = (x * x + y * y) / (2 * R);
+        }
+    mc_operator *K = NULL;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
+    mc_contact_summary sum[2];
+    for (int k = 0; k < 2; k++) {
+        mc_contact_options opt = {MC_METHOD_CG, TIGHT, 5000, E_STAR, k == 0};
+        mc_contact_solver *s = NULL;
+        ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
+        mc_contact_problem prob = {.h = h, .p_cap = INFINITY, .control = MC_CONTROL_FORCE,
+                                   .load = 0.05};
+        ck_assert_msg(mc_contact_solve(s, &prob, p[k], NULL, NULL, &sum[k], &err) == MC_OK, "%s",
+                      err.msg);
+        if (k == 1) {
+            ck_assert_msg(mc_contact_last_box_cells(s) > 0 &&
+                              mc_contact_last_box_cells(s) < (long)(MC_BOX_FRACTION * n),
+                          "box of %ld cells", mc_contact_last_box_cells(s));
+            /* a warm start on a single cell: the box must grow until nothing penetrates */
+            for (size_t i = 0; i < n; i++)
+                start[i] = i == vu_center(&g, 20e-6, -10e-6) ? 1e9 : 0.0;
+            prob.p_start = start;
+            mc_contact_summary s3;
+            double *p3 = mc_zeros(n);
+            ck_assert_int_eq(mc_contact_solve(s, &prob, p3, NULL, NULL, &s3, &err), MC_OK);
+            ck_assert(max_abs_diff(p3, p[0], n) / sum[0].p_max <= TOL_METHODS);
+            mc_free(p3);
+        }
+        mc_contact_destroy(&s);
+    }
+    double d = max_abs_diff(p[0], p[1], n) / sum[0].p_max;
+    ck_assert_msg(d <= TOL_METHODS, "box vs full differ by %.3e of p_max", d);
+    ck_assert(fabs(sum[0].approach - sum[1].approach) <= TOL_METHODS * sum[0].approach);
+    mc_free(h);
+    mc_free(p[0]);
+    mc_free(p[1]);
+    mc_free(start);
+    mc_operator_destroy(&K);
+}
+END_TEST
+
 Suite *suite_contact(void);
 Suite *suite_contact(void)
 {
@@ -323,6 +384,7 @@ Suite *suite_contact(void)
     tcase_add_test(e, lubricant_carries_everything);
     tcase_add_test(e, not_converged_is_reported);
     tcase_add_test(e, nested_start_same_answer);
+    tcase_add_test(e, box_restriction_same_answer);
     suite_add_tcase(s, e);
     return s;
 }
