@@ -1,6 +1,7 @@
 /* conv.c - the transform engine: one grid, one backend, many kernels (see operator.h).
  * Backends are rows of a table chosen by name; each row owns its workspace in the engine. */
 #include <fftw3.h>
+#include <math.h>
 #include <string.h>
 
 #include "alloc.h"
@@ -369,6 +370,47 @@ void mc_conv_convolve(mc_conv *c, const double *kspec, const double *field, doub
                       double *work)
 {
     c->ops->convolve(c, kspec, field, out, work);
+}
+
+size_t mc_conv_work_len(const mc_conv *c)
+{
+    return c->ops->id == MC_BACKEND_DIRECT ? mc_grid_cells(&c->g) : 0;
+}
+
+int mc_conv_kernel_real(mc_conv *c, const mc_kernel_table *t, double *kre)
+{
+    if (c->ops->id != MC_BACKEND_FFT || t->tx != c->tx || t->ty != c->ty)
+        return 0;
+    const size_t nc = half_len(c);
+    memcpy(c->rbuf, t->k, (size_t)c->tx * (size_t)c->ty * sizeof *t->k);
+    fftw_execute(c->r2c);
+    const double *s = (const double *)c->cbuf;
+    double re = 0, im = 0;
+    for (size_t q = 0; q < nc; q++) {
+        re = fmax(re, fabs(s[2 * q]));
+        im = fmax(im, fabs(s[2 * q + 1]));
+    }
+    if (!(im <= 1e-13 * re))
+        return 0;
+    const double scale = 1.0 / ((double)c->tx * (double)c->ty);
+    for (size_t q = 0; q < nc; q++)
+        kre[q] = scale * s[2 * q];
+    return 1;
+}
+
+void mc_conv_convolve_real(mc_conv *c, const double *kre, const double *field, double *out)
+{
+    fft_fill(c, field);
+    fft_forward(c);
+    const long nc = (long)half_len(c);
+    double *s = (double *)c->cbuf;
+#pragma omp parallel for schedule(static) if (nc > PAR_MIN)
+    for (long q = 0; q < nc; q++) {
+        s[2 * q] *= kre[q];
+        s[2 * q + 1] *= kre[q];
+    }
+    fft_inverse(c);
+    fft_crop(c, out);
 }
 
 mc_backend mc_conv_backend(const mc_conv *c) { return c->ops->id; }

@@ -8,8 +8,9 @@
 
 struct mc_operator {
     mc_conv *conv;
-    double *kspec; /* the transformed kernel */
-    double *lspec; /* workspace of mc_conv_convolve */
+    double *kspec; /* the transformed kernel (real parts only when real_kernel) */
+    double *lspec; /* workspace of mc_conv_convolve (direct backend only) */
+    int real_kernel;
 };
 
 static int n_threads;        /* 0: not set, all cores */
@@ -41,11 +42,26 @@ static int plan_with_conv(mc_conv *conv, const mc_kernel_table *t, mc_operator *
     const size_t n = mc_conv_spectrum_len(conv);
     mc_operator *op = mc_calloc(1, sizeof *op);
     int rc;
-    if (!op || !(op->kspec = mc_malloc(n * sizeof *op->kspec)) ||
-        !(op->lspec = mc_malloc(n * sizeof *op->lspec)))
-        rc = mc_fail(err, MC_ERR_NOMEM, "operator: out of memory for %zu-double spectra", n);
-    else
-        rc = mc_conv_kernel(conv, t, op->kspec, err);
+    const size_t nw = mc_conv_work_len(conv);
+    rc = MC_OK;
+    if (!op || (nw && !(op->lspec = mc_malloc(nw * sizeof *op->lspec))))
+        rc = mc_fail(err, MC_ERR_NOMEM, "operator: out of memory for its workspace");
+    /* an even kernel keeps only the real half of its spectrum */
+    if (rc == MC_OK && mc_conv_backend(conv) == MC_BACKEND_FFT) {
+        if (!(op->kspec = mc_malloc(n / 2 * sizeof *op->kspec)))
+            rc = mc_fail(err, MC_ERR_NOMEM, "operator: out of memory for a %zu-double spectrum",
+                         n / 2);
+        else if (!(op->real_kernel = mc_conv_kernel_real(conv, t, op->kspec))) {
+            mc_free(op->kspec);
+            op->kspec = NULL;
+        }
+    }
+    if (rc == MC_OK && !op->real_kernel) {
+        if (!(op->kspec = mc_malloc(n * sizeof *op->kspec)))
+            rc = mc_fail(err, MC_ERR_NOMEM, "operator: out of memory for %zu-double spectra", n);
+        else
+            rc = mc_conv_kernel(conv, t, op->kspec, err);
+    }
     if (rc) {
         if (op) {
             mc_free(op->kspec);
@@ -91,7 +107,10 @@ int mc_operator_plan_love(const mc_grid *g, double Estar, mc_backend b, mc_opera
 
 void mc_operator_apply(mc_operator *op, const double *in, double *out)
 {
-    mc_conv_convolve(op->conv, op->kspec, in, out, op->lspec);
+    if (op->real_kernel)
+        mc_conv_convolve_real(op->conv, op->kspec, in, out);
+    else
+        mc_conv_convolve(op->conv, op->kspec, in, out, op->lspec);
 }
 
 void mc_operator_destroy(mc_operator **op)

@@ -157,6 +157,18 @@ void mc_conv_apply(mc_conv *c, int nterms, const double *const *kspec, const dou
 void mc_conv_convolve(mc_conv *c, const double *kspec, const double *field, double *out,
                       double *work);
 
+/* Scratch doubles mc_conv_convolve needs in work (0 for fft; the field for direct). */
+size_t mc_conv_work_len(const mc_conv *c);
+
+/* Kernels even in both offsets (the Love kernel) have a real spectrum. fft backend: transform
+ * the table and, if the spectrum is real to round-off (|Im| <= 1e-13 max|Re|), store its real
+ * parts in kre (mc_conv_spectrum_len / 2 doubles: half the memory) and return 1; otherwise (and
+ * always for direct) return 0 and leave kre untouched. kre goes to mc_conv_convolve_real. */
+int mc_conv_kernel_real(mc_conv *c, const mc_kernel_table *t, double *kre);
+
+/* mc_conv_convolve with a compacted real spectrum (fft backend). Never allocates. */
+void mc_conv_convolve_real(mc_conv *c, const double *kre, const double *field, double *out);
+
 mc_backend mc_conv_backend(const mc_conv *c);
 const mc_grid *mc_conv_grid(const mc_conv *c);
 
