@@ -8,11 +8,10 @@
 #include "fftsize.h"
 #include "operator.h"
 
-/* Below this many complex values a memory-bound loop is not worth waking the thread team. */
-#define PAR_MIN 16384
-/* Transforms smaller than this run on one thread: FFTW's thread start-up costs more than it saves
- * (64 x 64: 20 us on one thread, 30 us on two, measured). */
-#define FFT_THREADS_MIN 16384
+/* Below this many values a memory-bound loop is not worth waking the thread team. */
+#define PAR_MIN MC_THREADS_MIN_CELLS
+/* Transforms smaller than this run on one thread (see MC_THREADS_MIN_CELLS). */
+#define FFT_THREADS_MIN MC_THREADS_MIN_CELLS
 
 typedef struct conv_ops conv_ops;
 

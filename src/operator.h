@@ -199,6 +199,12 @@ mc_backend mc_operator_backend(const mc_operator *op);
 
 /* ---- threads ------------------------------------------------------------------------------ */
 
+/* Transforms and loops smaller than this many values run on one thread: below it a thread team
+ * costs more than it saves (64 x 64 transforms: 20 us on one thread, 30 us on two), and on a
+ * machine whose cores are busy with other work, fine-grained synchronisation of small loops
+ * made a 141 x 141 capped contact 250 times slower (73 s instead of 0.3 s, measured). */
+#define MC_THREADS_MIN_CELLS (1 << 18)
+
 /* Threads for FFTW and the OpenMP loops (n <= 0: all cores, the default). Call before planning. */
 void mc_set_threads(int n);
 int mc_get_threads(void);

@@ -116,6 +116,8 @@ static box_plan *plan_for(mc_precond *pc, int fx, int fy, mc_error *err)
             pc->ncached--;
         return NULL;
     }
+    if ((size_t)fx * fy < MC_THREADS_MIN_CELLS)
+        fftw_plan_with_nthreads(1);
     b->fwd = fftw_plan_dft_r2c_2d(fy, fx, pc->real, pc->spec, FFTW_ESTIMATE);
     b->inv = fftw_plan_dft_c2r_2d(fy, fx, pc->spec, pc->real, FFTW_ESTIMATE);
     if (!b->symbol || !b->fwd || !b->inv) {
