@@ -279,9 +279,11 @@ static int check_problem(const mc_contact_solver *s, const mc_contact_problem *p
     if (!(p->p_cap > 0) || isnan(p->p_cap))
         return mc_fail(err, MC_ERR_INPUT, "contact: pressure cap %g Pa must be > 0 (or infinite)",
                        p->p_cap);
+    double hsum = 0;
     for (size_t i = 0; i < s->n; i++) {
         double lo = p->p_lower ? p->p_lower[i] : p->p_lub;
         double h = p->h[i] + (p->h_extra ? p->h_extra[i] : 0.0);
+        hsum += h;
         if (!isfinite(h))
             return mc_fail(err, MC_ERR_INPUT, "contact: topography is not finite at cell %zu", i);
         if (!(lo >= 0 && isfinite(lo)))
@@ -293,6 +295,17 @@ static int check_problem(const mc_contact_solver *s, const mc_contact_problem *p
                            "contact: pressure cap %g Pa must exceed the lower bound %g Pa (cell %zu)",
                            hi, lo, i);
     }
+    /* Periodic in x and y the displacement has zero mean (operator.h: K 1 = 0), so the mean gap
+     * is mean(h) - approach whatever the pressure: with approach >= mean(h) no solution exists. */
+    double hmean = hsum / (double)s->n;
+    if (p->control == MC_CONTROL_APPROACH && s->g.periodic_x && s->g.periodic_y &&
+        !(p->approach < hmean))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "contact: approach %g m on a grid periodic in x and y has no solution: the "
+                       "displacement has zero mean there, so the mean gap is mean(h) - approach = "
+                       "%g m whatever the pressure, and it must be > 0 (approach < %g m, the mean "
+                       "initial gap; a rough flat has mean(h) = 0); use force control",
+                       p->approach, hmean - p->approach, hmean);
     return MC_OK;
 }
 

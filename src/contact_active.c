@@ -9,8 +9,13 @@
  *      re-enter C: the rule the paper's description omits (plastic-lubrication.md 5, step 4).
  *   5. Repeat until nothing changes.
  * K_CC is symmetric positive definite: Cholesky (GSL), with the load equation eliminated by
- * superposition, q_C = x1 + delta x2. The matrix is assembled from impulse responses of the
- * operator, so the reference sees exactly the kernel of the backend it runs on.
+ * superposition, q_C = x1 + delta x2 (under force control on K + c 1 1' where K alone is singular
+ * or indefinite: periodic grids, see solve_free). Under force control a set with every cell held
+ * at a bound and the load not met frees the held cells nearest to switching (release_held); under
+ * approach control on a grid periodic in x and y the start is the penetrating cells, not all; a
+ * stable set is accepted only if it meets the stopping rule of contact.h. The matrix is assembled
+ * from impulse responses of the operator, so the reference sees exactly the kernel of the backend
+ * it runs on.
  */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_linalg.h>
@@ -51,25 +56,41 @@ static int solve_free(mc_contact_solver *s, const mc_qproblem *qp, const unsigne
             map[m++] = i;
     if (m == 0)
         return MC_OK;
+    /* Under force control K + c 1 1' gives the same q for any c, because sum(q) = W/A is
+     * imposed: it only adds c W/A to the approach, taken off below. It is needed where K is not
+     * positive definite although the problem is well posed: periodic in x and y, K has zero mean
+     * (operator.h) and is singular (K 1 = 0), and so is K_CC with every cell free; periodic along
+     * one axis, the log kernel's constant is arbitrary (metres), which makes K indefinite on
+     * domains of metres. Both are positive definite on loads of zero sum, so a large enough c
+     * works: start at the self-influence K_00 on periodic grids and double it while Cholesky
+     * fails. */
+    const int force = qp->control == MC_CONTROL_FORCE;
+    double shift = force && (s->g.periodic_x || s->g.periodic_y) ? s->dense[0] : 0.0;
     double *F = s->factor;
-    for (size_t a = 0; a < m; a++) {
-        const double *row = s->dense + map[a] * n;
-        double b = -qp->h[map[a]];
-        for (size_t j = 0; j < n; j++)
-            if (state[j] == AT_CAP)
-                b -= row[j] * qp->cap[j];
-        x1[a] = b;
-        x2[a] = 1.0;
-        for (size_t c = 0; c < m; c++)
-            F[a * m + c] = row[map[c]];
+    int st;
+    for (int attempt = 0;; attempt++) {
+        for (size_t a = 0; a < m; a++) {
+            const double *row = s->dense + map[a] * n;
+            double b = -qp->h[map[a]];
+            for (size_t j = 0; j < n; j++)
+                if (state[j] == AT_CAP)
+                    b -= (row[j] + shift) * qp->cap[j];
+            x1[a] = b;
+            x2[a] = 1.0;
+            for (size_t c = 0; c < m; c++)
+                F[a * m + c] = row[map[c]] + shift;
+        }
+        gsl_matrix_view Fv = gsl_matrix_view_array(F, m, m);
+        gsl_vector_view v1 = gsl_vector_view_array(x1, m), v2 = gsl_vector_view_array(x2, m);
+        st = gsl_linalg_cholesky_decomp1(&Fv.matrix);
+        if (!st)
+            st = gsl_linalg_cholesky_svx(&Fv.matrix, &v1.vector);
+        if (!st)
+            st = gsl_linalg_cholesky_svx(&Fv.matrix, &v2.vector);
+        if (!st || !force || attempt >= 64)
+            break;
+        shift = shift > 0 ? 2 * shift : fabs(s->dense[0]);
     }
-    gsl_matrix_view Fv = gsl_matrix_view_array(F, m, m);
-    gsl_vector_view v1 = gsl_vector_view_array(x1, m), v2 = gsl_vector_view_array(x2, m);
-    int st = gsl_linalg_cholesky_decomp1(&Fv.matrix);
-    if (!st)
-        st = gsl_linalg_cholesky_svx(&Fv.matrix, &v1.vector);
-    if (!st)
-        st = gsl_linalg_cholesky_svx(&Fv.matrix, &v2.vector);
     if (st)
         return mc_fail(err, MC_ERR_NUMERIC, "active-set: Cholesky failed (%s) on %zu free cells",
                        gsl_strerror(st), m);
@@ -89,36 +110,49 @@ static int solve_free(mc_contact_solver *s, const mc_qproblem *qp, const unsigne
         q[i] = state[i] == AT_CAP ? qp->cap[i] : 0.0;
     for (size_t a = 0; a < m; a++)
         q[map[a]] = x1[a] + d * x2[a];
-    *delta = d;
+    *delta = d - shift * qp->W / s->A;
     return MC_OK;
 }
 
 /* Force control with every cell held at a bound: the load equation has no unknown left, so the
- * approach is undetermined and the held load differs from W in general. Free the held cell
- * nearest to switching (s->u = K q of the held values): the capped cell with the largest
- * h~ + u when the held load exceeds W, else the lower-bound cell with the smallest. */
-static void release_one(mc_contact_solver *s, const mc_qproblem *qp, unsigned char *state,
+ * approach of the last solve is stale and the held load differs from W in general; the set can
+ * look stable although it is no solution. Free the held cells nearest to switching (s->u = K q
+ * of the held values): when the held load exceeds W, the capped cells of largest h~ + u, as many
+ * as it takes for their caps to cover the excess; else the lower-bound cell of smallest h~ + u.
+ * Returns 1 when it freed any. */
+static int release_held(mc_contact_solver *s, const mc_qproblem *qp, unsigned char *state,
                         const double *q)
 {
     const size_t n = s->n;
     double held = 0;
     for (size_t i = 0; i < n; i++) {
         if (state[i] == AT_FREE)
-            return;
+            return 0;
         held += q[i];
     }
-    int over = s->A * held > qp->W;
-    size_t pick = n;
-    double best = over ? -INFINITY : INFINITY;
-    for (size_t i = 0; i < n; i++) {
-        double v = qp->h[i] + s->u[i];
-        if (over ? (state[i] == AT_CAP && v > best) : (state[i] == AT_LOWER && v < best)) {
-            best = v;
-            pick = i;
+    double excess = held - qp->W / s->A;
+    if (fabs(excess) <= s->opt.tolerance * qp->W / s->A)
+        return 0;
+    int freed = 0;
+    do {
+        size_t pick = n;
+        double best = excess > 0 ? -INFINITY : INFINITY;
+        for (size_t i = 0; i < n; i++) {
+            double v = qp->h[i] + s->u[i];
+            int nearer = excess > 0 ? state[i] == AT_CAP && v > best
+                                    : state[i] == AT_LOWER && v < best;
+            if (nearer) {
+                best = v;
+                pick = i;
+            }
         }
-    }
-    if (pick < n)
+        if (pick == n)
+            break;
         state[pick] = AT_FREE;
+        freed = 1;
+        excess -= q[pick];
+    } while (excess > 0);
+    return freed;
 }
 
 int mc_contact_active_set(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
@@ -129,11 +163,16 @@ int mc_contact_active_set(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_q
     double delta = qp->delta;
     mc_gsl_quiet();
     memset(state, AT_FREE, n);
+    /* periodic in x and y, K is singular (K 1 = 0): under approach control start from the
+     * penetrating cells, a proper subset whenever a solution exists (it needs delta < mean h~) */
+    if (qp->control == MC_CONTROL_APPROACH && s->g.periodic_x && s->g.periodic_y)
+        for (size_t i = 0; i < n; i++)
+            state[i] = qp->h[i] < delta ? AT_FREE : AT_LOWER;
     res->converged = 0;
     int it = 0;
     for (;;) {
         if (qp->control == MC_CONTROL_FORCE)
-            release_one(s, qp, state, q);
+            release_held(s, qp, state, q);
         int rc = solve_free(s, qp, state, q, &delta, err);
         if (rc != MC_OK)
             return rc;
