@@ -191,5 +191,7 @@ int vf_suite_hertz_line(vf_ctx *ctx, int fast)
             "plot 'convergence.csv' using 4:7 with linespoints pt 7 title 'p_{max}', "
             "'' using 4:9 with linespoints pt 5 title 'half-width (fit)', "
             "'' using 4:10 with linespoints pt 9 title 'profile'");
+    if (vf_hertz_line_stress(ctx, fast) != 0) /* subsurface stresses: verify/hertz_stress.c */
+        return 1;
     return 0;
 }

@@ -211,5 +211,7 @@ int vf_suite_hertz_point(vf_ctx *ctx, int fast)
             "plot 'convergence.csv' using 4:7 with linespoints pt 7 title 'p_{max}', "
             "'' using 4:9 with linespoints pt 5 title 'approach', "
             "'' using 4:11 with linespoints pt 9 title 'radius (fit)'");
+    if (vf_hertz_point_stress(ctx, fast) != 0) /* subsurface stresses: verify/hertz_stress.c */
+        return 1;
     return 0;
 }

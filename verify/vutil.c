@@ -2,6 +2,8 @@
 #include "vutil.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 int vu_linfit(const double *x, const double *y, int n, double *c0, double *c1)
@@ -78,4 +80,98 @@ size_t vu_argmax(const double *f, size_t n)
         if (f[i] > f[k])
             k = i;
     return k;
+}
+
+int vu_read_csv(const char *name, double **data, int *cols, char header[][32], int max_cols,
+                char (**labels)[16], char *msg, size_t msglen)
+{
+    const char *dir = getenv("MC_PHYSICS_DIR");
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", dir && *dir ? dir : "tests/data/physics", name);
+    *data = NULL;
+    *cols = 0;
+    if (labels)
+        *labels = NULL;
+    if (msg)
+        snprintf(msg, msglen, "%s", path);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1;
+    char line[8192];
+    int ncols = 0, rows = 0, cap = 0;
+    double *d = NULL;
+    char(*lab)[16] = NULL;
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] == '#' || line[0] == '\n' || line[0] == '\r')
+            continue;
+        if (ncols == 0) { /* the header line */
+            char *save = NULL;
+            for (char *tok = strtok_r(line, ",\r\n", &save); tok && ncols < max_cols;
+                 tok = strtok_r(NULL, ",\r\n", &save)) {
+                if (header)
+                    snprintf(header[ncols], 32, "%s", tok);
+                ncols++;
+            }
+            continue;
+        }
+        if (rows == cap) {
+            cap = cap ? 2 * cap : 64;
+            double *nd = realloc(d, sizeof *d * (size_t)cap * (size_t)max_cols);
+            char(*nl)[16] = labels ? realloc(lab, sizeof *lab * (size_t)cap * (size_t)max_cols)
+                                   : NULL;
+            if (nd)
+                d = nd;
+            if (nl)
+                lab = nl;
+            if (!nd || (labels && !nl)) {
+                free(d);
+                free(lab);
+                fclose(f);
+                return -1;
+            }
+        }
+        char *p = line;
+        for (int c = 0; c < ncols; c++) {
+            char *end;
+            size_t k = (size_t)rows * (size_t)max_cols + (size_t)c;
+            double v = strtod(p, &end);
+            if (end == p || (*end != ',' && *end != '\n' && *end != '\r' && *end != '\0')) {
+                /* a text field: keep its label */
+                end = p + strcspn(p, ",\r\n");
+                v = NAN;
+                if (lab)
+                    snprintf(lab[k], 16, "%.*s", (int)(end - p), p);
+            } else if (lab)
+                lab[k][0] = '\0';
+            d[k] = v;
+            p = end;
+            if (*p == ',')
+                p++;
+        }
+        rows++;
+    }
+    fclose(f);
+    *cols = ncols;
+    *data = d;
+    if (labels)
+        *labels = lab;
+    return rows;
+}
+
+double vu_parabola_peak(double fm, double f0, double fp, double h, double *fmax)
+{
+    double c2 = fm - 2 * f0 + fp, c1 = fp - fm; /* f(s) = f0 + c1 s/(2h) + c2 s^2/(2h^2) */
+    if (c2 == 0) {
+        if (fmax)
+            *fmax = f0;
+        return 0;
+    }
+    double s = -0.5 * c1 / c2 * h;
+    if (s > h)
+        s = h;
+    if (s < -h)
+        s = -h;
+    if (fmax)
+        *fmax = f0 + c1 * s / (2 * h) + c2 * s * s / (2 * h * h);
+    return s;
 }

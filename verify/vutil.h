@@ -24,4 +24,20 @@ void vu_scene(mc_scene *s, int nx, int ny, double dx, double dy);
 /* The cell of maximum pressure (index j*nx + i). */
 size_t vu_argmax(const double *f, size_t n);
 
+/* Reference table `name` of the physics dossier, read from $MC_PHYSICS_DIR or tests/data/physics
+ * (relative to the working directory: the repository root for make). Lines starting with '#' are
+ * comments; the first other line is the header (up to max_cols names, copied into header[c] when
+ * header is not NULL); every further line is a row of numbers. A non-numeric field (e.g. a column
+ * label such as "node") is stored as NAN and its text, when labels is not NULL, copied into
+ * labels[row * max_cols + c] (16 bytes each). *data is malloc'ed with row stride max_cols (row r,
+ * column c at (*data)[r * max_cols + c]); the caller frees it (and *labels). Returns the number of rows, or -1 when the file cannot be read
+ * (path is then in msg, if given). */
+int vu_read_csv(const char *name, double **data, int *cols, char header[][32], int max_cols,
+                char (**labels)[16], char *msg, size_t msglen);
+
+/* Vertex of the parabola through (-h, fm), (0, f0), (h, fp): returns the offset of the vertex
+ * from the middle point (clamped to [-h, h]) and its value in *fmax (f0 if the three points are
+ * collinear). Used to place a sampled maximum between grid points or layers. */
+double vu_parabola_peak(double fm, double f0, double fp, double h, double *fmax);
+
 #endif
