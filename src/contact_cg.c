@@ -5,7 +5,8 @@
  * under force control with the load as a linear constraint (delta is its multiplier). Each
  * iteration: free set S (cells strictly inside their bounds, plus bound cells whose gradient
  * points inwards), preconditioned residual z = P M P r on S (P: zero-mean projection that keeps
- * the load; M: precond.h), conjugate direction (restarted when S changes), exact step, projection
+ * the load; M: precond.h), conjugate direction (restarted when S changes by more than
+ * RESTART_FRAC, or when it stops being a descent direction), exact step, projection
  * onto the bounds. One operator application per iteration, plus one after an iteration that
  * clipped (u = K q is recomputed then, and before convergence is declared).
  */
@@ -13,6 +14,13 @@
 #include <string.h>
 
 #include "contact_internal.h"
+
+/* Restart the conjugate recurrence only when more than this fraction of the free set changed.
+ * Restarting on every change (or clipping) made rough contacts converge like steepest descent
+ * (periodic self-affine 512^2: 51 iterations; 22 with this rule; 1024^2: 27). Across a small
+ * change the old direction is re-projected to keep the load, and a direction that is no longer
+ * a descent direction is replaced by the preconditioned residual. */
+#define RESTART_FRAC 0.1
 
 static double mean_on(const double *v, const unsigned char *mask, size_t n)
 {
@@ -78,16 +86,16 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
             break;
         it++;
 
-        size_t m = 0;
-        int changed = 0;
+        size_t m = 0, nchanged = 0;
         for (size_t i = 0; i < n; i++) {
             double c = cap ? cap[i] : INFINITY;
             unsigned char free_ = (q[i] > 0 && q[i] < c) || (q[i] <= 0 && r[i] < 0) ||
                                   (q[i] >= c && r[i] > 0);
             S[i] = free_;
-            changed |= free_ != S_old[i];
+            nchanged += free_ != S_old[i];
             m += free_;
         }
+        int changed = nchanged > 0;
         if (m == 0) /* nothing can move although the residual is above tolerance */
             break;
         if (changed) {
@@ -95,7 +103,8 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
             if (rc != MC_OK)
                 return rc;
             memcpy(S_old, S, n);
-            restart = 1;
+            if ((double)nchanged > RESTART_FRAC * (double)m)
+                restart = 1;
         }
         if (force) { /* P r: directions must keep sum(q) */
             double mr = mean_on(r, S, n);
@@ -125,9 +134,21 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
             if (!(rz > 0))
                 break;
         }
-        double beta = restart ? 0.0 : rz / rz_old;
+        double beta = restart ? 0.0 : rz / rz_old, rd = 0;
         for (size_t i = 0; i < n; i++)
             d[i] = S[i] ? z[i] + beta * d[i] : 0.0;
+        if (force && beta != 0.0) { /* the old direction lost cells that left S: keep the load */
+            double md = mean_on(d, S, n);
+            for (size_t i = 0; i < n; i++)
+                if (S[i])
+                    d[i] -= md;
+        }
+        for (size_t i = 0; i < n; i++)
+            rd += r[i] * d[i];
+        if (!(rd > 0)) { /* the set changed under the recurrence: not a descent direction */
+            memcpy(d, z, n * sizeof *d);
+            rd = rz;
+        }
         mc_contact_apply(s, d, w);
         double dkd = 0;
         for (size_t i = 0; i < n; i++)
@@ -136,7 +157,7 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
             rc = mc_fail(err, MC_ERR_NUMERIC, "contact cg: non-positive curvature d'Kd = %g", dkd);
             break;
         }
-        double alpha = rz / dkd;
+        double alpha = rd / dkd;
         int clipped = 0;
         double qsum = 0;
         for (size_t i = 0; i < n; i++) {
@@ -169,10 +190,8 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
             }
             mc_contact_apply(s, q, u);
             fresh = 1;
-            restart = 1;
-        } else {
-            restart = 0;
         }
+        restart = 0;
         rz_old = rz;
     }
     if (force)
