@@ -24,7 +24,9 @@
  *                and the free-set cap variant of 6.4 (falls back to nested when the free set
  *                empties).
  *   active-set - the paper's algorithm (Mevissen et al. 2025, Fig. 3-1): dense influence matrix,
- *                GSL LU solve of the free cells plus the load equation, cells with p < p_lower
+ *                GSL Cholesky solve of the free cells with the load equation eliminated by
+ *                superposition (K + c 11' on periodic grids, where K alone is singular or
+ *                indefinite; the load fixes the sum, c leaves the pressure unchanged), cells with p < p_lower
  *                leave, penetrating cells re-enter (plastic-lubrication.md 5); O(N^3): refused
  *                above MC_ACTIVE_SET_MAX_CELLS.
  *
@@ -38,12 +40,14 @@
  * the same problem on a 2:1 coarser grid (topography, bounds and extra term block-averaged, the
  * load kept), itself started the same way; else the uniform pressure.
  *
- * Stopping rule (scale-free): with the gap scale s_g = max(delta - min h~, max h~ - min h~ over
- * the solid contact, tiny) and the load W,
+ * Stopping rule (scale-free): with the gap scale s_g = delta - min h~ (the rigid interference:
+ * the approach of a Hertz contact, the indentation of a punch), floored at 1e-6 of the range of
+ * h~ and at 1e-12 of its magnitude so that it never vanishes, and the load W,
  *     residual = max( max_free |g| / s_g,  max_{p=p_lower} (-g) / s_g,  max_{p=p_cap} g / s_g,
  *                     |A sum p - W| / W  (force control) )
- * and the solve stops when residual <= tolerance. Non-convergence after max_iterations returns
- * MC_NOT_CONVERGED with the best iterate and converged = 0 in the summary (not hidden).
+ * and the solve stops when residual <= tolerance (below about 1e-14 it is round-off and cannot be
+ * reached). Non-convergence after max_iterations returns MC_NOT_CONVERGED with the last iterate
+ * and converged = 0 in the summary (not hidden).
  */
 #ifndef MC_CONTACT_H
 #define MC_CONTACT_H
