@@ -106,6 +106,7 @@ check: deps
 _check: $(PROGRAM) $(TESTS)
 	CK_DEFAULT_TIMEOUT=600 ./$(TESTS)
 	./$(PROGRAM) verify --fast --reports $(BUILD)/reports-fast
+	tests/cli/bad_input.sh ./$(PROGRAM)
 
 verify: deps
 	@$(MAKE) --no-print-directory all
@@ -121,21 +122,33 @@ check-sanitize: deps
 	@$(MAKE) --no-print-directory BUILD=build/san SAN=1 OPT=-O1 _check
 
 # ---- fuzzing (clang libFuzzer) --------------------------------------------------------------
+# Each tests/fuzz/fuzz_<x>.c is linked with only the parser sources (scene.c needs kernel.c for
+# mc_combined_modulus). `make fuzz FUZZ_SECONDS=N` runs every target N seconds on its seed corpus
+# tests/fuzz/corpus/fuzz_<x>/ (and tests/fuzz/fuzz_<x>.dict if present), keeping what it finds in
+# build/fuzz/corpus-fuzz_<x>/; it fails at the first target that crashes, leaks or breaks a
+# contract (log build/fuzz/fuzz_<x>.log, crashing input build/fuzz/crashes/). UBSan aborts
+# (-fno-sanitize-recover) so that undefined behaviour counts as a crash.
 FUZZ_TARGETS = $(patsubst tests/fuzz/%.c,build/fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))
-FUZZ_LIB_SRC = src/error.c src/alloc.c src/units.c src/case.c src/scene.c src/npy.c src/grid.c \
-               src/heightmap.c
-build/fuzz/%: tests/fuzz/%.c $(FUZZ_LIB_SRC)
+FUZZ_LIB_SRC = src/error.c src/alloc.c src/units.c src/case.c src/scene.c src/kernel.c src/grid.c \
+               src/npy.c src/heightmap.c
+FUZZ_CFLAGS  = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -g -O1 -Isrc \
+               -Wall -Wextra -Werror -Wno-unknown-pragmas \
+               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
+build/fuzz/%: tests/fuzz/%.c tests/fuzz/fuzz_common.h $(FUZZ_LIB_SRC) $(wildcard src/*.h)
 	@mkdir -p $(dir $@)
-	clang -g -O1 -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -Wall -Wextra -Werror \
-	  -Wno-unknown-pragmas -fsanitize=fuzzer,address,undefined $^ -o $@ -linih -ljansson -lgsl -lgslcblas -lm
+	clang $(FUZZ_CFLAGS) $< $(FUZZ_LIB_SRC) -o $@ -linih -lgsl -lgslcblas -lm
 
 fuzz: deps
 	@$(MAKE) --no-print-directory $(FUZZ_TARGETS)
-	@set -e; for t in $(FUZZ_TARGETS); do \
-	  name=$$(basename $$t); mkdir -p build/fuzz/corpus-$$name; \
+	@for t in $(FUZZ_TARGETS); do \
+	  name=$$(basename $$t); mkdir -p build/fuzz/corpus-$$name build/fuzz/crashes; \
+	  dict=; [ -f tests/fuzz/$$name.dict ] && dict=-dict=tests/fuzz/$$name.dict; \
 	  echo "fuzz: $$name for $(FUZZ_SECONDS) s"; \
-	  $$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 build/fuzz/corpus-$$name tests/fuzz/corpus/$$name 2>&1 | \
-	    grep -E 'stat::number_of_executed_units|ERROR|SUMMARY' ; \
+	  $$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 $$dict \
+	    -artifact_prefix=build/fuzz/crashes/$$name- build/fuzz/corpus-$$name \
+	    tests/fuzz/corpus/$$name > build/fuzz/$$name.log 2>&1; \
+	  rc=$$?; grep -E 'stat::number_of_executed_units|ERROR|SUMMARY|contract broken' build/fuzz/$$name.log; \
+	  if [ $$rc -ne 0 ]; then echo "fuzz: $$name FAILED (exit $$rc), see build/fuzz/$$name.log" >&2; exit 1; fi; \
 	done
 
 clean:

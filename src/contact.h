@@ -92,13 +92,17 @@ typedef struct {
 typedef struct mc_contact_solver mc_contact_solver;
 
 /* Plan a solver over operator K (not owned; must outlive the solver): allocates every workspace
- * once, so solves never allocate in their loops. MC_ERR_LIMIT for active-set above its size. */
+ * once, so iterations never allocate. A solve allocates only to plan what depends on where the
+ * contact is: the preconditioner's FFT for a new box size (cached) and, for the restricted solve,
+ * a box-sized operator and solver (kept while the box size stays). MC_ERR_LIMIT for active-set
+ * above its size. */
 int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_solver **out,
                       mc_error *err);
 
 /* Solve. Outputs (ny*nx each, caller-owned): p (Pa), and optionally u (= K p, m) and gap (m);
  * u and gap may be NULL. sum receives the contact summary. Returns MC_OK, MC_NOT_CONVERGED (all
- * outputs still filled with the last iterate), MC_ERR_INPUT (bad problem) or MC_ERR_NUMERIC. */
+ * outputs still filled with the last iterate), MC_ERR_INPUT (bad problem), MC_ERR_NOMEM (a plan
+ * of the preconditioner or of the box could not be made) or MC_ERR_NUMERIC. */
 int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, double *p, double *u,
                      double *gap, mc_contact_summary *sum, mc_error *err);
 

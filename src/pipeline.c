@@ -28,15 +28,19 @@ static int run_prescribed(const mc_scene *sc, mc_operator *K, mc_results *res, m
     const size_t n = mc_grid_cells(g);
     double *p = NULL;
     int rc = mc_heightmap_read(sc->load.pressure_file, g->ny, g->nx, &p, err);
-    if (rc != MC_OK)
+    if (rc != MC_OK) {
+        if (err)
+            mc_error_prefix(err, "[load] pressure_file: ");
         return rc;
+    }
     for (size_t i = 0; i < n; i++) {
         if (p[i] < 0) {
+            double v = p[i];
             mc_free(p);
             return mc_fail(err, MC_ERR_INPUT,
-                           "%s: pressure %g Pa at row %zu, column %zu is negative; a prescribed "
-                           "pressure map must be >= 0 (compressive)",
-                           sc->load.pressure_file, p[i], i / (size_t)g->nx, i % (size_t)g->nx);
+                           "[load] pressure_file: %s: pressure %g Pa at row %zu, column %zu is "
+                           "negative; a prescribed pressure map must be >= 0 (compressive)",
+                           sc->load.pressure_file, v, i / (size_t)g->nx, i % (size_t)g->nx);
         }
     }
     memcpy(res->pressure, p, n * sizeof *p);

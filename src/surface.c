@@ -216,8 +216,11 @@ int mc_surface_roughness(const mc_grid *g, const mc_scene *s, double *heights, m
     case MC_ROUGH_FILE: {
         double *d = NULL;
         st = mc_heightmap_read(s->roughness.file, g->ny, g->nx, &d, err);
-        if (st != MC_OK)
-            return mc_error_prefix(err, "[roughness] file: ");
+        if (st != MC_OK) {
+            if (err)
+                mc_error_prefix(err, "[roughness] file: ");
+            return st;
+        }
         memcpy(heights, d, n * sizeof(double));
         mc_free(d);
         return MC_OK;

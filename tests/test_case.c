@@ -263,6 +263,19 @@ START_TEST(test_sections_accumulate)
     /* an empty [stress] section with an explicit range turns it on */
     parse_ok(BASE "[stress]\n[solver]\n[stress]\ndepth_max = 1 um\n", 0, NULL, &s);
     ck_assert_int_eq(s.stress.enabled, 1);
+    ck_assert_int_eq(s.stress.window, MC_STRESS_WINDOW_AUTO);
+    /* [stress] alone, or created by an override: depth_max = auto (from the contact) */
+    parse_ok(BASE "[stress]\n", 0, NULL, &s);
+    ck_assert_int_eq(s.stress.enabled, 1);
+    ck_assert(s.stress.depth_max == MC_STRESS_DEPTH_AUTO);
+    const char *on[] = {"stress.enabled=yes", "stress.window=full"};
+    parse_ok(BASE, 2, on, &s);
+    ck_assert_int_eq(s.stress.enabled, 1);
+    ck_assert(s.stress.depth_max == MC_STRESS_DEPTH_AUTO);
+    ck_assert_int_eq(s.stress.window, MC_STRESS_WINDOW_FULL);
+    parse_ok(BASE "[stress]\ndepth_max = auto\nlayers = 8\n", 0, NULL, &s);
+    ck_assert(s.stress.depth_max == MC_STRESS_DEPTH_AUTO);
+    ck_assert_int_eq(s.stress.layers, 8);
 }
 END_TEST
 
@@ -428,7 +441,10 @@ static const bad_case bad[] = {
      {NAME ":9: [stress] layers cannot be combined with depths (on line 8)"}},
     {BASE "[stress]\ndepth_max = 3 um\ndepths = 1 um, 2 um\n",
      {NAME ":9: [stress] depths: give exactly one of depth_max, depths (depth_max is on line 8)"}},
-    {BASE "[stress]\n", {NAME ": [stress] give exactly one of depth_max, depths: none is given"}},
+    {BASE "[stress]\nwindow = small\n",
+     {NAME ":8: [stress] window = small: must be one of auto, full"}},
+    {BASE "[stress]\ndepth_max = automatic\n",
+     {NAME ":8: [stress] depth_max = automatic: 'automatic' is not a number", "; or auto"}},
     {BASE "[stress]\ndepth_min = 2 um\ndepth_max = 1 um\n",
      {NAME ":9: [stress] depth_max = 1e-06 m: must be > depth_min = 2e-06 m"}},
     {BASE "[stress]\nspacing = geometric\ndepth_max = 1 um\n",
@@ -529,10 +545,13 @@ START_TEST(test_override_new_section)
     ck_assert_int_eq(s.stress.enabled, 1);
     ck_assert_int_eq(s.stress.layers, 32);
     EQ(s.stress.depth_max, 10e-6);
-    /* enabling alone asks for the range, which has no default */
-    ck_assert_int_eq(parse(BASE, 1, on, &s, &err), MC_ERR_INPUT);
-    ck_assert_msg(strstr(err.msg, NAME ": [stress] give exactly one of depth_max, depths"), "%s",
-                  err.msg);
+    /* enabling alone takes the range from the contact (depth_max = auto) */
+    parse_ok(BASE, 1, on, &s);
+    ck_assert_int_eq(s.stress.enabled, 1);
+    ck_assert(s.stress.depth_max == MC_STRESS_DEPTH_AUTO);
+    /* a bad window is refused like any enum */
+    const char *no_window[] = {"stress.enabled=yes", "stress.window=none"};
+    ck_assert_int_eq(parse(BASE, 2, no_window, &s, &err), MC_ERR_INPUT);
     /* and a sweep can switch a file's stress stage off */
     const char *off[] = {"stress.enabled=no"};
     parse_ok(case_a, 1, off, &s);

@@ -1,5 +1,6 @@
 /* test_faults.c - robustness: injected allocation failures through a whole run, into the contact
- * solver and the operator plan directly, and regressions found by the fuzzers (tests/fuzz/).
+ * solver and the operator plan directly, and regressions of bad-input bugs. (Inputs that crash a
+ * fuzzer are replayed by test_fuzz_replay.c from tests/fuzz/regressions/.)
  *
  * Fault injection (alloc.h, after SQLite's sqlite3FaultSim): for n = 1, 2, ... the nth allocation
  * from the start of the attempt fails (only that one). Every attempt must end in MC_ERR_NOMEM at
@@ -167,6 +168,7 @@ typedef struct {
     const char *name;
     const char *text; /* case text; relative paths resolve against the fixture directory */
     int stages;       /* bit mask of the stages that must have seen an injected failure */
+    int stress;       /* the stress stage runs: the results include von_mises.npy */
 } fault_case;
 
 #define MESH16 "[mesh]\nnx = 16\nny = 12\ndx = 2 um\ndy = 3 um\n"
@@ -178,35 +180,41 @@ static const fault_case fault_cases[] = {
             "[roughness]\ntype = gaussian\nrq = 0.05 um\ncorrelation_x = 6 um\nseed = 3\n"
             "[load]\nforce = 0.5 N\n[solver]\nmethod = cg\noperator = fft\nthreads = 1\n"
             "[output]\nvtk = yes\n",
-     ALL_STAGES},
+     ALL_STAGES, 0},
     {"ellipsoid, self-affine roughness, pk, direct, lubricant and cap",
      MESH16 "[geometry]\nshape = ellipsoid\nradius_x = 4 mm\nradius_y = 8 mm\n"
             "[roughness]\ntype = self_affine\nrq = 0.02 um\nhurst = 0.7\n"
             "[body2]\nrigid = yes\n"
             "[load]\nforce = 0.3 N\nlubricant_pressure = 5 MPa\npressure_cap = 4 GPa\n"
             "[solver]\nmethod = pk\noperator = direct\nthreads = 1\n",
-     ALL_STAGES},
+     ALL_STAGES, 0},
     {"cylinder, periodic y, force per length, active-set, roughness file",
      "[mesh]\nnx = 12\nny = 6\ndx = 3 um\nperiodic_y = yes\n"
      "[geometry]\nshape = cylinder\nradius = 5 mm\n"
      "[roughness]\ntype = file\nfile = heights.txt\n"
      "[load]\nforce_per_length = 50 N/mm\n[solver]\nmethod = active-set\nthreads = 1\n",
-     ALL_STAGES},
+     ALL_STAGES, 0},
     {"approach control, periodic x, cg",
      "[mesh]\nnx = 16\nny = 8\ndx = 2 um\nperiodic_x = yes\n"
      "[geometry]\nshape = sphere\nradius = 5 mm\n"
      "[load]\napproach = 0.05 um\n[solver]\nthreads = 1\n",
-     ALL_STAGES},
+     ALL_STAGES, 0},
     {"prescribed pressure from .npy, with [stress]",
      MESH16 "[load]\npressure_file = pressure.npy\n[solver]\nthreads = 1\n"
             "[stress]\ndepth_max = 20 um\nlayers = 4\n[output]\nvtk = yes\n",
-     ALL_STAGES},
+     ALL_STAGES, 1},
     {"sphere, gaussian roughness, [stress] with friction",
      MESH16 "[geometry]\nshape = sphere\nradius = 5 mm\n"
             "[roughness]\ntype = gaussian\nrq = 0.05 um\ncorrelation_x = 6 um\n"
             "[load]\nforce = 0.5 N\n[solver]\nthreads = 1\n"
             "[stress]\ndepths = 0.5 um, 2 um, 8 um\nfriction = 0.1\nkernel = patch\n",
-     ALL_STAGES},
+     ALL_STAGES, 1},
+    {"coarse start and contact box (100 x 96, small contact), roughness, [stress]",
+     "[mesh]\nnx = 100\nny = 96\ndx = 1 um\n[geometry]\nshape = sphere\nradius = 5 mm\n"
+     "[roughness]\ntype = gaussian\nrq = 0.01 um\ncorrelation_x = 4 um\n"
+     "[load]\nforce = 0.05 N\n[solver]\nthreads = 1\n"
+     "[stress]\ndepth_max = 10 um\nlayers = 3\n",
+     ALL_STAGES, 1},
 };
 #define NFAULT_CASES ((int)(sizeof fault_cases / sizeof fault_cases[0]))
 
@@ -257,6 +265,7 @@ START_TEST(test_whole_run)
     long ref_allocs = mc_alloc_count() - allocs0;
     ck_assert_msg(rc == MC_OK, "%s: reference run failed in %s: %s", fc->name, stage_name[stage],
                   err.msg);
+    ck_assert_msg((res.nlayers > 0) == fc->stress, "%s: %d stress layers", fc->name, res.nlayers);
     mc_results_free(&res);
 
     int seen = 0; /* stages that met an injected failure */
@@ -299,22 +308,46 @@ END_TEST
 
 /* ---- the contact solver and the operator plan, directly ------------------------------------ */
 
-enum { CNX = 24, CNY = 20 };
+/* Sphere-on-flat problems for the solver tests: small grids for every method, and a grid large
+ * enough (both axes >= MC_COARSEN_MIN) with a small contact, so that cg starts from the coarse
+ * grid's solution and then solves on the contact's bounding box (contact.h), both of which plan
+ * operators and solvers of their own. */
+typedef struct {
+    mc_contact_method method;
+    int nx, ny;
+    double load; /* N; with R = 5 mm, E* = 115 GPa: contact radius ~ 19 um at 0.2 N */
+    double d;    /* cell size, m */
+} contact_case;
+
+static const contact_case contact_cases[] = {
+    {MC_METHOD_CG, 24, 20, 0.2, 2e-6},
+    {MC_METHOD_PK, 24, 20, 0.2, 2e-6},
+    {MC_METHOD_ACTIVE_SET, 24, 20, 0.2, 2e-6},
+    {MC_METHOD_CG, MC_COARSEN_MIN + 4, MC_COARSEN_MIN, 0.05, 1e-6},
+};
+#define NCONTACT_CASES ((int)(sizeof contact_cases / sizeof contact_cases[0]))
+#define CONTACT_ESTAR 1.15e11 /* Pa, steel on steel */
 
 static char sentinel; /* an address a failed create must overwrite with NULL */
 
-static const mc_grid cgrid = {CNX, CNY, 2e-6, 2.5e-6, 0, 0};
-
-static void hertz_gap(double *h)
+/* Operator, gap and options of contact case k; h has nx*ny values (caller frees). */
+static void contact_setup(int k, mc_operator **K, double **h, mc_contact_options *opt)
 {
-    for (int j = 0; j < CNY; j++)
-        for (int i = 0; i < CNX; i++) {
-            double x = mc_grid_x(&cgrid, i), y = mc_grid_y(&cgrid, j);
-            h[j * CNX + i] = (x * x + y * y) / (2 * 5e-3);
+    const contact_case *cc = &contact_cases[k];
+    mc_grid g = {cc->nx, cc->ny, cc->d, cc->d, 0, 0};
+    mc_error err = {0};
+    ck_assert_msg(mc_operator_plan_love(&g, CONTACT_ESTAR, MC_BACKEND_FFT, K, &err) == MC_OK, "%s",
+                  err.msg);
+    *h = malloc(sizeof **h * mc_grid_cells(&g));
+    ck_assert_ptr_nonnull(*h);
+    for (int j = 0; j < g.ny; j++)
+        for (int i = 0; i < g.nx; i++) {
+            double x = mc_grid_x(&g, i), y = mc_grid_y(&g, j);
+            (*h)[j * g.nx + i] = (x * x + y * y) / (2 * 5e-3);
         }
+    *opt = (mc_contact_options){.method = cc->method, .tolerance = 1e-9, .max_iterations = 500,
+                                .estar = CONTACT_ESTAR};
 }
-
-static const mc_contact_method methods[] = {MC_METHOD_CG, MC_METHOD_PK, MC_METHOD_ACTIVE_SET};
 
 START_TEST(test_contact_create)
 {
@@ -322,16 +355,18 @@ START_TEST(test_contact_create)
      * operator and solver for cg) fails in turn: NOMEM, *out NULL, nothing leaked; then the
      * solver made without a failure solves exactly as one made before. */
     mc_set_threads(1);
-    mc_error err = {0};
-    mc_operator *K = NULL;
-    double Estar = 1.15e11;
-    ck_assert_int_eq(mc_operator_plan_love(&cgrid, Estar, MC_BACKEND_FFT, &K, &err), MC_OK);
-    mc_contact_options opt = {.method = methods[_i], .tolerance = 1e-9, .max_iterations = 500};
-    double h[CNX * CNY], p_ref[CNX * CNY], p[CNX * CNY];
-    hertz_gap(h);
+    const contact_case *cc = &contact_cases[_i];
+    const size_t n = (size_t)cc->nx * (size_t)cc->ny;
+    mc_operator *K;
+    double *h;
+    mc_contact_options opt;
+    contact_setup(_i, &K, &h, &opt);
+    double *p_ref = calloc(n, sizeof *p_ref), *p = calloc(n, sizeof *p);
+    ck_assert(p_ref && p);
     mc_contact_problem prob = {.h = h, .p_cap = INFINITY, .control = MC_CONTROL_FORCE,
-                               .load = 0.2};
+                               .load = cc->load};
     mc_contact_summary sum_ref, sum;
+    mc_error err = {0};
 
     mc_contact_solver *s = NULL;
     long allocs0 = mc_alloc_count();
@@ -342,82 +377,101 @@ START_TEST(test_contact_create)
     mc_contact_destroy(&s);
     ck_assert_ptr_null(s);
 
-    long n;
-    for (n = 1; n <= MAX_ATTEMPTS; n++) {
+    long k;
+    for (k = 1; k <= MAX_ATTEMPTS; k++) {
         mc_error e = {0};
         long injected = mc_alloc_injected();
         s = (mc_contact_solver *)(void *)&sentinel;
-        mc_alloc_fail_at(n);
+        mc_alloc_fail_at(k);
         int rc = mc_contact_create(K, &opt, &s, &e);
         mc_alloc_fail_at(0);
         if (mc_alloc_injected() == injected) {
             ck_assert_int_eq(rc, MC_OK);
             break;
         }
-        ck_assert_msg(rc == MC_ERR_NOMEM, "%s: allocation %ld: status %d: %s",
-                      mc_contact_method_name(opt.method), n, rc, e.msg);
+        ck_assert_msg(rc == MC_ERR_NOMEM, "%s %d x %d: allocation %ld: status %d: %s",
+                      mc_contact_method_name(opt.method), cc->nx, cc->ny, k, rc, e.msg);
         ck_assert_ptr_null(s);
     }
-    ck_assert_int_eq(n, ref_allocs + 1);
+    ck_assert_int_eq(k, ref_allocs + 1);
     ck_assert_int_gt(ref_allocs, 2); /* the loop went through several allocations */
     ck_assert_msg(mc_contact_solve(s, &prob, p, NULL, NULL, &sum, &err) == MC_OK, "%s", err.msg);
     ck_assert_int_eq(sum.iterations, sum_ref.iterations);
-    ck_assert_mem_eq(p, p_ref, sizeof p);
+    ck_assert_mem_eq(p, p_ref, n * sizeof *p);
     mc_contact_destroy(&s);
     mc_operator_destroy(&K);
+    free(h);
+    free(p);
+    free(p_ref);
     mc_set_threads(0);
 }
 END_TEST
 
 START_TEST(test_contact_solve)
 {
-    /* A solve allocates too: the cg and pk preconditioner plans (and caches) an FFT for each new
-     * size of the contact's bounding box (precond.c plan_for). Every allocation of a first solve
-     * fails in turn, on a fresh solver each time: NOMEM, and the same solver then solves again
-     * (without injection) exactly as the reference, so a failed solve leaves it usable. */
+    /* A solve allocates too (contact.h says the solver "allocates every workspace once"): the cg
+     * and pk preconditioner plans and caches an FFT for each new size of the contact's bounding
+     * box (precond.c plan_for), and cg plans a box-sized operator when it restricts the solve to
+     * the contact's box. Every allocation of a first solve fails in turn, on a fresh solver each
+     * time: NOMEM, and the same solver then solves again (without injection) exactly as the
+     * reference, so a failed solve leaves it usable. */
     mc_set_threads(1);
-    mc_error err = {0};
-    mc_operator *K = NULL;
-    ck_assert_int_eq(mc_operator_plan_love(&cgrid, 1.15e11, MC_BACKEND_FFT, &K, &err), MC_OK);
-    mc_contact_options opt = {.method = methods[_i], .tolerance = 1e-9, .max_iterations = 500};
-    double h[CNX * CNY], p_ref[CNX * CNY], p[CNX * CNY], u[CNX * CNY], gap[CNX * CNY];
-    hertz_gap(h);
+    const contact_case *cc = &contact_cases[_i];
+    const size_t n = (size_t)cc->nx * (size_t)cc->ny;
+    mc_operator *K;
+    double *h;
+    mc_contact_options opt;
+    contact_setup(_i, &K, &h, &opt);
+    double *p_ref = calloc(n, sizeof *p_ref), *p = calloc(n, sizeof *p);
+    double *u = calloc(n, sizeof *u), *gap = calloc(n, sizeof *gap);
+    ck_assert(p_ref && p && u && gap);
     mc_contact_problem prob = {.h = h, .p_cap = INFINITY, .control = MC_CONTROL_FORCE,
-                               .load = 0.2};
+                               .load = cc->load};
     mc_contact_summary sum_ref, sum;
+    mc_error err = {0};
     mc_contact_solver *s = NULL;
     ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
     long allocs0 = mc_alloc_count();
     ck_assert_msg(mc_contact_solve(s, &prob, p_ref, NULL, NULL, &sum_ref, &err) == MC_OK, "%s",
                   err.msg);
     long ref_allocs = mc_alloc_count() - allocs0;
+    if (cc->nx >= MC_COARSEN_MIN && cc->ny >= MC_COARSEN_MIN) /* the paths this case is for */
+        ck_assert_msg(mc_contact_last_coarse_applies(s) > 0 && mc_contact_last_box_cells(s) > 0,
+                      "no coarse start (%ld applies) or no box (%ld cells)",
+                      mc_contact_last_coarse_applies(s), mc_contact_last_box_cells(s));
     mc_contact_destroy(&s);
 
-    long n;
-    for (n = 1; n <= MAX_ATTEMPTS; n++) {
+    long k;
+    for (k = 1; k <= MAX_ATTEMPTS; k++) {
         mc_error e = {0};
         ck_assert_int_eq(mc_contact_create(K, &opt, &s, &e), MC_OK);
         long injected = mc_alloc_injected();
-        mc_alloc_fail_at(n);
+        mc_alloc_fail_at(k);
         int rc = mc_contact_solve(s, &prob, p, u, gap, &sum, &e);
         mc_alloc_fail_at(0);
         int fired = mc_alloc_injected() != injected;
         if (fired) {
-            ck_assert_msg(rc == MC_ERR_NOMEM, "%s: allocation %ld of the solve: status %d: %s",
-                          mc_contact_method_name(opt.method), n, rc, e.msg);
+            ck_assert_msg(rc == MC_ERR_NOMEM, "%s %d x %d: allocation %ld of the solve: "
+                          "status %d: %s", mc_contact_method_name(opt.method), cc->nx, cc->ny,
+                          k, rc, e.msg);
             mc_error_clear(&e);
             rc = mc_contact_solve(s, &prob, p, NULL, NULL, &sum, &e);
         }
-        ck_assert_msg(rc == MC_OK, "%s: n = %ld: %s", mc_contact_method_name(opt.method), n,
+        ck_assert_msg(rc == MC_OK, "%s: k = %ld: %s", mc_contact_method_name(opt.method), k,
                       e.msg);
         ck_assert_int_eq(sum.iterations, sum_ref.iterations);
-        ck_assert_mem_eq(p, p_ref, sizeof p);
+        ck_assert_mem_eq(p, p_ref, n * sizeof *p);
         mc_contact_destroy(&s);
         if (!fired)
             break;
     }
-    ck_assert_int_eq(n, ref_allocs + 1);
+    ck_assert_int_eq(k, ref_allocs + 1);
     mc_operator_destroy(&K);
+    free(h);
+    free(p);
+    free(p_ref);
+    free(u);
+    free(gap);
     mc_set_threads(0);
 }
 END_TEST
@@ -470,7 +524,55 @@ START_TEST(test_operator_plan)
 }
 END_TEST
 
-/* ---- regressions found by the fuzzers ------------------------------------------------------ */
+/* ---- regressions ---------------------------------------------------------------------------- */
+
+START_TEST(test_negative_pressure_map)
+{
+    /* A prescribed pressure map with a negative value is refused (MC_ERR_INPUT) with a message
+     * naming the value and its place. Found by tests/cli/bad_input.sh under ASan: run_prescribed
+     * (pipeline.c) freed the map before formatting the message from it (heap-use-after-free),
+     * which only a sanitizer build shows; check-sanitize runs this test under ASan. */
+    const char *dir = test_tmpdir();
+    double p[4 * 3];
+    for (int k = 0; k < 12; k++)
+        p[k] = 1e6;
+    p[1 * 4 + 2] = -2.5e6; /* row 1, column 2 */
+    size_t shape[2] = {3, 4};
+    mc_error err = {0};
+    ck_assert_int_eq(mc_npy_write(path_join(dir, "p.npy"), p, 2, shape, &err), MC_OK);
+    mc_scene sc;
+    ck_assert_int_eq(mc_case_parse_text("[mesh]\nnx = 4\nny = 3\ndx = 1 um\n"
+                                        "[load]\npressure_file = p.npy\n",
+                                        "neg.ini", dir, 0, NULL, &sc, &err),
+                     MC_OK);
+    mc_results res;
+    int rc = mc_pipeline_run(&sc, &res, &err);
+    mc_results_free(&res);
+    ck_assert_int_eq(rc, MC_ERR_INPUT);
+    ck_assert_msg(strstr(err.msg, "p.npy") && strstr(err.msg, "-2.5e+06 Pa at row 1, column 2"),
+                  "%s", err.msg);
+}
+END_TEST
+
+START_TEST(test_null_error_keeps_status)
+{
+    /* err may be NULL (error.h): the status must stay what the failure was. output.c's
+     * check_results returned mc_error_prefix(err, ...), which is MC_ERR_INTERNAL for err = NULL,
+     * instead of the grid check's MC_ERR_INPUT. */
+    const char *dir = test_tmpdir();
+    mc_results r;
+    memset(&r, 0, sizeof r); /* a 0 x 0 grid: invalid */
+    mc_scene sc;
+    mc_scene_defaults(&sc);
+    ck_assert_int_eq(mc_output_write(dir, &sc, &r, NULL), MC_ERR_INPUT);
+    mc_error err = {0};
+    ck_assert_int_eq(mc_output_write(dir, &sc, &r, &err), MC_ERR_INPUT);
+    ck_assert_msg(strncmp(err.msg, "output: ", 8) == 0, "%s", err.msg);
+    char *l = listing(dir);
+    ck_assert_str_eq(l, "");
+    free(l);
+}
+END_TEST
 
 Suite *suite_faults(void);
 Suite *suite_faults(void)
@@ -479,9 +581,13 @@ Suite *suite_faults(void)
     TCase *tc = tcase_create("injection");
     tcase_set_timeout(tc, 600);
     tcase_add_loop_test(tc, test_whole_run, 0, NFAULT_CASES);
-    tcase_add_loop_test(tc, test_contact_create, 0, (int)(sizeof methods / sizeof methods[0]));
-    tcase_add_loop_test(tc, test_contact_solve, 0, (int)(sizeof methods / sizeof methods[0]));
+    tcase_add_loop_test(tc, test_contact_create, 0, NCONTACT_CASES);
+    tcase_add_loop_test(tc, test_contact_solve, 0, NCONTACT_CASES);
     tcase_add_loop_test(tc, test_operator_plan, 0, (int)(sizeof plans / sizeof plans[0]));
     suite_add_tcase(s, tc);
+    TCase *reg = tcase_create("regressions");
+    tcase_add_test(reg, test_negative_pressure_map);
+    tcase_add_test(reg, test_null_error_keeps_status);
+    suite_add_tcase(s, reg);
     return s;
 }

@@ -1,8 +1,10 @@
-/* test_stress.c - subsurface stress (src/stress.c, src/stress_table.c): kernel tables against a
- * plain per-entry evaluation of the rectangle functions, the convergence of the periodic tails,
- * the exact strip, direct vs fft, surface limits, impulse response, linearity, Hertz point and
- * line contact against the closed forms of hertz.h, and the pipeline stage. Sections refer to
- * shared/physics/elastic.md. */
+/* test_stress.c - subsurface stress (src/stress.c, src/stress_table.c, src/stress_sym.c,
+ * src/stress_stage.c): kernel tables against a plain per-entry evaluation of the rectangle
+ * functions, the convergence of the periodic tails, the exact strip, direct vs fft, surface limits,
+ * impulse response, linearity, Hertz point and line contact against the closed forms of hertz.h,
+ * the speed-ups against the plain paths (quadrant tables, symmetric transforms, direct sums over
+ * the loaded cells and their cost model, windows, depths from the contact), and the pipeline
+ * stage. Sections refer to shared/physics/elastic.md. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -55,6 +57,12 @@
 /* Uniform load on the whole grid: sigma_zz under the centre within this of the rectangle's closed
  * form is round-off; and the closed form itself is -p to O((z/A)^3). */
 #define UNIFORM_Z_OVER_A 0.05
+/* A table entry and its mirror image (the parity's sign) come from different corners: each is a
+ * difference of four corner values of size <= ~1 (the test grids have cells of ~1 m: logs of a
+ * few, angles <= pi/2, over 2 pi), so they agree to a few eps absolutely (measured <= 6.7e-16 =
+ * 3 eps, to z = 12 cells); 64 eps. The relative difference grows like (z/d)^2 as the entries
+ * shrink, which is why it is held absolutely. */
+#define TOL_MIRROR (64 * DBL_EPSILON)
 
 #define NU 0.3
 
@@ -888,7 +896,8 @@ END_TEST
 /* Every allocation of create may fail: MC_ERR_NOMEM, nothing leaks (ASan), *out stays NULL. */
 START_TEST(test_create_nomem)
 {
-    const mc_grid g = {6, 5, 1.0, 1.0, 1, 0};
+    /* a periodic axis: the engine of operator.h; free axes: the symmetric engine */
+    const mc_grid g = {6, 5, 1.0, 1.0, _i == 0, 0};
     const double z[] = {0.0, 1.0};
     const mc_stress_options opt = {MC_STRESS_PATCH, NU, 2, z, MC_BACKEND_FFT,
                                    MC_LOAD_P | MC_LOAD_QY};
@@ -928,6 +937,24 @@ static void stage_scene(mc_scene *sc, int r, double mu)
     sc->stress.friction = mu;
 }
 
+static double max_of(const double *v, size_t n)
+{
+    double m = v[0];
+    for (size_t i = 1; i < n; i++)
+        m = fmax(m, v[i]);
+    return m;
+}
+
+/* the summary's rule (stress.h): the first index within MC_STRESS_TIE of the maximum */
+static size_t first_max(const double *v, size_t n)
+{
+    const double m = max_of(v, n);
+    size_t i = 0;
+    while (v[i] < m - MC_STRESS_TIE * fabs(m))
+        i++;
+    return i;
+}
+
 /* The stage reproduces the operator's field, the invariants and a summary at the Hertz maximum
  * (elastic.md 4.1: 0.62004 p0 at z = 0.48 a on the axis, mu = 0; 4.2 table: 0.6598 p0 at
  * x = 0.32 a, z = 0.43 a, mu = 0.3, here sampled on the layers given). */
@@ -961,13 +988,10 @@ START_TEST(test_stage)
         ck_assert_double_eq(res.hydrostatic[i], mc_hydrostatic(t));
         ck_assert_double_le(fabs(res.tresca[i] - mc_tresca(t)), TOL_TIGHT);
     }
-    /* the summary: first maxima in volume order, at their cell centres and layer depths */
+    /* the summary: the first cells in volume order within MC_STRESS_TIE of the maxima, at their
+     * cell centres and layer depths */
     const mc_stress_summary *ss = &res.stress_summary;
-    size_t iv = 0, it = 0;
-    for (size_t i = 1; i < nv; i++) {
-        iv = res.von_mises[i] > res.von_mises[iv] ? i : iv;
-        it = res.tresca[i] > res.tresca[it] ? i : it;
-    }
+    const size_t iv = first_max(res.von_mises, nv), it = first_max(res.tresca, nv);
     const size_t at[2] = {iv, it};
     const double *got[2] = {ss->vm_max_at, ss->tresca_max_at};
     for (int m = 0; m < 2; m++) {
@@ -976,9 +1000,9 @@ START_TEST(test_stage)
         ck_assert_double_eq(got[m][1], mc_grid_y(&sc.grid, (int)(r / (size_t)sc.grid.nx)));
         ck_assert_double_eq(got[m][2], sc.stress.depths[at[m] / n]);
     }
-    ck_assert_double_eq(ss->vm_max, res.von_mises[iv]);
+    ck_assert_double_eq(ss->vm_max, max_of(res.von_mises, nv));
     ck_assert_double_eq(ss->hydro_at_vm_max, res.hydrostatic[iv]);
-    ck_assert_double_eq(ss->tresca_max, res.tresca[it]);
+    ck_assert_double_eq(ss->tresca_max, max_of(res.tresca, nv));
     /* and the physics of the maximum: Hamilton at that point, to the a/dx = 20 accuracy */
     double ref[MC_NSTRESS];
     mc_hertz_point_sliding(ss->vm_max_at[0], ss->vm_max_at[1], ss->vm_max_at[2], NU, mu, ref);
@@ -1005,6 +1029,12 @@ START_TEST(test_stage_nomem)
 {
     mc_scene sc;
     stage_scene(&sc, 4, 0.2);
+    if (_i == 1) { /* a small contact on a large grid: windows, depths from the contact patch */
+        sc.grid.nx = sc.grid.ny = 96;
+        sc.stress.spacing = MC_SPACING_LINEAR;
+        sc.stress.depth_max = MC_STRESS_DEPTH_AUTO;
+        sc.stress.layers = 4;
+    }
     mc_results res;
     memset(&res, 0, sizeof res);
     res.grid = sc.grid;
@@ -1028,6 +1058,8 @@ START_TEST(test_stage_nomem)
         failures++;
     }
     ck_assert_int_ge(failures, 10);
+    ck_assert_int_eq(res.stress_layout.windowed, _i == 1);
+    ck_assert_int_eq(res.stress_layout.depth_auto, _i == 1);
     free(res.pressure);
     res.pressure = NULL;
     mc_results_free(&res);
@@ -1051,6 +1083,587 @@ START_TEST(test_stage_bad)
     ck_assert_int_eq(mc_stress_stage(&sc, &res, &err), MC_ERR_INPUT);
     ck_assert_ptr_null(res.von_mises);
     free(res.pressure);
+}
+END_TEST
+
+/* ---- the speed-ups: quadrant tables, symmetric transforms, direct sums (stress.h) ------------- */
+
+/* Free grids for the symmetric engine: odd and even sizes, nx != ny, dx != dy, a single row or
+ * column, 2 x 2, and sizes whose 7-smooth half period m exceeds n (11 -> 12, 13 -> 14). */
+static const grid_case sym_grids[] = {
+    {7, 6, 1.0, 1.3, 0, 0, 0}, {11, 13, 1.2, 0.9, 0, 0, 0}, {1, 9, 1.0, 0.7, 0, 0, 0},
+    {8, 1, 0.8, 1.0, 0, 0, 0}, {2, 2, 1.0, 1.0, 0, 0, 0},   {16, 5, 1.0, 1.1, 0, 0, 0},
+};
+#define N_SYM_GRIDS ((int)(sizeof sym_grids / sizeof sym_grids[0]))
+
+/* per component c: max |a_c - b_c| <= tol max |b_c| (a component may be much smaller than the
+ * others: each one is held to round-off of its own size) */
+static void check_each_component(double *const a[6], double *const b[6], size_t n, double tol,
+                                 const char *what)
+{
+    for (int c = 0; c < MC_NSTRESS; c++) {
+        double md = 0.0, mb = 0.0;
+        for (size_t i = 0; i < n; i++) {
+            md = fmax(md, fabs(a[c][i] - b[c][i]));
+            mb = fmax(mb, fabs(b[c][i]));
+        }
+        ck_assert_msg(md <= tol * mb, "%s, %s: %.3g relative", what, mc_stress_name(c),
+                      mb > 0 ? md / mb : md);
+    }
+}
+
+/* Stresses as stress_run, with the speed-ups of tune; the op's timing in *t (if not NULL). */
+static double **stress_run_tuned(const mc_grid *g, mc_stress_kernel kernel, const double *depths,
+                                 int nz, mc_backend b, const mc_stress_tuning *tune,
+                                 const double *p, const double *qx, const double *qy,
+                                 mc_stress_timing *t)
+{
+    const mc_stress_options opt = {kernel, NU, nz, depths, b,
+                                   (p ? MC_LOAD_P : 0) | (qx ? MC_LOAD_QX : 0) |
+                                       (qy ? MC_LOAD_QY : 0)};
+    mc_error err;
+    mc_stress_op *op = NULL;
+    int rc = mc_stress_create_tuned(g, &opt, tune, &op, &err);
+    ck_assert_msg(rc == MC_OK, "create: %s", err.msg);
+    double **s = vols(6, mc_grid_cells(g) * (size_t)nz);
+    rc = mc_stress_field(op, p, qx, qy, s, &err);
+    ck_assert_msg(rc == MC_OK, "field: %s", err.msg);
+    if (t)
+        mc_stress_timing_get(op, t);
+    mc_stress_destroy(&op);
+    return s;
+}
+
+/* The parities of mc_stress_parity are those kernel.h states (elastic.md 3.3, 3.4), checked on
+ * the rectangle functions themselves at a generic point. */
+START_TEST(test_parity_table)
+{
+    const double x = 0.37, y = 0.61, z = 0.29, a = 0.5, b = 0.4;
+    for (int li = 0; li < 3; li++) {
+        double s[MC_NSTRESS], sx[MC_NSTRESS], sy[MC_NSTRESS];
+        rect_fns[li](x, y, z, a, b, NU, s);
+        rect_fns[li](-x, y, z, a, b, NU, sx);
+        rect_fns[li](x, -y, z, a, b, NU, sy);
+        for (int c = 0; c < MC_NSTRESS; c++) {
+            const int par = mc_stress_parity(load_bits[li], c);
+            const double ex = (par & 1) ? -1.0 : 1.0, ey = (par & 2) ? -1.0 : 1.0;
+            ck_assert_msg(fabs(s[c]) > TOL_TIGHT, "load %d %s vanishes at the test point", li,
+                          mc_stress_name(c));
+            ck_assert_double_le(fabs(sx[c] - ex * s[c]), TOL_TIGHT * fabs(s[c]));
+            ck_assert_double_le(fabs(sy[c] - ey * s[c]), TOL_TIGHT * fabs(s[c]));
+        }
+    }
+    ck_assert_int_eq(mc_stress_parity(MC_LOAD_P | MC_LOAD_QX, 0), -1);
+    ck_assert_int_eq(mc_stress_parity(MC_LOAD_P, 6), -1);
+}
+END_TEST
+
+/* The quadrant is the full table's entries at offsets >= 0, bit for bit (the same differences in
+ * the same order), zero beyond the grid's offsets; the full table's other quadrants are its
+ * mirror images with the parities' signs (to round-off: they come from other corners). */
+static void check_quadrant(const grid_case *gc, mc_stress_kernel kernel)
+{
+    const mc_grid g = grid_of(gc);
+    int tx, ty;
+    table_dims(&g, 2, &tx, &ty);
+    const int qx = g.nx + 2, qy = g.ny + 1; /* slots beyond the offsets of the grid */
+    mc_error err;
+    mc_stress_tables *tb = NULL;
+    ck_assert_int_eq(mc_stress_tables_create(&g, tx, ty, kernel, NU, 0, &tb, &err), MC_OK);
+    double **k = vols(6, (size_t)tx * ty), **q = vols(6, (size_t)qx * qy);
+    for (int iz = 0; iz < N_TABLE_DEPTHS; iz++) {
+        const double z = table_depths[iz] * g.dx;
+        if (kernel == MC_STRESS_POINT && z == 0.0)
+            continue;
+        for (int li = 0; li < 3; li++) {
+            ck_assert_int_eq(mc_stress_tables_build(tb, load_bits[li], z, k, &err), MC_OK);
+            ck_assert_int_eq(
+                mc_stress_tables_quadrant(tb, load_bits[li], z, qx, qy, q, &err), MC_OK);
+            for (int c = 0; c < MC_NSTRESS; c++) {
+                const int par = mc_stress_parity(load_bits[li], c);
+                double mk = 0.0;
+                for (size_t t = 0; t < (size_t)tx * ty; t++)
+                    mk = fmax(mk, fabs(k[c][t]));
+                for (int j = 0; j < qy; j++)
+                    for (int i = 0; i < qx; i++) {
+                        const double v = q[c][(size_t)j * qx + i];
+                        if (i >= g.nx || j >= g.ny) {
+                            ck_assert_msg(v == 0.0, "slot (%d,%d) beyond the grid holds %g", i, j,
+                                          v);
+                            continue;
+                        }
+                        const double ref = k[c][(size_t)j * tx + i];
+                        ck_assert_msg(v == ref, "grid %dx%d load %d %s z=%g (%d,%d): %.17g vs %.17g",
+                                      g.nx, g.ny, li, mc_stress_name(c), z, i, j, v, ref);
+                        /* the mirror images: offsets (-i, j), (i, -j), (-i, -j) */
+                        const int im = i ? tx - i : 0, jm = j ? ty - j : 0;
+                        const double sx = (par & 1) ? -1.0 : 1.0, sy = (par & 2) ? -1.0 : 1.0;
+                        const double mirror[3] = {k[c][(size_t)j * tx + im] - sx * v,
+                                                  k[c][(size_t)jm * tx + i] - sy * v,
+                                                  k[c][(size_t)jm * tx + im] - sx * sy * v};
+                        for (int m = 0; m < 3; m++)
+                            ck_assert_msg(fabs(mirror[m]) <= TOL_MIRROR,
+                                          "load %d %s (%d,%d) mirror %d: %.3g (largest entry "
+                                          "%.3g)",
+                                          li, mc_stress_name(c), i, j, m, mirror[m], mk);
+                    }
+            }
+        }
+    }
+    vols_free(k, 6);
+    vols_free(q, 6);
+    mc_stress_tables_destroy(&tb);
+}
+
+START_TEST(test_quadrant_patch) { check_quadrant(&sym_grids[_i], MC_STRESS_PATCH); }
+END_TEST
+
+START_TEST(test_quadrant_point) { check_quadrant(&sym_grids[_i], MC_STRESS_POINT); }
+END_TEST
+
+/* The symmetric engine (quadrant tables, DCT-I/DST-I spectra, products from the quadrant) against
+ * the r2c engine of operator.h on the same loads: round-off, for every component of every load
+ * alone and of all three together, patch and point kernels. */
+START_TEST(test_symmetric_vs_r2c)
+{
+    const grid_case *gc = &sym_grids[_i / 2];
+    const mc_stress_kernel kernel = _i % 2 ? MC_STRESS_POINT : MC_STRESS_PATCH;
+    const mc_grid g = grid_of(gc);
+    const double patch_z[] = {0.0, 0.4, 3.0}, point_z[] = {0.2, 0.4, 3.0};
+    const double *z = kernel == MC_STRESS_PATCH ? patch_z : point_z;
+    const size_t nv = mc_grid_cells(&g) * 3;
+    double *f[3] = {random_load(&g, 51), random_load(&g, 52), random_load(&g, 53)};
+    const mc_stress_tuning sym = {MC_STRESS_ON, MC_STRESS_OFF, MC_STRESS_AUTO};
+    const mc_stress_tuning r2c = {MC_STRESS_OFF, MC_STRESS_OFF, MC_STRESS_AUTO};
+    for (int which = 0; which < 4; which++) { /* p, qx, qy alone; all three */
+        const double *l[3];
+        for (int li = 0; li < 3; li++)
+            l[li] = which == 3 || which == li ? f[li] : NULL;
+        mc_stress_timing ta, tb;
+        double **a = stress_run_tuned(&g, kernel, z, 3, MC_BACKEND_FFT, &sym, l[0], l[1], l[2],
+                                      &ta);
+        double **b = stress_run_tuned(&g, kernel, z, 3, MC_BACKEND_FFT, &r2c, l[0], l[1], l[2],
+                                      &tb);
+        ck_assert_int_eq(ta.symmetric, 1);
+        ck_assert_int_eq(tb.symmetric, 0);
+        char what[96];
+        snprintf(what, sizeof what, "grid %dx%d kernel %d loads %d", g.nx, g.ny, (int)kernel,
+                 which);
+        check_each_component(a, b, nv, TOL_BACKEND, what);
+        vols_free(a, 6);
+        vols_free(b, 6);
+    }
+    for (int li = 0; li < 3; li++)
+        free(f[li]);
+}
+END_TEST
+
+/* A load on a few cells only (the rest exactly 0). */
+static double *sparse_load(const mc_grid *g, int ncells, unsigned long long seed)
+{
+    const size_t n = mc_grid_cells(g);
+    double *f = calloc(n, sizeof *f), v[64];
+    ck_assert(f != NULL && ncells <= 32);
+    test_random_field(v, 2 * (size_t)ncells, seed);
+    for (int k = 0; k < ncells; k++) {
+        const size_t at = (size_t)((0.5 * (v[2 * k] + 1.0)) * (double)n) % n;
+        f[at] = 1.0 + v[2 * k + 1];
+    }
+    return f;
+}
+
+/* The direct sum over the loaded cells against the transforms, on both engines and the direct
+ * backend, free and periodic grids: round-off. */
+START_TEST(test_sparse_vs_fft)
+{
+    const grid_case *gc = &backend_grids[_i / 2];
+    const mc_backend back = _i % 2 ? MC_BACKEND_DIRECT : MC_BACKEND_FFT;
+    const mc_grid g = grid_of(gc);
+    const double z[] = {0.0, 0.6, 2.5};
+    const size_t nv = mc_grid_cells(&g) * 3;
+    double *p = sparse_load(&g, 4, 61), *qx = sparse_load(&g, 3, 62), *qy = sparse_load(&g, 1, 63);
+    const mc_stress_tuning on = {MC_STRESS_AUTO, MC_STRESS_ON, MC_STRESS_AUTO};
+    const mc_stress_tuning off = {MC_STRESS_AUTO, MC_STRESS_OFF, MC_STRESS_AUTO};
+    mc_stress_timing ta, tb;
+    double **a = stress_run_tuned(&g, MC_STRESS_PATCH, z, 3, back, &on, p, qx, qy, &ta);
+    double **b = stress_run_tuned(&g, MC_STRESS_PATCH, z, 3, back, &off, p, qx, qy, &tb);
+    ck_assert_int_eq(ta.sparse_layers, 3);
+    ck_assert_int_eq(tb.sparse_layers, 0);
+    char what[96];
+    snprintf(what, sizeof what, "grid %dx%d periodic %d%d backend %d", g.nx, g.ny, g.periodic_x,
+             g.periodic_y, (int)back);
+    check_each_component(a, b, nv, TOL_BACKEND, what);
+    vols_free(a, 6);
+    vols_free(b, 6);
+    free(p);
+    free(qx);
+    free(qy);
+}
+END_TEST
+
+/* The cost model picks the direct sum for one loaded cell and the transforms for a Hertz contact
+ * that fills the grid; the choice follows mc_stress_cost. */
+START_TEST(test_cost_model)
+{
+    const mc_grid g = hertz_grid(20, 0); /* 60 x 60, the contact a third of it */
+    const size_t n = mc_grid_cells(&g);
+    const double z[] = {0.1, 0.5, 1.0};
+    double *one = calloc(n, sizeof *one), *p = hertz_pressure(&g);
+    ck_assert(one != NULL);
+    one[n / 2 + 7] = 1.0;
+    long loaded = 0;
+    for (size_t i = 0; i < n; i++)
+        loaded += p[i] != 0.0;
+    mc_stress_timing t1, th;
+    double **a = stress_run_tuned(&g, MC_STRESS_PATCH, z, 3, MC_BACKEND_FFT, NULL, one, NULL,
+                                  NULL, &t1);
+    double **b = stress_run_tuned(&g, MC_STRESS_PATCH, z, 3, MC_BACKEND_FFT, NULL, p, NULL, NULL,
+                                  &th);
+    ck_assert_int_eq(t1.sparse_layers, 3);
+    ck_assert_int_eq(th.sparse_layers, 0);
+    const mc_stress_options opt = {MC_STRESS_PATCH, NU, 3, z, MC_BACKEND_FFT, MC_LOAD_P};
+    mc_error err;
+    mc_stress_op *op = NULL;
+    ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_OK);
+    double fft1, dir1, ffth, dirh;
+    mc_stress_cost(op, 1, 1, &fft1, &dir1);
+    mc_stress_cost(op, loaded, 1, &ffth, &dirh);
+    ck_assert(dir1 < fft1 && dirh > ffth);
+    ck_assert(fft1 == ffth && fft1 > 0.0);
+    mc_stress_destroy(&op);
+    vols_free(a, 6);
+    vols_free(b, 6);
+    free(one);
+    free(p);
+}
+END_TEST
+
+/* Bad switches are refused. */
+START_TEST(test_tuning_bad)
+{
+    const mc_grid g = {6, 5, 1.0, 1.0, 0, 0};
+    const double z = 1.0;
+    const mc_stress_options opt = {MC_STRESS_PATCH, NU, 1, &z, MC_BACKEND_FFT, MC_LOAD_P};
+    const mc_stress_tuning bad = {MC_STRESS_AUTO, (mc_stress_switch)7, MC_STRESS_AUTO};
+    mc_error err;
+    mc_stress_op *op = NULL;
+    ck_assert_int_eq(mc_stress_create_tuned(&g, &opt, &bad, &op, &err), MC_ERR_INPUT);
+    ck_assert_ptr_null(op);
+}
+END_TEST
+
+/* ---- the stage's skips: windows and depths from the contact ----------------------------------- */
+
+/* A Hertz pressure (a = 1) of radius a on a grid of n x n cells of a/r, centre (cx, cy) in cells
+ * from the grid's centre; p is added to (max with) the given field. */
+static void add_hertz(const mc_grid *g, double cx, double cy, double a, double *p)
+{
+    for (int j = 0; j < g->ny; j++)
+        for (int i = 0; i < g->nx; i++) {
+            const double x = mc_grid_x(g, i) - cx * g->dx, y = mc_grid_y(g, j) - cy * g->dy;
+            const double r2 = (x * x + y * y) / (a * a);
+            if (r2 < 1.0)
+                p[(size_t)j * g->nx + i] = fmax(p[(size_t)j * g->nx + i], sqrt(1.0 - r2));
+        }
+}
+
+/* A stage run on a prescribed pressure (no contact solve: the loaded cells are the patches). */
+static void run_stage(const mc_scene *sc, const double *p, const mc_stress_tuning *tune,
+                      mc_results *res)
+{
+    memset(res, 0, sizeof *res);
+    res->grid = sc->grid;
+    res->pressure = mc_zeros(mc_grid_cells(&sc->grid));
+    ck_assert(res->pressure != NULL);
+    memcpy(res->pressure, p, sizeof *p * mc_grid_cells(&sc->grid));
+    mc_error err;
+    ck_assert_msg(mc_stress_stage_tuned(sc, res, tune, &err) == MC_OK, "%s", err.msg);
+}
+
+typedef struct {
+    int periodic_y;
+    double mu;
+} window_case;
+
+static const window_case window_cases[] = {{0, 0.0}, {0, 0.3}, {1, 0.3}};
+
+/* A small Hertz contact (a = 6 cells) on a grid 33 a wide: each layer's window holds the full
+ * computation to round-off, the cells outside hold 0 and the full computation there is below
+ * MC_STRESS_WINDOW_FRACTION of the layer's largest von Mises stress; the summary is the same. A
+ * periodic axis is never windowed. */
+START_TEST(test_window)
+{
+    const window_case *wc = &window_cases[_i];
+    mc_scene sc;
+    mc_scene_defaults(&sc);
+    sc.grid = (mc_grid){200, 192, 1.0 / 6, 1.0 / 6, 0, wc->periodic_y};
+    sc.stress.enabled = 1;
+    sc.stress.spacing = MC_SPACING_LIST;
+    const double zs[] = {0.0, 0.05, 0.2, 0.48, 1.0, 2.0, 3.0};
+    sc.stress.ndepths = 7;
+    memcpy(sc.stress.depths, zs, sizeof zs);
+    sc.stress.friction = wc->mu;
+    const size_t n = mc_grid_cells(&sc.grid);
+    double *p = calloc(n, sizeof *p);
+    ck_assert(p != NULL);
+    add_hertz(&sc.grid, 3.0, -2.0, 1.0, p); /* off-centre */
+    mc_results win, full;
+    const mc_stress_tuning off = {MC_STRESS_AUTO, MC_STRESS_AUTO, MC_STRESS_OFF};
+    run_stage(&sc, p, NULL, &win);
+    run_stage(&sc, p, &off, &full);
+    const mc_stress_layout *lay = &win.stress_layout;
+    ck_assert_int_eq(lay->windowed, 1);
+    ck_assert_int_ge(lay->nwindows, 2);
+    ck_assert_int_eq(full.stress_layout.windowed, 0);
+    ck_assert_int_eq(lay->window[0].k0, 0);
+    ck_assert_int_eq(lay->window[lay->nwindows - 1].k1, 6);
+    double worst_vm = 0.0, worst_c = 0.0;
+    for (int w = 0; w < lay->nwindows; w++) {
+        const mc_stress_window *wn = &lay->window[w];
+        if (w > 0)
+            ck_assert_int_eq(wn->k0, lay->window[w - 1].k1 + 1);
+        if (wc->periodic_y)
+            ck_assert(wn->j0 == 0 && wn->j1 == sc.grid.ny - 1);
+        for (int k = wn->k0; k <= wn->k1; k++) {
+            const size_t at = (size_t)k * n;
+            double smax = 0.0, vmax = 0.0;
+            for (size_t i = 0; i < n; i++) {
+                vmax = fmax(vmax, full.von_mises[at + i]);
+                for (int c = 0; c < MC_NSTRESS; c++)
+                    smax = fmax(smax, fabs(full.stress[c][at + i]));
+            }
+            for (int j = 0; j < sc.grid.ny; j++)
+                for (int i = 0; i < sc.grid.nx; i++) {
+                    const size_t q = at + (size_t)j * sc.grid.nx + i;
+                    const int inside = i >= wn->i0 && i <= wn->i1 && j >= wn->j0 && j <= wn->j1;
+                    double cmax = 0.0;
+                    for (int c = 0; c < MC_NSTRESS; c++) {
+                        const double d = fabs(win.stress[c][q] - full.stress[c][q]);
+                        if (inside)
+                            ck_assert_msg(d <= TOL_ROUNDOFF * smax,
+                                          "layer %d cell (%d,%d) %s: %.3g relative", k, i, j,
+                                          mc_stress_name(c), d / smax);
+                        else
+                            ck_assert_msg(win.stress[c][q] == 0.0, "outside holds %g",
+                                          win.stress[c][q]);
+                        cmax = fmax(cmax, fabs(full.stress[c][q]));
+                    }
+                    if (!inside) {
+                        worst_vm = fmax(worst_vm, full.von_mises[q] / vmax);
+                        worst_c = fmax(worst_c, cmax / vmax);
+                    }
+                }
+        }
+    }
+    ck_assert_msg(worst_vm <= MC_STRESS_WINDOW_FRACTION, "von Mises left out: %.3g", worst_vm);
+    ck_assert_msg(worst_c <= MC_STRESS_WINDOW_FRACTION, "components left out: %.3g", worst_c);
+    ck_assert(worst_vm > 0.0); /* the window did leave something out */
+    const mc_stress_summary *a = &win.stress_summary, *b = &full.stress_summary;
+    for (int d = 0; d < 3; d++) {
+        ck_assert_double_eq(a->vm_max_at[d], b->vm_max_at[d]);
+        ck_assert_double_eq(a->tresca_max_at[d], b->tresca_max_at[d]);
+    }
+    ck_assert_double_le(fabs(a->vm_max - b->vm_max), TOL_ROUNDOFF * b->vm_max);
+    ck_assert_double_le(fabs(a->tresca_max - b->tresca_max), TOL_ROUNDOFF * b->tresca_max);
+    ck_assert_double_le(fabs(a->hydro_at_vm_max - b->hydro_at_vm_max), TOL_ROUNDOFF * b->vm_max);
+    mc_results_free(&win);
+    mc_results_free(&full);
+    free(p);
+}
+END_TEST
+
+/* No window where the load is not compact: a lubricant pressure on every cell, or a contact that
+ * fills the grid; [stress] window = full turns it off. */
+START_TEST(test_window_not_applied)
+{
+    mc_scene sc;
+    mc_scene_defaults(&sc);
+    sc.grid = (mc_grid){96, 96, 1.0 / 8, 1.0 / 8, 0, 0};
+    sc.stress.enabled = 1;
+    sc.stress.spacing = MC_SPACING_LIST;
+    sc.stress.ndepths = 2;
+    sc.stress.depths[0] = 0.1;
+    sc.stress.depths[1] = 1.0;
+    const size_t n = mc_grid_cells(&sc.grid);
+    double *p = calloc(n, sizeof *p);
+    ck_assert(p != NULL);
+    add_hertz(&sc.grid, 0.0, 0.0, 1.0, p);
+    mc_results res;
+    run_stage(&sc, p, NULL, &res); /* 96 cells = 12 a: a 16 a window does not fit */
+    ck_assert_int_eq(res.stress_layout.windowed, 0);
+    mc_results_free(&res);
+    sc.grid.nx = sc.grid.ny = 200;
+    double *q = calloc(mc_grid_cells(&sc.grid), sizeof *q);
+    ck_assert(q != NULL);
+    add_hertz(&sc.grid, 0.0, 0.0, 1.0, q);
+    run_stage(&sc, q, NULL, &res);
+    ck_assert_int_eq(res.stress_layout.windowed, 1);
+    mc_results_free(&res);
+    sc.stress.window = MC_STRESS_WINDOW_FULL;
+    run_stage(&sc, q, NULL, &res);
+    ck_assert_int_eq(res.stress_layout.windowed, 0);
+    mc_results_free(&res);
+    sc.stress.window = MC_STRESS_WINDOW_AUTO;
+    for (size_t i = 0; i < mc_grid_cells(&sc.grid); i++)
+        q[i] = fmax(q[i], 0.02); /* a lubricant film */
+    run_stage(&sc, q, NULL, &res);
+    ck_assert_int_eq(res.stress_layout.windowed, 0);
+    ck_assert_int_eq(res.stress_layout.loaded_cells, (long)mc_grid_cells(&sc.grid));
+    mc_results_free(&res);
+    free(p);
+    free(q);
+}
+END_TEST
+
+/* depth_max = auto on a Hertz contact: one patch of radius a (to the pixelation), depth_max = 3 R
+ * and the von Mises maximum (0.48 a, elastic.md 4.1) inside the range, at the layer nearest to
+ * it. Solved contact (patches above the lubricant pressure) and prescribed pressure alike. */
+START_TEST(test_depth_auto_hertz)
+{
+    const int r = 16;
+    mc_scene sc;
+    mc_scene_defaults(&sc);
+    sc.grid = hertz_grid(r, 1);
+    sc.stress.enabled = 1;
+    sc.stress.layers = 32;
+    const size_t n = mc_grid_cells(&sc.grid);
+    double *p = hertz_pressure(&sc.grid);
+    const double p_lub = 0.01;
+    if (_i == 1) { /* a solved contact in a lubricant film */
+        sc.load.lubricant_pressure = p_lub;
+        for (size_t i = 0; i < n; i++)
+            p[i] = fmax(p[i], p_lub);
+    }
+    mc_results res;
+    memset(&res, 0, sizeof res);
+    res.grid = sc.grid;
+    res.pressure = p;
+    res.contact.solved = _i == 1;
+    mc_error err;
+    ck_assert_msg(mc_stress_stage(&sc, &res, &err) == MC_OK, "%s", err.msg);
+    const mc_stress_layout *lay = &res.stress_layout;
+    long cells = 0;
+    for (size_t i = 0; i < n; i++)
+        cells += p[i] > (_i == 1 ? p_lub : 0.0);
+    const double R = sqrt((double)cells * sc.grid.dx * sc.grid.dy / M_PI);
+    ck_assert_int_eq(lay->depth_auto, 1);
+    ck_assert_int_eq(lay->patches, 1);
+    ck_assert_double_le(fabs(lay->patch_radius - R), TOL_TIGHT);
+    ck_assert_double_le(fabs(lay->patch_radius - 1.0), sc.grid.dx); /* a, to the pixelation */
+    ck_assert_int_eq(res.nlayers, 32);
+    ck_assert_double_eq(res.depths[31], MC_STRESS_DEPTH_RADII * lay->patch_radius);
+    const double dz = res.depths[1] - res.depths[0], zmax = res.stress_summary.vm_max_at[2];
+    ck_assert_double_le(fabs(zmax - 0.48), 0.5 * dz + 0.02);
+    ck_assert(zmax > res.depths[0] && zmax < res.depths[31]);
+    mc_results_free(&res);
+}
+END_TEST
+
+/* An independent count of the patches: union-find over right and up neighbours (wrapping along
+ * periodic axes), areas by root. Returns the number; *largest the largest area in cells. */
+static int find_root(int *parent, int a)
+{
+    while (parent[a] != a)
+        a = parent[a] = parent[parent[a]];
+    return a;
+}
+
+static int count_patches(const mc_grid *g, const double *p, double thr, long *largest)
+{
+    const int n = (int)mc_grid_cells(g);
+    int *parent = malloc(sizeof *parent * (size_t)n);
+    long *size = calloc((size_t)n, sizeof *size);
+    ck_assert(parent && size);
+    for (int c = 0; c < n; c++)
+        parent[c] = c;
+    for (int j = 0; j < g->ny; j++)
+        for (int i = 0; i < g->nx; i++) {
+            const int c = j * g->nx + i;
+            if (!(p[c] > thr))
+                continue;
+            const int right = i + 1 < g->nx ? c + 1 : (g->periodic_x ? j * g->nx : -1);
+            const int up = j + 1 < g->ny ? c + g->nx : (g->periodic_y ? i : -1);
+            const int nb[2] = {right, up};
+            for (int k = 0; k < 2; k++)
+                if (nb[k] >= 0 && p[nb[k]] > thr)
+                    parent[find_root(parent, nb[k])] = find_root(parent, c);
+        }
+    int count = 0;
+    *largest = 0;
+    for (int c = 0; c < n; c++)
+        if (p[c] > thr) {
+            const int r = find_root(parent, c);
+            count += size[r]++ == 0;
+            *largest = size[r] > *largest ? size[r] : *largest;
+        }
+    free(parent);
+    free(size);
+    return count;
+}
+
+/* A rough contact: many asperity contacts of random sizes and places (two of them touching
+ * across the periodic edge), some merged into one patch. The labelling agrees with an independent
+ * union-find, the radius is that of the largest patch, and the stage's depth_max is 3 R. A band
+ * around a periodic axis counts by its mean half-width. */
+START_TEST(test_depth_auto_rough)
+{
+    mc_scene sc;
+    mc_scene_defaults(&sc);
+    sc.grid = (mc_grid){128, 96, 0.05, 0.06, 0, 1};
+    sc.stress.enabled = 1;
+    sc.stress.layers = 6;
+    sc.stress.window = MC_STRESS_WINDOW_FULL;
+    const size_t n = mc_grid_cells(&sc.grid);
+    double *p = calloc(n, sizeof *p), v[3 * 24];
+    ck_assert(p != NULL);
+    test_random_field(v, 3 * 24, 71);
+    for (int k = 0; k < 24; k++) /* radii 0.1 ... 0.5: 2 ... 10 cells */
+        add_hertz(&sc.grid, 60.0 * v[3 * k], 44.0 * v[3 * k + 1], 0.3 + 0.2 * v[3 * k + 2], p);
+    add_hertz(&sc.grid, 10.0, -48.0, 0.35, p); /* across the periodic edge y = -Ly/2 */
+    mc_stress_patches pt;
+    mc_error err;
+    ck_assert_int_eq(mc_stress_find_patches(&sc.grid, p, 0.0, &pt, &err), MC_OK);
+    long largest;
+    const int count = count_patches(&sc.grid, p, 0.0, &largest);
+    ck_assert_int_ge(count, 5); /* several patches */
+    ck_assert_int_eq(pt.patches, count);
+    const double R = sqrt((double)largest * sc.grid.dx * sc.grid.dy / M_PI);
+    ck_assert_double_le(fabs(pt.radius - R), TOL_TIGHT * R);
+    mc_results res;
+    run_stage(&sc, p, NULL, &res);
+    ck_assert_int_eq(res.stress_layout.patches, count);
+    ck_assert_double_eq(res.depths[5], MC_STRESS_DEPTH_RADII * pt.radius);
+    mc_results_free(&res);
+    /* a band across the periodic y axis: mean half-width */
+    memset(p, 0, sizeof *p * n);
+    for (int j = 0; j < sc.grid.ny; j++)
+        for (int i = 60; i < 60 + 5 + (j % 3); i++)
+            p[(size_t)j * sc.grid.nx + i] = 1.0;
+    ck_assert_int_eq(mc_stress_find_patches(&sc.grid, p, 0.0, &pt, &err), MC_OK);
+    ck_assert_int_eq(pt.patches, 1);
+    ck_assert_double_le(fabs(pt.radius - 0.5 * 6.0 * sc.grid.dx), TOL_TIGHT);
+    free(p);
+}
+END_TEST
+
+/* depth_max = auto that does not exceed depth_min is an input error, naming the keys. */
+START_TEST(test_depth_auto_bad)
+{
+    mc_scene sc;
+    mc_scene_defaults(&sc);
+    sc.grid = hertz_grid(4, 0);
+    sc.stress.enabled = 1;
+    sc.stress.depth_min = 5.0; /* beyond 3a */
+    mc_results res;
+    memset(&res, 0, sizeof res);
+    res.grid = sc.grid;
+    res.pressure = hertz_pressure(&sc.grid);
+    mc_error err;
+    ck_assert_int_eq(mc_stress_stage(&sc, &res, &err), MC_ERR_INPUT);
+    ck_assert_msg(strstr(err.msg, "depth_max = auto") && strstr(err.msg, "depth_min"), "%s",
+                  err.msg);
+    ck_assert_ptr_null(res.von_mises);
+    mc_results_free(&res);
 }
 END_TEST
 
@@ -1081,7 +1694,27 @@ Suite *suite_stress(void)
     tcase_add_test(tc, test_layer_matches_field);
     tcase_add_test(tc, test_uniform_patch);
     tcase_add_test(tc, test_bad_input);
-    tcase_add_test(tc, test_create_nomem);
+    tcase_add_loop_test(tc, test_create_nomem, 0, 2);
+    suite_add_tcase(s, tc);
+
+    tc = tcase_create("speed-ups");
+    tcase_set_timeout(tc, 300);
+    tcase_add_test(tc, test_parity_table);
+    tcase_add_loop_test(tc, test_quadrant_patch, 0, N_SYM_GRIDS);
+    tcase_add_loop_test(tc, test_quadrant_point, 0, N_SYM_GRIDS);
+    tcase_add_loop_test(tc, test_symmetric_vs_r2c, 0, 2 * N_SYM_GRIDS);
+    tcase_add_loop_test(tc, test_sparse_vs_fft, 0, 2 * N_BACKEND_GRIDS);
+    tcase_add_test(tc, test_cost_model);
+    tcase_add_test(tc, test_tuning_bad);
+    suite_add_tcase(s, tc);
+
+    tc = tcase_create("skips");
+    tcase_set_timeout(tc, 300);
+    tcase_add_loop_test(tc, test_window, 0, 3);
+    tcase_add_test(tc, test_window_not_applied);
+    tcase_add_loop_test(tc, test_depth_auto_hertz, 0, 2);
+    tcase_add_test(tc, test_depth_auto_rough);
+    tcase_add_test(tc, test_depth_auto_bad);
     suite_add_tcase(s, tc);
 
     tc = tcase_create("hertz");
@@ -1094,7 +1727,7 @@ Suite *suite_stress(void)
     tc = tcase_create("stage");
     tcase_set_timeout(tc, 120);
     tcase_add_loop_test(tc, test_stage, 0, 2);
-    tcase_add_test(tc, test_stage_nomem);
+    tcase_add_loop_test(tc, test_stage_nomem, 0, 2);
     tcase_add_test(tc, test_stage_bad);
     suite_add_tcase(s, tc);
     return s;

@@ -71,7 +71,11 @@ int mc_cli_run(int argc, char **argv)
                 return 2;
             }
             sets[nsets++] = argv[++k];
-        } else if (!strncmp(argv[k], "--set=", 6) && nsets < MAX_SETS) {
+        } else if (!strncmp(argv[k], "--set=", 6)) {
+            if (nsets == MAX_SETS) {
+                fprintf(stderr, "microcontact: error: more than %d --set options\n", MAX_SETS);
+                return 2;
+            }
             sets[nsets++] = argv[k] + 6;
         } else if (!strncmp(argv[k], "--out=", 6)) {
             out = argv[k] + 6;

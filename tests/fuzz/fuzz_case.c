@@ -1,7 +1,7 @@
 /* fuzz_case.c - libFuzzer target: mc_case_parse_text on arbitrary text plus --set overrides.
  *
  * Input layout: [0x01 n] text [\0 override]... - an optional allocation-failure prefix (byte 0x01
- * then n: the (n+1)th allocation of the parse fails), the case text, then up to MAX_OVERRIDES
+ * then n: the (n+1)th allocation of the parse fails), the case text, then up to FUZZ_MAX_OVERRIDES
  * "section.key=value" overrides, each introduced by a NUL byte (a NUL cannot occur in a case
  * text, so the split is unambiguous). The corpus and dictionary are under tests/fuzz/.
  *
@@ -10,7 +10,8 @@
  *    happened) MC_ERR_NOMEM; an injected failure that happened never gives MC_OK;
  *  - on failure the message is one printable UTF-8 line and *scene is untouched;
  *  - on success the scene passes mc_scene_check, keeps the name as its path, has an output
- *    directory, and, with stress enabled, resolves to 1..MC_MAX_DEPTHS finite increasing depths.
+ *    directory, and, with stress enabled (and depths not left to the stress stage, depth_max =
+ *    auto), resolves to 1..MC_MAX_DEPTHS finite increasing depths.
  */
 #include <math.h>
 #include <stddef.h>
@@ -22,16 +23,16 @@
 #include "fuzz_common.h"
 #include "scene.h"
 
-#define MAX_OVERRIDES 4
-#define MAX_INPUT (64 * 1024) /* longer texts only slow the search down */
+#define FUZZ_MAX_OVERRIDES 4
+#define FUZZ_MAX_INPUT (64 * 1024) /* longer texts only slow the search down */
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static mc_scene scene, pristine;
-    static char buf[MAX_INPUT + 1];
-    if (size > MAX_INPUT)
+    static char buf[FUZZ_MAX_INPUT + 1];
+    if (size > FUZZ_MAX_INPUT)
         return 0;
     long fail_at = 0;
     if (size >= 2 && data[0] == 0x01) {
@@ -44,9 +45,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
     /* Chunks: text, then overrides, separated by NUL bytes. */
     const char *text = buf;
-    const char *ovr[MAX_OVERRIDES];
+    const char *ovr[FUZZ_MAX_OVERRIDES];
     int novr = 0;
-    for (size_t i = strlen(buf); i < size && novr < MAX_OVERRIDES; i += strlen(buf + i)) {
+    for (size_t i = strlen(buf); i < size && novr < FUZZ_MAX_OVERRIDES; i += strlen(buf + i)) {
         i++; /* skip the NUL */
         ovr[novr++] = buf + i;
     }
@@ -76,7 +77,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_CHECK(strcmp(scene.path, "fuzz.ini") == 0, "path '%.40s'", scene.path);
     FUZZ_CHECK(scene.output.dir[0] != '\0', "no output directory");
     FUZZ_CHECK(memchr(scene.output.dir, '\0', sizeof scene.output.dir) != NULL, "dir unterminated");
-    if (scene.stress.enabled) {
+    /* depth_max = 0 passes the checks only as "auto" (resolved by the stress stage) */
+    int auto_depth = scene.stress.spacing != MC_SPACING_LIST && scene.stress.depth_max == 0.0;
+    if (scene.stress.enabled && !auto_depth) {
         static double z[MC_MAX_DEPTHS];
         int nz = 0;
         FUZZ_CHECK(mc_scene_depths(&scene, z, &nz, &chk) == MC_OK, "depths: %s", chk.msg);

@@ -19,8 +19,8 @@
 #include "fuzz_common.h"
 #include "units.h"
 
-#define MAX_INPUT 4096
-#define SENTINEL -12345.678
+#define FUZZ_MAX_INPUT 4096
+#define FUZZ_SENTINEL -12345.678
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -38,18 +38,18 @@ static void check_printable(const char *s, size_t cap, const char *what)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    static char text[MAX_INPUT + 1];
-    if (size > MAX_INPUT)
+    static char text[FUZZ_MAX_INPUT + 1];
+    if (size > FUZZ_MAX_INPUT)
         return 0;
     memcpy(text, data, size);
     text[size] = '\0';
     size_t len = strlen(text);
 
-    double bare = SENTINEL;
+    double bare = FUZZ_SENTINEL;
     int bare_ok = mc_parse_quantity(text, MC_UNIT_NONE, &bare, NULL, 0) == 0;
     for (int kind = MC_UNIT_NONE; kind <= MC_UNIT_ROTATION; kind++) {
         char why[256], tiny[7];
-        double si = SENTINEL, si2 = SENTINEL, si3 = SENTINEL;
+        double si = FUZZ_SENTINEL, si2 = FUZZ_SENTINEL, si3 = FUZZ_SENTINEL;
         int rc = mc_parse_quantity(text, (mc_unit_kind)kind, &si, why, sizeof why);
         int rc2 = mc_parse_quantity(text, (mc_unit_kind)kind, &si2, NULL, 0);
         memset(tiny, 'x', sizeof tiny);
@@ -65,7 +65,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 FUZZ_CHECK(memcmp(&si, &bare, sizeof si) == 0,
                            "kind %d: bare number %g read as %g", kind, bare, si);
         } else {
-            FUZZ_CHECK(si == SENTINEL, "kind %d: *si written on failure", kind);
+            FUZZ_CHECK(si == FUZZ_SENTINEL, "kind %d: *si written on failure", kind);
             FUZZ_CHECK(why[0] != '\0', "kind %d: no reason given", kind);
             check_printable(why, sizeof why, "why");
             FUZZ_CHECK(memchr(tiny, '\0', tl) != NULL, "kind %d: short why not terminated", kind);
