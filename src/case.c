@@ -30,8 +30,10 @@ _Static_assert(sizeof(mc_backend) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_contact_method) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_spacing) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_stress_kernel) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_stress_window_mode) == sizeof(int), "enum size");
 _Static_assert(MC_SHAPE_ELLIPSOID == 3 && MC_ROUGH_FILE == 3 && MC_BACKEND_DIRECT == 1 &&
-                   MC_METHOD_ACTIVE_SET == 2 && MC_SPACING_GEOMETRIC == 1 && MC_STRESS_POINT == 1,
+                   MC_METHOD_ACTIVE_SET == 2 && MC_SPACING_GEOMETRIC == 1 && MC_STRESS_POINT == 1 &&
+                   MC_STRESS_WINDOW_FULL == 1,
                "choice lists below follow the enum order");
 
 #define MAX_FILE_BYTES (16L << 20) /* a case file is a few kB; refuse to slurp devices */
@@ -74,6 +76,8 @@ typedef struct {
     size_t tag_off;
     size_t count_off; /* K_LENGTHS: int count */
     int relative;     /* K_PATH: resolved against the case file's directory */
+    const char *word; /* K_REAL: a word accepted instead of a number, stored as word_value */
+    double word_value;
     const char *doc;
 } case_key;
 
@@ -222,8 +226,11 @@ static const case_key keys[] = {
      .hi = HUGE_VAL, .def = "0", .use = USE_UNLESS, .use_key = "depths",
      .off = AT(stress.depth_min), .doc = "Depth of the first layer."},
     {.section = "stress", .name = "depth_max", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
-     .lo_open = 1, .hi = HUGE_VAL, .lo_text = "> depth_min", .group = "range",
-     .off = AT(stress.depth_max), .doc = "Depth of the last layer."},
+     .lo_open = 1, .hi = HUGE_VAL, .lo_text = "> depth_min", .group = "range", .def = "auto",
+     .word = "auto", .word_value = MC_STRESS_DEPTH_AUTO, .off = AT(stress.depth_max),
+     .doc = "Depth of the last layer; auto: 3 times the radius of the largest contact patch "
+            "(connected solid-contact cells; for a prescribed pressure the loaded region), found "
+            "after the contact solve (a Hertz contact gives 3a)."},
     {.section = "stress", .name = "layers", .kind = K_INT, .lo = 1, .hi = MC_MAX_DEPTHS,
      .def = "32", .use = USE_UNLESS, .use_key = "depths", .off = AT(stress.layers),
      .doc = "Number of layers from depth_min to depth_max (1: depth_min only)."},
@@ -242,6 +249,13 @@ static const case_key keys[] = {
     {.section = "stress", .name = "friction", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
      .hi = 1, .def = "0", .off = AT(stress.friction),
      .doc = "Coulomb coefficient: shear traction q_x = friction p (sliding in +x)."},
+    {.section = "stress", .name = "window", .kind = K_ENUM, .choices = "auto full", .def = "auto",
+     .off = AT(stress.window),
+     .doc = "auto: a compact load on a grid with free axes (its bounding box well inside the "
+            "grid) is stressed only on its bounding box widened by 7 R + 2.5 z (R its half-size, "
+            "z the depth; at least 4 cells), where the rest is below 2 % of the layer's largest "
+            "von Mises stress; the other cells hold 0 and summary.json lists the windows. full: "
+            "every cell of every layer."},
 
     /* [output] */
     {.section = "output", .name = "dir", .kind = K_PATH, .def = "out/(case file name without .ini)",
@@ -276,8 +290,8 @@ static const case_section sections[] = {
     {"stress", "enabled",
      "Subsurface stresses on depth layers under the contact. The stage runs only when this "
      "section is present (in the file, or created by an override such as --set "
-     "stress.enabled=yes) and enabled. Give depth_max (with depth_min, layers, spacing) or an "
-     "explicit depths list."},
+     "stress.enabled=yes) and enabled. Layers run from depth_min to depth_max (layers, spacing) "
+     "or are listed in depths; depth_max = auto (the default) takes the depth from the contact."},
     {"output", NULL, "Where the results go (see DESIGN.md, output contract)."},
 };
 
@@ -410,12 +424,15 @@ static void describe(const case_key *k, int noun, char *buf, size_t len)
         fmt(hi, sizeof hi, "%s %s", k->hi_open ? "<" : "<=", b);
     }
     fmt(cond, sizeof cond, "%s%s%s", lo, lo[0] && hi[0] ? " and " : "", hi);
+    char alt[64] = "";
+    if (k->word)
+        fmt(alt, sizeof alt, ", or %s", k->word);
     if (!noun)
-        fmt(buf, len, "%s", cond[0] ? cond : "any");
+        fmt(buf, len, "%s%s", cond[0] ? cond : "any", alt);
     else if (k->unit == MC_UNIT_NONE)
-        fmt(buf, len, "a number%s%s", cond[0] ? " " : "", cond);
+        fmt(buf, len, "a number%s%s%s", cond[0] ? " " : "", cond, alt);
     else
-        fmt(buf, len, "a %s%s%s", mc_unit_kind_name(k->unit), cond[0] ? " " : "", cond);
+        fmt(buf, len, "a %s%s%s%s", mc_unit_kind_name(k->unit), cond[0] ? " " : "", cond, alt);
 }
 
 static int in_range(const case_key *k, double x)
@@ -560,8 +577,17 @@ static int convert(const case_key *k, const char *v, const char *base, mc_scene 
     }
     case K_REAL: {
         double x;
-        if (mc_parse_quantity(v, k->unit, &x, why, wl))
+        if (k->word && strcmp(v, k->word) == 0) {
+            memcpy(dst, &k->word_value, sizeof k->word_value);
+            return 0;
+        }
+        if (mc_parse_quantity(v, k->unit, &x, why, wl)) {
+            if (k->word) {
+                const size_t used = strlen(why);
+                fmt(why + used, wl - used, "; or %s", k->word);
+            }
             return 1;
+        }
         if (!in_range(k, x)) {
             fmt(why, wl, "must be %s", range);
             return 1;
@@ -1074,7 +1100,7 @@ static int check_required(ctx *c)
                 continue;
             if (first < 0)
                 first = j;
-            given |= c->slot[j] >= 0;
+            given |= c->slot[j] >= 0 || keys[j].def; /* a defaulted member stands in */
         }
         if (given || first != k)
             continue;
@@ -1413,14 +1439,17 @@ char *mc_case_reference_markdown(void)
             o = strlen(note);
             if (key->group) {
                 size_t m = 0;
+                int defaulted = 0;
                 char members[200] = "";
                 for (int j = 0; j < NKEYS; j++)
                     if (keys[j].group && strcmp(keys[j].group, key->group) == 0 &&
                         strcmp(keys[j].section, sec) == 0) {
                         fmt(members + m, sizeof members - m, "%s%s", m ? ", " : "", keys[j].name);
                         m = strlen(members);
+                        defaulted |= keys[j].def != NULL;
                     }
-                fmt(note + o, sizeof note - o, " Give exactly one of %s.", members);
+                fmt(note + o, sizeof note - o, " Give %s one of %s.",
+                    defaulted ? "at most" : "exactly", members);
             }
             sb_add(&b, "| `%s` | %s | %s | %s | %s%s |\n", key->name, unit, def, range, key->doc,
                    note);
@@ -1474,13 +1503,17 @@ int mc_case_check_table(mc_error *err)
                                key->name);
         }
         if (key->group) {
-            int n = 0;
+            int n = 0, ndef = 0;
             for (int j = 0; j < NKEYS; j++)
-                n += keys[j].group && strcmp(keys[j].group, key->group) == 0 &&
-                     strcmp(keys[j].section, key->section) == 0;
-            if (n < 2 || key->required || key->def)
+                if (keys[j].group && strcmp(keys[j].group, key->group) == 0 &&
+                    strcmp(keys[j].section, key->section) == 0) {
+                    n++;
+                    ndef += keys[j].def != NULL;
+                }
+            if (n < 2 || key->required || ndef > 1 || (key->def && (key->def_rule || key->def_from)))
                 return mc_fail(err, MC_ERR_INTERNAL,
-                               "[%s] %s: a group needs 2+ members, none required or defaulted",
+                               "[%s] %s: a group needs 2+ members, none required, at most one "
+                               "defaulted (by a value)",
                                key->section, key->name);
         }
         if (!key->def || key->def_rule || key->def_from)

@@ -564,6 +564,38 @@ static void summary_inputs(jbuild *b, json_t *root, const mc_scene *s, const mc_
     }
 }
 
+/* How the stress stage computed (mc_stress_layout): the depth rule and the windows, each with its
+ * layers, its cells and their extent (cell edges, m), outside which the fields hold 0. */
+static void stress_layout(jbuild *b, json_t *o, const mc_scene *s, const mc_results *r)
+{
+    const mc_stress_layout *l = &r->stress_layout;
+    const mc_grid *g = &r->grid;
+    jset(b, o, "depth_rule", jstr(l->depth_auto ? "auto" : "given"));
+    if (l->depth_auto) {
+        jset(b, o, "patches", json_integer(l->patches));
+        jset(b, o, "patch_radius", jnum(l->patch_radius));
+    }
+    jset(b, o, "loaded_cells", json_integer(l->loaded_cells));
+    jset(b, o, "window", jstr(s->stress.window == MC_STRESS_WINDOW_FULL ? "full" : "auto"));
+    jset(b, o, "windowed", json_boolean(l->windowed));
+    json_t *arr = jchild(b, o, "windows", json_array());
+    for (int k = 0; arr && k < l->nwindows; k++) {
+        const mc_stress_window *w = &l->window[k];
+        json_t *e = json_object();
+        const double x0 = mc_grid_x(g, w->i0) - 0.5 * g->dx, x1 = mc_grid_x(g, w->i1) + 0.5 * g->dx;
+        const double y0 = mc_grid_y(g, w->j0) - 0.5 * g->dy, y1 = mc_grid_y(g, w->j1) + 0.5 * g->dy;
+        json_t *v[5] = {json_pack("[ii]", w->k0, w->k1), json_pack("[ii]", w->i0, w->i1),
+                        json_pack("[ii]", w->j0, w->j1), json_pack("[ff]", x0, x1),
+                        json_pack("[ff]", y0, y1)};
+        static const char *keys[5] = {"layers", "cells_x", "cells_y", "x", "y"};
+        for (int q = 0; q < 5; q++)
+            jset(b, e, keys[q], v[q]);
+        jset(b, e, "method", jstr(w->direct ? "direct" : "fft"));
+        if (!e || json_array_append_new(arr, e) != 0)
+            b->bad = 1;
+    }
+}
+
 static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc_results *r)
 {
     const mc_contact_summary *cs = &r->contact;
@@ -597,6 +629,7 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
         jset(b, o, "depth_max", jnum(ss->depth_max));
         jset(b, o, "kernel", jstr(ss->kernel));
         jset(b, o, "friction", jnum(ss->friction));
+        stress_layout(b, o, s, r);
     }
 
     o = jchild(b, root, "timing", json_object());
@@ -737,8 +770,11 @@ static int commit(out_ctx *c, mc_error *err)
 static int check_results(const mc_results *r, mc_error *err)
 {
     int st = mc_grid_check(&r->grid, err);
-    if (st != MC_OK)
-        return mc_error_prefix(err, "output: ");
+    if (st != MC_OK) {
+        if (err) /* mc_error_prefix(NULL) would turn st into MC_ERR_INTERNAL */
+            mc_error_prefix(err, "output: ");
+        return st;
+    }
     if (!r->pressure || !r->gap || !r->displacement || !r->topography)
         return mc_fail(err, MC_ERR_INTERNAL, "output: results lack a surface field");
     if (r->nlayers < 0)

@@ -33,6 +33,24 @@ typedef struct {
     double friction;
 } mc_stress_summary;
 
+/* How the stress stage computed its layers (the skips of stress.h), so that a user can see them. */
+#define MC_STRESS_MAX_WINDOWS 16
+typedef struct {
+    int k0, k1;         /* layers k0..k1 (inclusive) */
+    int i0, i1, j0, j1; /* cells computed, i0..i1 x j0..j1 (inclusive); all others hold 0 */
+    int direct;         /* 1: direct summation over the loaded cells, 0: DC-FFT */
+} mc_stress_window;
+
+typedef struct {
+    int windowed;          /* 1: [stress] window = auto restricted some layer to a window */
+    int nwindows;          /* groups of layers, each computed on one window */
+    mc_stress_window window[MC_STRESS_MAX_WINDOWS];
+    long loaded_cells;     /* cells with a non-zero load */
+    int depth_auto;        /* 1: depth_max = auto, derived from the contact */
+    int patches;           /* connected contact patches (depth_auto) */
+    double patch_radius;   /* m: radius of the largest patch (depth_auto) */
+} mc_stress_layout;
+
 typedef struct {
     double total_s, setup_s, contact_s, stress_s, output_s;
 } mc_timing;
@@ -52,6 +70,7 @@ typedef struct {
     double *stress[6];           /* xx, yy, zz, xy, yz, xz; Pa */
     double *von_mises, *hydrostatic, *tresca;
     mc_stress_summary stress_summary;
+    mc_stress_layout stress_layout;
 
     mc_timing timing;
     unsigned long long roughness_seed;

@@ -30,6 +30,8 @@ void mc_scene_defaults(mc_scene *s)
     s->stress.spacing = MC_SPACING_LINEAR;
     s->stress.kernel = MC_STRESS_PATCH;
     s->stress.friction = 0.0;
+    s->stress.depth_max = MC_STRESS_DEPTH_AUTO;
+    s->stress.window = MC_STRESS_WINDOW_AUTO;
 }
 
 /* A failed rule: names the key for mc_scene_check_key and raises MC_ERR_INPUT. */
@@ -53,6 +55,9 @@ static int check_stress(const mc_scene *s, mc_error *err, const char **section,
               (int)s->stress.kernel);
     if (!(isfinite(s->stress.friction) && s->stress.friction >= 0 && s->stress.friction <= 1))
         BLAME("stress", "friction", "[stress] friction = %g: must be in 0..1", s->stress.friction);
+    if (s->stress.window != MC_STRESS_WINDOW_AUTO && s->stress.window != MC_STRESS_WINDOW_FULL)
+        BLAME("stress", "window", "[stress] window = %d: not a known window mode",
+              (int)s->stress.window);
     if (s->stress.spacing == MC_SPACING_LIST) {
         int n = s->stress.ndepths;
         if (n < 1 || n > MC_MAX_DEPTHS)
@@ -79,7 +84,8 @@ static int check_stress(const mc_scene *s, mc_error *err, const char **section,
     if (!nonnegative(s->stress.depth_min))
         BLAME("stress", "depth_min", "[stress] depth_min = %g m: must be >= 0",
               s->stress.depth_min);
-    if (!(isfinite(s->stress.depth_max) && s->stress.depth_max > s->stress.depth_min))
+    if (s->stress.depth_max != MC_STRESS_DEPTH_AUTO &&
+        !(isfinite(s->stress.depth_max) && s->stress.depth_max > s->stress.depth_min))
         BLAME("stress", "depth_max", "[stress] depth_max = %g m: must be > depth_min = %g m",
               s->stress.depth_max, s->stress.depth_min);
     if (s->stress.spacing == MC_SPACING_GEOMETRIC && !(s->stress.depth_min > 0))
@@ -270,6 +276,10 @@ int mc_scene_depths(const mc_scene *s, double *depths, int *ndepths, mc_error *e
         *ndepths = s->stress.ndepths;
         return MC_OK;
     }
+    if (s->stress.depth_max == MC_STRESS_DEPTH_AUTO)
+        return mc_fail(err, MC_ERR_INPUT,
+                       "[stress] depth_max = auto: the depths follow from the contact (the stress "
+                       "stage resolves them)");
     int n = s->stress.layers;
     double a = s->stress.depth_min, b = s->stress.depth_max;
     depths[0] = a;

@@ -44,6 +44,11 @@ typedef enum {
 
 typedef enum { MC_SPACING_LINEAR, MC_SPACING_GEOMETRIC, MC_SPACING_LIST } mc_spacing;
 typedef enum { MC_STRESS_PATCH, MC_STRESS_POINT } mc_stress_kernel;
+/* [stress] window: auto = only the loaded region plus a depth-dependent margin (stress.h) */
+typedef enum { MC_STRESS_WINDOW_AUTO, MC_STRESS_WINDOW_FULL } mc_stress_window_mode;
+
+/* [stress] depth_max = auto: derived from the contact by the stress stage (stress.h) */
+#define MC_STRESS_DEPTH_AUTO 0.0
 
 typedef struct {
     double E;  /* Young's modulus, Pa */
@@ -93,13 +98,15 @@ typedef struct {
 
     struct { /* [stress]; the stage runs only when enabled (section present) */
         int enabled;                 /* default 0; case files: 1 when [stress] is present */
-        double depth_min, depth_max; /* m (linear, geometric spacing) */
+        double depth_min, depth_max; /* m (linear, geometric spacing); depth_max =
+                                        MC_STRESS_DEPTH_AUTO (the default): from the contact */
         int layers;                  /* linear, geometric; default 32 */
         mc_spacing spacing;          /* MC_SPACING_LIST: use depths[] below */
         int ndepths;                 /* number of entries in depths (MC_SPACING_LIST) */
         double depths[MC_MAX_DEPTHS];
         mc_stress_kernel kernel;     /* default patch */
         double friction;             /* q_x = friction * p (sliding in +x), default 0 */
+        mc_stress_window_mode window; /* default auto */
     } stress;
 
     struct { /* [output] */
@@ -110,13 +117,15 @@ typedef struct {
 
 /* Fill every field with its documented default: shape flat, no roughness (seed 1, hurst 0.8),
  * steel bodies (E = 210 GPa, nu = 0.3), no pressure cap (+inf), fft + cg, tolerance 1e-8, 2000
- * iterations, stress disabled (32 linear layers from 0), output dir "". */
+ * iterations, stress disabled (32 linear layers from 0 to depth_max = auto, window auto), output
+ * dir "". */
 void mc_scene_defaults(mc_scene *s);
 
 /* Validate the scene: grid, shape radii, roughness parameters, materials, a load (> 0 or a file),
  * force_per_length => periodic_y, pressure_cap > lubricant_pressure >= 0, solver settings, and,
- * when stress is enabled, its depths (depth_max > depth_min >= 0, geometric => depth_min > 0,
- * lists strictly increasing). MC_OK or MC_ERR_INPUT with a message "[section] key ...". */
+ * when stress is enabled, its depths (depth_max > depth_min >= 0 unless auto, geometric =>
+ * depth_min > 0, lists strictly increasing) and window. MC_OK or MC_ERR_INPUT with a message
+ * "[section] key ...". */
 int mc_scene_check(const mc_scene *s, mc_error *err);
 
 /* Same, and on failure names the key at fault (*section, *key: static strings; either pointer
@@ -129,7 +138,8 @@ double mc_scene_estar(const mc_scene *s);
 /* Resolved depth list of the stress stage, m (depths must hold MC_MAX_DEPTHS): linear
  * z_k = depth_min + k (depth_max - depth_min)/(layers - 1) (layers = 1: depth_min alone);
  * geometric z_k = depth_min (depth_max/depth_min)^(k/(layers - 1)); list: as given. The ends are
- * exact. MC_ERR_INPUT (as mc_scene_check) if the stress settings are invalid. */
+ * exact. MC_ERR_INPUT (as mc_scene_check) if the stress settings are invalid, or if depth_max is
+ * auto (which only the stress stage resolves, from the contact: mc_stress_auto_depth). */
 int mc_scene_depths(const mc_scene *s, double *depths, int *ndepths, mc_error *err);
 
 /* Effective self-affine cut-off wavelengths, m: the scene's values, or for 0 the defaults

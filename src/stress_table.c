@@ -71,6 +71,8 @@ typedef struct {
 typedef struct {
     double *fv;  /* corner function at the x points of one row, 6 per point */
     double *row; /* one row, 6*tx */
+    double *qf;  /* quadrant: corner function on one line of corners, 6 per corner (nx + 1) */
+    double *qd;  /* quadrant: x differences of two lines, [2][6][nx] */
 } workspace;
 
 struct mc_stress_tables {
@@ -392,6 +394,110 @@ int mc_stress_tables_build(mc_stress_tables *tb, int load, double z, double *con
     return MC_OK;
 }
 
+/* ---- quadrant tables (free axes) -------------------------------------------------------------- */
+
+/* Odd flags of the tables (bit 0: odd in the x offset, bit 1: odd in the y offset), kernel.h's
+ * parities: p: xx, yy, zz ee, xy oo, yz eo, xz oe; qx: xx, yy, zz oe, xy eo, yz oo, xz ee; qy: qx
+ * with the axes exchanged. */
+static const int parities[3][MC_NSTRESS] = {
+    {0, 0, 0, 3, 2, 1},
+    {1, 1, 1, 2, 3, 0},
+    {2, 2, 2, 1, 0, 3},
+};
+
+int mc_stress_parity(int load, int c)
+{
+    const int li = load == MC_LOAD_P ? 0 : load == MC_LOAD_QX ? 1 : load == MC_LOAD_QY ? 2 : -1;
+    return li < 0 || c < 0 || c >= MC_NSTRESS ? -1 : parities[li][c];
+}
+
+/* Quadrant rows ja..jb (a block of one thread) of the patch kernel: entry (i, j) = D_{j+1}[i] -
+ * D_j[i] with D_j[i] = f(X_{i+1}, Y_j) - f(X_i, Y_j) and corners X_i = (i - 1/2) dx, Y_j =
+ * (j - 1/2) dy: the same differences, in the same order, as the streamed full table, so both
+ * agree bit for bit. */
+static void quadrant_block(const mc_stress_tables *tb, stress_fn fn, double z, int nxq, int ja,
+                           int jb, int qx, workspace *ws, double *const q[6])
+{
+    const double dx = tb->ax[0].d, dy = tb->ax[1].d, nu = tb->nu;
+    double *d[2] = {ws->qd, ws->qd + (size_t)MC_NSTRESS * nxq};
+    for (int j = ja; j <= jb + 1; j++) {
+        const double Y = (j - 0.5) * dy;
+        for (int i = 0; i <= nxq; i++)
+            fn((i - 0.5) * dx, Y, z, nu, ws->qf + 6 * i);
+        double *cur = d[j & 1];
+        for (int c = 0; c < MC_NSTRESS; c++)
+            for (int i = 0; i < nxq; i++)
+                cur[(size_t)c * nxq + i] = ws->qf[6 * (i + 1) + c] - ws->qf[6 * i + c];
+        if (j == ja)
+            continue;
+        const double *prev = d[(j - 1) & 1];
+        for (int c = 0; c < MC_NSTRESS; c++) {
+            double *row = q[c] + (size_t)(j - 1) * qx;
+            for (int i = 0; i < nxq; i++)
+                row[i] = cur[(size_t)c * nxq + i] - prev[(size_t)c * nxq + i];
+        }
+    }
+}
+
+int mc_stress_tables_quadrant(mc_stress_tables *tb, int load, double z, int qx, int qy,
+                              double *const q[6], mc_error *err)
+{
+    const int li = load_index(load);
+    if (li < 0)
+        return mc_fail(err, MC_ERR_INPUT, "stress quadrant: load %d is not one of p, qx, qy",
+                       load);
+    if (tb->ax[0].periodic || tb->ax[1].periodic || qx < 1 || qy < 1)
+        return mc_fail(err, MC_ERR_INPUT,
+                       "stress quadrant %d x %d: needs free axes and sizes >= 1 (periodic x %d, "
+                       "y %d)",
+                       qx, qy, tb->ax[0].periodic, tb->ax[1].periodic);
+    if (!(isfinite(z) && z >= 0.0))
+        return mc_fail(err, MC_ERR_INPUT, "stress quadrant: depth z = %g m must be finite and >= 0",
+                       z);
+    if (tb->kernel == MC_STRESS_POINT && z == 0.0)
+        return mc_fail(err, MC_ERR_INPUT,
+                       "stress quadrant: the point kernel is singular at z = 0 (use the patch "
+                       "kernel, or a depth > 0)");
+    const int nxq = qx < tb->g.nx ? qx : tb->g.nx, nyq = qy < tb->g.ny ? qy : tb->g.ny;
+    /* the slots beyond the grid's offsets are never reached by an output: 0 */
+    for (int c = 0; c < MC_NSTRESS; c++)
+        for (int j = 0; j < qy; j++) {
+            double *row = q[c] + (size_t)j * qx;
+            if (j < nyq)
+                memset(row + nxq, 0, sizeof(double) * (size_t)(qx - nxq));
+            else
+                memset(row, 0, sizeof(double) * (size_t)qx);
+        }
+    if (tb->kernel == MC_STRESS_POINT) {
+        const double A = tb->ax[0].d * tb->ax[1].d, nu = tb->nu;
+#pragma omp parallel for schedule(static) num_threads(tb->nthreads)
+        for (int j = 0; j < nyq; j++)
+            for (int i = 0; i < nxq; i++) {
+                double s[MC_NSTRESS];
+                point_fns[li](i * tb->ax[0].d, j * tb->ax[1].d, z, nu, s);
+                for (int c = 0; c < MC_NSTRESS; c++) /* 0 + : as the full table's sum (no -0) */
+                    q[c][(size_t)j * qx + i] = 0.0 + A * s[c];
+            }
+    } else {
+        const int nb = nyq < tb->nthreads ? nyq : tb->nthreads;
+#pragma omp parallel for schedule(static) num_threads(tb->nthreads)
+        for (int b = 0; b < nb; b++) {
+            const int ja = (int)((long)nyq * b / nb), jb = (int)((long)nyq * (b + 1) / nb) - 1;
+            quadrant_block(tb, corner_fns[li], z, nxq, ja, jb, qx, &tb->ws[omp_get_thread_num()],
+                           q);
+        }
+    }
+    /* an odd kernel vanishes at offset 0 along its odd axis: exactly, by parity */
+    for (int c = 0; c < MC_NSTRESS; c++) {
+        if (parities[li][c] & 1)
+            for (int j = 0; j < nyq; j++)
+                q[c][(size_t)j * qx] = 0.0;
+        if (parities[li][c] & 2)
+            memset(q[c], 0, sizeof(double) * (size_t)nxq);
+    }
+    return MC_OK;
+}
+
 int mc_stress_tables_images(const mc_stress_tables *tb, int axis_id, double z)
 {
     return axis_rule(&tb->ax[axis_id ? 1 : 0], z).M;
@@ -401,6 +507,8 @@ static void workspace_free(workspace *w)
 {
     mc_free(w->fv);
     mc_free(w->row);
+    mc_free(w->qf);
+    mc_free(w->qd);
 }
 
 void mc_stress_tables_destroy(mc_stress_tables **tbp)
@@ -421,9 +529,12 @@ void mc_stress_tables_destroy(mc_stress_tables **tbp)
 /* One row buffer, zeroed: padding entries of every row stay 0. */
 static int workspace_alloc(mc_stress_tables *tb, workspace *w)
 {
+    const size_t nx = (size_t)tb->g.nx;
     w->fv = mc_zeros(tb->nfv);
     w->row = mc_zeros((size_t)MC_NSTRESS * tb->tx);
-    return w->fv && w->row ? MC_OK : MC_ERR_NOMEM;
+    w->qf = mc_zeros((size_t)MC_NSTRESS * (nx + 1));
+    w->qd = mc_zeros((size_t)2 * MC_NSTRESS * nx);
+    return w->fv && w->row && w->qf && w->qd ? MC_OK : MC_ERR_NOMEM;
 }
 
 int mc_stress_tables_create(const mc_grid *g, int tx, int ty, mc_stress_kernel kernel, double nu,
