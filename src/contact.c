@@ -111,7 +111,7 @@ static int create_coarse(mc_contact_solver *s, mc_operator *K, mc_error *err)
         return rc;
     size_t nc = mc_grid_cells(&cg);
     if (!(s->coarse_h = mc_zeros(nc)) || !(s->coarse_low = mc_zeros(nc)) ||
-        !(s->coarse_p = mc_zeros(nc)) || !(s->start = mc_zeros(s->n)))
+        !(s->coarse_p = mc_zeros(nc)))
         return mc_fail(err, MC_ERR_NOMEM, "contact solver: out of memory for the coarse grid");
     return MC_OK;
 }
@@ -131,7 +131,7 @@ static int coarse_start(mc_contact_solver *s, const mc_contact_problem *p, mc_er
     if (rc != MC_OK && rc != MC_NOT_CONVERGED)
         return rc;
     mc_error_clear(err);
-    prolong_field(s, s->coarse_p, s->start);
+    prolong_field(s, s->coarse_p, s->z); /* z is free until the method starts */
     return MC_OK;
 }
 
@@ -163,8 +163,8 @@ int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_
     s->n = n;
     s->A = mc_grid_cell_area(g);
     s->opt = *opt;
-    double **arrays[] = {&s->htil, &s->plow, &s->capq, &s->q, &s->u,
-                         &s->r,    &s->z,    &s->d,    &s->w, &s->tmp};
+    /* plow, capq and tmp (K p_lower) are allocated by the first solve that needs them */
+    double **arrays[] = {&s->htil, &s->q, &s->u, &s->r, &s->z, &s->d, &s->w};
     int ok = 1;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         ok &= (*arrays[k] = mc_zeros(n)) != NULL;
@@ -204,7 +204,6 @@ void mc_contact_destroy(mc_contact_solver **sp)
     mc_free(s->coarse_h);
     mc_free(s->coarse_low);
     mc_free(s->coarse_p);
-    mc_free(s->start);
     mc_contact_destroy(&s->coarse);
     mc_contact_destroy(&s->box);
     mc_operator_destroy(&s->box_op);
@@ -318,7 +317,7 @@ static void start_value(mc_contact_solver *s, const mc_contact_problem *p, const
     double sum = 0;
     if (p->p_start) {
         for (size_t i = 0; i < n; i++) {
-            double v = p->p_start[i] - s->plow[i];
+            double v = p->p_start[i] - (s->plow_on ? s->plow[i] : 0.0);
             if (!(v > 0))
                 v = 0;
             if (qp->cap && v > qp->cap[i])
@@ -360,24 +359,30 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
         rc = coarse_start(s, prob, err);
         if (rc != MC_OK)
             return rc;
-        nested.p_start = s->start;
+        nested.p_start = s->z;
         p = &nested;
     }
 
     /* shift to the excess pressure: the lubricant pressure loads the half-space too */
-    int any_lower = 0;
+    int any_lower = p->p_lub != 0;
+    for (size_t i = 0; p->p_lower && i < n && !any_lower; i++)
+        any_lower = p->p_lower[i] != 0;
+    int capped = p->p_upper || isfinite(p->p_cap);
+    if ((any_lower && ((!s->plow && !(s->plow = mc_zeros(n))) || (!s->tmp && !(s->tmp = mc_zeros(n))))) ||
+        (capped && !s->capq && !(s->capq = mc_zeros(n))))
+        return mc_fail(err, MC_ERR_NOMEM, "contact solver: out of memory for the bounds of %zu cells",
+                       n);
+    s->plow_on = any_lower;
     double lower_sum = 0;
-    for (size_t i = 0; i < n; i++) {
-        s->plow[i] = p->p_lower ? p->p_lower[i] : p->p_lub;
-        any_lower |= s->plow[i] != 0;
-        lower_sum += s->plow[i];
-    }
-    if (any_lower)
+    if (any_lower) {
+        for (size_t i = 0; i < n; i++) {
+            s->plow[i] = p->p_lower ? p->p_lower[i] : p->p_lub;
+            lower_sum += s->plow[i];
+        }
         mc_contact_apply(s, s->plow, s->tmp);
-    else
-        memset(s->tmp, 0, n * sizeof *s->tmp);
+    }
     for (size_t i = 0; i < n; i++)
-        s->htil[i] = p->h[i] + (p->h_extra ? p->h_extra[i] : 0.0) + s->tmp[i];
+        s->htil[i] = p->h[i] + (p->h_extra ? p->h_extra[i] : 0.0) + (any_lower ? s->tmp[i] : 0.0);
     /* work relative to the lowest point: the gap h~ + u - delta then never cancels a large
      * offset (a 1 m datum under micrometre deformations kept the residual at 1e-7) */
     double hshift = INFINITY;
@@ -386,12 +391,11 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
     for (size_t i = 0; i < n; i++)
         s->htil[i] -= hshift;
     /* s->tmp keeps K p_lower until the end */
-    double *ulow = s->tmp;
-
-    int capped = p->p_upper || isfinite(p->p_cap);
+    const double *ulow = any_lower ? s->tmp : NULL;
+    const double *plow = any_lower ? s->plow : NULL;
     if (capped)
         for (size_t i = 0; i < n; i++)
-            s->capq[i] = (p->p_upper ? p->p_upper[i] : p->p_cap) - s->plow[i];
+            s->capq[i] = (p->p_upper ? p->p_upper[i] : p->p_cap) - (plow ? plow[i] : 0.0);
     mc_qproblem qp = {.h = s->htil,
                       .cap = capped ? s->capq : NULL,
                       .control = p->control,
@@ -443,7 +447,7 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
     long ncontact = 0, ncap = 0;
     int finite = 1;
     for (size_t i = 0; i < n; i++) {
-        double pi = s->plow[i] + q[i];
+        double pi = (plow ? plow[i] : 0.0) + q[i];
         pout[i] = pi;
         finite &= isfinite(pi) && isfinite(s->u[i]);
         load += pi;
@@ -456,7 +460,7 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
         if (pi > pmax)
             pmax = pi;
         if (uout)
-            uout[i] = ulow[i] + s->u[i];
+            uout[i] = (ulow ? ulow[i] : 0.0) + s->u[i];
         if (gapout)
             gapout[i] = s->htil[i] + s->u[i] - qp.delta;
     }

@@ -35,6 +35,8 @@ int mc_contact_active_set_prepare(mc_contact_solver *s, mc_error *err)
         !(s->factor = mc_malloc(nn * sizeof(double))) || !(s->map = mc_malloc(n * sizeof(size_t))))
         return mc_fail(err, MC_ERR_NOMEM, "active-set: out of memory for a %zu x %zu matrix", n, n);
     /* column j = K e_j; K is symmetric, so rows equal columns */
+    if (!s->tmp && !(s->tmp = mc_zeros(n)))
+        return mc_fail(err, MC_ERR_NOMEM, "active-set: out of memory");
     memset(s->tmp, 0, n * sizeof *s->tmp);
     for (size_t j = 0; j < n; j++) {
         s->tmp[j] = 1.0;

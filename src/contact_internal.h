@@ -33,7 +33,9 @@ struct mc_contact_solver {
     double A; /* cell area, m^2 */
     mc_contact_options opt;
     /* workspaces, n each, allocated once */
-    double *htil, *plow, *capq, *q, *u, *r, *z, *d, *w, *tmp;
+    double *htil, *q, *u, *r, *z, *d, *w;
+    double *plow, *capq, *tmp; /* lower bound, upper bound of q, K p_lower: on first need */
+    int plow_on;               /* the current solve has a non-zero lower bound in plow */
     unsigned char *mask, *mask_old;
     mc_precond *pc;
     long applies;
@@ -41,7 +43,7 @@ struct mc_contact_solver {
     mc_contact_solver *coarse;
     mc_operator *coarse_op;
     int fx, fy;                    /* coarsening factor per axis (1 or 2) */
-    double *coarse_h, *coarse_low, *coarse_p, *start; /* coarse arrays, and the fine start */
+    double *coarse_h, *coarse_low, *coarse_p; /* coarse arrays (the fine start goes into z) */
     /* restriction to the contact's box (cg): built on demand, kept for the next solve */
     mc_contact_solver *box;
     mc_operator *box_op;

@@ -196,10 +196,14 @@ static int write_report(vf_ctx *ctx, double seconds)
     for (int k = 0; k < ctx->nrows; k++)
         npass += ctx->rows[k].pass;
     fprintf(f, "# %s\n\n", ctx->suite->title);
-    fprintf(f, "Suite `%s`%s: **%d of %d checks pass** (%s). Run time %.1f s.\n"
-               "Regenerate with `microcontact verify %s%s`.\n\n",
+    fprintf(f, "Suite `%s`%s: **%d of %d checks pass** (%s). Run time %.1f s.\n",
             ctx->suite->name, ctx->fast ? " (fast variant)" : "", npass, ctx->nrows,
-            ctx->nfail ? "FAIL" : "PASS", seconds, ctx->fast ? "--fast " : "", ctx->suite->name);
+            ctx->nfail ? "FAIL" : "PASS", seconds);
+    if (ctx->suite->regenerate)
+        fprintf(f, "Regenerate with `%s`.\n\n", ctx->suite->regenerate);
+    else
+        fprintf(f, "Regenerate with `microcontact verify %s%s` (or `make verify`).\n\n",
+                ctx->fast ? "--fast " : "", ctx->suite->name);
     fputs(ctx->text, f);
     fprintf(f, "\n## Checks\n\n| id | quantity | reference | expected | measured | error | tolerance "
                "| result |\n|---|---|---|---|---|---|---|---|\n");

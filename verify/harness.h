@@ -25,6 +25,7 @@ typedef struct {
     /* Run the suite; fast = the reduced variant for `make check`. Returns 0, or non-zero when
      * the suite could not run at all (a failed check is not a crash: it is recorded). */
     int (*run)(vf_ctx *ctx, int fast);
+    const char *regenerate; /* command that regenerates the report (NULL: microcontact verify) */
 } vf_suite;
 
 /* All suites, in report order. */

@@ -30,6 +30,21 @@ static void default_dir(const char *case_path, char *dir, size_t len)
     snprintf(dir, len, "out/%s", base);
 }
 
+/* Peak resident memory of this process (VmHWM), MiB; NAN where /proc is not there. */
+static double peak_memory_mib(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    double kb = NAN;
+    if (f) {
+        char line[256];
+        while (fgets(line, sizeof line, f))
+            if (sscanf(line, "VmHWM: %lf kB", &kb) == 1)
+                break;
+        fclose(f);
+    }
+    return kb / 1024.0;
+}
+
 static void print_summary(const char *dir, const mc_results *r)
 {
     const mc_contact_summary *c = &r->contact;
@@ -50,8 +65,9 @@ static void print_summary(const char *dir, const mc_results *r)
         printf("  stress: %d layers, max von Mises %.6g MPa at z = %.4g um, max shear %.6g MPa\n",
                r->nlayers, s->vm_max * 1e-6, s->vm_max_at[2] * 1e6, s->tresca_max * 1e-6);
     }
-    printf("  time %.3f s (setup %.3f, contact %.3f, stress %.3f)\n", r->timing.total_s,
-           r->timing.setup_s, r->timing.contact_s, r->timing.stress_s);
+    printf("  time %.3f s (setup %.3f, contact %.3f, stress %.3f), peak memory %.0f MiB\n",
+           r->timing.total_s, r->timing.setup_s, r->timing.contact_s, r->timing.stress_s,
+           peak_memory_mib());
     printf("  results in %s/ (summary.json, pressure.npy, gap.npy, displacement.npy, "
            "topography.npy, profile_x.csv%s)\n",
            dir, r->nlayers > 0 ? ", von_mises.npy, stress_*.npy, axis.csv, depths.csv" : "");
