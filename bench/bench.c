@@ -44,4 +44,4 @@ static int run_bench(vf_ctx *ctx, int quick)
 }
 
 const vf_suite mc_bench_suite = {"bench", "Benchmarks: run time against error and against FFTW",
-                                 run_bench, "make bench (or microcontact bench; --quick: reduced)"};
+                                 run_bench, "make bench"};
