@@ -107,6 +107,7 @@ _check: $(PROGRAM) $(TESTS)
 	CK_DEFAULT_TIMEOUT=600 ./$(TESTS)
 	./$(PROGRAM) verify --fast --reports $(BUILD)/reports-fast
 	tests/cli/bad_input.sh ./$(PROGRAM)
+	tests/cli/cases.sh ./$(PROGRAM)
 
 verify: deps
 	@$(MAKE) --no-print-directory all

@@ -1,0 +1,20 @@
+#!/bin/sh
+# Runs every example case in cases/ (they are documentation: they must keep working): each must
+# exit 0, write summary.json and report a converged solve.
+#   tests/cli/cases.sh PROGRAM
+set -u
+PROG=$1
+T=$(mktemp -d "${TMPDIR:-/tmp}/mc_cases.XXXXXX") || exit 2
+trap 'rm -rf "$T"' EXIT INT TERM
+fail=0
+for c in cases/*.ini; do
+    name=$(basename "$c" .ini)
+    if ! "$PROG" run "$c" --out "$T/$name" > "$T/$name.log" 2>&1; then
+        echo "FAIL case $c (exit status $?):"; cat "$T/$name.log"; fail=1; continue
+    fi
+    if ! grep -q '"converged": true' "$T/$name/summary.json"; then
+        echo "FAIL case $c: summary.json does not report a converged solve"; fail=1; continue
+    fi
+    echo "PASS case $c: $(grep -E '^  time' "$T/$name.log" | sed 's/^ *//')"
+done
+exit $fail
