@@ -116,7 +116,7 @@ static int create_coarse(mc_contact_solver *s, mc_operator *K, mc_error *err)
     return MC_OK;
 }
 
-/* Solve the problem on the coarse grid and prolong its pressure into s->start. */
+/* Solve the problem on the coarse grid and prolong its pressure into s->z. */
 static int coarse_start(mc_contact_solver *s, const mc_contact_problem *p, mc_error *err)
 {
     restrict_field(s, p->h, p->h_extra, 0.0, s->coarse_h);
@@ -126,6 +126,12 @@ static int coarse_start(mc_contact_solver *s, const mc_contact_problem *p, mc_er
     cp.h_extra = NULL;
     cp.p_lower = s->coarse_low;
     cp.p_start = NULL;
+    if (p->p_upper) { /* block averages keep each cell above its lower bound and the capacity */
+        if (!s->coarse_cap && !(s->coarse_cap = mc_zeros(mc_grid_cells(&s->coarse->g))))
+            return mc_fail(err, MC_ERR_NOMEM, "contact solver: out of memory for the coarse caps");
+        restrict_field(s, p->p_upper, NULL, 0.0, s->coarse_cap);
+        cp.p_upper = s->coarse_cap;
+    }
     mc_contact_summary sum;
     int rc = mc_contact_solve(s->coarse, &cp, s->coarse_p, NULL, NULL, &sum, err);
     if (rc != MC_OK && rc != MC_NOT_CONVERGED)
@@ -204,6 +210,7 @@ void mc_contact_destroy(mc_contact_solver **sp)
     mc_free(s->coarse_h);
     mc_free(s->coarse_low);
     mc_free(s->coarse_p);
+    mc_free(s->coarse_cap);
     mc_contact_destroy(&s->coarse);
     mc_contact_destroy(&s->box);
     mc_operator_destroy(&s->box_op);
@@ -218,13 +225,8 @@ void mc_contact_destroy(mc_contact_solver **sp)
 
 double mc_contact_gap_scale(const mc_contact_solver *s, const mc_qproblem *qp, double delta)
 {
-    double hmin = INFINITY, hmax = -INFINITY;
-    for (size_t i = 0; i < s->n; i++) {
-        if (qp->h[i] < hmin)
-            hmin = qp->h[i];
-        if (qp->h[i] > hmax)
-            hmax = qp->h[i];
-    }
+    (void)s;
+    const double hmin = qp->hmin, hmax = qp->hmax;
     double scale = delta - hmin;
     /* a floor relative to the topography's own range (and to its magnitude), so a flat punch
      * and a barely touching asperity still get a meaningful scale */
@@ -385,11 +387,13 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
         s->htil[i] = p->h[i] + (p->h_extra ? p->h_extra[i] : 0.0) + (any_lower ? s->tmp[i] : 0.0);
     /* work relative to the lowest point: the gap h~ + u - delta then never cancels a large
      * offset (a 1 m datum under micrometre deformations kept the residual at 1e-7) */
-    double hshift = INFINITY;
+    double hshift = INFINITY, hmax = -INFINITY;
     for (size_t i = 0; i < n; i++)
         hshift = fmin(hshift, s->htil[i]);
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < n; i++) {
         s->htil[i] -= hshift;
+        hmax = fmax(hmax, s->htil[i]);
+    }
     /* s->tmp keeps K p_lower until the end */
     const double *ulow = any_lower ? s->tmp : NULL;
     const double *plow = any_lower ? s->plow : NULL;
@@ -397,6 +401,8 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
         for (size_t i = 0; i < n; i++)
             s->capq[i] = (p->p_upper ? p->p_upper[i] : p->p_cap) - (plow ? plow[i] : 0.0);
     mc_qproblem qp = {.h = s->htil,
+                      .hmin = 0.0,
+                      .hmax = hmax,
                       .cap = capped ? s->capq : NULL,
                       .control = p->control,
                       .W = p->load - s->A * lower_sum,
@@ -464,7 +470,7 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
         if (gapout)
             gapout[i] = s->htil[i] + s->u[i] - qp.delta;
     }
-    if (!finite)
+    if (!finite || !isfinite(qp.delta))
         return mc_fail(err, MC_ERR_NUMERIC, "contact: the %s solver produced non-finite values",
                        methods[method].name);
     sum->solved = 1;

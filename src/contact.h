@@ -57,7 +57,7 @@
 #include "results.h"
 #include "scene.h"
 
-#define MC_ACTIVE_SET_MAX_CELLS 4096 /* dense O(N^3) reference: 4096 cells = 128 MiB matrix */
+#define MC_ACTIVE_SET_MAX_CELLS 4096 /* dense O(N^3) reference: 4096 cells = 2 x 128 MiB */
 
 typedef enum { MC_CONTROL_FORCE, MC_CONTROL_APPROACH } mc_control;
 
@@ -82,7 +82,7 @@ typedef struct {
      * without a warm start from the solution on a grid coarsened 2:1 (recursively, while an axis
      * has >= MC_COARSEN_MIN cells): nested iteration, which spares the fine grid most of the
      * iterations that only shrink the contact set. 0 = start from the uniform pressure. */
-    double estar;
+    double estar; /* must be the E* of K's Love kernel: coarse and box levels plan their own */
     int no_box; /* 1: never restrict the solve to the contact's bounding box (for comparison) */
 } mc_contact_options;
 
@@ -94,15 +94,17 @@ typedef struct mc_contact_solver mc_contact_solver;
 /* Plan a solver over operator K (not owned; must outlive the solver): allocates every workspace
  * once, so iterations never allocate. A solve allocates only to plan what depends on where the
  * contact is: the preconditioner's FFT for a new box size (cached) and, for the restricted solve,
- * a box-sized operator and solver (kept while the box size stays). MC_ERR_LIMIT for active-set
- * above its size. */
+ * a box-sized operator and solver (kept while the box size stays). Returns MC_OK, MC_ERR_INPUT
+ * (bad options), MC_ERR_LIMIT (active-set above its size), MC_ERR_NOMEM, or MC_ERR_INTERNAL
+ * (FFTW could not start its threads). */
 int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_solver **out,
                       mc_error *err);
 
 /* Solve. Outputs (ny*nx each, caller-owned): p (Pa), and optionally u (= K p, m) and gap (m);
  * u and gap may be NULL. sum receives the contact summary. Returns MC_OK, MC_NOT_CONVERGED (all
  * outputs still filled with the last iterate), MC_ERR_INPUT (bad problem), MC_ERR_NOMEM (a plan
- * of the preconditioner or of the box could not be made) or MC_ERR_NUMERIC. */
+ * of the preconditioner or of the box could not be made), MC_ERR_NUMERIC (non-finite values or a
+ * breakdown) or MC_ERR_INTERNAL (FFTW threads). */
 int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, double *p, double *u,
                      double *gap, mc_contact_summary *sum, mc_error *err);
 

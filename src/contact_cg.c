@@ -204,16 +204,20 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
 
 /* ---- nested variant: delta from the load, bound-constrained solves at fixed delta ---------- */
 
+/* One bound-constrained solve at fixed delta; *load = A sum(q) of its result. An inner solve that
+ * stops short still gives a usable iterate (MC_NOT_CONVERGED): the caller goes on with it and
+ * judges the final state by the residual. */
 static int solve_at(mc_contact_solver *s, const mc_qproblem *qp, double delta, double *q,
-                    double *load, int *iters, mc_error *err)
+                    double *load, int *iters, double *x_last, mc_error *err)
 {
     mc_qproblem inner = *qp;
     inner.control = MC_CONTROL_APPROACH;
     inner.delta = delta;
+    *x_last = delta;
     mc_qresult r = {0};
     int rc = mc_contact_cg(s, &inner, q, &r, err);
     *iters += r.iterations;
-    if (rc != MC_OK)
+    if (rc != MC_OK && rc != MC_NOT_CONVERGED)
         return rc;
     double sum = 0;
     for (size_t i = 0; i < s->n; i++)
@@ -239,11 +243,9 @@ int mc_contact_nested(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresu
     for (size_t i = 0; i < n; i++)
         if (q[i] > qp->cap[i])
             q[i] = qp->cap[i];
-    double hmin = INFINITY;
-    for (size_t i = 0; i < n; i++)
-        hmin = fmin(hmin, qp->h[i]);
-    double lo, Wlo, hi, Whi, x0 = free_.delta, W0;
-    rc = solve_at(s, qp, x0, q, &W0, &iters, err);
+    const double hmin = qp->hmin;
+    double lo, Wlo, hi, Whi, x0 = free_.delta, W0, x = x0;
+    rc = solve_at(s, qp, x0, q, &W0, &iters, &x, err);
     if (rc != MC_OK)
         goto out;
     if (W0 >= qp->W) { /* already enough: any delta <= min h~ carries nothing */
@@ -266,21 +268,21 @@ int mc_contact_nested(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresu
             Wlo = Whi;
             step *= 2;
             hi = lo + step;
-            rc = solve_at(s, qp, hi, q, &Whi, &iters, err);
+            rc = solve_at(s, qp, hi, q, &Whi, &iters, &x, err);
             if (rc != MC_OK)
                 goto out;
         }
     }
     /* Illinois regula falsi on W(delta) = W: W is continuous and non-decreasing */
     const double tol = s->opt.tolerance;
-    double x = hi, Wx = Whi;
+    double Wx = Whi;
     int side = 0;
     for (int k = 0; fabs(Wx - qp->W) > tol * qp->W && k < s->opt.max_iterations; k++) {
         double flo = Wlo - qp->W, fhi = Whi - qp->W;
         x = (fhi - flo) != 0 ? hi - fhi * (hi - lo) / (fhi - flo) : 0.5 * (lo + hi);
         if (!(x > lo && x < hi))
             x = 0.5 * (lo + hi);
-        rc = solve_at(s, qp, x, q, &Wx, &iters, err);
+        rc = solve_at(s, qp, x, q, &Wx, &iters, &x, err);
         if (rc != MC_OK)
             goto out;
         if (Wx < qp->W) {
@@ -299,12 +301,13 @@ int mc_contact_nested(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresu
         if (hi - lo <= 1e-15 * fmax(fabs(hi), fabs(lo)))
             break;
     }
+out:
+    /* whatever stopped the search, report the state the last solve left: its delta and residual */
     qp->delta = x;
     res->residual = mc_contact_residual(s, qp, q, s->u, x);
-    res->converged = res->residual <= tol;
-out:
+    res->converged = rc == MC_OK && res->residual <= s->opt.tolerance;
     res->iterations = iters;
-    if (rc != MC_OK)
+    if (rc != MC_OK && rc != MC_NOT_CONVERGED)
         return rc;
     return res->converged ? MC_OK : MC_NOT_CONVERGED;
 }

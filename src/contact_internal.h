@@ -14,6 +14,7 @@
 
 typedef struct {
     const double *h;   /* h~, m */
+    double hmin, hmax; /* its range (fixed during a solve: the gap scale of the stopping rule) */
     const double *cap; /* per-cell upper bound of q, Pa; NULL = none */
     mc_control control;
     double W;          /* force control: target A*sum(q), N */
@@ -44,6 +45,7 @@ struct mc_contact_solver {
     mc_operator *coarse_op;
     int fx, fy;                    /* coarsening factor per axis (1 or 2) */
     double *coarse_h, *coarse_low, *coarse_p; /* coarse arrays (the fine start goes into z) */
+    double *coarse_cap;                       /* coarse per-cell caps, on first need */
     /* restriction to the contact's box (cg): built on demand, kept for the next solve */
     mc_contact_solver *box;
     mc_operator *box_op;

@@ -92,7 +92,7 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         for (size_t i = 0; i < n; i++)
             if (Ic[i])
                 G += g[i] * g[i];
-        double beta = cg ? G / G_old : 0.0;
+        double beta = cg && G_old > 0 ? G / G_old : 0.0;
         for (size_t i = 0; i < n; i++)
             t[i] = Ic[i] ? g[i] + beta * t[i] : 0.0;
         G_old = G;

@@ -340,18 +340,28 @@ void mc_conv_table_dims(const mc_conv *c, int *tx, int *ty)
 
 size_t mc_conv_spectrum_len(const mc_conv *c) { return c->speclen; }
 
-int mc_conv_kernel(mc_conv *c, const mc_kernel_table *t, double *kspec, mc_error *err)
+/* A table is usable only with the grid and sizes it was built for. */
+static int table_matches(const mc_conv *c, const mc_kernel_table *t, mc_error *err)
 {
     const mc_grid *a = &c->g, *b = &t->grid;
     if (!t->k || t->tx != c->tx || t->ty != c->ty || a->nx != b->nx || a->ny != b->ny ||
         a->dx != b->dx || a->dy != b->dy || a->periodic_x != b->periodic_x ||
         a->periodic_y != b->periodic_y)
         return mc_fail(err, MC_ERR_INPUT,
-                       "kernel table %d x %d (grid %d x %d) does not match the engine's %d x %d "
-                       "(grid %d x %d)",
-                       t->tx, t->ty, b->nx, b->ny, c->tx, c->ty, a->nx, a->ny);
-    c->ops->kernel(c, t->k, kspec);
+                       "kernel table %d x %d (grid %d x %d, dx %g m, dy %g m, periodic %d/%d) does "
+                       "not match the engine's %d x %d (grid %d x %d, dx %g m, dy %g m, periodic "
+                       "%d/%d)",
+                       t->tx, t->ty, b->nx, b->ny, b->dx, b->dy, b->periodic_x, b->periodic_y,
+                       c->tx, c->ty, a->nx, a->ny, a->dx, a->dy, a->periodic_x, a->periodic_y);
     return MC_OK;
+}
+
+int mc_conv_kernel(mc_conv *c, const mc_kernel_table *t, double *kspec, mc_error *err)
+{
+    int rc = table_matches(c, t, err);
+    if (rc == MC_OK)
+        c->ops->kernel(c, t->k, kspec);
+    return rc;
 }
 
 void mc_conv_load(mc_conv *c, const double *field, double *lspec)
@@ -378,8 +388,8 @@ size_t mc_conv_work_len(const mc_conv *c)
 
 int mc_conv_kernel_real(mc_conv *c, const mc_kernel_table *t, double *kre)
 {
-    if (c->ops->id != MC_BACKEND_FFT || t->tx != c->tx || t->ty != c->ty)
-        return 0;
+    if (c->ops->id != MC_BACKEND_FFT || table_matches(c, t, NULL) != MC_OK)
+        return 0; /* mc_conv_kernel then reports the mismatch */
     const size_t nc = half_len(c);
     memcpy(c->rbuf, t->k, (size_t)c->tx * (size_t)c->ty * sizeof *t->k);
     fftw_execute(c->r2c);

@@ -4,6 +4,7 @@
 #include <math.h>
 
 #include "kernel.h"
+#include "operator.h" /* MC_THREADS_MIN_CELLS */
 
 double mc_von_mises(const double s[6])
 {
@@ -145,7 +146,7 @@ int mc_invariants_volume(size_t n, const double *sxx, const double *syy, const d
         if (!in[c])
             return mc_fail(err, MC_ERR_INPUT, "invariants: stress component s%s is NULL", names[c]);
     ptrdiff_t nn = (ptrdiff_t)n;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nn > MC_THREADS_MIN_CELLS)
     for (ptrdiff_t i = 0; i < nn; i++) {
         double t[6];
         t[MC_SXX] = sxx[i];

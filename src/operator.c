@@ -13,16 +13,24 @@ struct mc_operator {
     int real_kernel;
 };
 
-static int n_threads;        /* 0: not set, all cores */
+static int n_threads;        /* 0: not set: the OpenMP default (OMP_NUM_THREADS or all cores) */
+static int omp_default;      /* omp_get_max_threads() before we first changed it */
 static int fftw_threads_on; /* fftw_init_threads has succeeded */
 
 void mc_set_threads(int n)
 {
+    if (!omp_default)
+        omp_default = omp_get_max_threads();
     n_threads = n > 0 ? n : 0;
     omp_set_num_threads(mc_get_threads());
 }
 
-int mc_get_threads(void) { return n_threads > 0 ? n_threads : omp_get_num_procs(); }
+int mc_get_threads(void)
+{
+    if (n_threads > 0)
+        return n_threads;
+    return omp_default ? omp_default : omp_get_max_threads();
+}
 
 int mc_fftw_prepare(mc_error *err)
 {

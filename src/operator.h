@@ -205,7 +205,8 @@ mc_backend mc_operator_backend(const mc_operator *op);
  * made a 141 x 141 capped contact 250 times slower (73 s instead of 0.3 s, measured). */
 #define MC_THREADS_MIN_CELLS (1 << 18)
 
-/* Threads for FFTW and the OpenMP loops (n <= 0: all cores, the default). Call before planning. */
+/* Threads for FFTW and the OpenMP loops (n <= 0: the OpenMP default, i.e. OMP_NUM_THREADS if set,
+ * else all cores). Call before planning. */
 void mc_set_threads(int n);
 int mc_get_threads(void);
 

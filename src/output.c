@@ -491,8 +491,6 @@ static const char *load_name(mc_load_kind k)
     return "unknown";
 }
 
-/* Same names as mc_backend_name (operator.c), kept here so output.c links without operator.c. */
-static const char *backend_name(mc_backend b) { return b == MC_BACKEND_DIRECT ? "direct" : "fft"; }
 
 /* JSON integers are signed 64-bit: a seed beyond INT64_MAX is written as a decimal string. */
 static json_t *jseed(unsigned long long seed)
@@ -610,7 +608,7 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
     jset(b, o, "residual", jnum(cs->residual));
     jset(b, o, "converged", json_boolean(cs->converged));
     jset(b, o, "solver", jstr(cs->solver));
-    jset(b, o, "operator", jstr(backend_name(cs->op)));
+    jset(b, o, "operator", jstr(mc_backend_name(cs->op)));
     jset(b, o, "capped_cells", json_integer(cs->capped_cells));
     jset(b, o, "solved", json_boolean(cs->solved));
     jset(b, o, "tolerance", jnum(s->solver.tolerance));

@@ -21,7 +21,8 @@ int mc_precond_create(const mc_grid *g, mc_precond **out, mc_error *err);
 void mc_precond_destroy(mc_precond **pc);
 
 /* Fit the box to the cells with mask[i] != 0 (plans a new size if needed; MC_ERR_NOMEM if FFTW
- * cannot plan). Call when the set changes; cheap when the box size did not change. */
+ * cannot plan, MC_ERR_INTERNAL if its threads cannot start). Call when the set changes; cheap
+ * when the box size did not change. */
 int mc_precond_set_mask(mc_precond *pc, const unsigned char *mask, mc_error *err);
 
 /* z = R_S M R_S^T r on the mask of the last set_mask call; z = 0 outside the mask.

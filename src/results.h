@@ -52,7 +52,9 @@ typedef struct {
 } mc_stress_layout;
 
 typedef struct {
-    double total_s, setup_s, contact_s, stress_s, output_s;
+    /* seconds: the whole run; kernel tables, spectra and plans of the operator; the contact solve
+     * (with its coarse-grid start and the plans it makes for the contact's box); the stress stage */
+    double total_s, setup_s, contact_s, stress_s;
 } mc_timing;
 
 typedef struct {

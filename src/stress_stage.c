@@ -251,12 +251,18 @@ static void stage_work_free(stage_work *w)
         mc_free(w->layer[c]);
 }
 
-/* The first index in volume order whose value is within MC_STRESS_TIE of the largest. */
-static size_t argmax(const double *v, size_t n)
+/* The first index in volume order whose value is within MC_STRESS_TIE of the largest, and the
+ * largest itself; *finite = 0 if any value is NaN or infinite. */
+static size_t argmax(const double *v, size_t n, double *max, int *finite)
 {
     double m = v[0];
-    for (size_t i = 1; i < n; i++)
+    int ok = 1;
+    for (size_t i = 0; i < n; i++) {
+        ok &= isfinite(v[i]);
         m = v[i] > m ? v[i] : m;
+    }
+    *max = m;
+    *finite &= ok;
     const double floor = m - MC_STRESS_TIE * fabs(m);
     for (size_t i = 0; i < n; i++)
         if (v[i] >= floor)
@@ -275,20 +281,24 @@ static void volume_point(const mc_grid *g, const double *depths, size_t idx, dou
     at[2] = depths[k];
 }
 
-static void stage_summary(const mc_scene *sc, const mc_grid *g, const stage_arrays *a, int nd,
-                          mc_stress_summary *ss)
+/* The summary; MC_ERR_NUMERIC if a stress is not finite (von Mises and Tresca involve every
+ * component, the hydrostatic stress the normal ones), so no NaN reaches the outputs. */
+static int stage_summary(const mc_scene *sc, const mc_grid *g, const stage_arrays *a, int nd,
+                         mc_stress_summary *ss, mc_error *err)
 {
     const size_t nv = mc_grid_cells(g) * (size_t)nd;
-    const size_t iv = argmax(a->vm, nv), it = argmax(a->tresca, nv);
+    int finite = 1;
+    double hmax;
     memset(ss, 0, sizeof *ss);
-    ss->vm_max = a->vm[iv];
-    for (size_t i = 0; i < nv; i++)
-        ss->vm_max = fmax(ss->vm_max, a->vm[i]);
+    const size_t iv = argmax(a->vm, nv, &ss->vm_max, &finite);
+    const size_t it = argmax(a->tresca, nv, &ss->tresca_max, &finite);
+    argmax(a->hydro, nv, &hmax, &finite);
+    if (!finite)
+        return mc_fail(err, MC_ERR_NUMERIC,
+                       "stress: non-finite stresses (the pressure or the tractions are not finite "
+                       "or out of range)");
     volume_point(g, a->depths, iv, ss->vm_max_at);
     ss->hydro_at_vm_max = a->hydro[iv];
-    ss->tresca_max = a->tresca[it];
-    for (size_t i = 0; i < nv; i++)
-        ss->tresca_max = fmax(ss->tresca_max, a->tresca[i]);
     volume_point(g, a->depths, it, ss->tresca_max_at);
     ss->layers = nd;
     ss->depth_min = ss->depth_max = a->depths[0];
@@ -298,6 +308,7 @@ static void stage_summary(const mc_scene *sc, const mc_grid *g, const stage_arra
     }
     ss->kernel = sc->stress.kernel == MC_STRESS_POINT ? "point" : "patch";
     ss->friction = sc->stress.friction;
+    return MC_OK;
 }
 
 /* One group of layers on its window w: the loads cropped to it, an operator for its sub-grid,
@@ -373,7 +384,8 @@ static int group_invariants(const mc_grid *g, const mc_stress_window *w, stage_a
     memset(a->hydro + at, 0, sizeof(double) * nl * n);
     memset(a->tresca + at, 0, sizeof(double) * nl * n);
     const int rows = (int)nl * (w->j1 - w->j0 + 1), wy = w->j1 - w->j0 + 1;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) \
+    if ((size_t)rows * (size_t)(w->i1 - w->i0 + 1) > MC_THREADS_MIN_CELLS)
     for (int r = 0; r < rows; r++) {
         const size_t row = at + (size_t)(r / wy) * n + (size_t)(w->j0 + r % wy) * g->nx;
         for (int i = w->i0; i <= w->i1; i++) {
@@ -462,7 +474,12 @@ int mc_stress_stage_tuned(const mc_scene *sc, mc_results *res, const mc_stress_t
         stage_arrays_free(&a);
         return rc;
     }
-    stage_summary(sc, &res->grid, &a, nd, &res->stress_summary);
+    mc_stress_summary summary;
+    if ((rc = stage_summary(sc, &res->grid, &a, nd, &summary, err))) {
+        stage_arrays_free(&a);
+        return rc;
+    }
+    res->stress_summary = summary;
     res->stress_layout = lay;
     /* replace what an earlier run left */
     stage_arrays old = {res->depths, {0}, res->von_mises, res->hydrostatic, res->tresca};

@@ -15,9 +15,8 @@
 #include "operator.h"
 #include "stress_internal.h"
 
-/* Below this many values a loop or transform runs on one thread (as conv.c: waking the team costs
- * more than it saves). */
-#define PAR_MIN 16384
+/* Below this many values a loop or transform runs on one thread (operator.h). */
+#define PAR_MIN MC_THREADS_MIN_CELLS
 
 struct mc_stress_sym {
     mc_grid g;
@@ -237,7 +236,7 @@ void mc_stress_sparse_sum(const mc_grid *g, int ncells, const int *cells, int nt
                           const mc_stress_term *terms, double *out)
 {
     const int nx = g->nx, ny = g->ny;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if ((size_t)nx * ny * (size_t)ncells > PAR_MIN)
     for (int j = 0; j < ny; j++) {
         double *o = out + (size_t)j * nx;
         memset(o, 0, (size_t)nx * sizeof *o);

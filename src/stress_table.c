@@ -29,6 +29,11 @@
  * changes the strips by O((d/H)^2) of their small contribution).
  */
 #include <math.h>
+
+/* Table entries below which a layer's table is built on one thread: the corner functions cost
+ * ~30 ns each, so a few thousand entries do not pay for waking the thread team (the memory-bound
+ * loops elsewhere use the larger MC_THREADS_MIN_CELLS). */
+#define TABLE_PAR_MIN 16384
 #include <omp.h>
 #include <string.h>
 
@@ -304,7 +309,8 @@ static void add_point_images(const mc_stress_tables *tb, int li, double z, const
     const double A = ax->d * ay->d, nu = tb->nu;
     const stress_fn fn = point_fns[li];
     const int tx = tb->tx;
-#pragma omp parallel for schedule(dynamic) num_threads(tb->nthreads)
+    const size_t work = (size_t)(ay->ohi - ay->olo + 1) * (size_t)(ax->ohi - ax->olo + 1);
+#pragma omp parallel for schedule(dynamic) num_threads(tb->nthreads) if (work > TABLE_PAR_MIN)
     for (int oy = ay->olo; oy <= ay->ohi; oy++) {
         const size_t ty_i = (size_t)ay->index[oy - ay->olo];
         for (int ox = ax->olo; ox <= ax->ohi; ox++) {
@@ -379,7 +385,8 @@ int mc_stress_tables_build(mc_stress_tables *tb, int load, double z, double *con
     if (stream) {
         const int nO = ay->ohi - ay->olo + 1;
         const int nb = nO < tb->nthreads ? nO : tb->nthreads;
-#pragma omp parallel for schedule(static) num_threads(tb->nthreads)
+        const size_t work = (size_t)nO * (size_t)(tb->ax[0].ohi - tb->ax[0].olo + 1);
+#pragma omp parallel for schedule(static) num_threads(tb->nthreads) if (work > TABLE_PAR_MIN)
         for (int b = 0; b < nb; b++) {
             const int oa = ay->olo + (int)((long)nO * b / nb);
             const int ob = ay->olo + (int)((long)nO * (b + 1) / nb) - 1;
@@ -470,7 +477,8 @@ int mc_stress_tables_quadrant(mc_stress_tables *tb, int load, double z, int qx, 
         }
     if (tb->kernel == MC_STRESS_POINT) {
         const double A = tb->ax[0].d * tb->ax[1].d, nu = tb->nu;
-#pragma omp parallel for schedule(static) num_threads(tb->nthreads)
+#pragma omp parallel for schedule(static) num_threads(tb->nthreads) \
+    if ((size_t)nyq * (size_t)nxq > TABLE_PAR_MIN)
         for (int j = 0; j < nyq; j++)
             for (int i = 0; i < nxq; i++) {
                 double s[MC_NSTRESS];
@@ -480,7 +488,8 @@ int mc_stress_tables_quadrant(mc_stress_tables *tb, int load, double z, int qx, 
             }
     } else {
         const int nb = nyq < tb->nthreads ? nyq : tb->nthreads;
-#pragma omp parallel for schedule(static) num_threads(tb->nthreads)
+#pragma omp parallel for schedule(static) num_threads(tb->nthreads) \
+    if ((size_t)nyq * (size_t)nxq > TABLE_PAR_MIN)
         for (int b = 0; b < nb; b++) {
             const int ja = (int)((long)nyq * b / nb), jb = (int)((long)nyq * (b + 1) / nb) - 1;
             quadrant_block(tb, corner_fns[li], z, nxq, ja, jb, qx, &tb->ws[omp_get_thread_num()],

@@ -408,6 +408,73 @@ START_TEST(large_datum)
 }
 END_TEST
 
+/* Review findings: a nested capped solve that stops short reports the state it stopped in (its
+ * approach and a non-zero residual), and a per-cell cap reaches the coarse-grid start as a
+ * coarse array (not the fine one read at coarse indices). */
+START_TEST(capped_stops_short_honestly)
+{
+    const int N = 64;
+    mc_grid g = {N, N, 2e-6, 2e-6, 0, 0};
+    size_t n = mc_grid_cells(&g);
+    double *h = mc_zeros(n), *p = mc_zeros(n), *gap = mc_zeros(n), *u = mc_zeros(n);
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++) {
+            double x = mc_grid_x(&g, i), y = mc_grid_y(&g, j);
+            h[(size_t)j * N + i] = (x * x + y * y) / (2 * R);
+        }
+    mc_operator *K = NULL;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
+    mc_contact_options opt = {MC_METHOD_CG, 1e-10, 3, 0, 0};
+    mc_contact_solver *s = NULL;
+    ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
+    mc_contact_problem prob = {.h = h, .p_cap = 1.0e9, .control = MC_CONTROL_FORCE, .load = 0.05};
+    mc_contact_summary sum;
+    ck_assert_int_eq(mc_contact_solve(s, &prob, p, u, gap, &sum, &err), MC_NOT_CONVERGED);
+    ck_assert(!sum.converged && sum.residual > opt.tolerance);
+    ck_assert(sum.approach > 0);
+    for (size_t i = 0; i < n; i++)
+        ck_assert(fabs(gap[i] - (h[i] + u[i] - sum.approach)) <= 1e-12 * sum.approach);
+    mc_contact_destroy(&s);
+    mc_operator_destroy(&K);
+    mc_free(h);
+    mc_free(p);
+    mc_free(gap);
+    mc_free(u);
+}
+END_TEST
+
+START_TEST(per_cell_cap_on_coarse_start)
+{
+    const int N = 128;
+    mc_grid g = {N, N, 1e-6, 1e-6, 0, 0};
+    size_t n = mc_grid_cells(&g);
+    double *h = mc_zeros(n), *p = mc_zeros(n), *cap = mc_zeros(n);
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++) {
+            double x = mc_grid_x(&g, i), y = mc_grid_y(&g, j);
+            h[(size_t)j * N + i] = (x * x + y * y) / (2 * R);
+            cap[(size_t)j * N + i] = j < N / 4 ? 1.0 : INFINITY; /* far from the contact */
+        }
+    mc_operator *K = NULL;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &K, &err), MC_OK);
+    mc_contact_options opt = {MC_METHOD_CG, 1e-8, 2000, E_STAR, 0};
+    mc_contact_solver *s = NULL;
+    ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
+    mc_contact_problem prob = {.h = h, .p_cap = INFINITY, .p_upper = cap,
+                               .control = MC_CONTROL_FORCE, .load = 0.05};
+    mc_contact_summary sum;
+    ck_assert_msg(mc_contact_solve(s, &prob, p, NULL, NULL, &sum, &err) == MC_OK, "%s", err.msg);
+    ck_assert(mc_contact_last_coarse_applies(s) > 0);
+    mc_contact_destroy(&s);
+    mc_operator_destroy(&K);
+    mc_free(h);
+    mc_free(p);
+    mc_free(cap);
+}
+END_TEST
+
 Suite *suite_contact(void);
 Suite *suite_contact(void)
 {
@@ -426,6 +493,8 @@ Suite *suite_contact(void)
     tcase_add_test(e, nested_start_same_answer);
     tcase_add_test(e, box_restriction_same_answer);
     tcase_add_test(e, large_datum);
+    tcase_add_test(e, capped_stops_short_honestly);
+    tcase_add_test(e, per_cell_cap_on_coarse_start);
     suite_add_tcase(s, e);
     return s;
 }

@@ -521,6 +521,21 @@ START_TEST(test_bad_input)
     mc_kernel_fn fn = {skew_value, NULL, &ctx};
     ck_assert_int_eq(mc_kernel_table_build(&g, 11, 5, &fn, -1, &t, &err), MC_ERR_INPUT);
 
+    /* a table for another free grid with the same table sizes (an even kernel: the fft
+     * planner's real-spectrum path must check the grid too) */
+    {
+        const mc_grid fa = {8, 8, 1e-6, 1e-6, 0, 0}, fb = {8, 8, 5e-6, 1e-6, 0, 0};
+        mc_kernel_table tf;
+        ck_assert_int_eq(mc_kernel_table_love(&fb, 15, 15, ESTAR, &tf, &err), MC_OK);
+        for (int bk = 0; bk < 2; bk++) {
+            mc_operator *o = NULL;
+            ck_assert_int_eq(mc_operator_plan(&fa, &tf, bk ? MC_BACKEND_DIRECT : MC_BACKEND_FFT,
+                                              &o, &err),
+                             MC_ERR_INPUT);
+            ck_assert_ptr_null(o);
+        }
+        mc_kernel_table_free(&tf);
+    }
     /* a table for another grid is refused by the engine and the planner */
     const mc_grid other = {6, 5, 2e-6, 1e-6, 0, 1};
     ck_assert_int_eq(mc_kernel_table_love(&other, 11, 5, ESTAR, &t, &err), MC_OK);

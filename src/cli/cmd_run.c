@@ -1,5 +1,4 @@
 /* cmd_run.c - `microcontact run CASE.ini [--out DIR] [--set section.key=value]...` */
-#include <libgen.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,18 +15,6 @@ static int fail(const mc_error *err)
 {
     fprintf(stderr, "microcontact: error: %s\n", err->msg);
     return mc_status_exit_code(err->code);
-}
-
-/* out/<case file name without extension> */
-static void default_dir(const char *case_path, char *dir, size_t len)
-{
-    char tmp[MC_PATH_MAX];
-    snprintf(tmp, sizeof tmp, "%s", case_path);
-    char *base = basename(tmp);
-    char *dot = strrchr(base, '.');
-    if (dot && dot != base)
-        *dot = '\0';
-    snprintf(dir, len, "out/%s", base);
 }
 
 /* Peak resident memory of this process (VmHWM), MiB; NAN where /proc is not there. */
@@ -117,12 +104,16 @@ int mc_cli_run(int argc, char **argv)
     if (mc_case_load(case_path, nsets, sets, &scene, &err) != MC_OK)
         return fail(&err);
     char dir[MC_PATH_MAX];
-    if (out)
-        snprintf(dir, sizeof dir, "%s", out);
-    else if (scene.output.dir[0])
-        snprintf(dir, sizeof dir, "%s", scene.output.dir);
-    else
-        default_dir(case_path, dir, sizeof dir);
+    if (out) {
+        if (snprintf(dir, sizeof dir, "%s", out) >= (int)sizeof dir) {
+            fprintf(stderr, "microcontact: error: --out: the directory name is longer than %d "
+                            "bytes\n",
+                    (int)sizeof dir - 1);
+            return 2;
+        }
+    } else if (mc_scene_output_dir(&scene, dir, sizeof dir, &err) != MC_OK) {
+        return fail(&err);
+    }
     if (mc_output_prepare(dir, &err) != MC_OK)
         return fail(&err);
 
