@@ -111,64 +111,79 @@ static double stage_time(const mc_scene *sc, mc_results *res, const mc_stress_tu
     return best;
 }
 
-/* The stress skips on a small Hertz contact (radius a = N/32 cells) on a large grid, friction 0.3,
- * 32 layers: window, symmetric transforms, depth from the contact; and the direct sum over the
- * loaded cells on a contact of a few cells. */
+/* Solve a Hertz contact of radius a_cells on an N x N grid (dx = 1 um) with a [stress] section of
+ * 32 layers to the automatic depth and friction 0.3 (W scales the Hertz load). */
+static int small_contact(int N, double a_cells, double W_scale, mc_scene *sc, mc_results *res)
+{
+    const double R = 10e-3, estar = 210e9 / (2 * (1 - 0.09)), dx = 1e-6, a = a_cells * dx;
+    vu_scene(sc, N, N, dx, dx);
+    sc->geometry.shape = MC_SHAPE_SPHERE;
+    sc->geometry.radius = R;
+    sc->load.kind = MC_LOAD_FORCE;
+    sc->load.value = W_scale * 4 * estar * a * a * a / (3 * R);
+    sc->stress.enabled = 1;
+    sc->stress.layers = 32;
+    sc->stress.depth_max = MC_STRESS_DEPTH_AUTO;
+    sc->stress.friction = 0.3;
+    mc_error err = {0};
+    int rc = mc_pipeline_run(sc, res, &err);
+    if (rc != MC_OK)
+        mc_results_free(res);
+    return rc;
+}
+
+/* The stress skips, each on a scene where it applies: the symmetric quadrant transforms on a
+ * small Hertz contact (radius N/32 cells); the window on a smaller one (N/64: the window pays
+ * when the contact is small against the grid, its margin being 7 R + 2.5 z); the automatic depth
+ * against covering 10 a at the same layer spacing; the direct sum on a contact of a few cells. */
 static void stress_skips(vf_ctx *ctx, int quick)
 {
     const int N = quick ? 256 : 512;
     mc_scene sc;
-    const double a_cells = N / 32.0, R = 10e-3, estar = 210e9 / (2 * (1 - 0.09));
-    double dx = 1e-6, a = a_cells * dx, W = 4 * estar * a * a * a / (3 * R);
-    vu_scene(&sc, N, N, dx, dx);
-    sc.geometry.shape = MC_SHAPE_SPHERE;
-    sc.geometry.radius = R;
-    sc.load.kind = MC_LOAD_FORCE;
-    sc.load.value = W;
-    sc.stress.enabled = 1;
-    sc.stress.layers = 32;
-    sc.stress.depth_max = MC_STRESS_DEPTH_AUTO;
-    sc.stress.friction = 0.3;
     mc_results res;
-    mc_error err = {0};
-    if (mc_pipeline_run(&sc, &res, &err) != MC_OK) {
-        vf_fail(ctx, "stress_skips", "%s", err.msg);
-        mc_results_free(&res);
-        return;
-    }
     mc_stress_tuning on = {MC_STRESS_AUTO, MC_STRESS_AUTO, MC_STRESS_AUTO};
-    mc_stress_tuning no_window = on, no_sym = on, none = {MC_STRESS_OFF, MC_STRESS_OFF, MC_STRESS_OFF};
+    mc_stress_tuning no_window = on, no_sym = on, no_sparse = on;
+    mc_stress_tuning none = {MC_STRESS_OFF, MC_STRESS_OFF, MC_STRESS_OFF};
     no_window.window = MC_STRESS_OFF;
     no_sym.symmetric = MC_STRESS_OFF;
-    double t_on = stage_time(&sc, &res, &on), t_nw = stage_time(&sc, &res, &no_window);
-    double t_ns = stage_time(&sc, &res, &no_sym), t_none = stage_time(&sc, &res, &none);
-    mc_scene deep = sc;
-    deep.stress.depth_max = 10 * a;
-    double t_deep = stage_time(&deep, &res, &on);
-    vf_text(ctx, "| stress only over the loaded region (window) | Hertz a = %.0f cells on %d², "
-                 "friction 0.3, 32 layers | %.3f | %.3f | %.0f %% |\n",
-            a_cells, N, t_on, t_nw, 100 * (1 - t_on / t_nw));
-    vf_text(ctx, "| kernel spectra by symmetric r2r transforms of one quadrant | same | %.3f | "
-                 "%.3f | %.0f %% |\n",
-            t_on, t_ns, 100 * (1 - t_on / t_ns));
-    vf_text(ctx, "| only to the depth that matters (depth_max = auto: 3 patch radii) | same, against "
-                 "depth_max = 10a | %.3f | %.3f | %.0f %% |\n",
-            t_on, t_deep, 100 * (1 - t_on / t_deep));
-    vf_text(ctx, "| all stress skips together | same | %.3f | %.3f | %.0f %% |\n", t_on, t_none,
-            100 * (1 - t_on / t_none));
-    mc_results_free(&res);
-    /* a contact of a few cells: the direct sum over the loaded cells */
-    sc.load.value = W * 1e-4;
-    if (mc_pipeline_run(&sc, &res, &err) == MC_OK) {
-        mc_stress_tuning no_sparse = on;
-        no_sparse.sparse = MC_STRESS_OFF;
+    no_sparse.sparse = MC_STRESS_OFF;
+    if (small_contact(N, N / 32.0, 1.0, &sc, &res) == MC_OK) {
+        double t_on = stage_time(&sc, &res, &on), t_ns = stage_time(&sc, &res, &no_sym);
+        double t_none = stage_time(&sc, &res, &none);
+        /* the same layer spacing down to 10 a instead of the automatic 3 patch radii */
+        mc_scene deep = sc;
+        double a = N / 32.0 * 1e-6, auto_depth = res.stress_summary.depth_max;
+        deep.stress.depth_max = 10 * a;
+        deep.stress.layers = (int)ceil(31 * 10 * a / auto_depth) + 1;
+        if (deep.stress.layers > MC_MAX_DEPTHS)
+            deep.stress.layers = MC_MAX_DEPTHS;
+        double t_deep = stage_time(&deep, &res, &on);
+        vf_text(ctx, "| stress kernel spectra by symmetric r2r transforms of one quadrant | Hertz a = "
+                     "%d cells on %d², friction 0.3, 32 layers | %.3f | %.3f | %.0f %% |\n",
+                N / 32, N, t_on, t_ns, 100 * (1 - t_on / t_ns));
+        vf_text(ctx, "| stresses only to the depth that matters (depth_max = auto: %.1f a) | same, "
+                     "against down to 10 a at the same spacing (%d layers) | %.3f | %.3f | %.0f %% "
+                     "|\n",
+                auto_depth / a, deep.stress.layers, t_on, t_deep, 100 * (1 - t_on / t_deep));
+        vf_text(ctx, "| all stress skips together | Hertz a = %d cells on %d² | %.3f | %.3f | %.0f "
+                     "%% |\n",
+                N / 32, N, t_on, t_none, 100 * (1 - t_on / t_none));
+        mc_results_free(&res);
+    }
+    if (small_contact(N, N / 64.0, 1.0, &sc, &res) == MC_OK) {
+        double t_on = stage_time(&sc, &res, &on), t_nw = stage_time(&sc, &res, &no_window);
+        vf_text(ctx, "| stresses only over the loaded region plus a margin (window) | Hertz a = %d "
+                     "cells on %d², friction 0.3, 32 layers | %.3f | %.3f | %.0f %% |\n",
+                N / 64, N, t_on, t_nw, 100 * (1 - t_on / t_nw));
+        mc_results_free(&res);
+    }
+    if (small_contact(N, N / 32.0, 1e-4, &sc, &res) == MC_OK) {
         double t_sp = stage_time(&sc, &res, &on), t_nsp = stage_time(&sc, &res, &no_sparse);
         vf_text(ctx, "| direct sum over the loaded cells (cost model) | a %ld-cell contact on %d², "
                      "32 layers | %.3f | %.3f | %.0f %% |\n",
-                (long)(res.contact.area / (dx * dx) + 0.5), N, t_sp, t_nsp,
-                100 * (1 - t_sp / t_nsp));
+                (long)(res.contact.area / 1e-12 + 0.5), N, t_sp, t_nsp, 100 * (1 - t_sp / t_nsp));
+        mc_results_free(&res);
     }
-    mc_results_free(&res);
 }
 
 int mc_bench_skips(vf_ctx *ctx, int quick)
