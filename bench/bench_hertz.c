@@ -21,6 +21,7 @@
 #define VM_DEPTH_A 0.48086
 
 typedef struct {
+    const char *id; /* CSV key (no commas: gnuplot splits on them) */
     const char *label;
     mc_contact_method method;
     mc_backend op;
@@ -85,10 +86,10 @@ int mc_bench_hertz(vf_ctx *ctx, int quick)
     const int *Ns = quick ? small : full;
     int nN = quick ? 3 : 5;
     static const config_t configs[] = {
-        {"cg (preconditioned), fft", MC_METHOD_CG, MC_BACKEND_FFT, 1 << 20},
-        {"pk (plain Polonsky-Keer), fft", MC_METHOD_PK, MC_BACKEND_FFT, 1 << 20},
-        {"cg, direct", MC_METHOD_CG, MC_BACKEND_DIRECT, 64},
-        {"pk, direct", MC_METHOD_PK, MC_BACKEND_DIRECT, 64},
+        {"cg_fft", "cg (preconditioned), fft", MC_METHOD_CG, MC_BACKEND_FFT, 1 << 20},
+        {"pk_fft", "pk (plain Polonsky-Keer), fft", MC_METHOD_PK, MC_BACKEND_FFT, 1 << 20},
+        {"cg_direct", "cg, direct", MC_METHOD_CG, MC_BACKEND_DIRECT, 64},
+        {"pk_direct", "pk, direct", MC_METHOD_PK, MC_BACKEND_DIRECT, 64},
     };
     FILE *f = vf_open(ctx, "hertz.csv");
     if (!f)
@@ -115,8 +116,8 @@ int mc_bench_hertz(vf_ctx *ctx, int quick)
                 vf_fail(ctx, "hertz_run", "%s at N = %d failed", configs[c].label, Ns[k]);
                 continue;
             }
-            fprintf(f, "\"%s\",%d,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4e,%.4e,%.4e,%.4e\n",
-                    configs[c].label, r.N, r.iterations, r.converged, r.total, r.contact, r.setup,
+            fprintf(f, "%s,%d,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4e,%.4e,%.4e,%.4e\n",
+                    configs[c].id, r.N, r.iterations, r.converged, r.total, r.contact, r.setup,
                     r.stress, r.err_p, r.err_a, r.err_d, r.err_vm);
             vf_text(ctx, "| %s | %d² | %d%s | %.3f | %.3f | %.3f | %.1e | %.1e | %.1e | %.1e |\n",
                     configs[c].label, r.N, r.iterations, r.converged ? "" : " (not converged)",
@@ -147,20 +148,20 @@ int mc_bench_hertz(vf_ctx *ctx, int quick)
             "Hertz point contact: error of p_max against whole run time, per solver and backend",
             "set datafile separator ','\nset logscale xy\nset key top right\n"
             "set xlabel 'run time (s)'\nset ylabel 'relative error of p_{max}'\nset grid\n"
-            "plot 'hertz.csv' using (strcol(1) eq 'cg (preconditioned), fft' ? $5 : 1/0):9 "
+            "plot 'hertz.csv' using (strcol(1) eq 'cg_fft' ? $5 : 1/0):9 "
             "with linespoints pt 7 title 'cg, fft', "
-            "'' using (strcol(1) eq 'pk (plain Polonsky-Keer), fft' ? $5 : 1/0):9 "
+            "'' using (strcol(1) eq 'pk_fft' ? $5 : 1/0):9 "
             "with linespoints pt 5 title 'pk, fft', "
-            "'' using (strcol(1) eq 'cg, direct' ? $5 : 1/0):9 with points pt 9 ps 1.5 "
+            "'' using (strcol(1) eq 'cg_direct' ? $5 : 1/0):9 with points pt 9 ps 1.5 "
             "title 'cg, direct', "
-            "'' using (strcol(1) eq 'pk, direct' ? $5 : 1/0):9 with points pt 11 ps 1.5 "
+            "'' using (strcol(1) eq 'pk_direct' ? $5 : 1/0):9 with points pt 11 ps 1.5 "
             "title 'pk, direct'");
     vf_plot(ctx, "hertz_iterations.png", "Iterations against grid size: plain PK and cg",
             "set datafile separator ','\nset logscale x 2\nset key top left\n"
             "set xlabel 'N (N x N grid)'\nset ylabel 'iterations'\nset grid\n"
-            "plot 'hertz.csv' using (strcol(1) eq 'cg (preconditioned), fft' ? $2 : 1/0):3 "
+            "plot 'hertz.csv' using (strcol(1) eq 'cg_fft' ? $2 : 1/0):3 "
             "with linespoints pt 7 title 'cg (preconditioned, nested start)', "
-            "'' using (strcol(1) eq 'pk (plain Polonsky-Keer), fft' ? $2 : 1/0):3 "
+            "'' using (strcol(1) eq 'pk_fft' ? $2 : 1/0):3 "
             "with linespoints pt 5 title 'pk'");
     return 0;
 }

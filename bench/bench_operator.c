@@ -132,6 +132,7 @@ int mc_bench_operator(vf_ctx *ctx, int quick)
     int nm = quick ? 512 : 1024, tm = 2 * nm;
     double plan_m = NAN, t_est = fftw_pair_time(tm, tm, 7);
     double t_meas = fftw_pair_time_flags(tm, tm, 7, FFTW_MEASURE, &plan_m);
+    fftw_forget_wisdom(); /* else later ESTIMATE plans of that size would reuse what MEASURE found */
     vf_text(ctx, "\nPlans are made with FFTW_ESTIMATE: the same plan (and the same round-off) on "
                  "every run, as the regression gate needs. Its cost, measured at %d x %d: the "
                  "pair takes %.2f ms with ESTIMATE and %.2f ms with FFTW_MEASURE (%.0f %% %s), "

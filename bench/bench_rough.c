@@ -49,9 +49,9 @@ int mc_bench_rough(vf_ctx *ctx, int quick)
 {
     static const rough_t full[] = {{"periodic self-affine", 512, 1},
                                    {"periodic self-affine", 1024, 1},
-                                   {"rough sphere (gaussian, free)", 512, 0}},
+                                   {"rough sphere (gaussian; free)", 512, 0}},
                          small[] = {{"periodic self-affine", 256, 1},
-                                    {"rough sphere (gaussian, free)", 256, 0}};
+                                    {"rough sphere (gaussian; free)", 256, 0}};
     const rough_t *cases = quick ? small : full;
     int ncases = quick ? 2 : 3;
     static const mc_contact_method methods[] = {MC_METHOD_CG, MC_METHOD_PK};
