@@ -15,7 +15,7 @@ SAN      ?= 0
 FUZZ_SECONDS ?= 30
 
 DEB_PACKAGES = pkg-config libfftw3-dev libgsl-dev libinih-dev libjansson-dev check libsubunit-dev \
-               gnuplot-nox clang libclang-rt-14-dev
+               gnuplot-nox clang libclang-rt-14-dev libzip-dev libxml2-dev nettle-dev
 
 OPT      ?= -O2
 CFLAGS_BASE = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $(OPT) -g -fopenmp \
@@ -32,7 +32,7 @@ CFLAGS  ?=
 ALL_CFLAGS = $(CFLAGS_BASE) $(CFLAGS)
 LDFLAGS += -fopenmp $(LDFLAGS_SAN)
 
-LIB_SRC   = $(wildcard src/*.c)
+LIB_SRC   = $(filter-out src/cli/%,$(wildcard src/*/*.c))
 CLI_SRC   = $(wildcard src/cli/*.c) $(wildcard verify/*.c) $(wildcard bench/*.c)
 TEST_SRC  = $(wildcard tests/*.c)
 
@@ -130,12 +130,12 @@ check-sanitize: deps
 # contract (log build/fuzz/fuzz_<x>.log, crashing input build/fuzz/crashes/). UBSan aborts
 # (-fno-sanitize-recover) so that undefined behaviour counts as a crash.
 FUZZ_TARGETS = $(patsubst tests/fuzz/%.c,build/fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))
-FUZZ_LIB_SRC = src/error.c src/alloc.c src/units.c src/case.c src/scene.c src/kernel.c src/grid.c \
-               src/npy.c src/heightmap.c
+FUZZ_LIB_SRC = src/core/error.c src/core/alloc.c src/case/units.c src/case/case.c src/case/scene.c \
+               src/kernels/kernel.c src/core/grid.c src/io/npy.c src/io/heightmap.c
 FUZZ_CFLAGS  = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -g -O1 -Isrc \
                -Wall -Wextra -Werror -Wno-unknown-pragmas \
                -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
-build/fuzz/%: tests/fuzz/%.c tests/fuzz/fuzz_common.h $(FUZZ_LIB_SRC) $(wildcard src/*.h)
+build/fuzz/%: tests/fuzz/%.c tests/fuzz/fuzz_common.h $(FUZZ_LIB_SRC) $(wildcard src/*/*.h)
 	@mkdir -p $(dir $@)
 	clang $(FUZZ_CFLAGS) $< $(FUZZ_LIB_SRC) -o $@ -linih -lgsl -lgslcblas -lm
 

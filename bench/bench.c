@@ -3,8 +3,8 @@
 
 #include <stdlib.h>
 
-#include "operator.h"
-#include "pipeline.h"
+#include "operator/operator.h"
+#include "pipeline/pipeline.h"
 
 static int cmp_double(const void *a, const void *b)
 {

@@ -7,9 +7,9 @@
 #include <string.h>
 
 #include "bench.h"
-#include "contact.h"
-#include "hertz.h"
-#include "pipeline.h"
+#include "contact/contact.h"
+#include "reference/hertz.h"
+#include "pipeline/pipeline.h"
 #include "vutil.h"
 
 #define R_SPHERE 10e-3

@@ -5,10 +5,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "alloc.h"
+#include "core/alloc.h"
 #include "bench.h"
-#include "operator.h"
-#include "pipeline.h"
+#include "operator/operator.h"
+#include "pipeline/pipeline.h"
 
 typedef struct {
     mc_operator *op;

@@ -5,7 +5,7 @@
 #include <stdio.h>
 
 #include "bench.h"
-#include "pipeline.h"
+#include "pipeline/pipeline.h"
 #include "vutil.h"
 
 #define E_STEEL 210e9

@@ -4,14 +4,14 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "alloc.h"
-#include "contact.h"
-#include "surface.h"
+#include "core/alloc.h"
+#include "contact/contact.h"
+#include "surface/surface.h"
 #include "bench.h"
-#include "hertz.h"
-#include "operator.h"
-#include "pipeline.h"
-#include "stress.h"
+#include "reference/hertz.h"
+#include "operator/operator.h"
+#include "pipeline/pipeline.h"
+#include "stress/stress.h"
 #include "vutil.h"
 
 static void hertz_scene(mc_scene *sc, int N)

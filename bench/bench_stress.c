@@ -5,11 +5,11 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "alloc.h"
+#include "core/alloc.h"
 #include "bench.h"
-#include "operator.h"
-#include "pipeline.h"
-#include "stress.h"
+#include "operator/operator.h"
+#include "pipeline/pipeline.h"
+#include "stress/stress.h"
 
 #define LAYERS 4
 

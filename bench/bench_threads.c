@@ -4,8 +4,8 @@
 #include <stdio.h>
 
 #include "bench.h"
-#include "operator.h"
-#include "pipeline.h"
+#include "operator/operator.h"
+#include "pipeline/pipeline.h"
 #include "vutil.h"
 
 static double hertz_time(int N, int threads, int stress)

@@ -7,9 +7,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "alloc.h"
-#include "case.h"
-#include "scene.h"
+#include "core/alloc.h"
+#include "case/case.h"
+#include "case/scene.h"
 #include "test_util.h"
 
 #define NAME "cases/t.ini"

@@ -4,8 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "alloc.h"
-#include "contact.h"
+#include "core/alloc.h"
+#include "contact/contact.h"
 #include "test_util.h"
 
 /* Solver tier: a solve stopped at residual 1e-13 (gap scale) reproduces the exact LCP solution to

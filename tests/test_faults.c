@@ -20,13 +20,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "alloc.h"
-#include "case.h"
-#include "contact.h"
-#include "npy.h"
-#include "operator.h"
-#include "output.h"
-#include "pipeline.h"
+#include "core/alloc.h"
+#include "case/case.h"
+#include "contact/contact.h"
+#include "io/npy.h"
+#include "operator/operator.h"
+#include "pipeline/output.h"
+#include "pipeline/pipeline.h"
 #include "test_util.h"
 
 /* A loop that tries every allocation must end; runs of these small scenes allocate a few

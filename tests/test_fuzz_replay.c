@@ -15,12 +15,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "alloc.h"
-#include "case.h"
-#include "heightmap.h"
-#include "npy.h"
+#include "core/alloc.h"
+#include "case/case.h"
+#include "io/heightmap.h"
+#include "io/npy.h"
 #include "test_util.h"
-#include "units.h"
+#include "case/units.h"
 
 #define LLVMFuzzerTestOneInput fuzz_case_one
 #include "fuzz/fuzz_case.c"

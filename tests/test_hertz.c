@@ -10,10 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "hertz.h"
-#include "invariants.h"
-#include "kernel.h"
+#include "core/error.h"
+#include "reference/hertz.h"
+#include "kernels/invariants.h"
+#include "kernels/kernel.h"
 #include "test_util.h"
 
 #define NU 0.3 /* Poisson ratio of every reference table */

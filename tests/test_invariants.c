@@ -7,9 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "invariants.h"
-#include "kernel.h"
+#include "core/error.h"
+#include "kernels/invariants.h"
+#include "kernels/kernel.h"
 #include "test_util.h"
 
 /* Principal stresses vs gsl_eigen_symm, per unit Frobenius norm of the tensor. Both methods are

@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "kernel.h"
+#include "core/error.h"
+#include "kernels/kernel.h"
 #include "test_util.h"
 
 /* ---- tolerances ------------------------------------------------------------------------------ */

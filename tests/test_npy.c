@@ -7,9 +7,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "alloc.h"
-#include "heightmap.h"
-#include "npy.h"
+#include "core/alloc.h"
+#include "io/heightmap.h"
+#include "io/npy.h"
 #include "test_util.h"
 
 #define IMG_MAX 65536

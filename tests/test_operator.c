@@ -6,9 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "alloc.h"
-#include "kernel.h"
-#include "operator.h"
+#include "core/alloc.h"
+#include "kernels/kernel.h"
+#include "operator/operator.h"
 #include "test_util.h"
 
 /* Truncation tier of the periodic Love tables: the single-axis image sum at MC_LOVE_IMAGES (< 2e-11

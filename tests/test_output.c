@@ -11,11 +11,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "alloc.h"
-#include "kernel.h"
-#include "npy.h"
-#include "output.h"
-#include "results.h"
+#include "core/alloc.h"
+#include "kernels/kernel.h"
+#include "io/npy.h"
+#include "pipeline/output.h"
+#include "pipeline/results.h"
 #include "test_util.h"
 
 enum { NX = 12, NY = 7, NL = 4, IMAX = 5, JMAX = 3 };

@@ -5,12 +5,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "alloc.h"
-#include "hertz.h"
-#include "memguard.h"
-#include "npy.h"
-#include "operator.h"
-#include "pipeline.h"
+#include "core/alloc.h"
+#include "reference/hertz.h"
+#include "pipeline/memguard.h"
+#include "io/npy.h"
+#include "operator/operator.h"
+#include "pipeline/pipeline.h"
 #include "test_util.h"
 
 /* Discretisation tier: sampling Hertz's square-root edge at cell centres misstates the load and

@@ -9,13 +9,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "alloc.h"
-#include "hertz.h"
-#include "invariants.h"
-#include "kernel.h"
-#include "operator.h"
-#include "scene.h"
-#include "stress.h"
+#include "core/alloc.h"
+#include "reference/hertz.h"
+#include "kernels/invariants.h"
+#include "kernels/kernel.h"
+#include "operator/operator.h"
+#include "case/scene.h"
+#include "stress/stress.h"
 #include "test_util.h"
 
 /* ---- tolerances ------------------------------------------------------------------------------ */

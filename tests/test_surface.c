@@ -6,9 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "alloc.h"
-#include "npy.h"
-#include "surface.h"
+#include "core/alloc.h"
+#include "io/npy.h"
+#include "surface/surface.h"
 #include "test_util.h"
 
 static mc_grid make_grid(int nx, int ny, double dx, double dy)

@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "test_util.h"
-#include "units.h"
+#include "case/units.h"
 
 typedef struct {
     const char *text;

@@ -10,7 +10,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "pipeline.h"
+#include "pipeline/pipeline.h"
 
 #define MAX_ROWS 1024
 #define MAX_TEXT 65536

@@ -7,8 +7,8 @@
 #include <string.h>
 
 #include "harness.h"
-#include "hertz.h"
-#include "pipeline.h"
+#include "reference/hertz.h"
+#include "pipeline/pipeline.h"
 #include "suites.h"
 #include "vutil.h"
 

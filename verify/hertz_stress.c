@@ -18,10 +18,10 @@
 #include <string.h>
 
 #include "harness.h"
-#include "hertz.h"
-#include "invariants.h"
-#include "kernel.h"
-#include "pipeline.h"
+#include "reference/hertz.h"
+#include "kernels/invariants.h"
+#include "kernels/kernel.h"
+#include "pipeline/pipeline.h"
 #include "suites.h"
 #include "vutil.h"
 

@@ -24,10 +24,10 @@
 #include <string.h>
 
 #include "harness.h"
-#include "hertz.h"
-#include "kernel.h"
-#include "pipeline.h"
-#include "stress.h"
+#include "reference/hertz.h"
+#include "kernels/kernel.h"
+#include "pipeline/pipeline.h"
+#include "stress/stress.h"
 #include "suites.h"
 #include "vutil.h"
 

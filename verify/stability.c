@@ -18,12 +18,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "alloc.h"
-#include "contact.h"
+#include "core/alloc.h"
+#include "contact/contact.h"
 #include "harness.h"
-#include "hertz.h"
-#include "operator.h"
-#include "pipeline.h"
+#include "reference/hertz.h"
+#include "operator/operator.h"
+#include "pipeline/pipeline.h"
 #include "stability_run.h"
 #include "suites.h"
 

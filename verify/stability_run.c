@@ -15,7 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "pipeline.h"
+#include "pipeline/pipeline.h"
 
 #define MAX_WORKERS 2 /* the suite shares a 2-core machine; children run one thread each */
 

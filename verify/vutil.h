@@ -4,8 +4,8 @@
 
 #include <stddef.h>
 
-#include "results.h"
-#include "scene.h"
+#include "pipeline/results.h"
+#include "case/scene.h"
 
 /* Least-squares line y = c0 + c1 x over n points; returns 0 on success. */
 int vu_linfit(const double *x, const double *y, int n, double *c0, double *c1);

@@ -3,7 +3,7 @@
 #include <string.h>
 
 #include "bench.h"
-#include "cli.h"
+#include "cli/cli.h"
 #include "harness.h"
 
 int mc_cli_bench(int argc, char **argv)

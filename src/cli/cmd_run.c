@@ -4,10 +4,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "case.h"
-#include "cli.h"
-#include "output.h"
-#include "pipeline.h"
+#include "case/case.h"
+#include "cli/cli.h"
+#include "pipeline/output.h"
+#include "pipeline/pipeline.h"
 
 #define MAX_SETS 256
 

@@ -2,7 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "cli.h"
+#include "cli/cli.h"
 #include "harness.h"
 
 int mc_cli_verify(int argc, char **argv)

@@ -10,9 +10,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "alloc.h"
-#include "case.h"
-#include "cli.h"
+#include "core/alloc.h"
+#include "case/case.h"
+#include "cli/cli.h"
 
 #define MC_VERSION "0.1.0"
 

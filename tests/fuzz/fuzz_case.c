@@ -18,10 +18,10 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "alloc.h"
-#include "case.h"
+#include "core/alloc.h"
+#include "case/case.h"
 #include "fuzz_common.h"
-#include "scene.h"
+#include "case/scene.h"
 
 #define FUZZ_MAX_OVERRIDES 4
 #define FUZZ_MAX_INPUT (64 * 1024) /* longer texts only slow the search down */

@@ -11,8 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "units.h"
+#include "core/error.h"
+#include "case/units.h"
 
 #define FUZZ_CHECK(cond, ...)                                                                      \
     do {                                                                                           \

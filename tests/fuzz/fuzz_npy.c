@@ -14,9 +14,9 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "alloc.h"
+#include "core/alloc.h"
 #include "fuzz_common.h"
-#include "npy.h"
+#include "io/npy.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

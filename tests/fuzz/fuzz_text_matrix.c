@@ -13,9 +13,9 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "alloc.h"
+#include "core/alloc.h"
 #include "fuzz_common.h"
-#include "heightmap.h"
+#include "io/heightmap.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -17,7 +17,7 @@
 #include <string.h>
 
 #include "fuzz_common.h"
-#include "units.h"
+#include "case/units.h"
 
 #define FUZZ_MAX_INPUT 4096
 #define FUZZ_SENTINEL -12345.678

@@ -1,0 +1,153 @@
+/* scene.h - the in-memory case: every input of one run, with SI values and defaults.
+ *
+ * A scene is plain data (no owned pointers), filled by case.c from an INI file plus overrides,
+ * or directly by verification suites and benchmarks. mc_scene_defaults() gives every optional
+ * key its documented default (docs/case-format.md); keys without a default (mesh size, load,
+ * radii, ...) are left 0, which mc_scene_check() rejects until the caller sets them.
+ * mc_scene_check() validates every rule a scene must satisfy however it was built, including the
+ * cross-key ones (force_per_length needs periodic_y, pressure_cap > lubricant_pressure, ...).
+ */
+#ifndef MC_SCENE_H
+#define MC_SCENE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/error.h"
+#include "core/grid.h"
+#include "operator/operator.h"
+
+#define MC_PATH_MAX 1024
+#define MC_MAX_DEPTHS 512
+
+typedef enum { MC_SHAPE_FLAT, MC_SHAPE_SPHERE, MC_SHAPE_CYLINDER, MC_SHAPE_ELLIPSOID } mc_shape;
+
+typedef enum {
+    MC_ROUGH_NONE,
+    MC_ROUGH_GAUSSIAN,    /* Gaussian heights, Gaussian autocorrelation (correlation_x/_y) */
+    MC_ROUGH_SELF_AFFINE, /* self-affine (Hurst exponent) between two cut-off wavelengths */
+    MC_ROUGH_FILE         /* measured/external height map (.npy or whitespace text) */
+} mc_roughness_type;
+
+typedef enum {
+    MC_LOAD_FORCE,            /* total normal force, N */
+    MC_LOAD_FORCE_PER_LENGTH, /* force per unit length along y, N/m (periodic_y required) */
+    MC_LOAD_APPROACH,         /* rigid approach, m */
+    MC_LOAD_PRESSURE_FILE     /* prescribed pressure map (no contact solve) */
+} mc_load_kind;
+
+typedef enum {
+    MC_METHOD_CG,        /* preconditioned constrained conjugate gradients (default, fast) */
+    MC_METHOD_PK,        /* plain Polonsky & Keer (1999) */
+    MC_METHOD_ACTIVE_SET /* the paper's dense active-set reference (small grids only) */
+} mc_contact_method;
+
+typedef enum { MC_SPACING_LINEAR, MC_SPACING_GEOMETRIC, MC_SPACING_LIST } mc_spacing;
+typedef enum { MC_STRESS_PATCH, MC_STRESS_POINT } mc_stress_kernel;
+/* [stress] window: auto = only the loaded region plus a depth-dependent margin (stress.h) */
+typedef enum { MC_STRESS_WINDOW_AUTO, MC_STRESS_WINDOW_FULL } mc_stress_window_mode;
+
+/* [stress] depth_max = auto: derived from the contact by the stress stage (stress.h) */
+#define MC_STRESS_DEPTH_AUTO 0.0
+
+typedef struct {
+    double E;  /* Young's modulus, Pa */
+    double nu; /* Poisson's ratio */
+    int rigid; /* 1: rigid (only body 2) */
+} mc_material;
+
+typedef struct {
+    char path[MC_PATH_MAX]; /* case file the scene came from ("" if built in code) */
+
+    mc_grid grid; /* [mesh] */
+
+    struct { /* [geometry]: combined initial gap of the two bodies, apex at the grid centre */
+        mc_shape shape;
+        double radius;             /* sphere, cylinder (curvature in x), m */
+        double radius_x, radius_y; /* ellipsoid principal radii, m */
+    } geometry;
+
+    struct { /* [roughness]: heights up (towards the counter body) reduce the gap */
+        mc_roughness_type type;
+        double rq;                           /* rms height, m (gaussian, self_affine) */
+        double correlation_x, correlation_y; /* gaussian: ACF exp(-(tx/lx)^2-(ty/ly)^2), m */
+        double hurst;                        /* self_affine: Hurst exponent, 0 < H < 1 (0.8) */
+        double rms_slope;                    /* self_affine: alternative to rq (0 = unused) */
+        double lambda_long, lambda_short;    /* self_affine cut-offs, m (0: mc_scene_cutoffs) */
+        uint64_t seed;                       /* generator seed (reproducible) */
+        char file[MC_PATH_MAX];              /* file: height map path (relative to the case) */
+    } roughness;
+
+    mc_material body1, body2; /* [body1], [body2] */
+
+    struct { /* [load] */
+        mc_load_kind kind;
+        double value;                    /* N, N/m or m according to kind */
+        char pressure_file[MC_PATH_MAX]; /* MC_LOAD_PRESSURE_FILE: .npy map, Pa */
+        double lubricant_pressure;       /* lower bound outside solid contact, Pa (default 0) */
+        double pressure_cap;             /* upper bound, Pa (default +inf: none) */
+    } load;
+
+    struct { /* [solver] */
+        mc_backend op;            /* operator backend (default fft) */
+        mc_contact_method method; /* default cg */
+        double tolerance;         /* relative stopping tolerance (default 1e-8) */
+        int max_iterations;       /* default 2000 */
+        int threads;              /* 0 = all cores */
+    } solver;
+
+    struct { /* [stress]; the stage runs only when enabled (section present) */
+        int enabled;                 /* default 0; case files: 1 when [stress] is present */
+        double depth_min, depth_max; /* m (linear, geometric spacing); depth_max =
+                                        MC_STRESS_DEPTH_AUTO (the default): from the contact */
+        int layers;                  /* linear, geometric; default 32 */
+        mc_spacing spacing;          /* MC_SPACING_LIST: use depths[] below */
+        int ndepths;                 /* number of entries in depths (MC_SPACING_LIST) */
+        double depths[MC_MAX_DEPTHS];
+        mc_stress_kernel kernel;     /* default patch */
+        double friction;             /* q_x = friction * p (sliding in +x), default 0 */
+        mc_stress_window_mode window; /* default auto */
+    } stress;
+
+    struct { /* [output] */
+        char dir[MC_PATH_MAX]; /* "": derive from path (mc_scene_output_dir); case files fill it */
+        int vtk;               /* write field.vti */
+    } output;
+} mc_scene;
+
+/* Fill every field with its documented default: shape flat, no roughness (seed 1, hurst 0.8),
+ * steel bodies (E = 210 GPa, nu = 0.3), no pressure cap (+inf), fft + cg, tolerance 1e-8, 2000
+ * iterations, stress disabled (32 linear layers from 0 to depth_max = auto, window auto), output
+ * dir "". */
+void mc_scene_defaults(mc_scene *s);
+
+/* Validate the scene: grid, shape radii, roughness parameters, materials, a load (> 0 or a file),
+ * force_per_length => periodic_y, pressure_cap > lubricant_pressure >= 0, solver settings, and,
+ * when stress is enabled, its depths (depth_max > depth_min >= 0 unless auto, geometric =>
+ * depth_min > 0, lists strictly increasing) and window. MC_OK or MC_ERR_INPUT with a message
+ * "[section] key ...". */
+int mc_scene_check(const mc_scene *s, mc_error *err);
+
+/* Same, and on failure names the key at fault (*section, *key: static strings; either pointer
+ * may be NULL), so that the case reader can point at the line that set it. */
+int mc_scene_check_key(const mc_scene *s, mc_error *err, const char **section, const char **key);
+
+/* Combined modulus E* of the scene's two bodies, Pa (kernel.h mc_combined_modulus). */
+double mc_scene_estar(const mc_scene *s);
+
+/* Resolved depth list of the stress stage, m (depths must hold MC_MAX_DEPTHS): linear
+ * z_k = depth_min + k (depth_max - depth_min)/(layers - 1) (layers = 1: depth_min alone);
+ * geometric z_k = depth_min (depth_max/depth_min)^(k/(layers - 1)); list: as given. The ends are
+ * exact. MC_ERR_INPUT (as mc_scene_check) if the stress settings are invalid, or if depth_max is
+ * auto (which only the stress stage resolves, from the contact patches: mc_stress_stage). */
+int mc_scene_depths(const mc_scene *s, double *depths, int *ndepths, mc_error *err);
+
+/* Effective self-affine cut-off wavelengths, m: the scene's values, or for 0 the defaults
+ * lambda_long = max(nx dx, ny dy) and lambda_short = 2 max(dx, dy). */
+void mc_scene_cutoffs(const mc_scene *s, double *lambda_long, double *lambda_short);
+
+/* Output directory: s->output.dir, or when it is "" "out/<file name of s->path without .ini>"
+ * ("out/scene" when path is "" too). MC_ERR_INPUT if it does not fit in len bytes. */
+int mc_scene_output_dir(const mc_scene *s, char *buf, size_t len, mc_error *err);
+
+#endif

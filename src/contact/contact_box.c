@@ -1,0 +1,175 @@
+/* contact_box.c - the cg solve restricted to the contact's bounding box (see contact.h,
+ * "Restriction"). Outside the box the excess pressure is held at zero; the full operator then
+ * measures the gap there, and penetrating cells widen the box. */
+#include <math.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "contact/contact_internal.h"
+
+#define BOX_ROUNDS 4
+
+typedef struct {
+    int i0, j0, nx, ny;
+} box_t;
+
+/* Widen [lo, hi] by a margin (an eighth of its width, at least 4 cells) within 0..n-1; a periodic
+ * axis always keeps its full length (the box must keep the period). */
+static void widen(int lo, int hi, int n, int periodic, int *start, int *len)
+{
+    if (periodic) {
+        *start = 0;
+        *len = n;
+        return;
+    }
+    int m = (hi - lo + 1) / 8;
+    if (m < 4)
+        m = 4;
+    lo = lo - m < 0 ? 0 : lo - m;
+    hi = hi + m > n - 1 ? n - 1 : hi + m;
+    *start = lo;
+    *len = hi - lo + 1;
+}
+
+/* Box around the cells flagged in mark (plus the previous box when given); 0 if none. */
+static int box_of(const mc_contact_solver *s, const unsigned char *mark, const box_t *prev,
+                  box_t *b)
+{
+    const int nx = s->g.nx, ny = s->g.ny;
+    int ilo = nx, ihi = -1, jlo = ny, jhi = -1;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            if (mark[(size_t)j * nx + i]) {
+                ilo = i < ilo ? i : ilo;
+                ihi = i > ihi ? i : ihi;
+                jlo = j < jlo ? j : jlo;
+                jhi = j > jhi ? j : jhi;
+            }
+    if (ihi < 0)
+        return 0;
+    widen(ilo, ihi, nx, s->g.periodic_x, &b->i0, &b->nx);
+    widen(jlo, jhi, ny, s->g.periodic_y, &b->j0, &b->ny);
+    if (prev) { /* never shrink while widening */
+        int i1 = b->i0 + b->nx, j1 = b->j0 + b->ny;
+        int pi1 = prev->i0 + prev->nx, pj1 = prev->j0 + prev->ny;
+        b->i0 = b->i0 < prev->i0 ? b->i0 : prev->i0;
+        b->j0 = b->j0 < prev->j0 ? b->j0 : prev->j0;
+        b->nx = (i1 > pi1 ? i1 : pi1) - b->i0;
+        b->ny = (j1 > pj1 ? j1 : pj1) - b->j0;
+    }
+    return 1;
+}
+
+static void free_box(mc_contact_solver *s)
+{
+    mc_contact_destroy(&s->box);
+    mc_operator_destroy(&s->box_op);
+    mc_free(s->box_h);
+    mc_free(s->box_cap);
+    mc_free(s->box_q);
+    s->box_h = s->box_cap = s->box_q = NULL;
+    s->bnx = s->bny = 0;
+}
+
+/* A box solver of the box's size (kept while the size stays). */
+static int ensure_box(mc_contact_solver *s, const box_t *b, mc_error *err)
+{
+    if (s->box && s->bnx == b->nx && s->bny == b->ny)
+        return MC_OK;
+    free_box(s);
+    mc_grid g = s->g;
+    g.nx = b->nx;
+    g.ny = b->ny;
+    g.periodic_x = s->g.periodic_x && b->nx == s->g.nx;
+    g.periodic_y = s->g.periodic_y && b->ny == s->g.ny;
+    int rc = mc_operator_plan_love(&g, s->opt.estar, mc_operator_backend(s->K), &s->box_op, err);
+    if (rc != MC_OK)
+        return rc;
+    mc_contact_options o = s->opt;
+    o.estar = 0; /* started from the fine solution's start: no coarse levels inside */
+    o.no_box = 1;
+    if ((rc = mc_contact_create(s->box_op, &o, &s->box, err)) != MC_OK)
+        return rc;
+    size_t nb = mc_grid_cells(&g);
+    if (!(s->box_h = mc_zeros(nb)) || !(s->box_cap = mc_zeros(nb)) || !(s->box_q = mc_zeros(nb)))
+        return mc_fail(err, MC_ERR_NOMEM, "contact: out of memory for the %d x %d box", b->nx,
+                       b->ny);
+    s->bnx = b->nx;
+    s->bny = b->ny;
+    return MC_OK;
+}
+
+int mc_contact_box_solve(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
+                         int *handled, mc_error *err)
+{
+    const size_t n = s->n;
+    const int nx = s->g.nx;
+    unsigned char *mark = s->mask_old;
+    *handled = 0;
+    s->box_cells = s->box_applies = 0;
+    if (s->opt.method != MC_METHOD_CG || s->opt.no_box || !(s->opt.estar > 0))
+        return MC_OK;
+    for (size_t i = 0; i < n; i++)
+        mark[i] = q[i] > 0;
+    box_t b;
+    if (!box_of(s, mark, NULL, &b) || (double)b.nx * b.ny > MC_BOX_FRACTION * (double)n)
+        return MC_OK;
+    int iters = 0;
+    for (int round = 0; round < BOX_ROUNDS; round++) {
+        int rc = ensure_box(s, &b, err);
+        if (rc != MC_OK) {
+            free_box(s);
+            return rc;
+        }
+        for (int j = 0; j < b.ny; j++)
+            for (int i = 0; i < b.nx; i++) {
+                size_t f = (size_t)(b.j0 + j) * nx + (b.i0 + i), k = (size_t)j * b.nx + i;
+                s->box_h[k] = qp->h[f];
+                s->box_cap[k] = qp->cap ? qp->cap[f] : INFINITY;
+                s->box_q[k] = q[f];
+            }
+        mc_contact_problem bp = {.h = s->box_h,
+                                 .p_cap = INFINITY,
+                                 .p_upper = qp->cap ? s->box_cap : NULL,
+                                 .control = qp->control,
+                                 .load = qp->W,
+                                 .approach = qp->delta,
+                                 .p_start = s->box_q};
+        mc_contact_summary sum;
+        rc = mc_contact_solve(s->box, &bp, s->box_q, NULL, NULL, &sum, err);
+        iters += sum.iterations;
+        s->box_applies += mc_contact_last_applies(s->box);
+        if (rc != MC_OK && rc != MC_NOT_CONVERGED)
+            return rc;
+        memset(q, 0, n * sizeof *q);
+        for (int j = 0; j < b.ny; j++)
+            memcpy(q + (size_t)(b.j0 + j) * nx + b.i0, s->box_q + (size_t)j * b.nx,
+                   (size_t)b.nx * sizeof *q);
+        qp->delta = sum.approach;
+        mc_contact_apply(s, q, s->u); /* the full operator: the gap outside the box */
+        double tol = s->opt.tolerance * mc_contact_gap_scale(s, qp, qp->delta);
+        int outside = 0;
+        for (int j = 0; j < s->g.ny; j++)
+            for (int i = 0; i < nx; i++) {
+                size_t f = (size_t)j * nx + i;
+                int in = i >= b.i0 && i < b.i0 + b.nx && j >= b.j0 && j < b.j0 + b.ny;
+                mark[f] = !in && qp->h[f] + s->u[f] - qp->delta < -tol;
+                outside |= mark[f];
+            }
+        if (!outside) {
+            s->box_cells = (long)b.nx * b.ny;
+            res->iterations = iters;
+            res->residual = mc_contact_residual(s, qp, q, s->u, qp->delta);
+            res->converged = res->residual <= s->opt.tolerance;
+            *handled = 1;
+            return res->converged ? MC_OK : MC_NOT_CONVERGED;
+        }
+        box_t wider;
+        if (!box_of(s, mark, &b, &wider) ||
+            (double)wider.nx * wider.ny > MC_BOX_FRACTION * (double)n)
+            break; /* q is now a good warm start for the full-grid solve */
+        b = wider;
+    }
+    res->iterations = iters;
+    return MC_OK;
+}

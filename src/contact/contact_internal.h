@@ -1,0 +1,86 @@
+/* contact_internal.h - shared state of the contact methods (not a public header).
+ *
+ * Every method solves the SHIFTED problem in the excess pressure q = p - p_lower >= 0:
+ *     g = h~ + K q - delta,   0 <= q <= cap,   A sum(q) = W (force control) or delta given,
+ * where h~ = h + h_extra + K p_lower. contact.c does the shift and the bookkeeping.
+ */
+#ifndef MC_CONTACT_INTERNAL_H
+#define MC_CONTACT_INTERNAL_H
+
+#include <stddef.h>
+
+#include "contact/contact.h"
+#include "operator/precond.h"
+
+typedef struct {
+    const double *h;   /* h~, m */
+    double hmin, hmax; /* its range (fixed during a solve: the gap scale of the stopping rule) */
+    const double *cap; /* per-cell upper bound of q, Pa; NULL = none */
+    mc_control control;
+    double W;          /* force control: target A*sum(q), N */
+    double delta;      /* approach control: input; force control: output */
+} mc_qproblem;
+
+typedef struct {
+    int iterations;
+    double residual;
+    int converged;
+} mc_qresult;
+
+struct mc_contact_solver {
+    mc_operator *K;
+    mc_grid g;
+    size_t n;
+    double A; /* cell area, m^2 */
+    mc_contact_options opt;
+    /* workspaces, n each, allocated once */
+    double *htil, *q, *u, *r, *z, *d, *w;
+    double *plow, *capq, *tmp; /* lower bound, upper bound of q, K p_lower: on first need */
+    int plow_on;               /* the current solve has a non-zero lower bound in plow */
+    unsigned char *mask, *mask_old;
+    mc_precond *pc;
+    long applies;
+    /* nested start (cg): the same problem on a 2:1 coarser grid (NULL when not coarsened) */
+    mc_contact_solver *coarse;
+    mc_operator *coarse_op;
+    int fx, fy;                    /* coarsening factor per axis (1 or 2) */
+    double *coarse_h, *coarse_low, *coarse_p; /* coarse arrays (the fine start goes into z) */
+    double *coarse_cap;                       /* coarse per-cell caps, on first need */
+    /* restriction to the contact's box (cg): built on demand, kept for the next solve */
+    mc_contact_solver *box;
+    mc_operator *box_op;
+    int bi0, bj0, bnx, bny;          /* the box of the last restricted solve (bnx = 0: none) */
+    long box_cells, box_applies;
+    double *box_h, *box_cap, *box_q; /* box-sized arrays (allocated with the box solver) */
+    /* active-set reference: dense influence matrix and factor workspace (n*n each) */
+    double *dense, *factor;
+    size_t *map; /* free-cell indices */
+};
+
+/* u = K in, counted. */
+void mc_contact_apply(mc_contact_solver *s, const double *in, double *out);
+
+/* Gap scale of the stopping rule: delta - min(h~), floored so it is never zero. */
+double mc_contact_gap_scale(const mc_contact_solver *s, const mc_qproblem *qp, double delta);
+
+/* The scale-free KKT residual of contact.h for q, u = K q and delta. */
+double mc_contact_residual(const mc_contact_solver *s, const mc_qproblem *qp, const double *q,
+                           const double *u, double delta);
+
+/* Methods: q holds the start on entry (feasible: 0 <= q <= cap) and the solution on exit; s->u
+ * holds K q on exit; qp->delta is set for force control. MC_NOT_CONVERGED leaves the last iterate. */
+int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err);
+int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err);
+int mc_contact_nested(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
+                      mc_error *err);
+int mc_contact_active_set(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
+                          mc_error *err);
+int mc_contact_active_set_prepare(mc_contact_solver *s, mc_error *err);
+
+/* The cg solve on the contact's bounding box when that is small (contact_box.c): *handled = 1
+ * with the full-grid q, s->u = K q and qp->delta when it ran; 0 when not applicable or when the
+ * box grew too large (q is then a warm start for the full solve). */
+int mc_contact_box_solve(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
+                         int *handled, mc_error *err);
+
+#endif

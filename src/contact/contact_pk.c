@@ -1,0 +1,152 @@
+/* contact_pk.c - plain Polonsky & Keer (1999) constrained conjugate gradients, as written in
+ * elastic.md 6.2, on the excess pressure (lower bound, 6.3) and with the free-set cap variant
+ * (6.4), which falls back to the nested solver when its free set empties. Kept unpreconditioned
+ * on purpose: it is the baseline the preconditioned method is measured against. Two operator
+ * applications per iteration (K q and K t), as in the original.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "contact/contact_internal.h"
+
+int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err)
+{
+    const size_t n = s->n;
+    const int force = qp->control == MC_CONTROL_FORCE;
+    const double *cap = qp->cap;
+    double *u = s->u, *g = s->r, *t = s->d, *rr = s->w;
+    unsigned char *Ic = s->mask;
+    double G_old = 1, delta = qp->delta;
+    int cg = 0, it = 0;
+
+    if (force && cap) {
+        /* elastic.md 6.4: start from the converged uncapped solution */
+        mc_qproblem free_ = *qp;
+        free_.cap = NULL;
+        mc_qresult r0 = {0};
+        int rc = mc_contact_pk(s, &free_, q, &r0, err);
+        it += r0.iterations;
+        if (rc != MC_OK && rc != MC_NOT_CONVERGED)
+            return rc;
+        for (size_t i = 0; i < n; i++)
+            if (q[i] > cap[i])
+                q[i] = cap[i];
+    }
+    memset(t, 0, n * sizeof *t);
+    memset(s->mask_old, 0, n);
+    res->converged = 0;
+    for (;;) {
+        mc_contact_apply(s, q, u);
+        size_t m = 0;
+        double gsum = 0;
+        for (size_t i = 0; i < n; i++) {
+            g[i] = qp->h[i] + u[i];
+            Ic[i] = q[i] > 0 && (!cap || q[i] < cap[i]);
+            if (Ic[i]) {
+                gsum += g[i];
+                m++;
+            }
+        }
+        if (force) {
+            if (m == 0) {
+                if (cap) { /* the free set emptied: P&K's cap variant breaks down here */
+                    res->iterations = it;
+                    mc_qresult rn = {0};
+                    int rc = mc_contact_nested(s, qp, q, &rn, err);
+                    res->iterations += rn.iterations;
+                    res->residual = rn.residual;
+                    res->converged = rn.converged;
+                    return rc;
+                }
+                break;
+            }
+            delta = gsum / (double)m;
+        }
+        for (size_t i = 0; i < n; i++)
+            g[i] -= delta;
+        if (!force) {
+            /* approach control has no load to rescale with: bound cells whose gradient points
+             * inwards join the CG set directly (projected gradient), restarting CG on change */
+            int changed = 0;
+            m = 0;
+            for (size_t i = 0; i < n; i++) {
+                double c = cap ? cap[i] : INFINITY;
+                unsigned char f = (q[i] > 0 && q[i] < c) || (q[i] <= 0 && g[i] < 0) ||
+                                  (q[i] >= c && g[i] > 0);
+                changed |= f != s->mask_old[i];
+                Ic[i] = s->mask_old[i] = f;
+                m += f;
+            }
+            if (changed)
+                cg = 0;
+        }
+        res->residual = mc_contact_residual(s, qp, q, u, delta);
+        if (res->residual <= s->opt.tolerance) {
+            res->converged = 1;
+            break;
+        }
+        if (it >= s->opt.max_iterations)
+            break;
+        it++;
+        double G = 0;
+        for (size_t i = 0; i < n; i++)
+            if (Ic[i])
+                G += g[i] * g[i];
+        double beta = cg && G_old > 0 ? G / G_old : 0.0;
+        for (size_t i = 0; i < n; i++)
+            t[i] = Ic[i] ? g[i] + beta * t[i] : 0.0;
+        G_old = G;
+        mc_contact_apply(s, t, rr);
+        if (force) {
+            double rm = 0;
+            for (size_t i = 0; i < n; i++)
+                if (Ic[i])
+                    rm += rr[i];
+            rm /= (double)m;
+            for (size_t i = 0; i < n; i++)
+                rr[i] -= rm;
+        }
+        double num = 0, den = 0;
+        for (size_t i = 0; i < n; i++)
+            if (Ic[i]) {
+                num += g[i] * t[i];
+                den += rr[i] * t[i];
+            }
+        double tau = den != 0 ? num / den : 0.0;
+        int overlap = 0;
+        for (size_t i = 0; i < n; i++) {
+            double c = cap ? cap[i] : INFINITY;
+            if (Ic[i]) {
+                double v = q[i] - tau * t[i];
+                q[i] = v < 0 ? 0 : (v > c ? c : v);
+            } else if (q[i] <= 0 && g[i] < 0) { /* penetrating cell at the lower bound */
+                q[i] = fmin(-tau * g[i], c);
+                overlap = 1;
+            } else if (cap && q[i] >= c && g[i] > 0) { /* capped cell that wants to open */
+                q[i] = fmax(c - tau * g[i], 0.0);
+                overlap = 1;
+            }
+        }
+        cg = !overlap;
+        if (force) { /* load balance: scale the excess of the uncapped cells */
+            double sum_free = 0, sum_cap = 0;
+            for (size_t i = 0; i < n; i++) {
+                if (cap && q[i] >= cap[i])
+                    sum_cap += q[i];
+                else
+                    sum_free += q[i];
+            }
+            double target = qp->W / s->A - sum_cap;
+            if (sum_free > 0 && target > 0) {
+                double f = target / sum_free;
+                for (size_t i = 0; i < n; i++)
+                    if (!(cap && q[i] >= cap[i]))
+                        q[i] = cap ? fmin(q[i] * f, cap[i]) : q[i] * f;
+            }
+        }
+    }
+    if (force)
+        qp->delta = delta;
+    res->iterations = it;
+    return res->converged ? MC_OK : MC_NOT_CONVERGED;
+}

@@ -1,0 +1,136 @@
+/* operator.c - conv + one kernel: what a solver plans, applies and destroys; and the thread
+ * settings shared with FFTW (see operator.h). */
+#include <fftw3.h>
+#include <omp.h>
+
+#include "core/alloc.h"
+#include "operator/operator.h"
+
+struct mc_operator {
+    mc_conv *conv;
+    double *kspec; /* the transformed kernel (real parts only when real_kernel) */
+    double *lspec; /* workspace of mc_conv_convolve (direct backend only) */
+    int real_kernel;
+};
+
+static int n_threads;        /* 0: not set: the OpenMP default (OMP_NUM_THREADS or all cores) */
+static int omp_default;      /* omp_get_max_threads() before we first changed it */
+static int fftw_threads_on; /* fftw_init_threads has succeeded */
+
+void mc_set_threads(int n)
+{
+    if (!omp_default)
+        omp_default = omp_get_max_threads();
+    n_threads = n > 0 ? n : 0;
+    omp_set_num_threads(mc_get_threads());
+}
+
+int mc_get_threads(void)
+{
+    if (n_threads > 0)
+        return n_threads;
+    return omp_default ? omp_default : omp_get_max_threads();
+}
+
+int mc_fftw_prepare(mc_error *err)
+{
+    if (!fftw_threads_on) {
+        if (!fftw_init_threads())
+            return mc_fail(err, MC_ERR_INTERNAL, "FFTW could not initialise its threads");
+        fftw_threads_on = 1;
+    }
+    fftw_plan_with_nthreads(mc_get_threads());
+    return MC_OK;
+}
+
+/* Takes ownership of conv (destroyed on failure too). */
+static int plan_with_conv(mc_conv *conv, const mc_kernel_table *t, mc_operator **out,
+                          mc_error *err)
+{
+    const size_t n = mc_conv_spectrum_len(conv);
+    mc_operator *op = mc_calloc(1, sizeof *op);
+    int rc;
+    const size_t nw = mc_conv_work_len(conv);
+    rc = MC_OK;
+    if (!op || (nw && !(op->lspec = mc_malloc(nw * sizeof *op->lspec))))
+        rc = mc_fail(err, MC_ERR_NOMEM, "operator: out of memory for its workspace");
+    /* an even kernel keeps only the real half of its spectrum */
+    if (rc == MC_OK && mc_conv_backend(conv) == MC_BACKEND_FFT) {
+        if (!(op->kspec = mc_malloc(n / 2 * sizeof *op->kspec)))
+            rc = mc_fail(err, MC_ERR_NOMEM, "operator: out of memory for a %zu-double spectrum",
+                         n / 2);
+        else if (!(op->real_kernel = mc_conv_kernel_real(conv, t, op->kspec))) {
+            mc_free(op->kspec);
+            op->kspec = NULL;
+        }
+    }
+    if (rc == MC_OK && !op->real_kernel) {
+        if (!(op->kspec = mc_malloc(n * sizeof *op->kspec)))
+            rc = mc_fail(err, MC_ERR_NOMEM, "operator: out of memory for %zu-double spectra", n);
+        else
+            rc = mc_conv_kernel(conv, t, op->kspec, err);
+    }
+    if (rc) {
+        if (op) {
+            mc_free(op->kspec);
+            mc_free(op->lspec);
+            mc_free(op);
+        }
+        mc_conv_destroy(&conv);
+        return rc;
+    }
+    op->conv = conv;
+    *out = op;
+    return MC_OK;
+}
+
+int mc_operator_plan(const mc_grid *g, const mc_kernel_table *t, mc_backend b, mc_operator **out,
+                     mc_error *err)
+{
+    *out = NULL;
+    mc_conv *conv;
+    int rc = mc_conv_create(g, b, &conv, err);
+    return rc ? rc : plan_with_conv(conv, t, out, err);
+}
+
+int mc_operator_plan_love(const mc_grid *g, double Estar, mc_backend b, mc_operator **out,
+                          mc_error *err)
+{
+    *out = NULL;
+    mc_conv *conv;
+    int rc = mc_conv_create(g, b, &conv, err);
+    if (rc)
+        return rc;
+    int tx, ty;
+    mc_conv_table_dims(conv, &tx, &ty);
+    mc_kernel_table t;
+    if ((rc = mc_kernel_table_love(g, tx, ty, Estar, &t, err))) {
+        mc_conv_destroy(&conv);
+        return rc;
+    }
+    rc = plan_with_conv(conv, &t, out, err);
+    mc_kernel_table_free(&t);
+    return rc;
+}
+
+void mc_operator_apply(mc_operator *op, const double *in, double *out)
+{
+    if (op->real_kernel)
+        mc_conv_convolve_real(op->conv, op->kspec, in, out);
+    else
+        mc_conv_convolve(op->conv, op->kspec, in, out, op->lspec);
+}
+
+void mc_operator_destroy(mc_operator **op)
+{
+    if (!op || !*op)
+        return;
+    mc_conv_destroy(&(*op)->conv);
+    mc_free((*op)->kspec);
+    mc_free((*op)->lspec);
+    mc_free(*op);
+    *op = NULL;
+}
+
+const mc_grid *mc_operator_grid(const mc_operator *op) { return mc_conv_grid(op->conv); }
+mc_backend mc_operator_backend(const mc_operator *op) { return mc_conv_backend(op->conv); }

@@ -1,0 +1,218 @@
+/* operator.h - a planned convolution of a grid field with an influence kernel: the dual
+ * implementation at the heart of microcontact.
+ *
+ *     u[j][i] = sum_{j',i'} K(i - i', j - j') f[j'][i']      (offsets FIELD minus SOURCE)
+ *
+ * Two backends behind one interface (rows {name, create, kernel, load, apply, convolve, destroy} of
+ * a table, chosen by name; callers never ask which one they have):
+ *   direct - plain O(N^2) summation over the kernel table, written for clarity: the reference;
+ *   fft    - DC-FFT (Liu, Wang & Liu 2000): zero padding along free axes, cyclic along periodic
+ *            axes, real transforms (FFTW r2c/c2r), kernel spectrum built once per plan.
+ * Both read the SAME kernel table, so they agree to round-off (elastic.md 5).
+ *
+ * Three layers, lowest first:
+ *   mc_kernel_table - the kernel sampled at cell offsets in wrap-around layout;
+ *   mc_conv         - the transform engine of one grid and backend (shared by many kernels:
+ *                     the stress stage convolves one load with six kernels per layer);
+ *   mc_operator     - conv + one kernel: plan / apply / destroy, what a solver uses.
+ */
+#ifndef MC_OPERATOR_H
+#define MC_OPERATOR_H
+
+#include <stddef.h>
+
+#include "core/error.h"
+#include "core/grid.h"
+
+typedef enum { MC_BACKEND_FFT = 0, MC_BACKEND_DIRECT = 1 } mc_backend;
+
+const char *mc_backend_name(mc_backend b);            /* "fft" | "direct" */
+int mc_backend_from_name(const char *name, mc_backend *out); /* MC_OK or MC_ERR_INPUT */
+
+/* ---- kernel tables ----------------------------------------------------------------------- */
+
+/* Kernel values at integer cell offsets, laid out for a cyclic convolution of length tx (ty):
+ *  - free axis with n cells: length >= 2n - 1 (zero padding); entry t holds offset t for t < n,
+ *    offset t - len for t > len - n, and 0 in between (never reached by an output cell);
+ *  - periodic axis with n cells: length n; entry t holds the sum over all periodic images of
+ *    offset t (t <= n/2) or t - n, i.e. the periodic Green's function (elastic.md 5.2).
+ * Row-major with x fastest: k[ty_index * tx + tx_index]. */
+typedef struct {
+    mc_grid grid;  /* the grid the table was built for */
+    int tx, ty;    /* table length along x and y */
+    double *k;     /* ty * tx values (owned; free with mc_kernel_table_free) */
+} mc_kernel_table;
+
+/* Offset in cells of table entry t (0 <= t < len) along an axis with n cells and table length len
+ * (len == n: periodic axis, nearest image, +n/2 for even n; len >= 2n - 1: free axis). Sets
+ * *used (if not NULL) to 0 for the padding slots of a free axis (then the offset is meaningless),
+ * else to 1. */
+int mc_table_offset(int t, int n, int len, int *used);
+
+/* A scalar kernel for the generic table builder. */
+typedef struct {
+    /* K at offset (ox, oy), metres (field minus source), per unit load on one cell. */
+    double (*value)(double ox, double oy, const void *ctx);
+    /* Optional continuation of the image sum along periodic axes: returns the contribution of all
+     * images with |image index| > images along each periodic axis (divergent constants dropped,
+     * see the kernel's documentation). NULL: the image sum is truncated at `images`. */
+    double (*tail)(double ox, double oy, const mc_grid *g, int images, const void *ctx);
+    const void *ctx;
+} mc_kernel_fn;
+
+/* Fill a table of size tx x ty for grid g from kernel fn: each used entry is
+ * sum over |k| <= images (periodic axes only, each independently) of fn->value at the offset plus
+ * k periods, plus fn->tail at the offset when fn->tail is set and an axis is periodic; padding
+ * slots are 0. Plain and slow (O(table * images^2) kernel calls, OpenMP over rows): for kernels
+ * without a fast builder and as a reference. tx, ty as in mc_kernel_table; images >= 0.
+ * Allocates out->k (NULL on failure). Returns MC_OK, MC_ERR_INPUT (bad grid, sizes, fn or images)
+ * or MC_ERR_NOMEM. */
+int mc_kernel_table_build(const mc_grid *g, int tx, int ty, const mc_kernel_fn *fn, int images,
+                          mc_kernel_table *out, mc_error *err);
+void mc_kernel_table_free(mc_kernel_table *t); /* frees t->k and sets it NULL; NULL-safe */
+
+/* The normal-displacement kernel K = mc_love_uz / E* (m/Pa: displacement per unit pressure on one
+ * cell), tx, ty as from mc_conv_table_dims, E* > 0 in Pa. Free axes hold Love's rectangle itself
+ * (evaluated on the corner lattice, elastic.md 3.5). Periodic axes hold the periodic Green's
+ * function of the pixel load, whose plain image sum diverges like the 1/r kernel (elastic.md 5.2):
+ *  - both axes periodic: Ewald summation, no image truncation (the table changes by < 5e-15 of its
+ *    largest entry when the splitting parameter changes; it is the limit of mc_kernel_fn_love's
+ *    image sum). The mean of the table is removed (K^(0) = 0): the mean displacement of a fully
+ *    periodic problem is undefined, the rigid approach absorbs it.
+ *  - one periodic axis (period L = n d): the image sum over |k| <= MC_LOVE_IMAGES periods plus the
+ *    tail of mc_kernel_fn_love (truncation < 2e-11, see MC_LOVE_IMAGES). The divergent constant
+ *    of the 1/r image sum is dropped, so the table is defined up to a constant, which the approach
+ *    absorbs. The convention chosen: summed over one period along the periodic axis the table is
+ *    the plane-strain strip kernel -(2/(pi E*)) [(x+a) ln|x+a| - (x-a) ln|x-a| - 2a] (x the free
+ *    offset in m, a the free half-width; ln of metres, so the constant depends on the unit of
+ *    length), and each entry tends to 1/n of it far along the free axis.
+ * Allocates out->k. Returns MC_OK, MC_ERR_INPUT (bad sizes or E*), MC_ERR_NOMEM. */
+int mc_kernel_table_love(const mc_grid *g, int tx, int ty, double Estar, mc_kernel_table *out,
+                         mc_error *err);
+
+/* Images per side along a single periodic axis used by mc_kernel_table_love. The truncation error
+ * of the image sum with the continued tail falls like M^-6; measured against M = 512, relative to
+ * max |K - mean K| (unit-independent, unlike the largest entry: the constant is arbitrary), over
+ * n = 2..64 and dx/dy = 0.2..5: <= 6.3e-11 at M = 16, <= 1.7e-11 at M = 20. Exact for n = 1 (the
+ * cells tile the strip). */
+#define MC_LOVE_IMAGES 20
+
+/* Context of mc_kernel_fn_love: rectangle half-sides a = dx/2, b = dy/2 (m) and E* (Pa). */
+typedef struct {
+    double a, b, Estar;
+} mc_love_ctx;
+
+/* The Love kernel as a generic mc_kernel_fn for grid g (fills *ctx, and *fn pointing to it):
+ * value = mc_love_uz(ox, oy, a, b) / E*, and the tail of the image sum beyond M periods, from
+ * sum_{|k|>M} f(kL) ~ (1/L) int_{|s|>H} (1 + beta2 d^2/ds^2 + beta4 d^4/ds^4) f, H = (M+1/2) L
+ * (midpoint Euler-Maclaurin, with the pixel's own extent folded in), applied to the point kernel
+ * c/r, c = dx dy/(pi E*), divergent constants dropped:
+ *  - one periodic axis (y; x likewise with the axes exchanged), u+- = H +- y:
+ *      tail = (c/L) <J0 + beta2 J2 + beta4 J4>_x,   J0 = -sum+- ln(u + sqrt(u^2 + x^2)),
+ *      J2 = sum+- u/rho^3, J4 = -sum+- 3u(3x^2 - 2u^2)/rho^7, rho = sqrt(u^2 + x^2),
+ *      <>_x the exact average over the pixel width |x' - x| <= a, beta2 = (1 - n^2) dy^2/24,
+ *      beta4 = [(1 - n^4)/120 + n^2 (n^2 - 1)/36] b^4 (both 0 for n = 1); error ~ M^-6;
+ *  - both axes periodic, box half-sides Hx = (M+1/2) Lx, Hy = (M+1/2) Ly:
+ *      tail = -(c/(Lx Ly)) [pi mc_love_uz(x, y, Hx, Hy) - bx Ixx - by Iyy],
+ *      Ixx = S_H[Y/(X sqrt(X^2+Y^2))], Iyy = S_H[X/(Y sqrt(X^2+Y^2))] (the corner sum with the box
+ *      half-sides), bx = (1 - nx^2) dx^2/24, by likewise; error ~ M^-5; the table is not
+ *      mean-free (mc_kernel_table_love's Ewald table is, and is this sum's M -> inf limit).
+ * The slow, plain reference of mc_kernel_table_love (mc_kernel_table_build with it). */
+void mc_kernel_fn_love(const mc_grid *g, double Estar, mc_love_ctx *ctx, mc_kernel_fn *fn);
+
+/* ---- the transform engine ---------------------------------------------------------------- */
+
+typedef struct mc_conv mc_conv;
+
+/* Plan the transforms for grid g and backend b. fft: FFTW_ESTIMATE plans (deterministic) on
+ * buffers the engine owns; table length along a free axis = the smallest 7-smooth m >= 2n - 1.
+ * *out is NULL on failure. Returns MC_OK, MC_ERR_INPUT (bad grid or backend), MC_ERR_NOMEM (an
+ * allocation failed or FFTW could not plan) or MC_ERR_INTERNAL (FFTW threads). */
+int mc_conv_create(const mc_grid *g, mc_backend b, mc_conv **out, mc_error *err);
+void mc_conv_destroy(mc_conv **c); /* frees and sets *c = NULL; NULL-safe */
+
+/* Table length this engine convolves with (padded FFT size, or n along periodic axes). */
+void mc_conv_table_dims(const mc_conv *c, int *tx, int *ty);
+
+/* Doubles needed for one transformed kernel or transformed load ("spectrum"). */
+size_t mc_conv_spectrum_len(const mc_conv *c);
+
+/* Transform a kernel table (built with mc_conv_table_dims sizes) into kspec
+ * (mc_conv_spectrum_len doubles, caller-owned). fft: r2c, scaled by 1/(tx*ty); direct: a copy.
+ * Never allocates. MC_OK, or MC_ERR_INPUT when the table's grid or sizes do not match. */
+int mc_conv_kernel(mc_conv *c, const mc_kernel_table *t, double *kspec, mc_error *err);
+
+/* Transform a field (nx*ny) into lspec (mc_conv_spectrum_len doubles, caller-owned; may not
+ * alias field). fft: zero-pad + r2c; direct: a copy. Never allocates; not reentrant per engine. */
+void mc_conv_load(mc_conv *c, const double *field, double *lspec);
+
+/* out (nx*ny) = sum over t < nterms of K_t (*) f_t, from transformed kernels and loads
+ * (nterms >= 1). Never allocates; not reentrant per engine; out may alias none of the inputs. */
+void mc_conv_apply(mc_conv *c, int nterms, const double *const *kspec, const double *const *lspec,
+                   double *out);
+
+/* out (nx*ny) = K (*) field for one transformed kernel: mc_conv_load + mc_conv_apply fused, without
+ * the intermediate spectrum (the operator's hot path). work: mc_conv_spectrum_len doubles of
+ * caller-owned scratch; field may be out. Never allocates; not reentrant per engine. */
+void mc_conv_convolve(mc_conv *c, const double *kspec, const double *field, double *out,
+                      double *work);
+
+/* Scratch doubles mc_conv_convolve needs in work (0 for fft; the field for direct). */
+size_t mc_conv_work_len(const mc_conv *c);
+
+/* Kernels even in both offsets (the Love kernel) have a real spectrum. fft backend: transform
+ * the table and, if the spectrum is real to round-off (|Im| <= 1e-13 max|Re|), store its real
+ * parts in kre (mc_conv_spectrum_len / 2 doubles: half the memory) and return 1; otherwise (and
+ * always for direct) return 0 and leave kre untouched. kre goes to mc_conv_convolve_real. */
+int mc_conv_kernel_real(mc_conv *c, const mc_kernel_table *t, double *kre);
+
+/* mc_conv_convolve with a compacted real spectrum (fft backend). Never allocates. */
+void mc_conv_convolve_real(mc_conv *c, const double *kre, const double *field, double *out);
+
+mc_backend mc_conv_backend(const mc_conv *c);
+const mc_grid *mc_conv_grid(const mc_conv *c);
+
+/* ---- the operator: conv + one kernel ----------------------------------------------------- */
+
+typedef struct mc_operator mc_operator;
+
+/* Plan u = K f for grid g and backend b; the table (sized by mc_conv_table_dims for g) is
+ * transformed and kept, so the caller may free it afterwards. *out is NULL on failure.
+ * Returns as mc_conv_create and mc_conv_kernel. */
+int mc_operator_plan(const mc_grid *g, const mc_kernel_table *t, mc_backend b, mc_operator **out,
+                     mc_error *err);
+
+/* Convenience: the normal-displacement operator u_z = K p for grid g (K from mc_kernel_table_love,
+ * E* in Pa; p in Pa, u_z in m, positive into the bodies). Returns as mc_operator_plan and
+ * mc_kernel_table_love. */
+int mc_operator_plan_love(const mc_grid *g, double Estar, mc_backend b, mc_operator **out,
+                          mc_error *err);
+
+/* out = K in (nx*ny each). Never allocates and cannot fail; in and out may be the same array.
+ * Not reentrant: one thread at a time per operator (it owns its workspace). */
+void mc_operator_apply(mc_operator *op, const double *in, double *out);
+
+void mc_operator_destroy(mc_operator **op); /* frees and sets *op = NULL; NULL-safe */
+
+const mc_grid *mc_operator_grid(const mc_operator *op);
+mc_backend mc_operator_backend(const mc_operator *op);
+
+/* ---- threads ------------------------------------------------------------------------------ */
+
+/* Transforms and loops smaller than this many values run on one thread: below it a thread team
+ * costs more than it saves (64 x 64 transforms: 20 us on one thread, 30 us on two), and on a
+ * machine whose cores are busy with other work, fine-grained synchronisation of small loops
+ * made a 141 x 141 capped contact 250 times slower (73 s instead of 0.3 s, measured). */
+#define MC_THREADS_MIN_CELLS (1 << 18)
+
+/* Threads for FFTW and the OpenMP loops (n <= 0: the OpenMP default, i.e. OMP_NUM_THREADS if set,
+ * else all cores). Call before planning. */
+void mc_set_threads(int n);
+int mc_get_threads(void);
+
+/* Initialise FFTW's threads once (the first call) and set the planner's thread count to
+ * mc_get_threads(). Every module calls it before creating an FFTW plan; FFTW's planner is not
+ * thread-safe, so plan from one thread only. MC_OK or MC_ERR_INTERNAL. */
+int mc_fftw_prepare(mc_error *err);
+
+#endif

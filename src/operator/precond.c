@@ -1,0 +1,217 @@
+/* precond.c - FFT-based preconditioner for the contact solvers (see precond.h). */
+#include "operator/precond.h"
+
+#include <fftw3.h>
+#include <math.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/fftsize.h"
+#include "operator/operator.h"
+
+#define PLAN_CACHE 6
+
+typedef struct {
+    int fx, fy;           /* transform size */
+    fftw_plan fwd, inv;   /* r2c / c2r on the shared buffers */
+    double *symbol;       /* fy * (fx/2+1) multipliers, including 1/(fx*fy) */
+} box_plan;
+
+struct mc_precond {
+    mc_grid g;
+    int i0, j0, bx, by;   /* current box: origin and size in cells */
+    box_plan *cur;
+    box_plan cache[PLAN_CACHE];
+    int ncached, next_evict;
+    double *real;         /* max fx * max fy */
+    fftw_complex *spec;   /* max fy * (max fx/2+1) */
+};
+
+static int axis_fft_max(int n, int periodic) { return periodic ? n : mc_fft_good_size(n); }
+
+int mc_precond_create(const mc_grid *g, mc_precond **out, mc_error *err)
+{
+    *out = NULL;
+    mc_precond *pc = mc_calloc(1, sizeof *pc);
+    if (!pc)
+        return mc_fail(err, MC_ERR_NOMEM, "preconditioner: out of memory");
+    pc->g = *g;
+    int mx = axis_fft_max(g->nx, g->periodic_x), my = axis_fft_max(g->ny, g->periodic_y);
+    pc->real = mc_malloc(sizeof(double) * (size_t)mx * (size_t)my);
+    pc->spec = mc_malloc(sizeof(fftw_complex) * (size_t)my * (size_t)(mx / 2 + 1));
+    if (!pc->real || !pc->spec) {
+        mc_precond_destroy(&pc);
+        return mc_fail(err, MC_ERR_NOMEM, "preconditioner: out of memory for %d x %d buffers", mx,
+                       my);
+    }
+    *out = pc;
+    return MC_OK;
+}
+
+static void free_plan(box_plan *b)
+{
+    if (b->fwd)
+        fftw_destroy_plan(b->fwd);
+    if (b->inv)
+        fftw_destroy_plan(b->inv);
+    mc_free(b->symbol);
+    memset(b, 0, sizeof *b);
+}
+
+void mc_precond_destroy(mc_precond **pcp)
+{
+    if (!pcp || !*pcp)
+        return;
+    mc_precond *pc = *pcp;
+    for (int k = 0; k < pc->ncached; k++)
+        free_plan(&pc->cache[k]);
+    mc_free(pc->real);
+    mc_free(pc->spec);
+    mc_free(pc);
+    *pcp = NULL;
+}
+
+/* |q| on the periodic box: the inverse of the continuum Love symbol 2/(E*|q|) up to E* / 2.
+ * The mean mode gets half the lowest non-zero wavenumber, so the operator stays definite under
+ * approach control (under load control the mean is projected out anyway). */
+static void fill_symbol(box_plan *b, double dx, double dy)
+{
+    int hx = b->fx / 2 + 1;
+    double Lx = b->fx * dx, Ly = b->fy * dy;
+    double scale = 1.0 / ((double)b->fx * (double)b->fy);
+    double qmin = 2.0 * M_PI / (Lx > Ly ? Lx : Ly);
+    for (int ky = 0; ky < b->fy; ky++) {
+        int my = ky <= b->fy / 2 ? ky : ky - b->fy;
+        double qy = 2.0 * M_PI * my / Ly;
+        for (int kx = 0; kx < hx; kx++) {
+            double qx = 2.0 * M_PI * kx / Lx;
+            double q = sqrt(qx * qx + qy * qy);
+            b->symbol[(size_t)ky * hx + kx] = (kx == 0 && my == 0 ? 0.5 * qmin : q) * scale;
+        }
+    }
+}
+
+static box_plan *plan_for(mc_precond *pc, int fx, int fy, mc_error *err)
+{
+    for (int k = 0; k < pc->ncached; k++)
+        if (pc->cache[k].fx == fx && pc->cache[k].fy == fy)
+            return &pc->cache[k];
+    box_plan *b;
+    int fresh_slot = pc->ncached < PLAN_CACHE;
+    if (fresh_slot) {
+        b = &pc->cache[pc->ncached++];
+    } else {
+        b = &pc->cache[pc->next_evict];
+        pc->next_evict = (pc->next_evict + 1) % PLAN_CACHE;
+        if (b == pc->cur)
+            pc->cur = NULL;
+        free_plan(b);
+    }
+    b->fx = fx;
+    b->fy = fy;
+    b->symbol = mc_malloc(sizeof(double) * (size_t)fy * (size_t)(fx / 2 + 1));
+    if (mc_fftw_prepare(err) != MC_OK) {
+        free_plan(b);
+        if (fresh_slot)
+            pc->ncached--;
+        return NULL;
+    }
+    if ((size_t)fx * fy < MC_THREADS_MIN_CELLS)
+        fftw_plan_with_nthreads(1);
+    b->fwd = fftw_plan_dft_r2c_2d(fy, fx, pc->real, pc->spec, FFTW_ESTIMATE);
+    b->inv = fftw_plan_dft_c2r_2d(fy, fx, pc->spec, pc->real, FFTW_ESTIMATE);
+    if (!b->symbol || !b->fwd || !b->inv) {
+        free_plan(b); /* an evicted slot stays in the cache as an empty (0 x 0) entry */
+        if (fresh_slot)
+            pc->ncached--;
+        mc_fail(err, MC_ERR_NOMEM, "preconditioner: cannot plan a %d x %d transform", fx, fy);
+        return NULL;
+    }
+    fill_symbol(b, pc->g.dx, pc->g.dy);
+    return b;
+}
+
+/* Bounding interval of the set along one axis, widened by a margin so the periodic wrap of the
+ * box does not couple opposite edges of the contact strongly. */
+static void axis_box(int lo, int hi, int n, int periodic, int *start, int *len, int *flen)
+{
+    if (periodic) {
+        *start = 0;
+        *len = n;
+        *flen = n;
+        return;
+    }
+    int w = hi - lo + 1;
+    int margin = w / 8 > 2 ? w / 8 : 2;
+    lo = lo - margin < 0 ? 0 : lo - margin;
+    hi = hi + margin >= n ? n - 1 : hi + margin;
+    *start = lo;
+    *len = hi - lo + 1;
+    *flen = mc_fft_good_size(*len);
+    if (*flen > mc_fft_good_size(n))
+        *flen = mc_fft_good_size(n);
+}
+
+int mc_precond_set_mask(mc_precond *pc, const unsigned char *mask, mc_error *err)
+{
+    const int nx = pc->g.nx, ny = pc->g.ny;
+    int ilo = nx, ihi = -1, jlo = ny, jhi = -1;
+    for (int j = 0; j < ny; j++) {
+        const unsigned char *row = mask + (size_t)j * nx;
+        int any = 0;
+        for (int i = 0; i < nx; i++) {
+            if (row[i]) {
+                if (i < ilo)
+                    ilo = i;
+                if (i > ihi)
+                    ihi = i;
+                any = 1;
+            }
+        }
+        if (any) {
+            if (j < jlo)
+                jlo = j;
+            jhi = j;
+        }
+    }
+    if (ihi < 0) { /* empty set: any box works, apply returns zeros */
+        ilo = ihi = jlo = jhi = 0;
+    }
+    int fx, fy;
+    axis_box(ilo, ihi, nx, pc->g.periodic_x, &pc->i0, &pc->bx, &fx);
+    axis_box(jlo, jhi, ny, pc->g.periodic_y, &pc->j0, &pc->by, &fy);
+    box_plan *b = plan_for(pc, fx, fy, err);
+    if (!b)
+        return err ? err->code : MC_ERR_NOMEM;
+    pc->cur = b;
+    return MC_OK;
+}
+
+void mc_precond_apply(mc_precond *pc, const unsigned char *mask, const double *r, double *z)
+{
+    const int nx = pc->g.nx, ny = pc->g.ny;
+    const box_plan *b = pc->cur;
+    const int fx = b->fx, fy = b->fy, hx = fx / 2 + 1;
+    memset(pc->real, 0, sizeof(double) * (size_t)fx * (size_t)fy);
+    for (int j = 0; j < pc->by; j++) {
+        size_t src = (size_t)(pc->j0 + j) * nx + (size_t)pc->i0;
+        double *dst = pc->real + (size_t)j * fx;
+        for (int i = 0; i < pc->bx; i++)
+            dst[i] = mask[src + i] ? r[src + i] : 0.0;
+    }
+    fftw_execute(b->fwd);
+    const size_t nspec = (size_t)fy * (size_t)hx;
+    for (size_t k = 0; k < nspec; k++) {
+        pc->spec[k][0] *= b->symbol[k];
+        pc->spec[k][1] *= b->symbol[k];
+    }
+    fftw_execute(b->inv);
+    memset(z, 0, sizeof(double) * (size_t)nx * (size_t)ny);
+    for (int j = 0; j < pc->by; j++) {
+        size_t dst = (size_t)(pc->j0 + j) * nx + (size_t)pc->i0;
+        const double *src = pc->real + (size_t)j * fx;
+        for (int i = 0; i < pc->bx; i++)
+            if (mask[dst + i])
+                z[dst + i] = src[i];
+    }
+}

@@ -1,0 +1,32 @@
+/* precond.h - FFT-based preconditioner for the contact solvers.
+ *
+ * Approximates the inverse of the influence matrix restricted to a set S of free cells,
+ *     z = R_S F^-1[ |q| F(R_S^T r) ]    on the bounding box of S (plus a margin),
+ * i.e. the inverse of the continuum Love symbol 2/(E*|q|) (Johnson 1985 ch. 2; Stanley & Kato
+ * 1997), up to the constant factor E* / 2 that a CG step length absorbs. The box is treated as
+ * periodic; along periodic axes of the grid the box is the whole axis. After Vollebregt,
+ * J. Comput. Phys. 257 (2014) 333-351 ("FFT-based preconditioner"). FFT plans are cached per box
+ * size, so a solve plans only when its contact's bounding box changes size.
+ */
+#ifndef MC_PRECOND_H
+#define MC_PRECOND_H
+
+#include "core/error.h"
+#include "core/grid.h"
+
+typedef struct mc_precond mc_precond;
+
+/* Allocate for grid g (buffers sized for the whole grid; never reallocated). */
+int mc_precond_create(const mc_grid *g, mc_precond **out, mc_error *err);
+void mc_precond_destroy(mc_precond **pc);
+
+/* Fit the box to the cells with mask[i] != 0 (plans a new size if needed; MC_ERR_NOMEM if FFTW
+ * cannot plan, MC_ERR_INTERNAL if its threads cannot start). Call when the set changes; cheap
+ * when the box size did not change. */
+int mc_precond_set_mask(mc_precond *pc, const unsigned char *mask, mc_error *err);
+
+/* z = R_S M R_S^T r on the mask of the last set_mask call; z = 0 outside the mask.
+ * r and z are full-grid arrays (ny*nx) and must not alias. Never allocates. */
+void mc_precond_apply(mc_precond *pc, const unsigned char *mask, const double *r, double *z);
+
+#endif

@@ -1,0 +1,93 @@
+/* memguard.c - memory estimate and guard (see memguard.h). */
+#include "pipeline/memguard.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "contact/contact.h"
+#include "core/fftsize.h"
+
+/* Cells of the transform of one axis (padded when free, as conv.c). */
+static double axis_len(int n, int periodic) { return periodic ? n : mc_fft_good_size(2 * n - 1); }
+
+/* Bytes of one operator on grid (nx, ny): fft - kernel spectrum, real and complex work buffers,
+ * and the kernel table while it is built; direct - the table. */
+static double operator_bytes(int nx, int ny, int px, int py, mc_backend b)
+{
+    double tx = axis_len(nx, px), ty = axis_len(ny, py), half = ty * (tx / 2 + 1);
+    if (b == MC_BACKEND_DIRECT)
+        return 8 * tx * ty;
+    return 16 * half * 2 + 8 * tx * ty + 8 * tx * ty;
+}
+
+double mc_scene_memory_estimate(const mc_scene *s)
+{
+    const mc_grid *g = &s->grid;
+    double cells = (double)g->nx * (double)g->ny;
+    double bytes = 4 * 8 * cells; /* topography, pressure, gap, displacement */
+    if (s->load.kind == MC_LOAD_PRESSURE_FILE)
+        bytes += 8 * cells; /* the map as read */
+    bytes += operator_bytes(g->nx, g->ny, g->periodic_x, g->periodic_y, s->solver.op);
+    if (s->load.kind != MC_LOAD_PRESSURE_FILE) {
+        /* ten work arrays, two masks, the preconditioner's box buffers */
+        double solver = (10 * 8 + 2 + 16) * cells;
+        if (s->solver.method == MC_METHOD_ACTIVE_SET)
+            solver += 2 * 8 * cells * cells;
+        /* nested start: each coarse level a quarter of the one above (operator and solver) */
+        if (s->solver.method == MC_METHOD_CG && g->nx >= MC_COARSEN_MIN)
+            solver += (solver + operator_bytes(g->nx, g->ny, g->periodic_x, g->periodic_y,
+                                               s->solver.op)) / 3.0;
+        bytes += solver;
+    }
+    if (s->stress.enabled) {
+        int layers = s->stress.spacing == MC_SPACING_LIST ? s->stress.ndepths : s->stress.layers;
+        double tx = axis_len(g->nx, g->periodic_x), ty = axis_len(g->ny, g->periodic_y);
+        /* six components, von Mises, hydrostatic, Tresca per layer; per load six tables and six
+         * spectra, the load spectra, and a second operator's work buffers */
+        int loads = s->stress.friction > 0 ? 2 : 1;
+        bytes += 9 * 8 * cells * layers;
+        bytes += loads * (6 * 8 * tx * ty + 6 * 16 * ty * (tx / 2 + 1) + 16 * ty * (tx / 2 + 1));
+        bytes += 8 * tx * ty + 16 * ty * (tx / 2 + 1);
+    }
+    return bytes;
+}
+
+double mc_memory_available(void)
+{
+    const char *env = getenv("MC_MEMORY_LIMIT");
+    if (env && *env) {
+        char *end;
+        double v = strtod(env, &end);
+        if (end != env && v > 0)
+            return v;
+    }
+    FILE *f = fopen("/proc/meminfo", "r");
+    if (f) {
+        char line[256];
+        while (fgets(line, sizeof line, f)) {
+            unsigned long long kb;
+            if (sscanf(line, "MemAvailable: %llu kB", &kb) == 1) {
+                fclose(f);
+                return 1024.0 * (double)kb;
+            }
+        }
+        fclose(f);
+    }
+    return (double)sysconf(_SC_PHYS_PAGES) * (double)sysconf(_SC_PAGESIZE);
+}
+
+int mc_memory_check(const mc_scene *s, mc_error *err)
+{
+    double need = mc_scene_memory_estimate(s), have = mc_memory_available();
+    if (need <= have)
+        return MC_OK;
+    const double GiB = 1073741824.0;
+    return mc_fail(err, MC_ERR_NOMEM,
+                   "the scene needs about %.1f GiB, %.1f GiB available (grid %d x %d%s); reduce "
+                   "the grid%s",
+                   need / GiB, have / GiB, s->grid.nx, s->grid.ny,
+                   s->stress.enabled ? " with stress layers" : "",
+                   s->stress.enabled ? " or the number of stress layers" : "");
+}

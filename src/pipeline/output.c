@@ -1,0 +1,855 @@
+/* output.c - the output contract of DESIGN.md, written atomically (see output.h).
+ *
+ * Protocol: every file goes into DIR/.staging-XXXXXX; only when all of them are complete are
+ * they renamed into DIR: first the old summary.json is removed (so a summary.json in DIR always
+ * describes the files beside it), then the data files are renamed, contract files of an earlier
+ * run that this run does not produce are removed, and summary.json is renamed last.
+ */
+#include "pipeline/output.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/alloc.h"
+#include "kernels/kernel.h"
+#include "io/npy.h"
+
+#define OUT_PATH_MAX 4096
+#define OUT_FORMAT_VERSION 1
+#define OUT_CHUNK 512 /* doubles encoded per fwrite */
+
+static const char *const stress_npy[MC_NSTRESS] = {
+    [MC_SXX] = "stress_xx.npy", [MC_SYY] = "stress_yy.npy", [MC_SZZ] = "stress_zz.npy",
+    [MC_SXY] = "stress_xy.npy", [MC_SYZ] = "stress_yz.npy", [MC_SXZ] = "stress_xz.npy"};
+
+/* Every file name the contract defines: the set cleaned of stale files after a run. */
+static const char *const contract_files[] = {
+    "summary.json",  "pressure.npy",  "gap.npy",       "displacement.npy", "topography.npy",
+    "profile_x.csv", "von_mises.npy", "hydrostatic.npy", "stress_xx.npy", "stress_yy.npy",
+    "stress_zz.npy", "stress_xy.npy", "stress_yz.npy", "stress_xz.npy",    "depths.csv",
+    "axis.csv",      "field.vti",     "stress.vtr"};
+#define N_CONTRACT ((int)(sizeof contract_files / sizeof contract_files[0]))
+
+typedef struct {
+    const char *dir;
+    char stage[OUT_PATH_MAX];
+    const char *files[N_CONTRACT]; /* written so far, in order; static strings */
+    int nfiles;
+    const mc_scene *scene;
+    const mc_results *res;
+    int ic, jc; /* cell of maximum pressure: profile row and stress axis */
+} out_ctx;
+
+static int join(char *out, const char *a, const char *b, mc_error *err)
+{
+    if (snprintf(out, OUT_PATH_MAX, "%s/%s", a, b) >= OUT_PATH_MAX)
+        return mc_fail(err, MC_ERR_INPUT, "output path '%s/%s' too long", a, b);
+    return MC_OK;
+}
+
+/* ---- prepare ----------------------------------------------------------------------------- */
+
+static int mkdir_one(const char *dir, const char *path, mc_error *err)
+{
+    if (mkdir(path, 0777) == 0)
+        return MC_OK;
+    int e = errno;
+    struct stat sb;
+    if (e == EEXIST && stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+        return MC_OK;
+    if (e == EEXIST)
+        e = ENOTDIR;
+    return mc_fail(err, MC_ERR_IO, "output directory '%s': cannot create '%s': %s", dir, path,
+                   strerror(e));
+}
+
+int mc_output_prepare(const char *dir, mc_error *err)
+{
+    if (!dir || !*dir)
+        return mc_fail(err, MC_ERR_INPUT, "output directory: empty path");
+    char path[OUT_PATH_MAX];
+    if (snprintf(path, sizeof path, "%s", dir) >= (int)sizeof path)
+        return mc_fail(err, MC_ERR_INPUT, "output directory '%s': path too long", dir);
+    for (char *p = path + 1; *p; p++) {
+        if (*p != '/' || p[-1] == '/')
+            continue;
+        *p = '\0';
+        int st = mkdir_one(dir, path, err);
+        *p = '/';
+        if (st != MC_OK)
+            return st;
+    }
+    int st = mkdir_one(dir, path, err);
+    if (st != MC_OK)
+        return st;
+    char probe[OUT_PATH_MAX];
+    st = join(probe, dir, ".mc-probe-XXXXXX", err);
+    if (st != MC_OK)
+        return st;
+    int fd = mkstemp(probe);
+    if (fd < 0)
+        return mc_fail(err, MC_ERR_IO, "output directory '%s': not writable: %s", dir,
+                       strerror(errno));
+    close(fd);
+    if (unlink(probe) != 0)
+        return mc_fail(err, MC_ERR_IO, "output directory '%s': cannot remove probe file '%s': %s",
+                       dir, probe, strerror(errno));
+    return MC_OK;
+}
+
+/* ---- small writers ----------------------------------------------------------------------- */
+
+static int open_staged(out_ctx *c, const char *name, FILE **f, mc_error *err)
+{
+    char path[OUT_PATH_MAX];
+    int st = join(path, c->stage, name, err);
+    if (st != MC_OK)
+        return st;
+    *f = fopen(path, "wb");
+    if (!*f)
+        return mc_fail(err, MC_ERR_IO, "%s: cannot create: %s", path, strerror(errno));
+    return MC_OK;
+}
+
+/* Close a staged file, checking every buffered write; records the name on success. */
+static int close_staged(out_ctx *c, const char *name, FILE *f, mc_error *err)
+{
+    int bad = ferror(f), e = errno;
+    if (fclose(f) != 0 && !bad) {
+        bad = 1;
+        e = errno;
+    }
+    if (bad)
+        return mc_fail(err, MC_ERR_IO, "%s/%s: cannot write: %s", c->stage, name, strerror(e));
+    c->files[c->nfiles++] = name;
+    return MC_OK;
+}
+
+static void put_le64(FILE *f, const double *v, size_t n)
+{
+    unsigned char buf[OUT_CHUNK * 8];
+    for (size_t k = 0; k < n; k += OUT_CHUNK) {
+        size_t m = n - k < OUT_CHUNK ? n - k : OUT_CHUNK;
+        for (size_t q = 0; q < m; q++) {
+            uint64_t u;
+            memcpy(&u, &v[k + q], sizeof u);
+            for (int b = 0; b < 8; b++)
+                buf[8 * q + (size_t)b] = (unsigned char)(u >> (8 * b));
+        }
+        if (fwrite(buf, 8, m, f) != m)
+            return; /* ferror is set; close_staged reports it */
+    }
+}
+
+static void put_u64(FILE *f, uint64_t u)
+{
+    unsigned char b[8];
+    for (int k = 0; k < 8; k++)
+        b[k] = (unsigned char)(u >> (8 * k));
+    fwrite(b, 1, 8, f);
+}
+
+static int write_npy(out_ctx *c, const char *name, const double *data, int ndim,
+                     const size_t *shape, mc_error *err)
+{
+    char path[OUT_PATH_MAX];
+    int st = join(path, c->stage, name, err);
+    if (st == MC_OK)
+        st = mc_npy_write(path, data, ndim, shape, err);
+    if (st == MC_OK)
+        c->files[c->nfiles++] = name;
+    return st;
+}
+
+/* ---- the files --------------------------------------------------------------------------- */
+
+static size_t cells(const out_ctx *c) { return mc_grid_cells(&c->res->grid); }
+
+static int write_surface_fields(out_ctx *c, mc_error *err)
+{
+    const mc_results *r = c->res;
+    size_t shape[2] = {(size_t)r->grid.ny, (size_t)r->grid.nx};
+    int st = write_npy(c, "pressure.npy", r->pressure, 2, shape, err);
+    if (st == MC_OK)
+        st = write_npy(c, "gap.npy", r->gap, 2, shape, err);
+    if (st == MC_OK)
+        st = write_npy(c, "displacement.npy", r->displacement, 2, shape, err);
+    if (st == MC_OK)
+        st = write_npy(c, "topography.npy", r->topography, 2, shape, err);
+    return st;
+}
+
+static int write_profile(out_ctx *c, mc_error *err)
+{
+    const mc_results *r = c->res;
+    const mc_grid *g = &r->grid;
+    FILE *f;
+    int st = open_staged(c, "profile_x.csv", &f, err);
+    if (st != MC_OK)
+        return st;
+    fprintf(f, "x,pressure,gap,displacement\n");
+    for (int i = 0; i < g->nx; i++) {
+        size_t k = (size_t)c->jc * (size_t)g->nx + (size_t)i;
+        fprintf(f, "%.17g,%.17g,%.17g,%.17g\n", mc_grid_x(g, i), r->pressure[k], r->gap[k],
+                r->displacement[k]);
+    }
+    return close_staged(c, "profile_x.csv", f, err);
+}
+
+static int write_stress_fields(out_ctx *c, mc_error *err)
+{
+    const mc_results *r = c->res;
+    size_t shape[3] = {(size_t)r->nlayers, (size_t)r->grid.ny, (size_t)r->grid.nx};
+    int st = write_npy(c, "von_mises.npy", r->von_mises, 3, shape, err);
+    if (st == MC_OK)
+        st = write_npy(c, "hydrostatic.npy", r->hydrostatic, 3, shape, err);
+    for (int s = 0; s < MC_NSTRESS && st == MC_OK; s++)
+        st = write_npy(c, stress_npy[s], r->stress[s], 3, shape, err);
+    if (st != MC_OK)
+        return st;
+
+    FILE *f;
+    st = open_staged(c, "depths.csv", &f, err);
+    if (st != MC_OK)
+        return st;
+    fprintf(f, "layer,z\n");
+    for (int k = 0; k < r->nlayers; k++)
+        fprintf(f, "%d,%.17g\n", k, r->depths[k]);
+    st = close_staged(c, "depths.csv", f, err);
+    if (st != MC_OK)
+        return st;
+
+    st = open_staged(c, "axis.csv", &f, err);
+    if (st != MC_OK)
+        return st;
+    fprintf(f, "z,sxx,syy,szz,sxy,syz,sxz,von_mises,hydrostatic,tresca\n");
+    size_t n = cells(c), at = (size_t)c->jc * (size_t)r->grid.nx + (size_t)c->ic;
+    for (int k = 0; k < r->nlayers; k++) {
+        size_t q = (size_t)k * n + at;
+        fprintf(f, "%.17g", r->depths[k]);
+        for (int s = 0; s < MC_NSTRESS; s++)
+            fprintf(f, ",%.17g", r->stress[s][q]);
+        fprintf(f, ",%.17g,%.17g,%.17g\n", r->von_mises[q], r->hydrostatic[q], r->tresca[q]);
+    }
+    return close_staged(c, "axis.csv", f, err);
+}
+
+/* VTK XML ImageData: the surface fields as CellData, raw appended little-endian Float64 blocks
+ * each preceded by its UInt64 byte count. Origin at the grid corner so that cell centres fall
+ * on x_i = (i + 1/2 - nx/2) dx. */
+static int write_vti(out_ctx *c, mc_error *err)
+{
+    const mc_results *r = c->res;
+    const mc_grid *g = &r->grid;
+    const char *names[4] = {"pressure", "gap", "displacement", "topography"};
+    const double *arrays[4] = {r->pressure, r->gap, r->displacement, r->topography};
+    size_t n = cells(c), block = 8 + 8 * n;
+    FILE *f;
+    int st = open_staged(c, "field.vti", &f, err);
+    if (st != MC_OK)
+        return st;
+    fprintf(f, "<?xml version=\"1.0\"?>\n"
+               "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+               "header_type=\"UInt64\">\n");
+    fprintf(f,
+            "  <ImageData WholeExtent=\"0 %d 0 %d 0 0\" Origin=\"%.17g %.17g 0\" "
+            "Spacing=\"%.17g %.17g %.17g\">\n",
+            g->nx, g->ny, -0.5 * g->nx * g->dx, -0.5 * g->ny * g->dy, g->dx, g->dy, g->dx);
+    fprintf(f, "    <Piece Extent=\"0 %d 0 %d 0 0\">\n", g->nx, g->ny);
+    fprintf(f, "      <CellData Scalars=\"pressure\">\n");
+    for (int a = 0; a < 4; a++)
+        fprintf(f,
+                "        <DataArray type=\"Float64\" Name=\"%s\" format=\"appended\" "
+                "offset=\"%zu\"/>\n",
+                names[a], (size_t)a * block);
+    fprintf(f, "      </CellData>\n    </Piece>\n  </ImageData>\n"
+               "  <AppendedData encoding=\"raw\">\n   _");
+    for (int a = 0; a < 4; a++) {
+        put_u64(f, 8 * (uint64_t)n);
+        put_le64(f, arrays[a], n);
+    }
+    fprintf(f, "\n  </AppendedData>\n</VTKFile>\n");
+    return close_staged(c, "field.vti", f, err);
+}
+
+/* VTK XML RectilinearGrid of the stress volume: points at the cell centres x, y and at
+ * z = -depth; layers are written deepest first when depths increase, so z increases as VTK
+ * expects of rectilinear coordinates. */
+static int write_vtr(out_ctx *c, mc_error *err)
+{
+    const mc_results *r = c->res;
+    const mc_grid *g = &r->grid;
+    int nl = r->nlayers;
+    int reverse = nl > 1 && r->depths[0] < r->depths[nl - 1];
+    const char *names[MC_NSTRESS + 3] = {"stress_xx", "stress_yy", "stress_zz", "stress_xy",
+                                         "stress_yz", "stress_xz", "von_mises", "hydrostatic",
+                                         "tresca"};
+    const double *arrays[MC_NSTRESS + 3];
+    for (int s = 0; s < MC_NSTRESS; s++)
+        arrays[s] = r->stress[s];
+    arrays[MC_NSTRESS] = r->von_mises;
+    arrays[MC_NSTRESS + 1] = r->hydrostatic;
+    arrays[MC_NSTRESS + 2] = r->tresca;
+    size_t n = cells(c), n3 = n * (size_t)nl;
+
+    FILE *f;
+    int st = open_staged(c, "stress.vtr", &f, err);
+    if (st != MC_OK)
+        return st;
+    fprintf(f, "<?xml version=\"1.0\"?>\n"
+               "<VTKFile type=\"RectilinearGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+               "header_type=\"UInt64\">\n");
+    fprintf(f, "  <RectilinearGrid WholeExtent=\"0 %d 0 %d 0 %d\">\n", g->nx - 1, g->ny - 1,
+            nl - 1);
+    fprintf(f, "    <Piece Extent=\"0 %d 0 %d 0 %d\">\n", g->nx - 1, g->ny - 1, nl - 1);
+    size_t off = 0;
+    fprintf(f, "      <PointData Scalars=\"von_mises\">\n");
+    for (int a = 0; a < MC_NSTRESS + 3; a++) {
+        fprintf(f,
+                "        <DataArray type=\"Float64\" Name=\"%s\" format=\"appended\" "
+                "offset=\"%zu\"/>\n",
+                names[a], off);
+        off += 8 + 8 * n3;
+    }
+    fprintf(f, "      </PointData>\n      <Coordinates>\n");
+    const char *cn[3] = {"x", "y", "z"};
+    size_t clen[3] = {(size_t)g->nx, (size_t)g->ny, (size_t)nl};
+    for (int a = 0; a < 3; a++) {
+        fprintf(f,
+                "        <DataArray type=\"Float64\" Name=\"%s\" format=\"appended\" "
+                "offset=\"%zu\"/>\n",
+                cn[a], off);
+        off += 8 + 8 * clen[a];
+    }
+    fprintf(f, "      </Coordinates>\n    </Piece>\n  </RectilinearGrid>\n"
+               "  <AppendedData encoding=\"raw\">\n   _");
+    for (int a = 0; a < MC_NSTRESS + 3; a++) {
+        put_u64(f, 8 * (uint64_t)n3);
+        for (int k = 0; k < nl; k++)
+            put_le64(f, arrays[a] + (size_t)(reverse ? nl - 1 - k : k) * n, n);
+    }
+    put_u64(f, 8 * (uint64_t)g->nx);
+    for (int i = 0; i < g->nx; i++) {
+        double x = mc_grid_x(g, i);
+        put_le64(f, &x, 1);
+    }
+    put_u64(f, 8 * (uint64_t)g->ny);
+    for (int j = 0; j < g->ny; j++) {
+        double y = mc_grid_y(g, j);
+        put_le64(f, &y, 1);
+    }
+    put_u64(f, 8 * (uint64_t)nl);
+    for (int k = 0; k < nl; k++) {
+        double z = -r->depths[reverse ? nl - 1 - k : k];
+        put_le64(f, &z, 1);
+    }
+    fprintf(f, "\n  </AppendedData>\n</VTKFile>\n");
+    return close_staged(c, "stress.vtr", f, err);
+}
+
+/* ---- summary.json ------------------------------------------------------------------------ */
+
+typedef struct {
+    int bad; /* an allocation inside jansson failed */
+} jbuild;
+
+/* Infinities (e.g. no pressure cap) and NaN become null: JSON has no such numbers. */
+static json_t *jnum(double v) { return isfinite(v) ? json_real(v) : json_null(); }
+
+static void jset(jbuild *b, json_t *obj, const char *key, json_t *v)
+{
+    if (!obj) {
+        json_decref(v);
+        b->bad = 1;
+    } else if (json_object_set_new(obj, key, v) != 0) { /* steals v, also on failure */
+        b->bad = 1;
+    }
+}
+
+/* Attach a new child object; returns it (borrowed) or NULL when that failed. */
+static json_t *jchild(jbuild *b, json_t *parent, const char *key, json_t *child)
+{
+    if (!child || !parent) {
+        json_decref(child);
+        b->bad = 1;
+        return NULL;
+    }
+    if (json_object_set_new(parent, key, child) != 0) {
+        b->bad = 1;
+        return NULL;
+    }
+    return child;
+}
+
+/* Length of the valid UTF-8 sequence at s (RFC 3629: no overlongs, surrogates or > U+10FFFF),
+ * 0 if invalid. */
+static size_t utf8_seq(const unsigned char *s)
+{
+    unsigned char c = s[0];
+    if (c < 0x80)
+        return 1;
+    size_t n;
+    unsigned char lo = 0x80, hi = 0xBF;
+    if (c >= 0xC2 && c <= 0xDF)
+        n = 2;
+    else if (c >= 0xE0 && c <= 0xEF) {
+        n = 3;
+        if (c == 0xE0)
+            lo = 0xA0;
+        if (c == 0xED)
+            hi = 0x9F;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+        n = 4;
+        if (c == 0xF0)
+            lo = 0x90;
+        if (c == 0xF4)
+            hi = 0x8F;
+    } else
+        return 0;
+    if (s[1] < lo || s[1] > hi)
+        return 0;
+    for (size_t k = 2; k < n; k++)
+        if (s[k] < 0x80 || s[k] > 0xBF)
+            return 0;
+    return n;
+}
+
+/* A JSON string; bytes that are not UTF-8 (a Latin-1 file name) become '?' rather than failing. */
+static json_t *jstr(const char *s)
+{
+    if (!s)
+        return json_null();
+    char buf[MC_PATH_MAX + 1];
+    size_t k = 0;
+    const unsigned char *u = (const unsigned char *)s;
+    while (*u && k < MC_PATH_MAX) {
+        size_t m = utf8_seq(u);
+        if (m == 0 || k + m > MC_PATH_MAX) {
+            buf[k++] = '?';
+            u++;
+            continue;
+        }
+        memcpy(buf + k, u, m);
+        k += m;
+        u += m;
+    }
+    buf[k] = '\0';
+    return json_string(buf);
+}
+
+static json_t *jxyz(const double v[3])
+{
+    json_t *a = json_array();
+    if (!a)
+        return NULL;
+    for (int k = 0; k < 3; k++)
+        if (json_array_append_new(a, jnum(v[k])) != 0) {
+            json_decref(a);
+            return NULL;
+        }
+    return a;
+}
+
+static const char *shape_name(mc_shape s)
+{
+    switch (s) {
+    case MC_SHAPE_FLAT: return "flat";
+    case MC_SHAPE_SPHERE: return "sphere";
+    case MC_SHAPE_CYLINDER: return "cylinder";
+    case MC_SHAPE_ELLIPSOID: return "ellipsoid";
+    }
+    return "unknown";
+}
+
+static const char *rough_name(mc_roughness_type t)
+{
+    switch (t) {
+    case MC_ROUGH_NONE: return "none";
+    case MC_ROUGH_GAUSSIAN: return "gaussian";
+    case MC_ROUGH_SELF_AFFINE: return "self_affine";
+    case MC_ROUGH_FILE: return "file";
+    }
+    return "unknown";
+}
+
+static const char *load_name(mc_load_kind k)
+{
+    switch (k) {
+    case MC_LOAD_FORCE: return "force";
+    case MC_LOAD_FORCE_PER_LENGTH: return "force_per_length";
+    case MC_LOAD_APPROACH: return "approach";
+    case MC_LOAD_PRESSURE_FILE: return "pressure_file";
+    }
+    return "unknown";
+}
+
+
+/* JSON integers are signed 64-bit: a seed beyond INT64_MAX is written as a decimal string. */
+static json_t *jseed(unsigned long long seed)
+{
+    if (seed <= (unsigned long long)INT64_MAX)
+        return json_integer((json_int_t)seed);
+    char t[32];
+    snprintf(t, sizeof t, "%llu", seed);
+    return json_string(t);
+}
+
+static void summary_inputs(jbuild *b, json_t *root, const mc_scene *s, const mc_results *r)
+{
+    const mc_grid *g = &r->grid;
+    json_t *o = jchild(b, root, "mesh", json_object());
+    jset(b, o, "nx", json_integer(g->nx));
+    jset(b, o, "ny", json_integer(g->ny));
+    jset(b, o, "dx", jnum(g->dx));
+    jset(b, o, "dy", jnum(g->dy));
+    jset(b, o, "periodic_x", json_boolean(g->periodic_x));
+    jset(b, o, "periodic_y", json_boolean(g->periodic_y));
+
+    o = jchild(b, root, "geometry", json_object());
+    jset(b, o, "shape", jstr(shape_name(s->geometry.shape)));
+    if (s->geometry.shape == MC_SHAPE_SPHERE || s->geometry.shape == MC_SHAPE_CYLINDER)
+        jset(b, o, "radius", jnum(s->geometry.radius));
+    if (s->geometry.shape == MC_SHAPE_ELLIPSOID) {
+        jset(b, o, "radius_x", jnum(s->geometry.radius_x));
+        jset(b, o, "radius_y", jnum(s->geometry.radius_y));
+    }
+
+    o = jchild(b, root, "materials", json_object());
+    json_t *m = jchild(b, o, "body1", json_object());
+    jset(b, m, "E", jnum(s->body1.E));
+    jset(b, m, "nu", jnum(s->body1.nu));
+    m = jchild(b, o, "body2", json_object());
+    jset(b, m, "E", jnum(s->body2.E));
+    jset(b, m, "nu", jnum(s->body2.nu));
+    jset(b, m, "rigid", json_boolean(s->body2.rigid));
+    jset(b, o, "estar", jnum(mc_combined_modulus(s->body1.E, s->body1.nu, s->body2.E,
+                                                 s->body2.nu, s->body2.rigid)));
+
+    o = jchild(b, root, "load", json_object());
+    jset(b, o, "kind", jstr(load_name(s->load.kind)));
+    if (s->load.kind == MC_LOAD_PRESSURE_FILE)
+        jset(b, o, "pressure_file", jstr(s->load.pressure_file));
+    else
+        jset(b, o, "value", jnum(s->load.value));
+    jset(b, o, "lubricant_pressure", jnum(s->load.lubricant_pressure));
+    jset(b, o, "pressure_cap", jnum(s->load.pressure_cap));
+
+    o = jchild(b, root, "roughness", json_object());
+    const mc_roughness_type t = s->roughness.type;
+    jset(b, o, "type", jstr(rough_name(t)));
+    if (t == MC_ROUGH_GAUSSIAN || t == MC_ROUGH_SELF_AFFINE) {
+        jset(b, o, "seed", jseed(r->roughness_seed));
+        jset(b, o, "rq", jnum(s->roughness.rq));
+    }
+    if (t == MC_ROUGH_GAUSSIAN) {
+        jset(b, o, "correlation_x", jnum(s->roughness.correlation_x));
+        jset(b, o, "correlation_y", jnum(s->roughness.correlation_y));
+    } else if (t == MC_ROUGH_SELF_AFFINE) {
+        jset(b, o, "hurst", jnum(s->roughness.hurst));
+        jset(b, o, "rms_slope", jnum(s->roughness.rms_slope));
+        jset(b, o, "lambda_long", jnum(s->roughness.lambda_long));
+        jset(b, o, "lambda_short", jnum(s->roughness.lambda_short));
+    } else if (t == MC_ROUGH_FILE) {
+        jset(b, o, "file", jstr(s->roughness.file));
+    }
+}
+
+/* How the stress stage computed (mc_stress_layout): the depth rule and the windows, each with its
+ * layers, its cells and their extent (cell edges, m), outside which the fields hold 0. */
+static void stress_layout(jbuild *b, json_t *o, const mc_scene *s, const mc_results *r)
+{
+    const mc_stress_layout *l = &r->stress_layout;
+    const mc_grid *g = &r->grid;
+    jset(b, o, "depth_rule", jstr(l->depth_auto ? "auto" : "given"));
+    if (l->depth_auto) {
+        jset(b, o, "patches", json_integer(l->patches));
+        jset(b, o, "patch_radius", jnum(l->patch_radius));
+    }
+    jset(b, o, "loaded_cells", json_integer(l->loaded_cells));
+    jset(b, o, "window", jstr(s->stress.window == MC_STRESS_WINDOW_FULL ? "full" : "auto"));
+    jset(b, o, "windowed", json_boolean(l->windowed));
+    json_t *arr = jchild(b, o, "windows", json_array());
+    for (int k = 0; arr && k < l->nwindows; k++) {
+        const mc_stress_window *w = &l->window[k];
+        json_t *e = json_object();
+        const double x0 = mc_grid_x(g, w->i0) - 0.5 * g->dx, x1 = mc_grid_x(g, w->i1) + 0.5 * g->dx;
+        const double y0 = mc_grid_y(g, w->j0) - 0.5 * g->dy, y1 = mc_grid_y(g, w->j1) + 0.5 * g->dy;
+        json_t *v[5] = {json_pack("[ii]", w->k0, w->k1), json_pack("[ii]", w->i0, w->i1),
+                        json_pack("[ii]", w->j0, w->j1), json_pack("[ff]", x0, x1),
+                        json_pack("[ff]", y0, y1)};
+        static const char *keys[5] = {"layers", "cells_x", "cells_y", "x", "y"};
+        for (int q = 0; q < 5; q++)
+            jset(b, e, keys[q], v[q]);
+        jset(b, e, "method", jstr(w->direct ? "direct" : "fft"));
+        if (!e || json_array_append_new(arr, e) != 0)
+            b->bad = 1;
+    }
+}
+
+static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc_results *r)
+{
+    const mc_contact_summary *cs = &r->contact;
+    json_t *o = jchild(b, root, "contact", json_object());
+    jset(b, o, "load", jnum(cs->load));
+    jset(b, o, "solid_load", jnum(cs->solid_load));
+    jset(b, o, "p_max", jnum(cs->p_max));
+    jset(b, o, "area", jnum(cs->area));
+    jset(b, o, "contact_ratio", jnum(cs->contact_ratio));
+    jset(b, o, "approach", jnum(cs->approach));
+    jset(b, o, "iterations", json_integer(cs->iterations));
+    jset(b, o, "residual", jnum(cs->residual));
+    jset(b, o, "converged", json_boolean(cs->converged));
+    jset(b, o, "solver", jstr(cs->solver));
+    jset(b, o, "operator", jstr(mc_backend_name(cs->op)));
+    jset(b, o, "capped_cells", json_integer(cs->capped_cells));
+    jset(b, o, "solved", json_boolean(cs->solved));
+    jset(b, o, "tolerance", jnum(s->solver.tolerance));
+    jset(b, o, "max_iterations", json_integer(s->solver.max_iterations));
+
+    if (r->nlayers > 0) {
+        const mc_stress_summary *ss = &r->stress_summary;
+        o = jchild(b, root, "stress", json_object());
+        jset(b, o, "vm_max", jnum(ss->vm_max));
+        jset(b, o, "vm_max_at", jxyz(ss->vm_max_at));
+        jset(b, o, "hydro_at_vm_max", jnum(ss->hydro_at_vm_max));
+        jset(b, o, "tresca_max", jnum(ss->tresca_max));
+        jset(b, o, "tresca_max_at", jxyz(ss->tresca_max_at));
+        jset(b, o, "layers", json_integer(r->nlayers));
+        jset(b, o, "depth_min", jnum(ss->depth_min));
+        jset(b, o, "depth_max", jnum(ss->depth_max));
+        jset(b, o, "kernel", jstr(ss->kernel));
+        jset(b, o, "friction", jnum(ss->friction));
+        stress_layout(b, o, s, r);
+    }
+
+    o = jchild(b, root, "timing", json_object());
+    jset(b, o, "total_s", jnum(r->timing.total_s));
+    jset(b, o, "setup_s", jnum(r->timing.setup_s));
+    jset(b, o, "contact_s", jnum(r->timing.contact_s));
+    jset(b, o, "stress_s", jnum(r->timing.stress_s));
+}
+
+static int write_summary(out_ctx *c, mc_error *err)
+{
+    static const char name[] = "summary.json";
+    jbuild b = {0};
+    json_t *root = json_object();
+    if (!root)
+        return mc_fail(err, MC_ERR_NOMEM, "summary.json: no memory to build the document");
+    jset(&b, root, "format", json_string("microcontact-output"));
+    jset(&b, root, "format_version", json_integer(OUT_FORMAT_VERSION));
+    jset(&b, root, "case", jstr(c->scene->path));
+    summary_inputs(&b, root, c->scene, c->res);
+    summary_results(&b, root, c->scene, c->res);
+    json_t *files = jchild(&b, root, "files", json_array());
+    for (int k = 0; files && k < c->nfiles; k++)
+        if (json_array_append_new(files, json_string(c->files[k])) != 0)
+            b.bad = 1;
+    if (files && json_array_append_new(files, json_string(name)) != 0)
+        b.bad = 1;
+    if (b.bad) {
+        json_decref(root);
+        return mc_fail(err, MC_ERR_NOMEM, "summary.json: no memory to build the document");
+    }
+    /* json_dumpf, not json_dumps: jansson 2.14's do_dump ignores a failed append of an object
+     * key, so json_dumps can return a corrupt document after an allocation failure in its
+     * string buffer. Writing straight to the file leaves only the (checked) loop-detection
+     * allocations inside jansson. */
+    FILE *f;
+    int st = open_staged(c, name, &f, err);
+    if (st != MC_OK) {
+        json_decref(root);
+        return st;
+    }
+    int dumped = json_dumpf(root, f, JSON_INDENT(2) | JSON_REAL_PRECISION(17));
+    json_decref(root);
+    fputc('\n', f);
+    if (dumped != 0 && !ferror(f)) {
+        fclose(f);
+        return mc_fail(err, MC_ERR_NOMEM, "summary.json: no memory to write the document");
+    }
+    return close_staged(c, name, f, err);
+}
+
+/* ---- staging and commit ------------------------------------------------------------------ */
+
+/* Remove the staging directory and everything in it (also a stray .tmp of mc_npy_write). */
+static void remove_stage(const char *stage)
+{
+    DIR *d = opendir(stage);
+    if (d) {
+        struct dirent *e;
+        char path[OUT_PATH_MAX];
+        while ((e = readdir(d)) != NULL) {
+            if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+                continue;
+            if (snprintf(path, sizeof path, "%s/%s", stage, e->d_name) < (int)sizeof path)
+                unlink(path);
+        }
+        closedir(d);
+    }
+    rmdir(stage);
+}
+
+static int produced(const out_ctx *c, const char *name)
+{
+    for (int k = 0; k < c->nfiles; k++)
+        if (strcmp(c->files[k], name) == 0)
+            return 1;
+    return 0;
+}
+
+static int commit(out_ctx *c, mc_error *err)
+{
+    char from[OUT_PATH_MAX], to[OUT_PATH_MAX];
+    /* Refuse before touching DIR when a target is a directory (rename would fail half-way). */
+    for (int k = 0; k < N_CONTRACT; k++) {
+        struct stat sb;
+        int st = join(to, c->dir, contract_files[k], err);
+        if (st != MC_OK)
+            return st;
+        if (lstat(to, &sb) == 0 && S_ISDIR(sb.st_mode))
+            return mc_fail(err, MC_ERR_IO,
+                           "output directory '%s': '%s' is a directory; cannot replace it with "
+                           "a result file",
+                           c->dir, contract_files[k]);
+    }
+    const char *failed = NULL;
+    int e = 0;
+    if (join(to, c->dir, "summary.json", err) != MC_OK)
+        return MC_ERR_INPUT;
+    if (unlink(to) != 0 && errno != ENOENT) {
+        failed = "summary.json";
+        e = errno;
+    }
+    for (int k = 0; !failed && k < c->nfiles; k++) {
+        if (strcmp(c->files[k], "summary.json") == 0)
+            continue;
+        join(from, c->stage, c->files[k], err);
+        join(to, c->dir, c->files[k], err);
+        if (rename(from, to) != 0) {
+            failed = c->files[k];
+            e = errno;
+        }
+    }
+    for (int k = 0; !failed && k < N_CONTRACT; k++) {
+        if (produced(c, contract_files[k]))
+            continue;
+        join(to, c->dir, contract_files[k], err);
+        if (unlink(to) != 0 && errno != ENOENT) {
+            failed = contract_files[k];
+            e = errno;
+        }
+    }
+    if (!failed) {
+        join(from, c->stage, "summary.json", err);
+        join(to, c->dir, "summary.json", err);
+        if (rename(from, to) != 0) {
+            failed = "summary.json";
+            e = errno;
+        }
+    }
+    if (failed)
+        return mc_fail(err, MC_ERR_IO,
+                       "output directory '%s': cannot replace '%s': %s (the directory holds an "
+                       "incomplete result set without summary.json)",
+                       c->dir, failed, strerror(e));
+    return MC_OK;
+}
+
+static int check_results(const mc_results *r, mc_error *err)
+{
+    int st = mc_grid_check(&r->grid, err);
+    if (st != MC_OK) {
+        if (err) /* mc_error_prefix(NULL) would turn st into MC_ERR_INTERNAL */
+            mc_error_prefix(err, "output: ");
+        return st;
+    }
+    if (!r->pressure || !r->gap || !r->displacement || !r->topography)
+        return mc_fail(err, MC_ERR_INTERNAL, "output: results lack a surface field");
+    if (r->nlayers < 0)
+        return mc_fail(err, MC_ERR_INTERNAL, "output: %d stress layers", r->nlayers);
+    if (r->nlayers > 0) {
+        size_t n3;
+        int ok = r->depths && r->von_mises && r->hydrostatic && r->tresca &&
+                 mc_size_mul(mc_grid_cells(&r->grid), (size_t)r->nlayers, &n3);
+        for (int s = 0; s < MC_NSTRESS; s++)
+            ok = ok && r->stress[s];
+        if (!ok)
+            return mc_fail(err, MC_ERR_INTERNAL, "output: results lack a stress field");
+    }
+    return MC_OK;
+}
+
+/* Cell of maximum pressure; ties go to the cell nearest the grid centre (a uniform or zero
+ * pressure then gives the central row, not row 0). */
+static void locate_pmax(out_ctx *c)
+{
+    const mc_grid *g = &c->res->grid;
+    const double *p = c->res->pressure;
+    double best = -INFINITY, bestd = INFINITY;
+    c->ic = c->jc = 0;
+    for (int j = 0; j < g->ny; j++)
+        for (int i = 0; i < g->nx; i++) {
+            double v = p[(size_t)j * (size_t)g->nx + (size_t)i];
+            double x = mc_grid_x(g, i), y = mc_grid_y(g, j), d = x * x + y * y;
+            if (v > best || (v == best && d < bestd)) {
+                best = v;
+                bestd = d;
+                c->ic = i;
+                c->jc = j;
+            }
+        }
+}
+
+int mc_output_write(const char *dir, const mc_scene *scene, const mc_results *res, mc_error *err)
+{
+    static int jansson_ready;
+    if (!jansson_ready) {
+        json_set_alloc_funcs(mc_malloc, mc_free);
+        jansson_ready = 1;
+    }
+    if (!dir || !*dir)
+        return mc_fail(err, MC_ERR_INPUT, "output directory: empty path");
+    if (!scene || !res)
+        return mc_fail(err, MC_ERR_INTERNAL, "output: no scene or no results");
+    int st = check_results(res, err);
+    if (st != MC_OK)
+        return st;
+    out_ctx c;
+    memset(&c, 0, sizeof c);
+    c.dir = dir;
+    c.scene = scene;
+    c.res = res;
+    locate_pmax(&c);
+    st = join(c.stage, dir, ".staging-XXXXXX", err);
+    if (st != MC_OK)
+        return st;
+    if (!mkdtemp(c.stage))
+        return mc_fail(err, MC_ERR_IO,
+                       "output directory '%s': cannot create a staging directory: %s", dir,
+                       strerror(errno));
+    st = write_surface_fields(&c, err);
+    if (st == MC_OK)
+        st = write_profile(&c, err);
+    if (st == MC_OK && res->nlayers > 0)
+        st = write_stress_fields(&c, err);
+    if (st == MC_OK && scene->output.vtk)
+        st = write_vti(&c, err);
+    if (st == MC_OK && scene->output.vtk && res->nlayers > 0)
+        st = write_vtr(&c, err);
+    if (st == MC_OK)
+        st = write_summary(&c, err);
+    if (st == MC_OK)
+        st = commit(&c, err);
+    remove_stage(c.stage);
+    return st;
+}

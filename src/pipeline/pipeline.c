@@ -1,0 +1,163 @@
+/* pipeline.c - the stages of one run (see pipeline.h). */
+#include "pipeline/pipeline.h"
+
+#include <math.h>
+#include <string.h>
+#include <time.h>
+
+#include "core/alloc.h"
+#include "contact/contact.h"
+#include "io/heightmap.h"
+#include "pipeline/memguard.h"
+#include "operator/operator.h"
+#include "stress/stress.h"
+#include "surface/surface.h"
+
+double mc_clock(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Prescribed pressure: the displacement is K p; the approach is the largest one that keeps the
+ * gap non-negative, so the gap closes exactly where a consistent pressure would be in contact. */
+static int run_prescribed(const mc_scene *sc, mc_operator *K, mc_results *res, mc_error *err)
+{
+    const mc_grid *g = &res->grid;
+    const size_t n = mc_grid_cells(g);
+    double *p = NULL;
+    int rc = mc_heightmap_read(sc->load.pressure_file, g->ny, g->nx, &p, err);
+    if (rc != MC_OK) {
+        if (err)
+            mc_error_prefix(err, "[load] pressure_file: ");
+        return rc;
+    }
+    for (size_t i = 0; i < n; i++) {
+        if (p[i] < 0) {
+            double v = p[i];
+            mc_free(p);
+            return mc_fail(err, MC_ERR_INPUT,
+                           "[load] pressure_file: %s: pressure %g Pa at row %zu, column %zu is "
+                           "negative; a prescribed pressure map must be >= 0 (compressive)",
+                           sc->load.pressure_file, v, i / (size_t)g->nx, i % (size_t)g->nx);
+        }
+    }
+    memcpy(res->pressure, p, n * sizeof *p);
+    mc_free(p);
+    double t0 = mc_clock();
+    mc_operator_apply(K, res->pressure, res->displacement);
+    double delta = INFINITY, load = 0, pmax = 0;
+    size_t ncontact = 0;
+    for (size_t i = 0; i < n; i++) {
+        delta = fmin(delta, res->topography[i] + res->displacement[i]);
+        load += res->pressure[i];
+        pmax = fmax(pmax, res->pressure[i]);
+        ncontact += res->pressure[i] > 0;
+    }
+    for (size_t i = 0; i < n; i++)
+        res->gap[i] = res->topography[i] + res->displacement[i] - delta;
+    mc_contact_summary *c = &res->contact;
+    double A = mc_grid_cell_area(g);
+    c->solved = 0;
+    c->load = A * load;
+    c->solid_load = A * load;
+    c->p_max = pmax;
+    c->area = A * (double)ncontact;
+    c->contact_ratio = (double)ncontact / (double)n;
+    c->approach = delta;
+    c->converged = 1;
+    c->solver = "prescribed";
+    c->op = mc_operator_backend(K);
+    res->timing.contact_s = mc_clock() - t0;
+    return MC_OK;
+}
+
+static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_error *err)
+{
+    const mc_grid *g = &res->grid;
+    mc_contact_options opt = {.method = sc->solver.method,
+                              .tolerance = sc->solver.tolerance,
+                              .max_iterations = sc->solver.max_iterations,
+                              .estar = mc_scene_estar(sc)};
+    mc_contact_problem prob = {.h = res->topography,
+                               .p_lub = sc->load.lubricant_pressure,
+                               .p_cap = sc->load.pressure_cap};
+    switch (sc->load.kind) {
+    case MC_LOAD_FORCE:
+        prob.control = MC_CONTROL_FORCE;
+        prob.load = sc->load.value;
+        break;
+    case MC_LOAD_FORCE_PER_LENGTH: /* the load on one period along y */
+        prob.control = MC_CONTROL_FORCE;
+        prob.load = sc->load.value * g->ny * g->dy;
+        break;
+    case MC_LOAD_APPROACH:
+        prob.control = MC_CONTROL_APPROACH;
+        prob.approach = sc->load.value;
+        break;
+    case MC_LOAD_PRESSURE_FILE:
+        return mc_fail(err, MC_ERR_INTERNAL, "run_contact called for a prescribed pressure");
+    }
+    mc_contact_solver *solver = NULL;
+    double t0 = mc_clock();
+    int rc = mc_contact_create(K, &opt, &solver, err);
+    res->timing.setup_s += mc_clock() - t0;
+    if (rc != MC_OK)
+        return rc;
+    t0 = mc_clock();
+    rc = mc_contact_solve(solver, &prob, res->pressure, res->displacement, res->gap, &res->contact,
+                          err);
+    res->timing.contact_s = mc_clock() - t0;
+    mc_contact_destroy(&solver);
+    return rc;
+}
+
+int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
+{
+    double t_start = mc_clock();
+    memset(res, 0, sizeof *res);
+    int rc = mc_scene_check(sc, err);
+    if (rc != MC_OK)
+        return rc;
+    rc = mc_memory_check(sc, err);
+    if (rc != MC_OK)
+        return rc;
+    mc_set_threads(sc->solver.threads);
+    res->grid = sc->grid;
+    res->roughness_seed = sc->roughness.seed;
+    const size_t n = mc_grid_cells(&sc->grid);
+    double **fields[] = {&res->topography, &res->pressure, &res->gap, &res->displacement};
+    for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++)
+        if (!(*fields[k] = mc_zeros(n)))
+            return mc_fail(err, MC_ERR_NOMEM, "out of memory for the %d x %d surface fields",
+                           sc->grid.nx, sc->grid.ny);
+    rc = mc_surface_topography(&sc->grid, sc, res->topography, err);
+    if (rc != MC_OK)
+        return rc;
+
+    mc_operator *K = NULL;
+    double t0 = mc_clock();
+    rc = mc_operator_plan_love(&sc->grid, mc_scene_estar(sc), sc->solver.op, &K, err);
+    res->timing.setup_s = mc_clock() - t0;
+    if (rc != MC_OK)
+        return rc;
+    if (sc->load.kind == MC_LOAD_PRESSURE_FILE)
+        rc = run_prescribed(sc, K, res, err);
+    else
+        rc = run_contact(sc, K, res, err);
+    mc_operator_destroy(&K);
+    /* stresses of an unconverged solve are still worth writing; its status stays */
+    if ((rc == MC_OK || rc == MC_NOT_CONVERGED) && sc->stress.enabled) {
+        mc_error serr = {0};
+        t0 = mc_clock();
+        int src = mc_stress_stage(sc, res, &serr);
+        res->timing.stress_s = mc_clock() - t0;
+        if (src != MC_OK) {
+            *err = serr;
+            rc = src;
+        }
+    }
+    res->timing.total_s = mc_clock() - t_start;
+    return rc;
+}

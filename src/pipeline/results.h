@@ -1,0 +1,84 @@
+/* results.h - what a run produces: fields, summaries and timings (the output contract of
+ * DESIGN.md, in memory). Filled by pipeline.c, written by output.c, read by suites and benches.
+ */
+#ifndef MC_RESULTS_H
+#define MC_RESULTS_H
+
+#include "core/grid.h"
+#include "operator/operator.h"
+
+typedef struct {
+    int solved;           /* 0: pressure was prescribed (pressure_file), no contact solve */
+    double load;          /* total normal load A*sum(p), N */
+    double solid_load;    /* A*sum(p - p_lub) over the solid contact cells, N */
+    double p_max;         /* Pa */
+    double area;          /* solid contact area (cells with p above the lower bound), m^2 */
+    double contact_ratio; /* area / nominal area */
+    double approach;      /* rigid approach delta, m */
+    int iterations;
+    double residual;      /* final value of the stopping measure (see contact.h) */
+    int converged;
+    const char *solver;   /* "cg", "pk", "active-set" or "prescribed" */
+    mc_backend op;
+    int capped_cells;     /* cells at the pressure cap */
+} mc_contact_summary;
+
+typedef struct {
+    double vm_max, vm_max_at[3];         /* von Mises maximum, Pa, and its (x, y, z), m */
+    double hydro_at_vm_max;              /* hydrostatic stress there, Pa */
+    double tresca_max, tresca_max_at[3]; /* max shear (Tresca) maximum, Pa, and location */
+    int layers;
+    double depth_min, depth_max;         /* m */
+    const char *kernel;                  /* "patch" | "point" */
+    double friction;
+} mc_stress_summary;
+
+/* How the stress stage computed its layers (the skips of stress.h), so that a user can see them. */
+#define MC_STRESS_MAX_WINDOWS 16
+typedef struct {
+    int k0, k1;         /* layers k0..k1 (inclusive) */
+    int i0, i1, j0, j1; /* cells computed, i0..i1 x j0..j1 (inclusive); all others hold 0 */
+    int direct;         /* 1: direct summation over the loaded cells, 0: DC-FFT */
+} mc_stress_window;
+
+typedef struct {
+    int windowed;          /* 1: [stress] window = auto restricted some layer to a window */
+    int nwindows;          /* groups of layers, each computed on one window */
+    mc_stress_window window[MC_STRESS_MAX_WINDOWS];
+    long loaded_cells;     /* cells with a non-zero load */
+    int depth_auto;        /* 1: depth_max = auto, derived from the contact */
+    int patches;           /* connected contact patches (depth_auto) */
+    double patch_radius;   /* m: radius of the largest patch (depth_auto) */
+} mc_stress_layout;
+
+typedef struct {
+    /* seconds: the whole run; kernel tables, spectra and plans of the operator; the contact solve
+     * (with its coarse-grid start and the plans it makes for the contact's box); the stress stage */
+    double total_s, setup_s, contact_s, stress_s;
+} mc_timing;
+
+typedef struct {
+    mc_grid grid;
+    /* surface fields, ny*nx each (owned) */
+    double *topography;   /* initial gap h (shape minus roughness), m */
+    double *pressure;     /* Pa */
+    double *gap;          /* h + u - approach, m */
+    double *displacement; /* combined elastic normal displacement, positive into the bodies, m */
+    mc_contact_summary contact;
+
+    /* stress stage (NULL / 0 when not run): layers*ny*nx volumes, component order of kernel.h */
+    int nlayers;
+    double *depths;              /* nlayers, m */
+    double *stress[6];           /* xx, yy, zz, xy, yz, xz; Pa */
+    double *von_mises, *hydrostatic, *tresca;
+    mc_stress_summary stress_summary;
+    mc_stress_layout stress_layout;
+
+    mc_timing timing;
+    unsigned long long roughness_seed;
+} mc_results;
+
+/* Free every owned array and zero the struct (safe on a zeroed or half-filled struct). */
+void mc_results_free(mc_results *r);
+
+#endif

@@ -1,0 +1,267 @@
+/* stress.h - subsurface stress on depth layers from surface loads (elastic.md 3, 7).
+ *
+ * For each depth z_k the six stress components (tension positive, order of kernel.h: xx, yy, zz,
+ * xy, yz, xz) at the cell centres (x_i, y_j, z_k) are convolutions of the surface loads with
+ * influence kernels:
+ *     sigma_c(z_k) = K_c^p(z_k) (*) p + K_c^qx(z_k) (*) q_x + K_c^qy(z_k) (*) q_y
+ * Kernels (per unit load on one cell, offsets FIELD minus SOURCE, elastic.md 5.1):
+ *   patch - uniform load on the dx x dy rectangle (Love 1929; elastic.md 3.3, 3.4): exact for
+ *           piecewise-constant loads at every depth, including z = 0. Tables come from the corner
+ *           functions of kernel.h evaluated once per corner of the offset lattice and differenced
+ *           (elastic.md 3.5);
+ *   point - a concentrated force p dx dy at the cell centre (Boussinesq / Cerruti, 3.1, 3.2):
+ *           the "minimum evaluation depth" artefact of 3.6, kept for that comparison; z > 0 only.
+ * Backends as in operator.h (direct summation or DC-FFT over the same tables, so they agree to
+ * round-off); one forward transform per load field is shared by all components and layers.
+ * Three speed-ups give the same results to round-off and can be switched off (mc_stress_tuning):
+ * on free axes the fft backend builds one quadrant of each table and transforms it by DCT-I /
+ * DST-I (the kernels' parities, stress_internal.h); loads on few cells are summed directly over
+ * those cells when a cost model says it is cheaper; and the pipeline stage computes a compact
+ * load's layers only on windows around it (zeros elsewhere, MC_STRESS_WINDOW_CR) and takes the
+ * depth range from the contact when asked (MC_STRESS_DEPTH_RADII).
+ * Stresses are those of the body below the surface (z >= 0) with its own Poisson ratio.
+ *
+ * Periodic axes (period L = n d) hold the periodic Green's function, the sum over all images:
+ *   - images |k| <= M are summed exactly; the rest is the same load smeared uniformly over the
+ *     strip beyond H = (M + 1/2) L (density 2b/L for y, 2a/L for x; out to a far edge of
+ *     MC_STRESS_FAR_EDGE * max(Lx, Ly), where the in-plane stresses of the strip have converged to
+ *     ~1e-12), corrected by the midpoint Euler-Maclaurin terms in the second and fourth derivatives
+ *     along the axis (finite differences of the corner functions at H, with the pixel's own width
+ *     folded in). Per axis and depth M is chosen from n and z/L so that the table changes by
+ *     <= 5e-10 of its largest entry from M to 2M (M ~ 2..24, see stress_table.c); n = 1 is the
+ *     exact strip (plane strain);
+ *   - at depths z >= MC_STRESS_SMEAR_DEPTH * L the whole image sum along that axis is the smeared
+ *     load (Poisson summation: the first omitted mode is ~(2 pi z/L) e^(-2 pi z/L); measured
+ *     <= 3e-10 of the largest table entry at 4.5 L, 4e-9 at 4 L);
+ *   - both axes periodic: the two 1-D rules multiply (images x images, images x strips, strips x
+ *     strips). The mean (Fourier mode 0) of each table is then set exactly: sigma_zz, sigma_xz,
+ *     sigma_yz keep the equilibrium values (mean sigma_zz = -mean p, mean sigma_xz = -mean q_x,
+ *     mean sigma_yz = -mean q_y at every depth), while the in-plane xx, yy, xy have mean 0: their
+ *     image sum converges only conditionally, and the in-plane mean stress of a periodic cell is
+ *     set by the macro contact, not by the cell (elastic.md 5.3). Add it outside if needed.
+ */
+#ifndef MC_STRESS_H
+#define MC_STRESS_H
+
+#include "core/error.h"
+#include "core/grid.h"
+#include "operator/operator.h"
+#include "pipeline/results.h"
+#include "case/scene.h"
+
+enum { MC_LOAD_P = 1, MC_LOAD_QX = 2, MC_LOAD_QY = 4 };
+
+/* Far edge of the smeared strips of periodic axes, in units of max(Lx, Ly). */
+#define MC_STRESS_FAR_EDGE 1e12
+/* Depth (in periods of an axis) from which the image sum along that axis is the smeared load. */
+#define MC_STRESS_SMEAR_DEPTH 4.5
+
+/* ---- kernel tables of one depth (the lower layer; used by the operator below) -------------- */
+
+typedef struct mc_stress_tables mc_stress_tables;
+
+/* Plan the table builder for grid g and table sizes tx, ty (as from mc_conv_table_dims: a free
+ * axis >= 2n - 1, a periodic axis = n), kernel, Poisson ratio nu in (-1, 0.5]. images: images per
+ * side M on periodic axes at every depth above the smearing depth (values below 2 are raised to
+ * 2), or <= 0 for the automatic depth-dependent choice (tests use it to measure the tail's
+ * convergence). Workspaces for mc_get_threads() threads are allocated here.
+ * *out is NULL on failure. MC_OK, MC_ERR_INPUT (bad grid, sizes, kernel or nu), MC_ERR_NOMEM. */
+int mc_stress_tables_create(const mc_grid *g, int tx, int ty, mc_stress_kernel kernel, double nu,
+                            int images, mc_stress_tables **out, mc_error *err);
+
+/* The six tables k[c] (c in kernel.h order, each ty*tx, caller-owned, wrap-around layout of
+ * operator.h with padding slots 0) of load (one of MC_LOAD_P, MC_LOAD_QX, MC_LOAD_QY) at depth z
+ * (m): stress per unit load on one cell. Never allocates; OpenMP over table rows. MC_OK, or
+ * MC_ERR_INPUT for a bad load, z < 0 or not finite, or z = 0 with the point kernel. */
+int mc_stress_tables_build(mc_stress_tables *tb, int load, double z, double *const k[6],
+                           mc_error *err);
+
+/* Parity of table c (kernel.h order) of load (MC_LOAD_P, _QX or _QY): bit 0 set when the kernel is
+ * odd in the x offset, bit 1 when odd in the y offset (kernel.h, elastic.md 3.3, 3.4); -1 for a
+ * bad load or component. */
+int mc_stress_parity(int load, int c);
+
+/* The quadrant of the six tables of load at depth z, for a grid whose axes are both free:
+ * q[c][j*qx + i] = the table entry at the offset (i, j) cells, 0 <= i < qx, 0 <= j < qy; 0 for
+ * offsets i >= nx or j >= ny; along an axis where table c is odd the entry at offset 0 is exactly 0.
+ * Every other entry is bit for bit that of mc_stress_tables_build (the same corner differences in
+ * the same order): the other quadrants follow by parity, so this costs (nx+1)(ny+1) corner
+ * evaluations instead of (2nx)(2ny). Never allocates; OpenMP over rows. MC_OK, or MC_ERR_INPUT
+ * (periodic axis, qx or qy < 1, bad load or depth as mc_stress_tables_build). */
+int mc_stress_tables_quadrant(mc_stress_tables *tb, int load, double z, int qx, int qy,
+                              double *const q[6], mc_error *err);
+
+/* Images per side summed exactly along axis 0 (x) or 1 (y) at depth z: 0 on a free axis, -1 when
+ * the whole periodic sum is smeared (n = 1, or z >= MC_STRESS_SMEAR_DEPTH L). */
+int mc_stress_tables_images(const mc_stress_tables *tb, int axis, double z);
+
+void mc_stress_tables_destroy(mc_stress_tables **tb); /* frees, sets *tb = NULL; NULL-safe */
+
+/* ---- the stress operator ------------------------------------------------------------------- */
+
+typedef struct {
+    mc_stress_kernel kernel; /* MC_STRESS_PATCH (default) or MC_STRESS_POINT */
+    double nu;               /* Poisson's ratio of the stressed body, in (-1, 0.5] */
+    int nlayers;             /* >= 1 */
+    const double *depths;    /* nlayers finite depths z >= 0, m (copied); point kernel: z > 0 */
+    mc_backend backend;
+    int loads;               /* which load fields will be given: MC_LOAD_P | MC_LOAD_QX | ... */
+} mc_stress_options;
+
+typedef struct mc_stress_op mc_stress_op;
+
+/* A speed-up that can be switched off (to measure what it saves, or to compare against). */
+typedef enum { MC_STRESS_AUTO = 0, MC_STRESS_OFF = 1, MC_STRESS_ON = 2 } mc_stress_switch;
+
+/* The speed-ups of the operator and the stage; all results agree with the plain computation to
+ * round-off (tests/test_stress.c), except the window's zeros outside it (see mc_stress_stage).
+ * A zeroed struct (or NULL) is "everything automatic".
+ *   symmetric - fft backend, both axes free: kernel tables of one quadrant
+ *               (mc_stress_tables_quadrant) and their spectra by real-to-real transforms of a
+ *               quarter of the size (stress_internal.h), products straight from those; padded
+ *               length 2m per axis, m the smallest 7-smooth >= max(n, 2). AUTO = ON where it
+ *               applies; OFF: full tables and r2c (the engine of operator.h).
+ *   sparse    - direct summation over the loaded cells only: 6 n_L N multiply-adds per load and
+ *               layer from the real-space tables (no kernel transforms). AUTO: the cost model of
+ *               mc_stress_cost picks it when it is cheaper than the transforms; ON: always (any
+ *               backend); OFF: never.
+ *   window    - the stage only (mc_stress_stage_tuned): AUTO follows the scene's [stress] window
+ *               key; OFF computes every layer on the whole grid; ON windows regardless. */
+typedef struct {
+    mc_stress_switch symmetric;
+    mc_stress_switch sparse;
+    mc_stress_switch window;
+} mc_stress_tuning;
+
+/* Cost model of the automatic choice, seconds per layer on one thread of this machine (a 2-core
+ * x86-64; the constants are in stress.c with their measurements):
+ *   *fft_s    the transform path: 6 nterms kernel transforms (r2r of the quadrant, or r2c of the
+ *             full table), 6 pruned inverse transforms, 6 nterms spectrum products, and the load
+ *             transforms spread over the op's layers; on the direct backend the dense O(N^2) sum;
+ *   *direct_s the direct sum over nloaded cells: 6 nterms nloaded nx ny multiply-adds.
+ * Table builds are common to both and left out. */
+void mc_stress_cost(const mc_stress_op *op, long nloaded, int nterms, double *fft_s,
+                    double *direct_s);
+
+/* Plan the transforms and workspaces for grid g: the transform engine (the symmetric one of
+ * stress_internal.h for the fft backend on free axes, else operator.h's), the table builder, the
+ * kernel arrays of every announced load (6 quadrants or spectra each) and the load spectra, the
+ * list of loaded cells; nothing is allocated afterwards. *out is NULL on failure. MC_OK,
+ * MC_ERR_INPUT for bad options (no load announced, nlayers < 1, bad depth, nu or kernel, a bad
+ * tuning switch), MC_ERR_LIMIT (more than INT_MAX cells), MC_ERR_NOMEM, or what mc_conv_create
+ * returns. */
+int mc_stress_create(const mc_grid *g, const mc_stress_options *opt, mc_stress_op **out,
+                     mc_error *err);
+
+/* mc_stress_create with the speed-ups of tune (NULL: all automatic, as mc_stress_create). */
+int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
+                           const mc_stress_tuning *tune, mc_stress_op **out, mc_error *err);
+
+/* All layers: s[c] (c < 6) are caller arrays of nlayers*ny*nx values (volume layout
+ * f[(k*ny + j)*nx + i]), in the unit of the loads (Pa). Loads (ny*nx, Pa) that are NULL count as
+ * zero; a load not announced in opt.loads must be NULL (MC_ERR_INPUT). The cells where a given
+ * load is non-zero are found once, and the path chosen once (mc_stress_tuning.sparse): either each
+ * given load is transformed once and per layer the tables of the given loads are built and
+ * transformed, then each component is one product-and-inverse-transform with one term per given
+ * load; or per layer the tables are built and summed directly over the loaded cells. Never
+ * allocates beyond the plan's workspaces. Not reentrant per op. */
+int mc_stress_field(mc_stress_op *op, const double *p, const double *qx, const double *qy,
+                    double *const s[6], mc_error *err);
+
+/* One layer k (0 <= k < nlayers): s[c] are ny*nx arrays; loads as in mc_stress_field (transformed
+ * on every call). */
+int mc_stress_layer(mc_stress_op *op, int k, const double *p, const double *qx, const double *qy,
+                    double *const s[6], mc_error *err);
+
+/* Cumulative wall-clock seconds spent by mc_stress_field / mc_stress_layer of op since create. */
+typedef struct {
+    double loads;   /* forward transforms of the loads (and the scan for loaded cells) */
+    double tables;  /* kernel table builds (full, or quadrants on the symmetric path) */
+    double kernels; /* kernel transforms (fft: r2c, symmetric: r2r; direct: copies) */
+    double apply;   /* products and inverse transforms (fft), or the direct sums */
+    long layers;    /* layers computed */
+    long sparse_layers; /* of which by direct summation over the loaded cells */
+    int symmetric;  /* 1: the op runs the symmetric engine */
+} mc_stress_timing;
+
+void mc_stress_timing_get(const mc_stress_op *op, mc_stress_timing *t);
+
+void mc_stress_destroy(mc_stress_op **op); /* frees, sets *op = NULL; NULL-safe */
+
+/* ---- the pipeline stage -------------------------------------------------------------------- */
+
+/* The window of [stress] window = auto (the stage's first skip), on grids with free axes (along a
+ * periodic axis the load repeats, and beyond a period acts as a line load whose stress decays like
+ * 1/r, not 1/r^2: no window). The load's non-zero cells have the bounding box B; layer z is
+ * computed only on B widened on every side by
+ *     m(z) = max(MC_STRESS_WINDOW_MIN cells, MC_STRESS_WINDOW_CR R + MC_STRESS_WINDOW_CZ z),
+ * R = half the longer side of B (m), rounded up to whole cells per axis and clipped to the grid:
+ * a DC-FFT (or direct) problem on that sub-grid, exact inside it because the load lies in it.
+ * The other cells of the layer hold 0. Why R and not only z: outside a load the in-plane surface
+ * stress decays only like (1 - 2 nu) P / (2 pi r^2), so near the surface the margin must grow with
+ * the load, and with depth the stress spreads over ~z. Measured on Hertz contacts (nu = 0.3,
+ * a/dx = 6, 8 and 16, friction 0 and 0.3, depths 0 ... 3a, grids 24a to 60a wide, each layer on
+ * its own window): the largest von Mises stress left out is <= 1.74 % of that layer's largest
+ * (at the surface without friction; <= 1.26 % with friction 0.3, <= 0.6 % at 0.2a ... 1.5a
+ * without), the largest stress component left out <= 1.23 % of it; MC_STRESS_WINDOW_FRACTION is
+ * the bound the tests hold it to. The margin's constants: the surface fraction falls like
+ * ~1.04 / (1 + CR)^2 (the 1/r^2 law), CZ keeps the deep layers below it. Layers are grouped (at most MC_STRESS_MAX_WINDOWS groups, a new group when
+ * the window's area would grow by more than half) and each group runs on its deepest layer's
+ * window, so a group is planned once. The windows are listed in mc_results.stress_layout and
+ * summary.json. The window is skipped (the whole grid computed) when it would cover the grid. */
+#define MC_STRESS_WINDOW_CR 7.0
+#define MC_STRESS_WINDOW_CZ 2.5
+#define MC_STRESS_WINDOW_MIN 4
+#define MC_STRESS_WINDOW_FRACTION 0.02
+
+/* depth_max = auto (the default of the stage's depths): MC_STRESS_DEPTH_RADII times the radius R
+ * of the largest contact patch, layers from depth_min with [stress] layers and spacing. Patches are
+ * the 4-connected groups of cells (connected across periodic edges too) with p > threshold: the
+ * solid contact (p above the lubricant pressure) of a solved contact, the loaded cells (p > 0) of
+ * a prescribed pressure. R = sqrt(A / pi) of a patch of area A; a patch closed around a periodic
+ * axis (a band, as a line contact) has R = A / (2 L), its mean half-width across the period L
+ * (closed around both: A / (2 max(Lx, Ly))). A Hertz contact gives R = a to the pixelation: 3a
+ * holds the von Mises maximum (0.48a) and its decay to ~17 % of it (elastic.md 4.1). With no
+ * contact cell the loaded cells count; with no load at all R is one cell. */
+#define MC_STRESS_DEPTH_RADII 3.0
+
+typedef struct {
+    int patches;   /* connected patches */
+    double radius; /* R of the largest (largest R), m; 0 if there is no patch */
+    long cells;    /* cells above the threshold */
+} mc_stress_patches;
+
+/* Label the patches of p (ny*nx) above threshold on grid g (see MC_STRESS_DEPTH_RADII). Allocates
+ * its work arrays (4 ints per cell) for the call. MC_OK, MC_ERR_LIMIT (more than INT_MAX cells) or
+ * MC_ERR_NOMEM. */
+int mc_stress_find_patches(const mc_grid *g, const double *p, double threshold,
+                           mc_stress_patches *out, mc_error *err);
+
+/* Stresses of the scene's [stress] section under the contact result: depths from mc_scene_depths,
+ * or from the contact when depth_max is auto (MC_STRESS_DEPTH_RADII; MC_ERR_INPUT if that depth
+ * does not exceed depth_min); loads p = res->pressure and, when friction > 0, the traction
+ * q_x = friction * p on the lower body (body 1, z >= 0) in +x: the counter body slides in +x
+ * relative to it (elastic.md 0); Poisson ratio of body 1 (the stresses are body 1's; for body 2
+ * mirror the problem); kernel from the scene; backend scene->solver.op; the grid of res (that of
+ * the pressure); window from [stress] window (MC_STRESS_WINDOW_CR: cells outside a layer's window
+ * hold 0). Fills res->nlayers, depths, stress[6], von_mises, hydrostatic, tresca (invariants.h),
+ * stress_layout (windows, depth rule) and stress_summary: the maxima of von Mises and Tresca with
+ * their cell-centre (x, y, z), the first cell in volume order within a relative
+ * MC_STRESS_TIE of the maximum (so round-off cannot move the location between equal cells of a
+ * symmetric problem, e.g. with and without the window), and the hydrostatic stress at the von
+ * Mises maximum. Stress members already present in res are replaced. On failure res's stress
+ * members are unchanged. Does not set res->timing.stress_s (the caller times the stage). MC_OK,
+ * MC_ERR_INPUT (bad stress settings, no pressure field), MC_ERR_NOMEM, or what mc_stress_create
+ * returns. */
+int mc_stress_stage(const mc_scene *sc, mc_results *res, mc_error *err);
+
+/* mc_stress_stage with the speed-ups of tune (NULL: all automatic; tune->window overrides the
+ * scene's window key unless AUTO), for benchmarks and comparisons. */
+int mc_stress_stage_tuned(const mc_scene *sc, mc_results *res, const mc_stress_tuning *tune,
+                          mc_error *err);
+
+/* Relative tie tolerance of the summary's maxima: far above the round-off of a layer (~1e-15 of
+ * its largest stress), far below any physical difference between cells. */
+#define MC_STRESS_TIE 1e-11
+
+#endif

@@ -1,0 +1,251 @@
+/* stress_sym.c - the symmetric DC-FFT engine of the stress operator (free axes) and the direct
+ * sums over the loaded cells (see stress_internal.h).
+ *
+ * Transforms of size 2my x 2mx (the padded grid), pruned as in conv.c: a load has data in its
+ * first ny rows only, so the forward transform runs the ny rows, zeroes the other rows of the
+ * half spectrum and runs the columns; an output needs only its first ny rows, so the inverse runs
+ * the columns and then those ny rows. The kernel spectra come from the quadrant by real-to-real
+ * transforms of a quarter of the size (the whole point of the engine).
+ */
+#include <fftw3.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/fftsize.h"
+#include "operator/operator.h"
+#include "stress/stress_internal.h"
+
+/* Below this many values a loop or transform runs on one thread (operator.h). */
+#define PAR_MIN MC_THREADS_MIN_CELLS
+
+struct mc_stress_sym {
+    mc_grid g;
+    int mx, my;    /* half periods: the transform is 2my x 2mx */
+    int qx, qy;    /* quadrant: mx + 1, my + 1 */
+    size_t qlen;   /* doubles per quadrant array */
+    double *rbuf;  /* ny x 2mx real rows */
+    fftw_complex *cbuf; /* 2my x (mx + 1) half spectrum */
+    double *qscratch;   /* the quadrant the r2r plans were made on */
+    fftw_plan row_r2c, col_fwd, col_bwd, row_c2r;
+    fftw_plan r2r[4]; /* by parity: bit 0 odd in x, bit 1 odd in y */
+    int off[4];       /* first entry of the r2r's input in the quadrant, by parity */
+};
+
+void mc_stress_sym_destroy(mc_stress_sym **sp)
+{
+    if (!sp || !*sp)
+        return;
+    mc_stress_sym *s = *sp;
+    fftw_plan plans[] = {s->row_r2c, s->col_fwd, s->col_bwd, s->row_c2r,
+                         s->r2r[0],   s->r2r[1], s->r2r[2],  s->r2r[3]};
+    for (size_t k = 0; k < sizeof plans / sizeof plans[0]; k++)
+        if (plans[k])
+            fftw_destroy_plan(plans[k]);
+    mc_free(s->rbuf);
+    mc_free(s->cbuf);
+    mc_free(s->qscratch);
+    mc_free(s);
+    *sp = NULL;
+}
+
+/* m >= 2 keeps the odd axes' DST-I (length m - 1) non-empty; 7-smooth m: FFTW computes the
+ * DCT-I / DST-I through a real DFT of length m (and the padded transform has length 2m). */
+static int half_period(int n) { return mc_fft_good_size(n < 2 ? 2 : n); }
+
+int mc_stress_sym_create(const mc_grid *g, mc_stress_sym **out, mc_error *err)
+{
+    *out = NULL;
+    int rc = mc_grid_check(g, err);
+    if (rc)
+        return rc;
+    if (g->periodic_x || g->periodic_y)
+        return mc_fail(err, MC_ERR_INPUT, "stress: the symmetric engine needs free axes");
+    if ((rc = mc_fftw_prepare(err)))
+        return rc;
+    mc_stress_sym *s = mc_calloc(1, sizeof *s);
+    if (!s)
+        return mc_fail(err, MC_ERR_NOMEM, "stress: out of memory");
+    s->g = *g;
+    s->mx = half_period(g->nx);
+    s->my = half_period(g->ny);
+    s->qx = s->mx + 1;
+    s->qy = s->my + 1;
+    const int tx = 2 * s->mx, ty = 2 * s->my, hx = s->qx;
+    s->qlen = ((size_t)s->qx * (size_t)s->qy + 7) / 8 * 8;
+    const size_t nr = (size_t)g->ny * (size_t)tx, nc = (size_t)ty * (size_t)hx;
+    if (!(s->rbuf = mc_malloc(nr * sizeof *s->rbuf)) ||
+        !(s->cbuf = mc_malloc(nc * sizeof *s->cbuf)) ||
+        !(s->qscratch = mc_malloc(s->qlen * sizeof *s->qscratch))) {
+        mc_stress_sym_destroy(&s);
+        return mc_fail(err, MC_ERR_NOMEM, "stress: out of memory for the %d x %d transforms", tx,
+                       ty);
+    }
+    if ((size_t)tx * (size_t)ty < PAR_MIN)
+        fftw_plan_with_nthreads(1);
+    int nrow[1] = {tx}, ncol[1] = {ty};
+    /* ESTIMATE: no trial runs, the same plan every time (results reproducible) */
+    s->row_r2c = fftw_plan_many_dft_r2c(1, nrow, g->ny, s->rbuf, NULL, 1, tx, s->cbuf, NULL, 1,
+                                        hx, FFTW_ESTIMATE);
+    s->row_c2r = fftw_plan_many_dft_c2r(1, nrow, g->ny, s->cbuf, NULL, 1, hx, s->rbuf, NULL, 1,
+                                        tx, FFTW_ESTIMATE);
+    s->col_fwd = fftw_plan_many_dft(1, ncol, hx, s->cbuf, NULL, hx, 1, s->cbuf, NULL, hx, 1,
+                                    FFTW_FORWARD, FFTW_ESTIMATE);
+    s->col_bwd = fftw_plan_many_dft(1, ncol, hx, s->cbuf, NULL, hx, 1, s->cbuf, NULL, hx, 1,
+                                    FFTW_BACKWARD, FFTW_ESTIMATE);
+    int ok = s->row_r2c && s->row_c2r && s->col_fwd && s->col_bwd;
+    if ((size_t)s->qx * (size_t)s->qy < PAR_MIN)
+        fftw_plan_with_nthreads(1);
+    for (int par = 0; par < 4 && ok; par++) {
+        const int ox = par & 1, oy = (par >> 1) & 1;
+        int n[2] = {oy ? s->my - 1 : s->my + 1, ox ? s->mx - 1 : s->mx + 1};
+        int embed[2] = {s->qy, s->qx};
+        fftw_r2r_kind kind[2] = {oy ? FFTW_RODFT00 : FFTW_REDFT00,
+                                 ox ? FFTW_RODFT00 : FFTW_REDFT00};
+        s->off[par] = (oy ? s->qx : 0) + ox;
+        double *q = s->qscratch + s->off[par];
+        s->r2r[par] = fftw_plan_many_r2r(2, n, 1, q, embed, 1, 0, q, embed, 1, 0, kind,
+                                         FFTW_ESTIMATE);
+        ok = s->r2r[par] != NULL;
+    }
+    mc_fftw_prepare(NULL); /* the default thread count again */
+    if (!ok) {
+        mc_stress_sym_destroy(&s);
+        return mc_fail(err, MC_ERR_NOMEM, "stress: FFTW could not plan the %d x %d transforms",
+                       tx, ty);
+    }
+    *out = s;
+    return MC_OK;
+}
+
+void mc_stress_sym_dims(const mc_stress_sym *s, int *qx, int *qy)
+{
+    *qx = s->qx;
+    *qy = s->qy;
+}
+
+size_t mc_stress_sym_quad_len(const mc_stress_sym *s) { return s->qlen; }
+
+/* rounded up to whole cache lines: the arrays that follow keep FFTW's SIMD alignment (the
+ * new-array executes require the planning arrays' alignment) */
+size_t mc_stress_sym_spec_len(const mc_stress_sym *s)
+{
+    return (2 * (size_t)(2 * s->my) * (size_t)s->qx + 7) / 8 * 8;
+}
+
+void mc_stress_sym_kernel(mc_stress_sym *s, int par, double *quad)
+{
+    double *q = quad + s->off[par & 3];
+    fftw_execute_r2r(s->r2r[par & 3], q, q);
+}
+
+void mc_stress_sym_load(mc_stress_sym *s, const double *field, double *lspec)
+{
+    const int nx = s->g.nx, ny = s->g.ny, tx = 2 * s->mx, ty = 2 * s->my, hx = s->qx;
+#pragma omp parallel for schedule(static) if ((size_t)tx * ny > PAR_MIN)
+    for (int j = 0; j < ny; j++) {
+        double *row = s->rbuf + (size_t)j * tx;
+        memcpy(row, field + (size_t)j * nx, (size_t)nx * sizeof *row);
+        memset(row + nx, 0, (size_t)(tx - nx) * sizeof *row);
+    }
+    fftw_complex *c = (fftw_complex *)lspec; /* mc_malloc'ed: FFTW's alignment */
+    fftw_execute_dft_r2c(s->row_r2c, s->rbuf, c);
+    memset(c + (size_t)ny * hx, 0, (size_t)(ty - ny) * (size_t)hx * sizeof *c);
+    fftw_execute_dft(s->col_fwd, c, c);
+}
+
+void mc_stress_sym_apply(mc_stress_sym *s, int nterms, const double *const *kq, const int *par,
+                         const double *const *ls, double *out)
+{
+    const int nx = s->g.nx, ny = s->g.ny, tx = 2 * s->mx, ty = 2 * s->my, hx = s->qx;
+    const int my = s->my;
+    const double scale = 1.0 / ((double)tx * (double)ty); /* FFTW does not normalise */
+    double *cb = (double *)s->cbuf;
+#pragma omp parallel for schedule(static) if ((size_t)ty * hx > PAR_MIN)
+    for (int ky = 0; ky < ty; ky++) {
+        const int kq_row = ky <= my ? ky : ty - ky; /* K^(2m - k) from K^(k) */
+        double *o = cb + 2 * (size_t)ky * hx;
+        for (int t = 0; t < nterms; t++) {
+            const int ox = par[t] & 1, oy = (par[t] >> 1) & 1;
+            /* the sign of the spectrum: -i per odd axis, conjugated in the upper y half */
+            double sg = scale;
+            if (oy && ky > my)
+                sg = -sg;
+            if (ox && oy)
+                sg = -sg;
+            const double *k = kq[t] + (size_t)kq_row * hx;
+            const double *l = ls[t] + 2 * (size_t)ky * hx;
+            if (ox ^ oy) { /* K^ = -i sg k */
+                if (t == 0)
+                    for (int kx = 0; kx < hx; kx++) {
+                        const double a = sg * k[kx];
+                        o[2 * kx] = a * l[2 * kx + 1];
+                        o[2 * kx + 1] = -a * l[2 * kx];
+                    }
+                else
+                    for (int kx = 0; kx < hx; kx++) {
+                        const double a = sg * k[kx];
+                        o[2 * kx] += a * l[2 * kx + 1];
+                        o[2 * kx + 1] -= a * l[2 * kx];
+                    }
+            } else { /* K^ = sg k, real */
+                if (t == 0)
+                    for (int kx = 0; kx < hx; kx++) {
+                        const double a = sg * k[kx];
+                        o[2 * kx] = a * l[2 * kx];
+                        o[2 * kx + 1] = a * l[2 * kx + 1];
+                    }
+                else
+                    for (int kx = 0; kx < hx; kx++) {
+                        const double a = sg * k[kx];
+                        o[2 * kx] += a * l[2 * kx];
+                        o[2 * kx + 1] += a * l[2 * kx + 1];
+                    }
+            }
+        }
+    }
+    fftw_execute(s->col_bwd);
+    fftw_execute(s->row_c2r); /* destroys cbuf: it is ours */
+#pragma omp parallel for schedule(static) if ((size_t)nx * ny > PAR_MIN)
+    for (int j = 0; j < ny; j++)
+        memcpy(out + (size_t)j * nx, s->rbuf + (size_t)j * tx, (size_t)nx * sizeof *out);
+}
+
+/* ---- direct sums over the loaded cells -------------------------------------------------------- */
+
+/* o[i] += v K(i - il, dj) for one term and one loaded cell at column il, row offset dj. */
+static void sparse_row(const mc_stress_term *t, int nx, int il, int dj, double v, double *o)
+{
+    if (t->q) {
+        const double *k = t->q + (size_t)(dj < 0 ? -dj : dj) * t->qx;
+        const double a = (t->par & 2) && dj < 0 ? -v : v; /* odd in y */
+        const double b = (t->par & 1) ? -a : a;           /* odd in x: negative offsets */
+        for (int i = il; i < nx; i++)
+            o[i] += a * k[i - il];
+        for (int i = 0; i < il; i++)
+            o[i] += b * k[il - i];
+    } else {
+        const double *k = t->w + (size_t)(dj < 0 ? dj + t->ty : dj) * t->tx;
+        for (int i = il; i < nx; i++)
+            o[i] += v * k[i - il];
+        for (int i = 0; i < il; i++)
+            o[i] += v * k[i - il + t->tx];
+    }
+}
+
+void mc_stress_sparse_sum(const mc_grid *g, int ncells, const int *cells, int nterms,
+                          const mc_stress_term *terms, double *out)
+{
+    const int nx = g->nx, ny = g->ny;
+#pragma omp parallel for schedule(static) if ((size_t)nx * ny * (size_t)ncells > PAR_MIN)
+    for (int j = 0; j < ny; j++) {
+        double *o = out + (size_t)j * nx;
+        memset(o, 0, (size_t)nx * sizeof *o);
+        for (int t = 0; t < nterms; t++)
+            for (int l = 0; l < ncells; l++) {
+                const int c = cells[l];
+                const double v = terms[t].f[c];
+                if (v != 0.0)
+                    sparse_row(&terms[t], nx, c % nx, j - c / nx, v, o);
+            }
+    }
+}

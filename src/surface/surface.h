@@ -1,0 +1,71 @@
+/* surface.h - topography: analytic shapes, synthetic roughness, height maps.
+ *
+ * The initial gap (topography) at zero approach is h = shape - heights, where the shape is the
+ * combined gap of the two smooth bodies with its apex (h = 0) at the grid centre and heights are
+ * the composite roughness, positive towards the counter body. */
+#ifndef MC_SURFACE_H
+#define MC_SURFACE_H
+
+#include <stdint.h>
+
+#include "core/error.h"
+#include "core/grid.h"
+#include "case/scene.h"
+
+/* ---- reproducible random numbers: xoshiro256** seeded by splitmix64 --------------------- */
+/* Blackman & Vigna (2018), xoshiro256** 1.0; the four state words are four successive outputs
+ * of splitmix64 started at the seed. The stream depends only on the seed (any platform). */
+typedef struct {
+    uint64_t s[4];
+    double spare;  /* second Box-Muller value, returned by the next mc_rng_normal call */
+    int has_spare; /* 1 when spare is valid */
+} mc_rng;
+void mc_rng_seed(mc_rng *r, uint64_t seed);
+uint64_t mc_rng_next(mc_rng *r);
+double mc_rng_uniform(mc_rng *r); /* [0, 1) with 53 random bits: (next >> 11) * 2^-53 */
+double mc_rng_normal(mc_rng *r);  /* standard normal (Box-Muller, both values used) */
+
+/* ---- pieces ------------------------------------------------------------------------------ */
+
+/* Smooth-body gap at cell centres (ny*nx), m: flat 0; sphere r^2/2R; cylinder x^2/2R (axis
+ * along y); ellipsoid x^2/2Rx + y^2/2Ry. Cell centres x_i = (i + 1/2 - nx/2) dx (grid.h). The
+ * scene's radii must be valid (mc_scene_check). */
+void mc_surface_shape(const mc_grid *g, const mc_scene *s, double *h);
+
+/* Roughness heights (ny*nx), m, for the scene's [roughness] (zeros for none).
+ *
+ * Synthetic surfaces use the spectral method (plastic-lubrication.md 7): standard normal white
+ * noise drawn row by row from mc_rng(seed) -> FFTW r2c (FFTW_ESTIMATE) -> times sqrt(C(q)) ->
+ * c2r, on the ny x nx grid (so they are periodic by construction, whatever the grid's
+ * periodicity), then the mean is removed (the q = 0 mode is zeroed) and the field is scaled.
+ * Wavenumbers q_x = 2 pi k / (nx dx), k = 0..nx/2, and q_y likewise with negative k above ny/2.
+ *  - gaussian:    C = exp(-(q_x l_x)^2/4 - (q_y l_y)^2/4), the spectrum of the autocorrelation
+ *                 R = rq^2 exp(-(t_x/l_x)^2 - (t_y/l_y)^2); l = 0 gives white noise along that
+ *                 axis. Scaled to exactly rq (the rms of the returned field about its mean 0).
+ *  - self_affine: C = |q|^(-2(1+H)) for q_long <= |q| <= q_short, C = q_long^(-2(1+H)) below
+ *                 q_long (roll-off), 0 above q_short, q = 2 pi / lambda. lambda_long = 0 means
+ *                 max(nx dx, ny dy) (no roll-off); lambda_short = 0 means 2 max(dx, dy) (the
+ *                 Nyquist wavelength of the coarser axis). Scaled to exactly rq, or, when
+ *                 rms_slope > 0, to that rms slope sqrt(<|grad h|^2>) computed spectrally
+ *                 (Parseval: sum over all modes of |H(q)|^2 |q|^2, Nyquist modes included with
+ *                 |q|^2) - then rq is ignored.
+ * rq = 0 (and no rms_slope) gives zeros. The same seed and grid give a bitwise identical surface
+ * on every run with the same FFTW thread count. file: the map is read with mc_heightmap_read
+ * (shape checked against the mesh) and used as is.
+ * Errors: MC_ERR_INPUT (bad parameters, empty spectrum band on this grid, file format or shape),
+ * MC_ERR_IO (file), MC_ERR_NOMEM, MC_ERR_INTERNAL (FFTW planning failed). */
+int mc_surface_roughness(const mc_grid *g, const mc_scene *s, double *heights, mc_error *err);
+
+/* Whole topography: shape - roughness (ny*nx), m. Errors as mc_surface_roughness. */
+int mc_surface_topography(const mc_grid *g, const mc_scene *s, double *topo, mc_error *err);
+
+/* Roughness statistics of a height field (for tests and reports): mean; rq = Sq and ra = Sa
+ * about the mean; slopes by central differences (wrapping around periodic axes, one-sided at
+ * the ends of free axes; 0 along an axis with one cell) - they under-estimate spectral slopes by
+ * sin(q d)/(q d) per mode; skewness Ssk and kurtosis Sku (0 when rq = 0). */
+typedef struct {
+    double mean, rq, ra, rms_slope_x, rms_slope_y, skewness, kurtosis;
+} mc_surface_stats;
+void mc_surface_statistics(const mc_grid *g, const double *heights, mc_surface_stats *st);
+
+#endif
