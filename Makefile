@@ -104,6 +104,7 @@ check: deps
 	@$(MAKE) --no-print-directory _check
 
 _check: $(PROGRAM) $(TESTS)
+	tools/check_includes.sh
 	CK_DEFAULT_TIMEOUT=600 ./$(TESTS)
 	./$(PROGRAM) verify --fast --reports $(BUILD)/reports-fast
 	tests/cli/bad_input.sh ./$(PROGRAM)

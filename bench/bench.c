@@ -33,7 +33,7 @@ static int run_bench(vf_ctx *ctx, int quick)
 {
     vf_text(ctx, "All times on this machine (%d threads unless stated), measured in this run; the "
                  "ratios are what counts, absolute times drift with the machine's load.\n\n",
-            mc_get_threads());
+            mc_threads_count());
     int (*sections[])(vf_ctx *, int) = {mc_bench_operator, mc_bench_hertz,  mc_bench_rough,
                                          mc_bench_stress,   mc_bench_threads, mc_bench_skips,
                                          mc_bench_memory};

@@ -12,6 +12,7 @@
 #include "operator/operator.h"
 #include "pipeline/pipeline.h"
 #include "stress/stress.h"
+#include "pipeline/stage_stress.h"
 #include "vutil.h"
 
 static void hertz_scene(mc_scene *sc, int N)
@@ -75,7 +76,7 @@ static double contact_time(const mc_scene *sc, int nested, int box, int *iters)
     mc_contact_solver *s = NULL;
     mc_error err = {0};
     double estar = mc_scene_estar(sc);
-    if (h && p && mc_surface_topography(g, sc, h, &err) == MC_OK &&
+    if (h && p && mc_surface_topography(g, &sc->geometry, &sc->roughness, h, &err) == MC_OK &&
         mc_operator_plan_love(g, estar, MC_BACKEND_FFT, &K, &err) == MC_OK) {
         mc_contact_options opt = {MC_METHOD_CG, sc->solver.tolerance, 5000, nested ? estar : 0,
                                   !box};

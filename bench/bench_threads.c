@@ -37,7 +37,6 @@ int mc_bench_threads(vf_ctx *ctx, int quick)
     int N = quick ? 256 : 512;
     double h1 = hertz_time(N, 1, 0), h2 = hertz_time(N, 2, 0);
     double s1 = hertz_time(N, 1, 1), s2 = hertz_time(N, 2, 1);
-    mc_set_threads(0);
     vf_text(ctx, "## Threads\n\n| task | 1 thread (s) | 2 threads (s) | speed-up |\n|---|---|---|---|\n"
                  "| Hertz %d², cg, whole elastic run | %.3f | %.3f | %.2f |\n"
                  "| stress layer at %d² (6 components) | %.4f | %.4f | %.2f |\n\n",

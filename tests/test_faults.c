@@ -302,7 +302,6 @@ START_TEST(test_whole_run)
     ck_assert_msg((seen & fc->stages) == fc->stages, "%s: stages that met a failure: mask %d",
                   fc->name, seen);
     assert_same_output(out, ref);
-    mc_set_threads(0);
 }
 END_TEST
 
@@ -354,7 +353,8 @@ START_TEST(test_contact_create)
     /* Every allocation of mc_contact_create (workspaces, preconditioner, the coarse grid's
      * operator and solver for cg) fails in turn: NOMEM, *out NULL, nothing leaked; then the
      * solver made without a failure solves exactly as one made before. */
-    mc_set_threads(1);
+    mc_threads_scope threads;
+    mc_threads_begin(1, &threads);
     const contact_case *cc = &contact_cases[_i];
     const size_t n = (size_t)cc->nx * (size_t)cc->ny;
     mc_operator *K;
@@ -403,7 +403,7 @@ START_TEST(test_contact_create)
     free(h);
     free(p);
     free(p_ref);
-    mc_set_threads(0);
+    mc_threads_end(&threads);
 }
 END_TEST
 
@@ -415,7 +415,8 @@ START_TEST(test_contact_solve)
      * the contact's box. Every allocation of a first solve fails in turn, on a fresh solver each
      * time: NOMEM, and the same solver then solves again (without injection) exactly as the
      * reference, so a failed solve leaves it usable. */
-    mc_set_threads(1);
+    mc_threads_scope threads;
+    mc_threads_begin(1, &threads);
     const contact_case *cc = &contact_cases[_i];
     const size_t n = (size_t)cc->nx * (size_t)cc->ny;
     mc_operator *K;
@@ -472,7 +473,7 @@ START_TEST(test_contact_solve)
     free(p_ref);
     free(u);
     free(gap);
-    mc_set_threads(0);
+    mc_threads_end(&threads);
 }
 END_TEST
 
@@ -487,7 +488,8 @@ START_TEST(test_operator_plan)
     /* Every allocation of mc_operator_plan_love (conv engine, buffers, kernel table, spectra)
      * fails in turn: NOMEM and *out NULL; the plan made without a failure applies exactly as a
      * plan made before. */
-    mc_set_threads(1);
+    mc_threads_scope threads;
+    mc_threads_begin(1, &threads);
     mc_grid g = {17, 10, 1e-6, 1.5e-6, plans[_i].px, plans[_i].py};
     size_t ncell = mc_grid_cells(&g);
     double in[17 * 10], u_ref[17 * 10], u[17 * 10];
@@ -520,7 +522,7 @@ START_TEST(test_operator_plan)
     mc_operator_apply(op, in, u);
     ck_assert_mem_eq(u, u_ref, sizeof u);
     mc_operator_destroy(&op);
-    mc_set_threads(0);
+    mc_threads_end(&threads);
 }
 END_TEST
 

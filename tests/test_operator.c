@@ -473,18 +473,20 @@ START_TEST(test_threads)
     test_random_field(f, n, 8);
     mc_error err;
     mc_operator *op;
-    mc_set_threads(1);
-    ck_assert_int_eq(mc_get_threads(), 1);
+    mc_threads_scope one, two;
+    mc_threads_begin(1, &one);
+    ck_assert_int_eq(mc_threads_count(), 1);
     ck_assert_int_eq(mc_operator_plan_love(&g, ESTAR, MC_BACKEND_FFT, &op, &err), MC_OK);
     mc_operator_apply(op, f, u1);
     mc_operator_destroy(&op);
-    mc_set_threads(2);
-    ck_assert_int_eq(mc_get_threads(), 2);
+    mc_threads_begin(2, &two);
+    ck_assert_int_eq(mc_threads_count(), 2);
     ck_assert_int_eq(mc_operator_plan_love(&g, ESTAR, MC_BACKEND_FFT, &op, &err), MC_OK);
     mc_operator_apply(op, f, u2);
     mc_operator_destroy(&op);
-    mc_set_threads(0);
-    ck_assert_int_ge(mc_get_threads(), 1);
+    mc_threads_end(&two);
+    mc_threads_end(&one);
+    ck_assert_int_ge(mc_threads_count(), 1);
     ck_assert_msg(test_rel_maxdiff(u2, u1, n) <= TOL_ROUNDOFF, "1 vs 2 threads differ");
     free(f), free(u1), free(u2);
 }

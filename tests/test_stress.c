@@ -16,6 +16,7 @@
 #include "operator/operator.h"
 #include "case/scene.h"
 #include "stress/stress.h"
+#include "pipeline/stage_stress.h"
 #include "test_util.h"
 
 /* ---- tolerances ------------------------------------------------------------------------------ */
@@ -72,7 +73,7 @@ typedef void (*rect_fn)(double, double, double, double, double, double, double *
 typedef void (*point_fn)(double, double, double, double, double *);
 static const rect_fn rect_fns[3] = {mc_rect_stress_p, mc_rect_stress_qx, mc_rect_stress_qy};
 static const point_fn point_fns[3] = {mc_point_stress_p, mc_point_stress_qx, mc_point_stress_qy};
-static const int load_bits[3] = {MC_LOAD_P, MC_LOAD_QX, MC_LOAD_QY};
+static const int load_bits[3] = {MC_TRACTION_P, MC_TRACTION_QX, MC_TRACTION_QY};
 
 static double **vols(int ncomp, size_t n)
 {
@@ -376,7 +377,7 @@ START_TEST(test_strip_exact)
     double **k = vols(6, (size_t)tx);
     const double zs[] = {0.0, 0.05, 0.5, 3.0, 40.0};
     for (int iz = 0; iz < 5; iz++) {
-        ck_assert_int_eq(mc_stress_tables_build(tb, MC_LOAD_P, zs[iz], k, &err), MC_OK);
+        ck_assert_int_eq(mc_stress_tables_build(tb, MC_TRACTION_P, zs[iz], k, &err), MC_OK);
         double md = 0.0, mb = 0.0;
         for (int it = 0; it < tx; it++) {
             int used, ox = mc_table_offset(it, g.nx, tx, &used);
@@ -424,18 +425,18 @@ START_TEST(test_tables_threads)
 {
     const mc_grid g = {9, 7, 1.0, 1.3, 1, 1};
     mc_error err;
-    const int saved = mc_get_threads();
     double **k[2];
     for (int t = 0; t < 2; t++) {
-        mc_set_threads(t == 0 ? 1 : 3);
+        mc_threads_scope scope;
+        mc_threads_begin(t == 0 ? 1 : 3, &scope);
         mc_stress_tables *tb = NULL;
         ck_assert_int_eq(mc_stress_tables_create(&g, 9, 7, MC_STRESS_PATCH, NU, 0, &tb, &err),
                          MC_OK);
         k[t] = vols(6, 63);
-        ck_assert_int_eq(mc_stress_tables_build(tb, MC_LOAD_QX, 0.4, k[t], &err), MC_OK);
+        ck_assert_int_eq(mc_stress_tables_build(tb, MC_TRACTION_QX, 0.4, k[t], &err), MC_OK);
         mc_stress_tables_destroy(&tb);
+        mc_threads_end(&scope);
     }
-    mc_set_threads(saved);
     for (int c = 0; c < MC_NSTRESS; c++)
         ck_assert(memcmp(k[0][c], k[1][c], 63 * sizeof(double)) == 0);
     vols_free(k[0], 6);
@@ -450,8 +451,8 @@ static double **stress_run(const mc_grid *g, mc_stress_kernel kernel, const doub
                            mc_backend b, const double *p, const double *qx, const double *qy)
 {
     const mc_stress_options opt = {kernel, NU, nz, depths, b,
-                                   (p ? MC_LOAD_P : 0) | (qx ? MC_LOAD_QX : 0) |
-                                       (qy ? MC_LOAD_QY : 0)};
+                                   (p ? MC_TRACTION_P : 0) | (qx ? MC_TRACTION_QX : 0) |
+                                       (qy ? MC_TRACTION_QY : 0)};
     mc_error err;
     mc_stress_op *op = NULL;
     int rc = mc_stress_create(g, &opt, &op, &err);
@@ -600,7 +601,7 @@ START_TEST(test_layer_matches_field)
     double *p = random_load(&g, 41), *qx = random_load(&g, 42);
     double **all = stress_run(&g, MC_STRESS_PATCH, z, 3, MC_BACKEND_FFT, p, qx, NULL);
     const mc_stress_options opt = {MC_STRESS_PATCH, NU, 3, z, MC_BACKEND_FFT,
-                                   MC_LOAD_P | MC_LOAD_QX | MC_LOAD_QY};
+                                   MC_TRACTION_P | MC_TRACTION_QX | MC_TRACTION_QY};
     mc_error err;
     mc_stress_op *op = NULL;
     ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_OK);
@@ -853,13 +854,13 @@ START_TEST(test_bad_input)
     const double z[] = {0.0, 1.0}, zneg = -1.0;
     mc_error err;
     mc_stress_op *op = NULL;
-    mc_stress_options opt = {MC_STRESS_POINT, NU, 2, z, MC_BACKEND_FFT, MC_LOAD_P};
+    mc_stress_options opt = {MC_STRESS_POINT, NU, 2, z, MC_BACKEND_FFT, MC_TRACTION_P};
     ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_ERR_INPUT); /* point at z = 0 */
     ck_assert_ptr_null(op);
     opt.kernel = MC_STRESS_PATCH;
     opt.loads = 0;
     ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_ERR_INPUT);
-    opt.loads = MC_LOAD_P;
+    opt.loads = MC_TRACTION_P;
     opt.nu = 0.7;
     ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_ERR_INPUT);
     opt.nu = NU;
@@ -884,9 +885,9 @@ START_TEST(test_bad_input)
     ck_assert_int_eq(mc_stress_tables_create(&g, 10, 9, MC_STRESS_PATCH, NU, 0, &tb, &err),
                      MC_ERR_INPUT); /* 10 < 2 nx - 1 */
     ck_assert_int_eq(mc_stress_tables_create(&g, 11, 9, MC_STRESS_PATCH, NU, 0, &tb, &err), MC_OK);
-    ck_assert_int_eq(mc_stress_tables_build(tb, MC_LOAD_P | MC_LOAD_QX, 1.0, s, &err),
+    ck_assert_int_eq(mc_stress_tables_build(tb, MC_TRACTION_P | MC_TRACTION_QX, 1.0, s, &err),
                      MC_ERR_INPUT);
-    ck_assert_int_eq(mc_stress_tables_build(tb, MC_LOAD_P, NAN, s, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_stress_tables_build(tb, MC_TRACTION_P, NAN, s, &err), MC_ERR_INPUT);
     mc_stress_tables_destroy(&tb);
     vols_free(s, 6);
     free(f);
@@ -900,7 +901,7 @@ START_TEST(test_create_nomem)
     const mc_grid g = {6, 5, 1.0, 1.0, _i == 0, 0};
     const double z[] = {0.0, 1.0};
     const mc_stress_options opt = {MC_STRESS_PATCH, NU, 2, z, MC_BACKEND_FFT,
-                                   MC_LOAD_P | MC_LOAD_QY};
+                                   MC_TRACTION_P | MC_TRACTION_QY};
     mc_error err;
     int failures = 0;
     for (long k = 1;; k++) {
@@ -1119,8 +1120,8 @@ static double **stress_run_tuned(const mc_grid *g, mc_stress_kernel kernel, cons
                                  mc_stress_timing *t)
 {
     const mc_stress_options opt = {kernel, NU, nz, depths, b,
-                                   (p ? MC_LOAD_P : 0) | (qx ? MC_LOAD_QX : 0) |
-                                       (qy ? MC_LOAD_QY : 0)};
+                                   (p ? MC_TRACTION_P : 0) | (qx ? MC_TRACTION_QX : 0) |
+                                       (qy ? MC_TRACTION_QY : 0)};
     mc_error err;
     mc_stress_op *op = NULL;
     int rc = mc_stress_create_tuned(g, &opt, tune, &op, &err);
@@ -1153,8 +1154,8 @@ START_TEST(test_parity_table)
             ck_assert_double_le(fabs(sy[c] - ey * s[c]), TOL_TIGHT * fabs(s[c]));
         }
     }
-    ck_assert_int_eq(mc_stress_parity(MC_LOAD_P | MC_LOAD_QX, 0), -1);
-    ck_assert_int_eq(mc_stress_parity(MC_LOAD_P, 6), -1);
+    ck_assert_int_eq(mc_stress_parity(MC_TRACTION_P | MC_TRACTION_QX, 0), -1);
+    ck_assert_int_eq(mc_stress_parity(MC_TRACTION_P, 6), -1);
 }
 END_TEST
 
@@ -1321,7 +1322,7 @@ START_TEST(test_cost_model)
                                   &th);
     ck_assert_int_eq(t1.sparse_layers, 3);
     ck_assert_int_eq(th.sparse_layers, 0);
-    const mc_stress_options opt = {MC_STRESS_PATCH, NU, 3, z, MC_BACKEND_FFT, MC_LOAD_P};
+    const mc_stress_options opt = {MC_STRESS_PATCH, NU, 3, z, MC_BACKEND_FFT, MC_TRACTION_P};
     mc_error err;
     mc_stress_op *op = NULL;
     ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_OK);
@@ -1343,7 +1344,7 @@ START_TEST(test_tuning_bad)
 {
     const mc_grid g = {6, 5, 1.0, 1.0, 0, 0};
     const double z = 1.0;
-    const mc_stress_options opt = {MC_STRESS_PATCH, NU, 1, &z, MC_BACKEND_FFT, MC_LOAD_P};
+    const mc_stress_options opt = {MC_STRESS_PATCH, NU, 1, &z, MC_BACKEND_FFT, MC_TRACTION_P};
     const mc_stress_tuning bad = {MC_STRESS_AUTO, (mc_stress_switch)7, MC_STRESS_AUTO};
     mc_error err;
     mc_stress_op *op = NULL;

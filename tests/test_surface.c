@@ -8,6 +8,7 @@
 
 #include "core/alloc.h"
 #include "io/npy.h"
+#include "case/scene.h"
 #include "surface/surface.h"
 #include "test_util.h"
 
@@ -28,7 +29,7 @@ static double *generate(const mc_grid *g, const mc_scene *s)
     double *h = mc_zeros(mc_grid_cells(g));
     ck_assert(h != NULL);
     mc_error err = {0};
-    int st = mc_surface_roughness(g, s, h, &err);
+    int st = mc_surface_roughness(g, &s->roughness, h, &err);
     ck_assert_msg(st == MC_OK, "%s", err.msg);
     return h;
 }
@@ -102,7 +103,7 @@ START_TEST(test_shapes)
         s.geometry.radius_y = Ry;
         for (int k = 0; k < 48; k++)
             h[k] = NAN;
-        mc_surface_shape(&g, &s, h);
+        mc_surface_shape(&g, &s.geometry, h);
         for (int c = 0; c < 3; c++) {
             int i = cells[c][0], j = cells[c][1];
             double x = (i + 0.5 - 4.0) * 1e-6, y = (j + 0.5 - 3.0) * 2e-6, want = 0;
@@ -119,7 +120,7 @@ START_TEST(test_shapes)
             ck_assert_double_eq_tol(h[2 * 8 + 3], h[3 * 8 + 4], TOL_TIGHT * h[3 * 8 + 4]);
     }
     s.geometry.shape = MC_SHAPE_SPHERE;
-    mc_surface_shape(&g, &s, h);
+    mc_surface_shape(&g, &s.geometry, h);
     ck_assert_double_eq_tol(h[0], (3.5e-6 * 3.5e-6 + 5e-6 * 5e-6) / 2e-3, TOL_TIGHT * h[0]);
 }
 END_TEST
@@ -411,15 +412,15 @@ START_TEST(test_file_roughness_and_topography)
     s.roughness.type = MC_ROUGH_FILE;
     s.geometry.shape = MC_SHAPE_SPHERE;
     s.geometry.radius = 1e-4;
-    ck_assert_int_eq(mc_surface_roughness(&g, &s, h, &err), MC_OK);
+    ck_assert_int_eq(mc_surface_roughness(&g, &s.roughness, h, &err), MC_OK);
     ck_assert_mem_eq(h, v, sizeof v);
-    ck_assert_int_eq(mc_surface_topography(&g, &s, topo, &err), MC_OK);
-    mc_surface_shape(&g, &s, shape);
+    ck_assert_int_eq(mc_surface_topography(&g, &s.geometry, &s.roughness, topo, &err), MC_OK);
+    mc_surface_shape(&g, &s.geometry, shape);
     for (int k = 0; k < 48; k++)
         ck_assert_double_eq(topo[k], shape[k] - v[k]);
 
     mc_grid g2 = make_grid(6, 8, 1e-6, 1e-6);
-    ck_assert_int_eq(mc_surface_roughness(&g2, &s, h, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_surface_roughness(&g2, &s.roughness, h, &err), MC_ERR_INPUT);
     ck_assert_msg(strstr(err.msg, "[roughness] file: ") == err.msg &&
                       strstr(err.msg, "h.npy: shape 6 x 8, the mesh is 8 x 6 (ny x nx)"),
                   "%s", err.msg);
@@ -427,7 +428,7 @@ START_TEST(test_file_roughness_and_topography)
     s.roughness.type = MC_ROUGH_NONE;
     for (int k = 0; k < 48; k++)
         h[k] = 1;
-    ck_assert_int_eq(mc_surface_roughness(&g, &s, h, &err), MC_OK);
+    ck_assert_int_eq(mc_surface_roughness(&g, &s.roughness, h, &err), MC_OK);
     for (int k = 0; k < 48; k++)
         ck_assert_double_eq(h[k], 0);
 }
@@ -442,31 +443,31 @@ START_TEST(test_bad_parameters)
     blank_scene(&s, &g);
     s.roughness.type = MC_ROUGH_GAUSSIAN;
     s.roughness.rq = -1e-6;
-    ck_assert_int_eq(mc_surface_roughness(&g, &s, h, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_surface_roughness(&g, &s.roughness, h, &err), MC_ERR_INPUT);
     ck_assert_msg(strstr(err.msg, "[roughness] gaussian"), "%s", err.msg);
     s.roughness.rq = 1e-6;
     s.roughness.correlation_x = NAN;
-    ck_assert_int_eq(mc_surface_roughness(&g, &s, h, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_surface_roughness(&g, &s.roughness, h, &err), MC_ERR_INPUT);
 
     blank_scene(&s, &g);
     s.roughness.type = MC_ROUGH_SELF_AFFINE;
     s.roughness.rq = 1e-6;
     s.roughness.hurst = 1.5;
-    ck_assert_int_eq(mc_surface_roughness(&g, &s, h, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_surface_roughness(&g, &s.roughness, h, &err), MC_ERR_INPUT);
     ck_assert_msg(strstr(err.msg, "hurst = 1.5"), "%s", err.msg);
     s.roughness.hurst = 0.5;
     s.roughness.lambda_long = 4e-6;
     s.roughness.lambda_short = 8e-6;
-    ck_assert_int_eq(mc_surface_roughness(&g, &s, h, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_surface_roughness(&g, &s.roughness, h, &err), MC_ERR_INPUT);
     ck_assert_msg(strstr(err.msg, "must be below"), "%s", err.msg);
     /* a band entirely below the lowest grid wavenumber: nothing to synthesise */
     s.roughness.lambda_long = 64e-6;
     s.roughness.lambda_short = 32e-6;
-    ck_assert_int_eq(mc_surface_roughness(&g, &s, h, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_surface_roughness(&g, &s.roughness, h, &err), MC_ERR_INPUT);
     ck_assert_msg(strstr(err.msg, "no non-zero mode"), "%s", err.msg);
 
     mc_grid bad = make_grid(0, 16, 1e-6, 1e-6);
-    ck_assert_int_eq(mc_surface_roughness(&bad, &s, h, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_surface_roughness(&bad, &s.roughness, h, &err), MC_ERR_INPUT);
 }
 END_TEST
 
@@ -483,7 +484,7 @@ START_TEST(test_fault_injection)
     for (long n = 1;; n++) {
         mc_error err = {0};
         mc_alloc_fail_at(n);
-        int st = mc_surface_topography(&g, &s, topo, &err);
+        int st = mc_surface_topography(&g, &s.geometry, &s.roughness, topo, &err);
         mc_alloc_fail_at(0);
         if (st == MC_OK)
             break;

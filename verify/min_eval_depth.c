@@ -183,7 +183,7 @@ static int operator_column(const mc_grid *g, mc_stress_kernel kernel, const doub
                            .nlayers = nz,
                            .depths = z,
                            .backend = MC_BACKEND_FFT,
-                           .loads = MC_LOAD_P};
+                           .loads = MC_TRACTION_P};
     mc_stress_op *op = NULL;
     size_t n = mc_grid_cells(g);
     double *buf = malloc(sizeof *buf * n * 6);

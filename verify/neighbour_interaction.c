@@ -373,7 +373,7 @@ static int run_superposition(study_t *st, mc_error *err)
                            .nlayers = st->nz,
                            .depths = z,
                            .backend = MC_BACKEND_FFT,
-                           .loads = MC_LOAD_P};
+                           .loads = MC_TRACTION_P};
     mc_stress_op *op = NULL;
     int rc = mc_stress_create(&g, &o, &op, err);
     double *s[6];
@@ -447,7 +447,7 @@ static double run_direct(const study_t *st, int pat, int q, mc_error *err, int *
                            .nlayers = st->nz,
                            .depths = z,
                            .backend = MC_BACKEND_FFT,
-                           .loads = MC_LOAD_P};
+                           .loads = MC_TRACTION_P};
     mc_stress_op *op = NULL;
     *rc = mc_stress_create(&g, &o, &op, err);
     double *s[6], worst = 0;
@@ -507,7 +507,7 @@ static peak_t run_periodic(const study_t *st, int q, mc_error *err, int *rc)
                            .nlayers = st->nz,
                            .depths = st->z,
                            .backend = MC_BACKEND_FFT,
-                           .loads = MC_LOAD_P};
+                           .loads = MC_TRACTION_P};
     mc_stress_op *op = NULL;
     *rc = mc_stress_create(&g, &o, &op, err);
     double *s[6], vm[64], hy[64];

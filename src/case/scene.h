@@ -14,20 +14,14 @@
 #include <stdint.h>
 
 #include "core/error.h"
+#include "core/paths.h"
 #include "core/grid.h"
 #include "operator/operator.h"
+#include "contact/contact.h"
+#include "stress/stress.h"
+#include "surface/surface.h"
 
-#define MC_PATH_MAX 1024
 #define MC_MAX_DEPTHS 512
-
-typedef enum { MC_SHAPE_FLAT, MC_SHAPE_SPHERE, MC_SHAPE_CYLINDER, MC_SHAPE_ELLIPSOID } mc_shape;
-
-typedef enum {
-    MC_ROUGH_NONE,
-    MC_ROUGH_GAUSSIAN,    /* Gaussian heights, Gaussian autocorrelation (correlation_x/_y) */
-    MC_ROUGH_SELF_AFFINE, /* self-affine (Hurst exponent) between two cut-off wavelengths */
-    MC_ROUGH_FILE         /* measured/external height map (.npy or whitespace text) */
-} mc_roughness_type;
 
 typedef enum {
     MC_LOAD_FORCE,            /* total normal force, N */
@@ -36,14 +30,7 @@ typedef enum {
     MC_LOAD_PRESSURE_FILE     /* prescribed pressure map (no contact solve) */
 } mc_load_kind;
 
-typedef enum {
-    MC_METHOD_CG,        /* preconditioned constrained conjugate gradients (default, fast) */
-    MC_METHOD_PK,        /* plain Polonsky & Keer (1999) */
-    MC_METHOD_ACTIVE_SET /* the paper's dense active-set reference (small grids only) */
-} mc_contact_method;
-
 typedef enum { MC_SPACING_LINEAR, MC_SPACING_GEOMETRIC, MC_SPACING_LIST } mc_spacing;
-typedef enum { MC_STRESS_PATCH, MC_STRESS_POINT } mc_stress_kernel;
 /* [stress] window: auto = only the loaded region plus a depth-dependent margin (stress.h) */
 typedef enum { MC_STRESS_WINDOW_AUTO, MC_STRESS_WINDOW_FULL } mc_stress_window_mode;
 
@@ -61,22 +48,9 @@ typedef struct {
 
     mc_grid grid; /* [mesh] */
 
-    struct { /* [geometry]: combined initial gap of the two bodies, apex at the grid centre */
-        mc_shape shape;
-        double radius;             /* sphere, cylinder (curvature in x), m */
-        double radius_x, radius_y; /* ellipsoid principal radii, m */
-    } geometry;
+    mc_shape_spec geometry; /* [geometry] (surface.h) */
 
-    struct { /* [roughness]: heights up (towards the counter body) reduce the gap */
-        mc_roughness_type type;
-        double rq;                           /* rms height, m (gaussian, self_affine) */
-        double correlation_x, correlation_y; /* gaussian: ACF exp(-(tx/lx)^2-(ty/ly)^2), m */
-        double hurst;                        /* self_affine: Hurst exponent, 0 < H < 1 (0.8) */
-        double rms_slope;                    /* self_affine: alternative to rq (0 = unused) */
-        double lambda_long, lambda_short;    /* self_affine cut-offs, m (0: mc_scene_cutoffs) */
-        uint64_t seed;                       /* generator seed (reproducible) */
-        char file[MC_PATH_MAX];              /* file: height map path (relative to the case) */
-    } roughness;
+    mc_roughness_spec roughness; /* [roughness] (surface.h) */
 
     mc_material body1, body2; /* [body1], [body2] */
 

@@ -54,10 +54,30 @@
 
 #include "core/error.h"
 #include "operator/operator.h"
-#include "pipeline/results.h"
-#include "case/scene.h"
+
+typedef enum {
+    MC_METHOD_CG,        /* preconditioned constrained conjugate gradients (default, fast) */
+    MC_METHOD_PK,        /* plain Polonsky & Keer (1999) */
+    MC_METHOD_ACTIVE_SET /* the paper's dense active-set reference (small grids only) */
+} mc_contact_method;
 
 #define MC_ACTIVE_SET_MAX_CELLS 4096 /* dense O(N^3) reference: 4096 cells = 2 x 128 MiB */
+
+typedef struct {
+    int solved;           /* 0: pressure was prescribed (pressure_file), no contact solve */
+    double load;          /* total normal load A*sum(p), N */
+    double solid_load;    /* A*sum(p - p_lub) over the solid contact cells, N */
+    double p_max;         /* Pa */
+    double area;          /* solid contact area (cells with p above the lower bound), m^2 */
+    double contact_ratio; /* area / nominal area */
+    double approach;      /* rigid approach delta, m */
+    int iterations;
+    double residual;      /* final value of the stopping measure (see contact.h) */
+    int converged;
+    const char *solver;   /* "cg", "pk", "active-set" or "prescribed" */
+    mc_backend op;
+    int capped_cells;     /* cells at the pressure cap */
+} mc_contact_summary;
 
 typedef enum { MC_CONTROL_FORCE, MC_CONTROL_APPROACH } mc_control;
 
@@ -75,7 +95,7 @@ typedef struct {
 } mc_contact_problem;
 
 typedef struct {
-    mc_contact_method method; /* scene.h: MC_METHOD_CG | MC_METHOD_PK | MC_METHOD_ACTIVE_SET */
+    mc_contact_method method; /* MC_METHOD_CG | MC_METHOD_PK | MC_METHOD_ACTIVE_SET */
     double tolerance;         /* see the stopping rule above; e.g. 1e-8 */
     int max_iterations;
     /* Combined modulus E* (Pa) of the Love operator K. When > 0, method cg starts a solve

@@ -4,7 +4,7 @@
 #include <math.h>
 
 #include "kernels/kernel.h"
-#include "operator/operator.h" /* MC_THREADS_MIN_CELLS */
+#include "core/threads.h" /* MC_THREADS_MIN_CELLS */
 
 double mc_von_mises(const double s[6])
 {

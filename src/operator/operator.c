@@ -1,7 +1,5 @@
-/* operator.c - conv + one kernel: what a solver plans, applies and destroys; and the thread
- * settings shared with FFTW (see operator.h). */
+/* operator.c - conv + one kernel: what a solver plans, applies and destroys; (see operator.h). */
 #include <fftw3.h>
-#include <omp.h>
 
 #include "core/alloc.h"
 #include "operator/operator.h"
@@ -12,36 +10,6 @@ struct mc_operator {
     double *lspec; /* workspace of mc_conv_convolve (direct backend only) */
     int real_kernel;
 };
-
-static int n_threads;        /* 0: not set: the OpenMP default (OMP_NUM_THREADS or all cores) */
-static int omp_default;      /* omp_get_max_threads() before we first changed it */
-static int fftw_threads_on; /* fftw_init_threads has succeeded */
-
-void mc_set_threads(int n)
-{
-    if (!omp_default)
-        omp_default = omp_get_max_threads();
-    n_threads = n > 0 ? n : 0;
-    omp_set_num_threads(mc_get_threads());
-}
-
-int mc_get_threads(void)
-{
-    if (n_threads > 0)
-        return n_threads;
-    return omp_default ? omp_default : omp_get_max_threads();
-}
-
-int mc_fftw_prepare(mc_error *err)
-{
-    if (!fftw_threads_on) {
-        if (!fftw_init_threads())
-            return mc_fail(err, MC_ERR_INTERNAL, "FFTW could not initialise its threads");
-        fftw_threads_on = 1;
-    }
-    fftw_plan_with_nthreads(mc_get_threads());
-    return MC_OK;
-}
 
 /* Takes ownership of conv (destroyed on failure too). */
 static int plan_with_conv(mc_conv *conv, const mc_kernel_table *t, mc_operator **out,

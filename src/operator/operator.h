@@ -23,6 +23,7 @@
 
 #include "core/error.h"
 #include "core/grid.h"
+#include "core/threads.h"
 
 typedef enum { MC_BACKEND_FFT = 0, MC_BACKEND_DIRECT = 1 } mc_backend;
 
@@ -196,23 +197,5 @@ void mc_operator_destroy(mc_operator **op); /* frees and sets *op = NULL; NULL-s
 
 const mc_grid *mc_operator_grid(const mc_operator *op);
 mc_backend mc_operator_backend(const mc_operator *op);
-
-/* ---- threads ------------------------------------------------------------------------------ */
-
-/* Transforms and loops smaller than this many values run on one thread: below it a thread team
- * costs more than it saves (64 x 64 transforms: 20 us on one thread, 30 us on two), and on a
- * machine whose cores are busy with other work, fine-grained synchronisation of small loops
- * made a 141 x 141 capped contact 250 times slower (73 s instead of 0.3 s, measured). */
-#define MC_THREADS_MIN_CELLS (1 << 18)
-
-/* Threads for FFTW and the OpenMP loops (n <= 0: the OpenMP default, i.e. OMP_NUM_THREADS if set,
- * else all cores). Call before planning. */
-void mc_set_threads(int n);
-int mc_get_threads(void);
-
-/* Initialise FFTW's threads once (the first call) and set the planner's thread count to
- * mc_get_threads(). Every module calls it before creating an FFTW plan; FFTW's planner is not
- * thread-safe, so plan from one thread only. MC_OK or MC_ERR_INTERNAL. */
-int mc_fftw_prepare(mc_error *err);
 
 #endif

@@ -11,6 +11,7 @@
 #include "pipeline/memguard.h"
 #include "operator/operator.h"
 #include "stress/stress.h"
+#include "pipeline/stage_stress.h"
 #include "surface/surface.h"
 
 double mc_clock(void)
@@ -113,7 +114,7 @@ static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_e
     return rc;
 }
 
-int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
+static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
 {
     double t_start = mc_clock();
     memset(res, 0, sizeof *res);
@@ -123,7 +124,6 @@ int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
     rc = mc_memory_check(sc, err);
     if (rc != MC_OK)
         return rc;
-    mc_set_threads(sc->solver.threads);
     res->grid = sc->grid;
     res->roughness_seed = sc->roughness.seed;
     const size_t n = mc_grid_cells(&sc->grid);
@@ -132,7 +132,7 @@ int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
         if (!(*fields[k] = mc_zeros(n)))
             return mc_fail(err, MC_ERR_NOMEM, "out of memory for the %d x %d surface fields",
                            sc->grid.nx, sc->grid.ny);
-    rc = mc_surface_topography(&sc->grid, sc, res->topography, err);
+    rc = mc_surface_topography(&sc->grid, &sc->geometry, &sc->roughness, res->topography, err);
     if (rc != MC_OK)
         return rc;
 
@@ -159,5 +159,15 @@ int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
         }
     }
     res->timing.total_s = mc_clock() - t_start;
+    return rc;
+}
+
+int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
+{
+    /* the scene's thread count holds for this run only (core/threads.h) */
+    mc_threads_scope scope;
+    mc_threads_begin(sc->solver.threads, &scope);
+    int rc = run_stages(sc, res, err);
+    mc_threads_end(&scope);
     return rc;
 }

@@ -6,22 +6,7 @@
 
 #include "core/grid.h"
 #include "operator/operator.h"
-
-typedef struct {
-    int solved;           /* 0: pressure was prescribed (pressure_file), no contact solve */
-    double load;          /* total normal load A*sum(p), N */
-    double solid_load;    /* A*sum(p - p_lub) over the solid contact cells, N */
-    double p_max;         /* Pa */
-    double area;          /* solid contact area (cells with p above the lower bound), m^2 */
-    double contact_ratio; /* area / nominal area */
-    double approach;      /* rigid approach delta, m */
-    int iterations;
-    double residual;      /* final value of the stopping measure (see contact.h) */
-    int converged;
-    const char *solver;   /* "cg", "pk", "active-set" or "prescribed" */
-    mc_backend op;
-    int capped_cells;     /* cells at the pressure cap */
-} mc_contact_summary;
+#include "contact/contact.h"
 
 typedef struct {
     double vm_max, vm_max_at[3];         /* von Mises maximum, Pa, and its (x, y, z), m */

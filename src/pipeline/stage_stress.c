@@ -9,6 +9,7 @@
 #include "kernels/invariants.h"
 #include "kernels/kernel.h"
 #include "stress/stress.h"
+#include "pipeline/stage_stress.h"
 #include "stress/stress_internal.h"
 
 /* A new group of layers starts when the window's area would grow beyond this factor of the
@@ -340,7 +341,7 @@ static int stage_group(const mc_scene *sc, const mc_results *res, const mc_stres
                                    .nlayers = nl,
                                    .depths = depths + w->k0,
                                    .backend = sc->solver.op,
-                                   .loads = MC_LOAD_P | (q ? MC_LOAD_QX : 0)};
+                                   .loads = MC_TRACTION_P | (q ? MC_TRACTION_QX : 0)};
     mc_stress_op *op = NULL;
     int rc = mc_stress_create_tuned(&sub, &opt, tune, &op, err);
     if (rc == MC_OK)

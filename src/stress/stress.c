@@ -93,10 +93,10 @@ static int check_options(const mc_stress_options *opt, const mc_stress_tuning *t
     if (opt->nlayers < 1 || !opt->depths)
         return mc_fail(err, MC_ERR_INPUT, "stress: %d layers; at least one depth is needed",
                        opt->nlayers);
-    if (opt->loads <= 0 || (opt->loads & ~(MC_LOAD_P | MC_LOAD_QX | MC_LOAD_QY)))
+    if (opt->loads <= 0 || (opt->loads & ~(MC_TRACTION_P | MC_TRACTION_QX | MC_TRACTION_QY)))
         return mc_fail(err, MC_ERR_INPUT,
-                       "stress: loads %d must be a non-empty combination of MC_LOAD_P, "
-                       "MC_LOAD_QX, MC_LOAD_QY",
+                       "stress: loads %d must be a non-empty combination of MC_TRACTION_P, "
+                       "MC_TRACTION_QX, MC_TRACTION_QY",
                        opt->loads);
     const mc_stress_switch sw[3] = {tune->symmetric, tune->sparse, tune->window};
     for (int k = 0; k < 3; k++)
@@ -289,7 +289,7 @@ static void prepare_loads(mc_stress_op *op, const double *const loads[NLOADS], c
     op->timing.loads += omp_get_wtime() - t0;
 }
 
-static const int load_bit[NLOADS] = {MC_LOAD_P, MC_LOAD_QX, MC_LOAD_QY};
+static const int load_bit[NLOADS] = {MC_TRACTION_P, MC_TRACTION_QX, MC_TRACTION_QY};
 
 /* The six tables of load li at depth z into the op's kernel arrays of that load (quadrants on the
  * symmetric path, full tables otherwise; for the transform path of the general engine into the

@@ -46,10 +46,9 @@
 #include "core/error.h"
 #include "core/grid.h"
 #include "operator/operator.h"
-#include "pipeline/results.h"
-#include "case/scene.h"
 
-enum { MC_LOAD_P = 1, MC_LOAD_QX = 2, MC_LOAD_QY = 4 };
+typedef enum { MC_STRESS_PATCH, MC_STRESS_POINT } mc_stress_kernel;
+enum { MC_TRACTION_P = 1, MC_TRACTION_QX = 2, MC_TRACTION_QY = 4 };
 
 /* Far edge of the smeared strips of periodic axes, in units of max(Lx, Ly). */
 #define MC_STRESS_FAR_EDGE 1e12
@@ -64,19 +63,19 @@ typedef struct mc_stress_tables mc_stress_tables;
  * axis >= 2n - 1, a periodic axis = n), kernel, Poisson ratio nu in (-1, 0.5]. images: images per
  * side M on periodic axes at every depth above the smearing depth (values below 2 are raised to
  * 2), or <= 0 for the automatic depth-dependent choice (tests use it to measure the tail's
- * convergence). Workspaces for mc_get_threads() threads are allocated here.
+ * convergence). Workspaces for mc_threads_count() threads are allocated here.
  * *out is NULL on failure. MC_OK, MC_ERR_INPUT (bad grid, sizes, kernel or nu), MC_ERR_NOMEM. */
 int mc_stress_tables_create(const mc_grid *g, int tx, int ty, mc_stress_kernel kernel, double nu,
                             int images, mc_stress_tables **out, mc_error *err);
 
 /* The six tables k[c] (c in kernel.h order, each ty*tx, caller-owned, wrap-around layout of
- * operator.h with padding slots 0) of load (one of MC_LOAD_P, MC_LOAD_QX, MC_LOAD_QY) at depth z
+ * operator.h with padding slots 0) of load (one of MC_TRACTION_P, MC_TRACTION_QX, MC_TRACTION_QY) at depth z
  * (m): stress per unit load on one cell. Never allocates; OpenMP over table rows. MC_OK, or
  * MC_ERR_INPUT for a bad load, z < 0 or not finite, or z = 0 with the point kernel. */
 int mc_stress_tables_build(mc_stress_tables *tb, int load, double z, double *const k[6],
                            mc_error *err);
 
-/* Parity of table c (kernel.h order) of load (MC_LOAD_P, _QX or _QY): bit 0 set when the kernel is
+/* Parity of table c (kernel.h order) of load (MC_TRACTION_P, _QX or _QY): bit 0 set when the kernel is
  * odd in the x offset, bit 1 when odd in the y offset (kernel.h, elastic.md 3.3, 3.4); -1 for a
  * bad load or component. */
 int mc_stress_parity(int load, int c);
@@ -105,7 +104,7 @@ typedef struct {
     int nlayers;             /* >= 1 */
     const double *depths;    /* nlayers finite depths z >= 0, m (copied); point kernel: z > 0 */
     mc_backend backend;
-    int loads;               /* which load fields will be given: MC_LOAD_P | MC_LOAD_QX | ... */
+    int loads;               /* which load fields will be given: MC_TRACTION_P | MC_TRACTION_QX | ... */
 } mc_stress_options;
 
 typedef struct mc_stress_op mc_stress_op;
@@ -187,81 +186,5 @@ typedef struct {
 void mc_stress_timing_get(const mc_stress_op *op, mc_stress_timing *t);
 
 void mc_stress_destroy(mc_stress_op **op); /* frees, sets *op = NULL; NULL-safe */
-
-/* ---- the pipeline stage -------------------------------------------------------------------- */
-
-/* The window of [stress] window = auto (the stage's first skip), on grids with free axes (along a
- * periodic axis the load repeats, and beyond a period acts as a line load whose stress decays like
- * 1/r, not 1/r^2: no window). The load's non-zero cells have the bounding box B; layer z is
- * computed only on B widened on every side by
- *     m(z) = max(MC_STRESS_WINDOW_MIN cells, MC_STRESS_WINDOW_CR R + MC_STRESS_WINDOW_CZ z),
- * R = half the longer side of B (m), rounded up to whole cells per axis and clipped to the grid:
- * a DC-FFT (or direct) problem on that sub-grid, exact inside it because the load lies in it.
- * The other cells of the layer hold 0. Why R and not only z: outside a load the in-plane surface
- * stress decays only like (1 - 2 nu) P / (2 pi r^2), so near the surface the margin must grow with
- * the load, and with depth the stress spreads over ~z. Measured on Hertz contacts (nu = 0.3,
- * a/dx = 6, 8 and 16, friction 0 and 0.3, depths 0 ... 3a, grids 24a to 60a wide, each layer on
- * its own window): the largest von Mises stress left out is <= 1.74 % of that layer's largest
- * (at the surface without friction; <= 1.26 % with friction 0.3, <= 0.6 % at 0.2a ... 1.5a
- * without), the largest stress component left out <= 1.23 % of it; MC_STRESS_WINDOW_FRACTION is
- * the bound the tests hold it to. The margin's constants: the surface fraction falls like
- * ~1.04 / (1 + CR)^2 (the 1/r^2 law), CZ keeps the deep layers below it. Layers are grouped (at most MC_STRESS_MAX_WINDOWS groups, a new group when
- * the window's area would grow by more than half) and each group runs on its deepest layer's
- * window, so a group is planned once. The windows are listed in mc_results.stress_layout and
- * summary.json. The window is skipped (the whole grid computed) when it would cover the grid. */
-#define MC_STRESS_WINDOW_CR 7.0
-#define MC_STRESS_WINDOW_CZ 2.5
-#define MC_STRESS_WINDOW_MIN 4
-#define MC_STRESS_WINDOW_FRACTION 0.02
-
-/* depth_max = auto (the default of the stage's depths): MC_STRESS_DEPTH_RADII times the radius R
- * of the largest contact patch, layers from depth_min with [stress] layers and spacing. Patches are
- * the 4-connected groups of cells (connected across periodic edges too) with p > threshold: the
- * solid contact (p above the lubricant pressure) of a solved contact, the loaded cells (p > 0) of
- * a prescribed pressure. R = sqrt(A / pi) of a patch of area A; a patch closed around a periodic
- * axis (a band, as a line contact) has R = A / (2 L), its mean half-width across the period L
- * (closed around both: A / (2 max(Lx, Ly))). A Hertz contact gives R = a to the pixelation: 3a
- * holds the von Mises maximum (0.48a) and its decay to ~17 % of it (elastic.md 4.1). With no
- * contact cell the loaded cells count; with no load at all R is one cell. */
-#define MC_STRESS_DEPTH_RADII 3.0
-
-typedef struct {
-    int patches;   /* connected patches */
-    double radius; /* R of the largest (largest R), m; 0 if there is no patch */
-    long cells;    /* cells above the threshold */
-} mc_stress_patches;
-
-/* Label the patches of p (ny*nx) above threshold on grid g (see MC_STRESS_DEPTH_RADII). Allocates
- * its work arrays (4 ints per cell) for the call. MC_OK, MC_ERR_LIMIT (more than INT_MAX cells) or
- * MC_ERR_NOMEM. */
-int mc_stress_find_patches(const mc_grid *g, const double *p, double threshold,
-                           mc_stress_patches *out, mc_error *err);
-
-/* Stresses of the scene's [stress] section under the contact result: depths from mc_scene_depths,
- * or from the contact when depth_max is auto (MC_STRESS_DEPTH_RADII; MC_ERR_INPUT if that depth
- * does not exceed depth_min); loads p = res->pressure and, when friction > 0, the traction
- * q_x = friction * p on the lower body (body 1, z >= 0) in +x: the counter body slides in +x
- * relative to it (elastic.md 0); Poisson ratio of body 1 (the stresses are body 1's; for body 2
- * mirror the problem); kernel from the scene; backend scene->solver.op; the grid of res (that of
- * the pressure); window from [stress] window (MC_STRESS_WINDOW_CR: cells outside a layer's window
- * hold 0). Fills res->nlayers, depths, stress[6], von_mises, hydrostatic, tresca (invariants.h),
- * stress_layout (windows, depth rule) and stress_summary: the maxima of von Mises and Tresca with
- * their cell-centre (x, y, z), the first cell in volume order within a relative
- * MC_STRESS_TIE of the maximum (so round-off cannot move the location between equal cells of a
- * symmetric problem, e.g. with and without the window), and the hydrostatic stress at the von
- * Mises maximum. Stress members already present in res are replaced. On failure res's stress
- * members are unchanged. Does not set res->timing.stress_s (the caller times the stage). MC_OK,
- * MC_ERR_INPUT (bad stress settings, no pressure field), MC_ERR_NOMEM, or what mc_stress_create
- * returns. */
-int mc_stress_stage(const mc_scene *sc, mc_results *res, mc_error *err);
-
-/* mc_stress_stage with the speed-ups of tune (NULL: all automatic; tune->window overrides the
- * scene's window key unless AUTO), for benchmarks and comparisons. */
-int mc_stress_stage_tuned(const mc_scene *sc, mc_results *res, const mc_stress_tuning *tune,
-                          mc_error *err);
-
-/* Relative tie tolerance of the summary's maxima: far above the round-off of a layer (~1e-15 of
- * its largest stress), far below any physical difference between cells. */
-#define MC_STRESS_TIE 1e-11
 
 #endif

@@ -348,7 +348,7 @@ static void set_means(const mc_stress_tables *tb, int li, double *const k[6])
 
 static int load_index(int load)
 {
-    return load == MC_LOAD_P ? 0 : load == MC_LOAD_QX ? 1 : load == MC_LOAD_QY ? 2 : -1;
+    return load == MC_TRACTION_P ? 0 : load == MC_TRACTION_QX ? 1 : load == MC_TRACTION_QY ? 2 : -1;
 }
 
 int mc_stress_tables_build(mc_stress_tables *tb, int load, double z, double *const k[6],
@@ -414,7 +414,7 @@ static const int parities[3][MC_NSTRESS] = {
 
 int mc_stress_parity(int load, int c)
 {
-    const int li = load == MC_LOAD_P ? 0 : load == MC_LOAD_QX ? 1 : load == MC_LOAD_QY ? 2 : -1;
+    const int li = load == MC_TRACTION_P ? 0 : load == MC_TRACTION_QX ? 1 : load == MC_TRACTION_QY ? 2 : -1;
     return li < 0 || c < 0 || c >= MC_NSTRESS ? -1 : parities[li][c];
 }
 
@@ -572,7 +572,7 @@ int mc_stress_tables_create(const mc_grid *g, int tx, int ty, mc_stress_kernel k
     tb->kernel = kernel;
     tb->nu = nu;
     tb->far = MC_STRESS_FAR_EDGE * fmax(g->nx * g->dx, g->ny * g->dy);
-    tb->nthreads = mc_get_threads();
+    tb->nthreads = mc_threads_count();
     if ((rc = axis_setup(&tb->ax[0], g->nx, tx, g->periodic_x, g->dx, images, err)) ||
         (rc = axis_setup(&tb->ax[1], g->ny, ty, g->periodic_y, g->dy, images, err))) {
         mc_stress_tables_destroy(&tb);

@@ -64,18 +64,18 @@ double mc_rng_normal(mc_rng *r)
 
 /* ---- shapes ------------------------------------------------------------------------------ */
 
-void mc_surface_shape(const mc_grid *g, const mc_scene *s, double *h)
+void mc_surface_shape(const mc_grid *g, const mc_shape_spec *s, double *h)
 {
     for (int j = 0; j < g->ny; j++) {
         double y = mc_grid_y(g, j);
         for (int i = 0; i < g->nx; i++) {
             double x = mc_grid_x(g, i), v = 0.0;
-            switch (s->geometry.shape) {
+            switch (s->shape) {
             case MC_SHAPE_FLAT: v = 0.0; break;
-            case MC_SHAPE_SPHERE: v = (x * x + y * y) / (2.0 * s->geometry.radius); break;
-            case MC_SHAPE_CYLINDER: v = x * x / (2.0 * s->geometry.radius); break;
+            case MC_SHAPE_SPHERE: v = (x * x + y * y) / (2.0 * s->radius); break;
+            case MC_SHAPE_CYLINDER: v = x * x / (2.0 * s->radius); break;
             case MC_SHAPE_ELLIPSOID:
-                v = x * x / (2.0 * s->geometry.radius_x) + y * y / (2.0 * s->geometry.radius_y);
+                v = x * x / (2.0 * s->radius_x) + y * y / (2.0 * s->radius_y);
                 break;
             }
             h[(size_t)j * (size_t)g->nx + (size_t)i] = v;
@@ -201,7 +201,8 @@ static int synthesize(const mc_grid *g, uint64_t seed, const psd_params *p, doub
 
 static int finite_nonneg(double v) { return isfinite(v) && v >= 0.0; }
 
-int mc_surface_roughness(const mc_grid *g, const mc_scene *s, double *heights, mc_error *err)
+int mc_surface_roughness(const mc_grid *g, const mc_roughness_spec *s, double *heights,
+                         mc_error *err)
 {
     size_t n = mc_grid_cells(g);
     int st = mc_grid_check(g, err);
@@ -209,13 +210,13 @@ int mc_surface_roughness(const mc_grid *g, const mc_scene *s, double *heights, m
         return st;
     psd_params p;
     memset(&p, 0, sizeof p);
-    switch (s->roughness.type) {
+    switch (s->type) {
     case MC_ROUGH_NONE:
         memset(heights, 0, n * sizeof(double));
         return MC_OK;
     case MC_ROUGH_FILE: {
         double *d = NULL;
-        st = mc_heightmap_read(s->roughness.file, g->ny, g->nx, &d, err);
+        st = mc_heightmap_read(s->file, g->ny, g->nx, &d, err);
         if (st != MC_OK) {
             if (err)
                 mc_error_prefix(err, "[roughness] file: ");
@@ -226,59 +227,60 @@ int mc_surface_roughness(const mc_grid *g, const mc_scene *s, double *heights, m
         return MC_OK;
     }
     case MC_ROUGH_GAUSSIAN:
-        if (!finite_nonneg(s->roughness.rq) || !finite_nonneg(s->roughness.correlation_x) ||
-            !finite_nonneg(s->roughness.correlation_y))
+        if (!finite_nonneg(s->rq) || !finite_nonneg(s->correlation_x) ||
+            !finite_nonneg(s->correlation_y))
             return mc_fail(err, MC_ERR_INPUT,
                            "[roughness] gaussian: rq = %g m, correlation_x = %g m, correlation_y = "
                            "%g m: each must be finite and >= 0",
-                           s->roughness.rq, s->roughness.correlation_x, s->roughness.correlation_y);
-        if (s->roughness.rq == 0.0) {
+                           s->rq, s->correlation_x, s->correlation_y);
+        if (s->rq == 0.0) {
             memset(heights, 0, n * sizeof(double));
             return MC_OK;
         }
-        p.lx = s->roughness.correlation_x;
-        p.ly = s->roughness.correlation_y;
-        return synthesize(g, s->roughness.seed, &p, s->roughness.rq, 0.0, heights, err);
+        p.lx = s->correlation_x;
+        p.ly = s->correlation_y;
+        return synthesize(g, s->seed, &p, s->rq, 0.0, heights, err);
     case MC_ROUGH_SELF_AFFINE: {
-        if (!finite_nonneg(s->roughness.rq) || !finite_nonneg(s->roughness.rms_slope))
+        if (!finite_nonneg(s->rq) || !finite_nonneg(s->rms_slope))
             return mc_fail(err, MC_ERR_INPUT,
                            "[roughness] self_affine: rq = %g m, rms_slope = %g: each must be "
                            "finite and >= 0",
-                           s->roughness.rq, s->roughness.rms_slope);
-        if (!(s->roughness.hurst >= 0.0 && s->roughness.hurst <= 1.0))
+                           s->rq, s->rms_slope);
+        if (!(s->hurst >= 0.0 && s->hurst <= 1.0))
             return mc_fail(err, MC_ERR_INPUT,
                            "[roughness] self_affine: hurst = %g: must be in 0..1",
-                           s->roughness.hurst);
-        if (!finite_nonneg(s->roughness.lambda_long) || !finite_nonneg(s->roughness.lambda_short))
+                           s->hurst);
+        if (!finite_nonneg(s->lambda_long) || !finite_nonneg(s->lambda_short))
             return mc_fail(err, MC_ERR_INPUT,
                            "[roughness] self_affine: lambda_long = %g m, lambda_short = %g m: each "
                            "must be finite and >= 0 (0 = automatic)",
-                           s->roughness.lambda_long, s->roughness.lambda_short);
+                           s->lambda_long, s->lambda_short);
         double Lx = g->nx * g->dx, Ly = g->ny * g->dy;
-        double ll = s->roughness.lambda_long > 0 ? s->roughness.lambda_long : fmax(Lx, Ly);
-        double ls = s->roughness.lambda_short > 0 ? s->roughness.lambda_short
+        double ll = s->lambda_long > 0 ? s->lambda_long : fmax(Lx, Ly);
+        double ls = s->lambda_short > 0 ? s->lambda_short
                                                    : 2.0 * fmax(g->dx, g->dy);
         if (!(ls < ll))
             return mc_fail(err, MC_ERR_INPUT,
                            "[roughness] self_affine: lambda_short = %g m must be below "
                            "lambda_long = %g m",
                            ls, ll);
-        if (s->roughness.rq == 0.0 && s->roughness.rms_slope == 0.0) {
+        if (s->rq == 0.0 && s->rms_slope == 0.0) {
             memset(heights, 0, n * sizeof(double));
             return MC_OK;
         }
         p.self_affine = 1;
         p.q_long = 2.0 * M_PI / ll;
         p.q_short = 2.0 * M_PI / ls;
-        p.expo = -2.0 * (1.0 + s->roughness.hurst);
-        return synthesize(g, s->roughness.seed, &p, s->roughness.rq, s->roughness.rms_slope,
+        p.expo = -2.0 * (1.0 + s->hurst);
+        return synthesize(g, s->seed, &p, s->rq, s->rms_slope,
                           heights, err);
     }
     }
-    return mc_fail(err, MC_ERR_INPUT, "[roughness]: unknown type %d", (int)s->roughness.type);
+    return mc_fail(err, MC_ERR_INPUT, "[roughness]: unknown type %d", (int)s->type);
 }
 
-int mc_surface_topography(const mc_grid *g, const mc_scene *s, double *topo, mc_error *err)
+int mc_surface_topography(const mc_grid *g, const mc_shape_spec *shape,
+                          const mc_roughness_spec *rough_spec, double *topo, mc_error *err)
 {
     int st = mc_grid_check(g, err);
     if (st != MC_OK)
@@ -288,9 +290,9 @@ int mc_surface_topography(const mc_grid *g, const mc_scene *s, double *topo, mc_
     if (!rough)
         return mc_fail(err, MC_ERR_NOMEM, "topography: no memory for %d x %d heights", g->ny,
                        g->nx);
-    st = mc_surface_roughness(g, s, rough, err);
+    st = mc_surface_roughness(g, rough_spec, rough, err);
     if (st == MC_OK) {
-        mc_surface_shape(g, s, topo);
+        mc_surface_shape(g, shape, topo);
         for (size_t k = 0; k < n; k++)
             topo[k] -= rough[k];
     }

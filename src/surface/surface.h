@@ -10,7 +10,35 @@
 
 #include "core/error.h"
 #include "core/grid.h"
-#include "case/scene.h"
+#include "core/paths.h"
+
+typedef enum { MC_SHAPE_FLAT, MC_SHAPE_SPHERE, MC_SHAPE_CYLINDER, MC_SHAPE_ELLIPSOID } mc_shape;
+
+typedef enum {
+    MC_ROUGH_NONE,
+    MC_ROUGH_GAUSSIAN,    /* Gaussian heights, Gaussian autocorrelation (correlation_x/_y) */
+    MC_ROUGH_SELF_AFFINE, /* self-affine (Hurst exponent) between two cut-off wavelengths */
+    MC_ROUGH_FILE         /* measured/external height map (.npy or whitespace text) */
+} mc_roughness_type;
+
+/* Smooth-body shape: the combined initial gap of the two bodies, apex at the grid centre. */
+typedef struct {
+        mc_shape shape;
+        double radius;             /* sphere, cylinder (curvature in x), m */
+        double radius_x, radius_y; /* ellipsoid principal radii, m */
+    } mc_shape_spec;
+
+/* Roughness: heights up (towards the counter body) reduce the gap. */
+typedef struct {
+        mc_roughness_type type;
+        double rq;                           /* rms height, m (gaussian, self_affine) */
+        double correlation_x, correlation_y; /* gaussian: ACF exp(-(tx/lx)^2-(ty/ly)^2), m */
+        double hurst;                        /* self_affine: Hurst exponent, 0 < H < 1 (0.8) */
+        double rms_slope;                    /* self_affine: alternative to rq (0 = unused) */
+        double lambda_long, lambda_short;    /* self_affine cut-offs, m (0: mc_scene_cutoffs) */
+        uint64_t seed;                       /* generator seed (reproducible) */
+        char file[MC_PATH_MAX];              /* file: height map path (relative to the case) */
+    } mc_roughness_spec;
 
 /* ---- reproducible random numbers: xoshiro256** seeded by splitmix64 --------------------- */
 /* Blackman & Vigna (2018), xoshiro256** 1.0; the four state words are four successive outputs
@@ -29,10 +57,10 @@ double mc_rng_normal(mc_rng *r);  /* standard normal (Box-Muller, both values us
 
 /* Smooth-body gap at cell centres (ny*nx), m: flat 0; sphere r^2/2R; cylinder x^2/2R (axis
  * along y); ellipsoid x^2/2Rx + y^2/2Ry. Cell centres x_i = (i + 1/2 - nx/2) dx (grid.h). The
- * scene's radii must be valid (mc_scene_check). */
-void mc_surface_shape(const mc_grid *g, const mc_scene *s, double *h);
+ * radii must be valid (> 0 where used). */
+void mc_surface_shape(const mc_grid *g, const mc_shape_spec *s, double *h);
 
-/* Roughness heights (ny*nx), m, for the scene's [roughness] (zeros for none).
+/* Roughness heights (ny*nx), m, for the roughness spec (zeros for none).
  *
  * Synthetic surfaces use the spectral method (plastic-lubrication.md 7): standard normal white
  * noise drawn row by row from mc_rng(seed) -> FFTW r2c (FFTW_ESTIMATE) -> times sqrt(C(q)) ->
@@ -54,10 +82,12 @@ void mc_surface_shape(const mc_grid *g, const mc_scene *s, double *h);
  * (shape checked against the mesh) and used as is.
  * Errors: MC_ERR_INPUT (bad parameters, empty spectrum band on this grid, file format or shape),
  * MC_ERR_IO (file), MC_ERR_NOMEM, MC_ERR_INTERNAL (FFTW planning failed). */
-int mc_surface_roughness(const mc_grid *g, const mc_scene *s, double *heights, mc_error *err);
+int mc_surface_roughness(const mc_grid *g, const mc_roughness_spec *s, double *heights,
+                         mc_error *err);
 
 /* Whole topography: shape - roughness (ny*nx), m. Errors as mc_surface_roughness. */
-int mc_surface_topography(const mc_grid *g, const mc_scene *s, double *topo, mc_error *err);
+int mc_surface_topography(const mc_grid *g, const mc_shape_spec *shape,
+                          const mc_roughness_spec *rough, double *topo, mc_error *err);
 
 /* Roughness statistics of a height field (for tests and reports): mean; rq = Sq and ra = Sa
  * about the mean; slopes by central differences (wrapping around periodic axes, one-sided at
