@@ -131,7 +131,7 @@ check-sanitize: deps
 # contract (log build/fuzz/fuzz_<x>.log, crashing input build/fuzz/crashes/). UBSan aborts
 # (-fno-sanitize-recover) so that undefined behaviour counts as a crash.
 FUZZ_TARGETS = $(patsubst tests/fuzz/%.c,build/fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))
-FUZZ_LIB_SRC = src/core/error.c src/core/alloc.c src/case/units.c src/case/case.c src/case/scene.c \
+FUZZ_LIB_SRC = src/core/error.c src/core/alloc.c src/case/units.c src/case/keys.c src/case/reader.c src/case/scene.c \
                src/kernels/kernel.c src/core/grid.c src/io/npy.c src/io/heightmap.c
 FUZZ_CFLAGS  = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -g -O1 -Isrc \
                -Wall -Wextra -Werror -Wno-unknown-pragmas \

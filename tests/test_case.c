@@ -791,7 +791,7 @@ START_TEST(test_docs_match_generated)
             fclose(o);
         }
         mc_free(md);
-        ck_abort_msg("%s is out of date with the key table in src/case.c; the regenerated file "
+        ck_abort_msg("%s is out of date with the key table in src/case/keys.c; the regenerated file "
                      "is %s (copy it over)",
                      path, fresh);
     }
@@ -908,26 +908,26 @@ static void m_friction(mc_scene *s)
 }
 
 static const rule_case rules[] = {
-    {m_nx, "mesh", "nx", "[mesh] nx = 0: must be in 1..65536"},
-    {m_dy, "mesh", "dy", "[mesh] dy = nan m: must be > 0"},
-    {m_sphere, "geometry", "radius", "[geometry] radius = 0 m: shape = sphere needs a radius > 0"},
-    {m_ellipsoid, "geometry", "radius_y", "needs radius_y > 0"},
-    {m_gauss, "roughness", "correlation_y", "[roughness] correlation_y = 0 m: must be > 0"},
+    {m_nx, "mesh", "nx", "[mesh] nx = 0: must be an integer in 1..65536"},
+    {m_dy, "mesh", "dy", "[mesh] dy = nan m: must be a length > 0"},
+    {m_sphere, "geometry", "radius", "[geometry] radius = 0 m: must be a length > 0"},
+    {m_ellipsoid, "geometry", "radius_y", "[geometry] radius_y = 0 m: must be a length > 0"},
+    {m_gauss, "roughness", "correlation_y", "[roughness] correlation_y = 0 m: must be a length > 0"},
     {m_affine_both, "roughness", "rms_slope", "rq or rms_slope, not both"},
     {m_affine_cut, "roughness", "lambda_short", "must be < lambda_long = 1.6e-05 m"},
-    {m_file, "roughness", "file", "[roughness] type = file needs a file"},
-    {m_nu, "body1", "nu", "[body1] nu = 0.6: must be in 0..0.5"},
-    {m_E2, "body2", "E", "[body2] E = 0 Pa: must be > 0"},
-    {m_noload, "load", "force", "[load] force = 0: must be > 0"},
+    {m_file, "roughness", "file", "[roughness] file = \"\": must be a path"},
+    {m_nu, "body1", "nu", "[body1] nu = 0.6: must be a number >= 0 and <= 0.5"},
+    {m_E2, "body2", "E", "[body2] E = 0 Pa: must be a pressure > 0 and <= 1e+13 Pa"},
+    {m_noload, "load", "force", "[load] force = 0 N: must be a force > 0"},
     {m_fpl, "load", "force_per_length", "[load] force_per_length needs [mesh] periodic_y = yes"},
-    {m_pfile, "load", "pressure_file", "[load] pressure_file: a file name is required"},
+    {m_pfile, "load", "pressure_file", "[load] pressure_file = \"\": must be a path"},
     {m_cap, "load", "pressure_cap", "must be > lubricant_pressure = 2e+06 Pa"},
-    {m_tol, "solver", "tolerance", "[solver] tolerance = 0.5: must be in 1e-15..0.01"},
-    {m_iter, "solver", "max_iterations", "[solver] max_iterations = 0: must be >= 1"},
+    {m_tol, "solver", "tolerance", "[solver] tolerance = 0.5: must be a number >= 1e-15 and <= 0.01"},
+    {m_iter, "solver", "max_iterations", "[solver] max_iterations = 0: must be an integer in 1..10000000"},
     {m_range, "stress", "depth_max", "must be > depth_min = 1e-06 m"},
     {m_geom, "stress", "spacing", "spacing = geometric needs depth_min > 0"},
-    {m_list, "stress", "depths", "item 2 = 1e-06 m must be > item 1"},
-    {m_friction, "stress", "friction", "[stress] friction = -0.1: must be in 0..1"},
+    {m_list, "stress", "depths", "[stress] depths item 2 = 1e-06 m: must be a list of comma-separated lengths >= 0, strictly increasing"},
+    {m_friction, "stress", "friction", "[stress] friction = -0.1: must be a number >= 0 and <= 1"},
 };
 
 START_TEST(test_scene_rules)

@@ -306,6 +306,7 @@ static void check_summary(const char *dir, const mc_scene *s, const mc_results *
     ck_assert_double_eq(jreal(c, "residual"), 3e-9);
     ck_assert(json_is_true(json_object_get(c, "converged")));
     ck_assert(json_is_true(json_object_get(c, "solved")));
+    ck_assert_str_eq(json_string_value(json_object_get(c, "state")), "converged");
     ck_assert_str_eq(json_string_value(json_object_get(c, "solver")), "cg");
     ck_assert_str_eq(json_string_value(json_object_get(c, "operator")), "direct");
     ck_assert_int_eq((int)jreal(c, "capped_cells"), 2);

@@ -606,13 +606,18 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
     jset(b, o, "approach", jnum(cs->approach));
     jset(b, o, "iterations", json_integer(cs->iterations));
     jset(b, o, "residual", jnum(cs->residual));
-    jset(b, o, "converged", json_boolean(cs->converged));
+    /* a prescribed pressure was not solved for: no convergence is claimed either way */
+    jset(b, o, "state",
+         jstr(!cs->solved ? "prescribed" : cs->converged ? "converged" : "not_converged"));
+    jset(b, o, "converged", cs->solved ? json_boolean(cs->converged) : json_null());
     jset(b, o, "solver", jstr(cs->solver));
     jset(b, o, "operator", jstr(mc_backend_name(cs->op)));
     jset(b, o, "capped_cells", json_integer(cs->capped_cells));
     jset(b, o, "solved", json_boolean(cs->solved));
-    jset(b, o, "tolerance", jnum(s->solver.tolerance));
-    jset(b, o, "max_iterations", json_integer(s->solver.max_iterations));
+    if (cs->solved) {
+        jset(b, o, "tolerance", jnum(s->solver.tolerance));
+        jset(b, o, "max_iterations", json_integer(s->solver.max_iterations));
+    }
 
     if (r->nlayers > 0) {
         const mc_stress_summary *ss = &r->stress_summary;

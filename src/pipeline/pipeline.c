@@ -67,7 +67,7 @@ static int run_prescribed(const mc_scene *sc, mc_operator *K, mc_results *res, m
     c->area = A * (double)ncontact;
     c->contact_ratio = (double)ncontact / (double)n;
     c->approach = delta;
-    c->converged = 1;
+    c->converged = 0; /* nothing was solved: "prescribed" is its own state (summary.json) */
     c->solver = "prescribed";
     c->op = mc_operator_backend(K);
     res->timing.contact_s = mc_clock() - t0;

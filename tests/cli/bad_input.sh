@@ -149,8 +149,8 @@ control() {
             why="$why; summary.json lacks \"converged\": false"
         grep -qF 'did not converge' stderr || why="$why; stderr does not say 'did not converge'"
     elif [ -f "$outdir/summary.json" ]; then
-        grep -q '"converged": *true' "$outdir/summary.json" ||
-            why="$why; summary.json lacks \"converged\": true"
+        grep -q '"state": *"\(converged\|prescribed\)"' "$outdir/summary.json" ||
+            why="$why; summary.json lacks \"state\": \"converged\" (or \"prescribed\")"
     fi
     ls -A "$outdir" 2> /dev/null | grep -q '^\.' &&
         why="$why; hidden files left in $outdir: $(ls -A "$outdir" | grep '^\.' | tr '\n' ' ')"
@@ -211,6 +211,17 @@ row not_utf8          o 1 "not_utf8.ini:11:" "is not UTF-8 text (byte 0xFF at co
     -- not_utf8.ini --out o
 row continued         o 1 "continued.ini:3:" "[mesh] nx" "continues nx from line 2" \
     "takes a single value (remove the indentation)" -- continued.ini --out o
+# a key that has no effect in its scene is an error, never silently ignored
+row pfile_lubricant   o 1 "[load] lubricant_pressure cannot be combined with pressure_file" \
+    -- pressure_ok_text.ini --out o --set load.lubricant_pressure=1MPa
+row pfile_cap         o 1 "[load] pressure_cap cannot be combined with pressure_file" \
+    -- pressure_ok_text.ini --out o --set load.pressure_cap=1GPa
+row pfile_method      o 1 "[solver] method cannot be combined with load.pressure_file" \
+    -- pressure_ok_text.ini --out o --set solver.method=pk
+row pfile_tolerance   o 1 "[solver] tolerance cannot be combined with load.pressure_file" \
+    -- pressure_ok_text.ini --out o --set solver.tolerance=1e-6
+row radius_flat       o 1 "[geometry] radius is not used by shape = flat" \
+    -- good.ini --out o --set geometry.shape=flat
 # the default output directory (out/<case name>) must not appear either
 row default_out_dir   out/nx_zero 1 "nx_zero.ini:2:" "[mesh] nx = 0" -- nx_zero.ini
 

@@ -1,0 +1,976 @@
+/* keys.c - the one key table of case files (keys.h): every key's bounds, default, unit kind and
+ * help text; the conversion of one value text into the scene; the Markdown reference generated
+ * from the table. The reader (reader.c) and the scene check (scene.c) use the same rows.
+ */
+#include "case/keys.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "case/units.h"
+
+/* Enums are stored through an int (the table's value is the index of the choice). */
+_Static_assert(sizeof(mc_shape) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_roughness_type) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_load_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_backend) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_contact_method) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_spacing) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_stress_kernel) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_stress_window_mode) == sizeof(int), "enum size");
+_Static_assert(MC_SHAPE_ELLIPSOID == 3 && MC_ROUGH_FILE == 3 && MC_BACKEND_DIRECT == 1 &&
+                   MC_METHOD_ACTIVE_SET == 2 && MC_SPACING_GEOMETRIC == 1 && MC_STRESS_POINT == 1 &&
+                   MC_STRESS_WINDOW_FULL == 1,
+               "choice lists below follow the enum order");
+
+
+/* ---- the key table --------------------------------------------------------------------------- */
+
+
+#define AT(field) offsetof(mc_scene, field)
+
+const case_key mc_keys[] = {
+    /* [mesh] */
+    {.section = "mesh", .name = "nx", .kind = K_INT, .lo = 1, .hi = MC_GRID_MAX_N,
+     .required = 1, .off = AT(grid.nx), .doc = "Cells along x (the rolling direction)."},
+    {.section = "mesh", .name = "ny", .kind = K_INT, .lo = 1, .hi = MC_GRID_MAX_N,
+     .required = 1, .off = AT(grid.ny), .doc = "Cells along y (transverse, the cylinder axis)."},
+    {.section = "mesh", .name = "dx", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .lo_open = 1, .hi = 1, .required = 1, .off = AT(grid.dx), .doc = "Cell size along x."},
+    {.section = "mesh", .name = "dy", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .lo_open = 1, .hi = 1, .def = "dx", .def_from = "dx", .off = AT(grid.dy),
+     .doc = "Cell size along y."},
+    {.section = "mesh", .name = "periodic_x", .kind = K_BOOL, .def = "no",
+     .off = AT(grid.periodic_x),
+     .doc = "Periodic along x with period nx dx; otherwise the surface outside the mesh is free."},
+    {.section = "mesh", .name = "periodic_y", .kind = K_BOOL, .def = "no",
+     .off = AT(grid.periodic_y),
+     .doc = "Periodic along y with period ny dy (required by force_per_length)."},
+
+    /* [geometry] */
+    {.section = "geometry", .name = "shape", .kind = K_ENUM,
+     .choices = "flat sphere cylinder ellipsoid", .def = "flat", .off = AT(geometry.shape),
+     .doc = "Gap at zero load: flat 0; sphere r^2/2R; cylinder x^2/2R (axis along y); "
+            "ellipsoid x^2/2Rx + y^2/2Ry."},
+    {.section = "geometry", .name = "radius", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .lo_open = 1, .hi = HUGE_VAL, .required = 1, .use = USE_WHEN, .use_key = "shape",
+     .use_values = "sphere cylinder", .off = AT(geometry.radius),
+     .doc = "Combined radius of curvature R (1/R = 1/R1 + 1/R2); for the cylinder, the "
+            "curvature is in x."},
+    {.section = "geometry", .name = "radius_x", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .lo_open = 1, .hi = HUGE_VAL, .required = 1, .use = USE_WHEN, .use_key = "shape",
+     .use_values = "ellipsoid", .off = AT(geometry.radius_x),
+     .doc = "Combined principal radius of curvature in the x-z plane."},
+    {.section = "geometry", .name = "radius_y", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .lo_open = 1, .hi = HUGE_VAL, .required = 1, .use = USE_WHEN, .use_key = "shape",
+     .use_values = "ellipsoid", .off = AT(geometry.radius_y),
+     .doc = "Combined principal radius of curvature in the y-z plane."},
+
+    /* [roughness] */
+    {.section = "roughness", .name = "type", .kind = K_ENUM,
+     .choices = "none gaussian self_affine file", .def = "none", .off = AT(roughness.type),
+     .doc = "Roughness heights added to the surface (positive towards the counter body)."},
+    {.section = "roughness", .name = "rq", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .hi = HUGE_VAL, .group = "height", .use = USE_WHEN, .use_key = "type",
+     .use_values = "gaussian self_affine", .off = AT(roughness.rq),
+     .doc = "RMS height Rq (required for gaussian; for self_affine give rq or rms_slope)."},
+    {.section = "roughness", .name = "rms_slope", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
+     .lo_open = 1, .hi = HUGE_VAL, .group = "height", .use = USE_WHEN, .use_key = "type",
+     .use_values = "self_affine", .off = AT(roughness.rms_slope),
+     .doc = "RMS slope, instead of rq."},
+    {.section = "roughness", .name = "correlation_x", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
+     .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .required = 1, .use = USE_WHEN, .use_key = "type",
+     .use_values = "gaussian", .off = AT(roughness.correlation_x),
+     .doc = "Correlation length along x: autocorrelation exp(-(tx/lx)^2 - (ty/ly)^2)."},
+    {.section = "roughness", .name = "correlation_y", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
+     .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .def = "correlation_x", .def_from = "correlation_x",
+     .use = USE_WHEN, .use_key = "type", .use_values = "gaussian",
+     .off = AT(roughness.correlation_y), .doc = "Correlation length along y."},
+    {.section = "roughness", .name = "hurst", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
+     .lo_open = 1, .hi = 1, .hi_open = 1, .def = "0.8", .use = USE_WHEN, .use_key = "type",
+     .use_values = "self_affine", .off = AT(roughness.hurst),
+     .doc = "Hurst exponent H (power spectrum ~ q^-2(1+H))."},
+    {.section = "roughness", .name = "lambda_long", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
+     .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .def = "the longer domain side", .def_rule = 1,
+     .use = USE_WHEN, .use_key = "type", .use_values = "self_affine",
+     .off = AT(roughness.lambda_long), .doc = "Longest wavelength (long cut-off)."},
+    {.section = "roughness", .name = "lambda_short", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
+     .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .def = "2 max(dx, dy)", .def_rule = 1,
+     .use = USE_WHEN, .use_key = "type", .use_values = "self_affine",
+     .off = AT(roughness.lambda_short),
+     .doc = "Shortest wavelength (short cut-off), below lambda_long."},
+    {.section = "roughness", .name = "seed", .kind = K_SEED, .def = "1", .use = USE_WHEN,
+     .use_key = "type", .use_values = "gaussian self_affine", .off = AT(roughness.seed),
+     .doc = "Random seed: the same seed gives the same surface on every run."},
+    {.section = "roughness", .name = "file", .kind = K_PATH, .required = 1, .use = USE_WHEN,
+     .use_key = "type", .use_values = "file", .off = AT(roughness.file), .relative = 1,
+     .doc = "Height map (.npy or whitespace-separated text), relative to the case file."},
+
+    /* [body1], [body2] */
+    {.section = "body1", .name = "E", .kind = K_REAL, .unit = MC_UNIT_PRESSURE, .lo = 0,
+     .lo_open = 1, .hi = 1e13, .def = "210 GPa", .off = AT(body1.E), .doc = "Young's modulus."},
+    {.section = "body1", .name = "nu", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0, .hi = 0.5,
+     .def = "0.3", .off = AT(body1.nu), .doc = "Poisson's ratio."},
+    {.section = "body2", .name = "rigid", .kind = K_BOOL, .def = "no", .off = AT(body2.rigid),
+     .doc = "A rigid body 2: E* = E1/(1 - nu1^2)."},
+    {.section = "body2", .name = "E", .kind = K_REAL, .unit = MC_UNIT_PRESSURE, .lo = 0,
+     .lo_open = 1, .hi = 1e13, .def = "210 GPa", .use = USE_WHEN, .use_key = "rigid",
+     .use_values = "no", .off = AT(body2.E), .doc = "Young's modulus."},
+    {.section = "body2", .name = "nu", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0, .hi = 0.5,
+     .def = "0.3", .use = USE_WHEN, .use_key = "rigid", .use_values = "no", .off = AT(body2.nu),
+     .doc = "Poisson's ratio."},
+
+    /* [load] */
+    {.section = "load", .name = "force", .kind = K_REAL, .unit = MC_UNIT_FORCE, .lo = 0,
+     .lo_open = 1, .hi = HUGE_VAL, .group = "load", .off = AT(load.value), .tagged = 1,
+     .tag = MC_LOAD_FORCE, .tag_off = AT(load.kind), .doc = "Total normal force."},
+    {.section = "load", .name = "force_per_length", .kind = K_REAL,
+     .unit = MC_UNIT_FORCE_PER_LENGTH, .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .group = "load",
+     .off = AT(load.value), .tagged = 1, .tag = MC_LOAD_FORCE_PER_LENGTH,
+     .tag_off = AT(load.kind),
+     .doc = "Normal force per unit length along y (line contact); needs [mesh] periodic_y = yes."},
+    {.section = "load", .name = "approach", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .lo_open = 1, .hi = HUGE_VAL, .group = "load", .off = AT(load.value), .tagged = 1,
+     .tag = MC_LOAD_APPROACH, .tag_off = AT(load.kind),
+     .doc = "Rigid-body approach of the two bodies."},
+    {.section = "load", .name = "pressure_file", .kind = K_PATH, .group = "load",
+     .off = AT(load.pressure_file), .relative = 1, .tagged = 1, .tag = MC_LOAD_PRESSURE_FILE,
+     .tag_off = AT(load.kind),
+     .doc = "Prescribed pressure map (.npy, ny x nx, Pa), relative to the case file; no contact "
+            "solve."},
+    {.section = "load", .name = "lubricant_pressure", .kind = K_REAL, .unit = MC_UNIT_PRESSURE,
+     .lo = 0, .hi = HUGE_VAL, .def = "0", .use = USE_UNLESS, .use_key = "pressure_file",
+     .off = AT(load.lubricant_pressure),
+     .doc = "Lower bound of the pressure outside solid contact (a lubricant film)."},
+    {.section = "load", .name = "pressure_cap", .kind = K_REAL, .unit = MC_UNIT_PRESSURE, .lo = 0,
+     .lo_open = 1, .hi = HUGE_VAL, .lo_text = "> lubricant_pressure", .def = "none (unbounded)",
+     .def_rule = 1, .use = USE_UNLESS, .use_key = "pressure_file", .off = AT(load.pressure_cap),
+     .doc = "Upper bound of the pressure (e.g. a hardness)."},
+
+    /* [solver] */
+    {.section = "solver", .name = "operator", .kind = K_ENUM, .choices = "fft direct",
+     .def = "fft", .off = AT(solver.op),
+     .doc = "Convolution backend: fft (DC-FFT) or direct (O(N^2) sums, the reference)."},
+    {.section = "solver", .name = "method", .kind = K_ENUM, .choices = "cg pk active-set",
+     .def = "cg", .use = USE_UNLESS, .use_key = "load.pressure_file", .off = AT(solver.method),
+     .doc = "cg: preconditioned constrained conjugate gradients; pk: Polonsky & Keer (1999); "
+            "active-set: the dense reference (small grids)."},
+    {.section = "solver", .name = "tolerance", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 1e-15,
+     .hi = 1e-2, .def = "1e-8", .use = USE_UNLESS, .use_key = "load.pressure_file",
+     .off = AT(solver.tolerance),
+     .doc = "Relative stopping tolerance."},
+    {.section = "solver", .name = "max_iterations", .kind = K_INT, .lo = 1, .hi = 10000000,
+     .def = "2000", .use = USE_UNLESS, .use_key = "load.pressure_file",
+     .off = AT(solver.max_iterations),
+     .doc = "Iteration limit; reaching it is reported as not converged."},
+    {.section = "solver", .name = "threads", .kind = K_INT, .lo = 0, .hi = 1024, .def = "0",
+     .off = AT(solver.threads), .doc = "Threads for FFTW and OpenMP; 0 = all cores."},
+
+    /* [stress] */
+    {.section = "stress", .name = "enabled", .kind = K_BOOL,
+     .def = "yes, when [stress] is present", .def_rule = 1,
+     .off = AT(stress.enabled),
+     .doc = "Run the stress stage (no: skip it, e.g. --set stress.enabled=no)."},
+    {.section = "stress", .name = "depth_min", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .hi = HUGE_VAL, .def = "0", .use = USE_UNLESS, .use_key = "depths",
+     .off = AT(stress.depth_min), .doc = "Depth of the first layer."},
+    {.section = "stress", .name = "depth_max", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .lo_open = 1, .hi = HUGE_VAL, .lo_text = "> depth_min", .group = "range", .def = "auto",
+     .word = "auto", .word_value = MC_STRESS_DEPTH_AUTO, .off = AT(stress.depth_max),
+     .doc = "Depth of the last layer; auto: 3 times the radius of the largest contact patch "
+            "(connected solid-contact cells; for a prescribed pressure the loaded region), found "
+            "after the contact solve (a Hertz contact gives 3a)."},
+    {.section = "stress", .name = "layers", .kind = K_INT, .lo = 1, .hi = MC_MAX_DEPTHS,
+     .def = "32", .use = USE_UNLESS, .use_key = "depths", .off = AT(stress.layers),
+     .doc = "Number of layers from depth_min to depth_max (1: depth_min only)."},
+    {.section = "stress", .name = "spacing", .kind = K_ENUM, .choices = "linear geometric",
+     .def = "linear", .use = USE_UNLESS, .use_key = "depths", .off = AT(stress.spacing),
+     .doc = "Layer spacing; geometric (log-spaced) needs depth_min > 0."},
+    {.section = "stress", .name = "depths", .kind = K_LENGTHS, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .hi = HUGE_VAL, .group = "range", .off = AT(stress.depths), .count_off = AT(stress.ndepths),
+     .tagged = 1, .tag = MC_SPACING_LIST, .tag_off = AT(stress.spacing),
+     .doc = "Explicit layer depths, e.g. 0.1 um, 0.5 um, 1.3 um; a long list continues on "
+            "indented lines."},
+    {.section = "stress", .name = "kernel", .kind = K_ENUM, .choices = "patch point",
+     .def = "patch", .off = AT(stress.kernel),
+     .doc = "patch: uniform pressure over each cell (exact for the discrete load); point: a "
+            "point force per cell (singular near the surface)."},
+    {.section = "stress", .name = "friction", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
+     .hi = 1, .def = "0", .off = AT(stress.friction),
+     .doc = "Coulomb coefficient: shear traction q_x = friction p (sliding in +x)."},
+    {.section = "stress", .name = "window", .kind = K_ENUM, .choices = "auto full", .def = "auto",
+     .off = AT(stress.window),
+     .doc = "auto: a compact load on a grid with free axes (its bounding box well inside the "
+            "grid) is stressed only on its bounding box widened by 7 R + 2.5 z (R its half-size, "
+            "z the depth; at least 4 cells), where the rest is below 2 % of the layer's largest "
+            "von Mises stress; the other cells hold 0 and summary.json lists the windows. full: "
+            "every cell of every layer."},
+
+    /* [output] */
+    {.section = "output", .name = "dir", .kind = K_PATH, .def = "out/(case file name without .ini)",
+     .def_rule = 1, .off = AT(output.dir),
+     .doc = "Output directory, relative to the current directory (not to the case file)."},
+    {.section = "output", .name = "vtk", .kind = K_BOOL, .def = "no", .off = AT(output.vtk),
+     .doc = "Also write field.vti for ParaView."},
+};
+
+const int mc_nkeys = (int)(sizeof mc_keys / sizeof mc_keys[0]);
+_Static_assert(sizeof mc_keys / sizeof mc_keys[0] <= MC_MAX_KEYS, "raise MC_MAX_KEYS");
+
+
+const case_section mc_key_sections[] = {
+    {"mesh", NULL,
+     "The surface mesh: nx x ny cells of dx x dy, centred on the apex of the shape. x is the "
+     "rolling direction, y the transverse (axial) one."},
+    {"geometry", NULL,
+     "The combined gap of the two smooth bodies at zero load; its apex is at the grid centre."},
+    {"roughness", NULL,
+     "Roughness heights, positive towards the counter body, subtracted from the gap. Each type "
+     "uses only its own keys; a key of another type is an error."},
+    {"body1", NULL, "Body 1: an elastic half-space."},
+    {"body2", NULL, "Body 2: an elastic half-space, or rigid."},
+    {"load", NULL,
+     "The normal load: give exactly one of force, force_per_length, approach, pressure_file."},
+    {"solver", NULL, "The normal-contact solver."},
+    {"stress", "enabled",
+     "Subsurface stresses on depth layers under the contact. The stage runs only when this "
+     "section is present (in the file, or created by an override such as --set "
+     "stress.enabled=yes) and enabled. Layers run from depth_min to depth_max (layers, spacing) "
+     "or are listed in depths; depth_max = auto (the default) takes the depth from the contact."},
+    {"output", NULL, "Where the results go (see DESIGN.md, output contract)."},
+};
+
+const int mc_nsections = (int)(sizeof mc_key_sections / sizeof mc_key_sections[0]);
+
+const case_section *mc_key_section(const char *name)
+{
+    for (int s = 0; s < mc_nsections; s++)
+        if (strcmp(mc_key_sections[s].name, name) == 0)
+            return &mc_key_sections[s];
+    return NULL;
+}
+
+int mc_key_find(const char *section, const char *name)
+{
+    for (int k = 0; k < mc_nkeys; k++)
+        if (strcmp(mc_keys[k].section, section) == 0 && strcmp(mc_keys[k].name, name) == 0)
+            return k;
+    return -1;
+}
+
+/* ---- small text helpers ---------------------------------------------------------------------- */
+
+void mc_key_fmt(char *buf, size_t len, const char *f, ...)
+{
+    va_list ap;
+    va_start(ap, f);
+    vsnprintf(buf, len, f, ap);
+    va_end(ap);
+}
+
+/* Word i of a space-separated list into buf; 0 if there is none. */
+int mc_key_word(const char *list, int i, char *buf, size_t len)
+{
+    const char *p = list;
+    for (;;) {
+        while (*p == ' ')
+            p++;
+        if (!*p)
+            return 0;
+        size_t n = strcspn(p, " ");
+        if (i-- == 0) {
+            mc_key_fmt(buf, len, "%.*s", (int)n, p);
+            return 1;
+        }
+        p += n;
+    }
+}
+
+int mc_key_word_index(const char *list, const char *word)
+{
+    char w[64];
+    for (int i = 0; mc_key_word(list, i, w, sizeof w); i++)
+        if (strcmp(w, word) == 0)
+            return i;
+    return -1;
+}
+
+/* The list as "a, b, c" (sep between words). */
+void mc_key_words_joined(const char *list, const char *sep, char *buf, size_t len)
+{
+    char w[64];
+    size_t o = 0;
+    buf[0] = '\0';
+    for (int i = 0; mc_key_word(list, i, w, sizeof w) && o < len; i++) {
+        mc_key_fmt(buf + o, len - o, "%s%s", i ? sep : "", w);
+        o += strlen(buf + o);
+    }
+}
+
+/* A value for a message: continuation line breaks shown as spaces, then quoted and cut. */
+void mc_key_show(const char *v, char *buf, size_t len)
+{
+    char flat[256];
+    size_t n = 0;
+    for (; v[n] && n < sizeof flat - 1; n++)
+        flat[n] = v[n] == '\n' ? ' ' : v[n];
+    flat[n] = '\0';
+    mc_text_quote(flat, buf, len);
+}
+
+void mc_key_fmt_bound(double v, mc_unit_kind unit, char *buf, size_t len)
+{
+    if (unit == MC_UNIT_NONE || v == 0)
+        mc_key_fmt(buf, len, "%g", v);
+    else
+        mc_key_fmt(buf, len, "%g %s", v, mc_unit_si_symbol(unit));
+}
+
+/* What a key accepts: with noun "an integer in 1..65536", "a length > 0 and <= 1 m"; without
+ * it (the docs' column) "1..65536", "> 0 and <= 1 m". */
+void mc_key_describe(const case_key *k, int noun, char *buf, size_t len)
+{
+    char lo[64] = "", hi[64] = "", cond[160];
+    switch (k->kind) {
+    case K_INT: mc_key_fmt(buf, len, "%s%.0f..%.0f", noun ? "an integer in " : "", k->lo, k->hi); return;
+    case K_SEED: mc_key_fmt(buf, len, "%s0..18446744073709551615", noun ? "an integer in " : ""); return;
+    case K_ENUM: {
+        char w[160];
+        mc_key_words_joined(k->choices, ", ", w, sizeof w);
+        mc_key_fmt(buf, len, "%s%s", noun ? "one of " : "", w);
+        return;
+    }
+    case K_BOOL:
+        mc_key_fmt(buf, len, "%s", noun ? "yes or no (also true/false, on/off, 1/0)" : "yes, no");
+        return;
+    case K_PATH:
+        if (noun)
+            mc_key_fmt(buf, len, "a path");
+        else
+            mc_key_fmt(buf, len, "%s", k->relative ? "path, relative to the case file" : "path");
+        return;
+    case K_LENGTHS:
+        mc_key_fmt(buf, len, "%scomma-separated lengths >= 0, strictly increasing, at most %d",
+            noun ? "a list of " : "", MC_MAX_DEPTHS);
+        return;
+    case K_REAL: break;
+    }
+    if (k->lo_text)
+        mc_key_fmt(lo, sizeof lo, "%s", k->lo_text);
+    else if (isfinite(k->lo)) {
+        char b[48];
+        mc_key_fmt_bound(k->lo, k->unit, b, sizeof b);
+        mc_key_fmt(lo, sizeof lo, "%s %s", k->lo_open ? ">" : ">=", b);
+    }
+    if (isfinite(k->hi)) {
+        char b[48];
+        mc_key_fmt_bound(k->hi, k->unit, b, sizeof b);
+        mc_key_fmt(hi, sizeof hi, "%s %s", k->hi_open ? "<" : "<=", b);
+    }
+    mc_key_fmt(cond, sizeof cond, "%s%s%s", lo, lo[0] && hi[0] ? " and " : "", hi);
+    char alt[64] = "";
+    if (k->word)
+        mc_key_fmt(alt, sizeof alt, ", or %s", k->word);
+    if (!noun)
+        mc_key_fmt(buf, len, "%s%s", cond[0] ? cond : "any", alt);
+    else if (k->unit == MC_UNIT_NONE)
+        mc_key_fmt(buf, len, "a number%s%s%s", cond[0] ? " " : "", cond, alt);
+    else
+        mc_key_fmt(buf, len, "a %s%s%s%s", mc_unit_kind_name(k->unit), cond[0] ? " " : "", cond, alt);
+}
+
+int mc_key_in_range(const case_key *k, double x)
+{
+    if (k->lo_open ? !(x > k->lo) : !(x >= k->lo))
+        return 0;
+    if (k->hi_open ? !(x < k->hi) : !(x <= k->hi))
+        return 0;
+    return 1;
+}
+
+/* ---- value conversion (one key, one text) ---------------------------------------------------- */
+
+static int parse_ll(const char *v, long long *out)
+{
+    const char *p = v + (*v == '+' || *v == '-');
+    if (!*p)
+        return 0;
+    for (const char *q = p; *q; q++)
+        if (!isdigit((unsigned char)*q))
+            return 0;
+    errno = 0;
+    long long x = strtoll(v, NULL, 10);
+    if (errno)
+        return 0;
+    *out = x;
+    return 1;
+}
+
+void mc_key_put_int(mc_scene *sc, size_t off, int v) { memcpy((char *)sc + off, &v, sizeof v); }
+
+int mc_key_get_int(const mc_scene *sc, size_t off)
+{
+    int v;
+    memcpy(&v, (const char *)sc + off, sizeof v);
+    return v;
+}
+
+/* Comma-separated lengths; a line break (continuation) also separates, and a comma may end a
+ * line. */
+static int convert_lengths(const case_key *k, const char *v, mc_scene *sc, char *why, size_t wl)
+{
+    double z[MC_MAX_DEPTHS];
+    char item[160], shown[96], prev_shown[96] = "";
+    int n = 0;
+    const char *p = v;
+    char before = '\0'; /* separator before the current item */
+    for (;;) {
+        size_t len = strcspn(p, ",\n");
+        char after = p[len];
+        const char *a = p, *b = p + len;
+        while (a < b && isspace((unsigned char)*a))
+            a++;
+        while (b > a && isspace((unsigned char)b[-1]))
+            b--;
+        if (a == b) {
+            if (!(before == ',' && after != ',')) {
+                mc_key_fmt(why, wl, "item %d is empty; %s", n + 1, "give comma-separated lengths");
+                return 1;
+            }
+        } else {
+            if (n == MC_MAX_DEPTHS) {
+                mc_key_fmt(why, wl, "more than %d depths", MC_MAX_DEPTHS);
+                return 1;
+            }
+            size_t il = (size_t)(b - a);
+            if (il >= sizeof item)
+                il = sizeof item - 1;
+            memcpy(item, a, il);
+            item[il] = '\0';
+            mc_text_quote(item, shown, sizeof shown);
+            char uwhy[200];
+            if (mc_parse_quantity(item, k->unit, &z[n], uwhy, sizeof uwhy)) {
+                mc_key_fmt(why, wl, "item %d (%s): %s", n + 1, shown, uwhy);
+                return 1;
+            }
+            if (!mc_key_in_range(k, z[n])) {
+                mc_key_fmt(why, wl, "item %d (%s) must be a length >= 0", n + 1, shown);
+                return 1;
+            }
+            if (n > 0 && !(z[n] > z[n - 1])) {
+                mc_key_fmt(why, wl,
+                    "item %d (%s) must be greater than item %d (%s): depths are strictly "
+                    "increasing",
+                    n + 1, shown, n, prev_shown);
+                return 1;
+            }
+            memcpy(prev_shown, shown, sizeof shown);
+            n++;
+        }
+        if (!after)
+            break;
+        before = after;
+        p += len + 1;
+    }
+    if (n == 0) {
+        mc_key_fmt(why, wl, "no depths given");
+        return 1;
+    }
+    memcpy((char *)sc + k->off, z, sizeof(double) * (size_t)n);
+    mc_key_put_int(sc, k->count_off, n);
+    return 0;
+}
+
+/* Convert text v for key k into the scene. base: directory for relative paths (NULL: none).
+ * Returns 0, or 1 with the reason in why ("must be an integer in 1..65536"). */
+int mc_key_convert(const case_key *k, const char *v, const char *base, mc_scene *sc, char *why,
+                   size_t wl)
+{
+    char range[200];
+    mc_key_describe(k, 1, range, sizeof range);
+    if (!*v) {
+        mc_key_fmt(why, wl, "a value is required (%s)", range);
+        return 1;
+    }
+    char *dst = (char *)sc + k->off;
+    switch (k->kind) {
+    case K_INT: {
+        long long x;
+        if (!parse_ll(v, &x) || (double)x < k->lo || (double)x > k->hi) {
+            mc_key_fmt(why, wl, "must be %s", range);
+            return 1;
+        }
+        mc_key_put_int(sc, k->off, (int)x);
+        return 0;
+    }
+    case K_SEED: {
+        for (const char *q = v; *q; q++)
+            if (!isdigit((unsigned char)*q)) {
+                mc_key_fmt(why, wl, "must be %s", range);
+                return 1;
+            }
+        errno = 0;
+        unsigned long long x = strtoull(v, NULL, 10);
+        if (errno) {
+            mc_key_fmt(why, wl, "must be %s", range);
+            return 1;
+        }
+        uint64_t u = (uint64_t)x;
+        memcpy(dst, &u, sizeof u);
+        return 0;
+    }
+    case K_REAL: {
+        double x;
+        if (k->word && strcmp(v, k->word) == 0) {
+            memcpy(dst, &k->word_value, sizeof k->word_value);
+            return 0;
+        }
+        if (mc_parse_quantity(v, k->unit, &x, why, wl)) {
+            if (k->word) {
+                const size_t used = strlen(why);
+                mc_key_fmt(why + used, wl - used, "; or %s", k->word);
+            }
+            return 1;
+        }
+        if (!mc_key_in_range(k, x)) {
+            mc_key_fmt(why, wl, "must be %s", range);
+            return 1;
+        }
+        memcpy(dst, &x, sizeof x);
+        return 0;
+    }
+    case K_ENUM: {
+        int i = mc_key_word_index(k->choices, v);
+        if (i < 0) {
+            mc_key_fmt(why, wl, "must be %s", range);
+            return 1;
+        }
+        mc_key_put_int(sc, k->off, i);
+        return 0;
+    }
+    case K_BOOL: {
+        static const char *const yes[] = {"yes", "true", "on", "1"};
+        static const char *const no[] = {"no", "false", "off", "0"};
+        for (int i = 0; i < 4; i++) {
+            if (strcmp(v, yes[i]) == 0 || strcmp(v, no[i]) == 0) {
+                mc_key_put_int(sc, k->off, strcmp(v, yes[i]) == 0);
+                return 0;
+            }
+        }
+        mc_key_fmt(why, wl, "must be %s", range);
+        return 1;
+    }
+    case K_PATH: {
+        int n;
+        if (k->relative && base && base[0] && v[0] != '/')
+            n = snprintf(dst, MC_PATH_MAX, "%s%s%s", base, base[strlen(base) - 1] == '/' ? "" : "/",
+                         v);
+        else
+            n = snprintf(dst, MC_PATH_MAX, "%s", v);
+        if (n < 0 || n >= MC_PATH_MAX) {
+            dst[0] = '\0';
+            mc_key_fmt(why, wl, "the path is longer than %d bytes%s", MC_PATH_MAX - 1,
+                base && base[0] ? " (after prefixing the case file's directory)" : "");
+            return 1;
+        }
+        return 0;
+    }
+    case K_LENGTHS: return convert_lengths(k, v, sc, why, wl);
+    }
+    return 1;
+}
+
+
+
+/* "a, b" -> "`a`, `b`": code spans keep suffixes such as Pa*s from turning into emphasis. */
+static void code_list(const char *list, char *buf, size_t len)
+{
+    size_t o = 0;
+    buf[0] = '\0';
+    for (const char *p = list; *p && o < len;) {
+        size_t n = strcspn(p, ",");
+        mc_key_fmt(buf + o, len - o, "%s`%.*s`", o ? ", " : "", (int)n, p);
+        o += strlen(buf + o);
+        p += n;
+        while (*p == ',' || *p == ' ')
+            p++;
+    }
+}
+
+/* ---- the reference --------------------------------------------------------------------------- */
+
+typedef struct {
+    char *s;
+    size_t n, cap;
+    int nomem;
+} sbuf;
+
+static void sb_add(sbuf *b, const char *f, ...) __attribute__((format(printf, 2, 3)));
+static void sb_add(sbuf *b, const char *f, ...)
+{
+    if (b->nomem)
+        return;
+    va_list ap;
+    va_start(ap, f);
+    int need = vsnprintf(NULL, 0, f, ap);
+    va_end(ap);
+    if (need < 0) {
+        b->nomem = 1;
+        return;
+    }
+    if (b->n + (size_t)need + 1 > b->cap) {
+        size_t cap = b->cap ? b->cap : 4096;
+        while (cap < b->n + (size_t)need + 1)
+            cap *= 2;
+        char *s = mc_malloc(cap);
+        if (!s) {
+            b->nomem = 1;
+            return;
+        }
+        if (b->n)
+            memcpy(s, b->s, b->n);
+        mc_free(b->s);
+        b->s = s;
+        b->cap = cap;
+    }
+    va_start(ap, f);
+    vsnprintf(b->s + b->n, b->cap - b->n, f, ap);
+    va_end(ap);
+    b->n += (size_t)need;
+}
+
+char *mc_case_reference_markdown(void)
+{
+    sbuf b = {0};
+    sb_add(&b, "<!-- generated by mc_case_reference_markdown() from the key table in src/case/keys.c; "
+               "edit that table, not the text below -->\n\n");
+    sb_add(&b, "## Units\n\nA bare number is SI. Suffixes are case-sensitive (mN is a "
+               "millinewton; MN is not accepted).\n\n");
+    sb_add(&b, "| quantity | suffixes | SI unit |\n|---|---|---|\n");
+    for (int u = MC_UNIT_LENGTH; u <= MC_UNIT_ROTATION; u++) {
+        char list[160];
+        code_list(mc_unit_suffixes((mc_unit_kind)u), list, sizeof list);
+        sb_add(&b, "| %s | %s | `%s` |\n", mc_unit_kind_name((mc_unit_kind)u), list,
+               mc_unit_si_symbol((mc_unit_kind)u));
+    }
+    sb_add(&b, "\nµm (U+00B5 or U+03BC) is accepted as um; 1/s is rad/s.\n");
+
+    for (int s = 0; s < mc_nsections; s++) {
+        const char *sec = mc_key_sections[s].name;
+        sb_add(&b, "\n## [%s]\n\n%s\n\n", sec, mc_key_sections[s].doc);
+        sb_add(&b, "| key | unit | default | accepted range | meaning |\n|---|---|---|---|---|\n");
+        for (int k = 0; k < mc_nkeys; k++) {
+            const case_key *key = &mc_keys[k];
+            if (strcmp(key->section, sec) != 0)
+                continue;
+            char unit[160], def[128], range[200], note[256] = "", vals[96];
+            if ((key->kind == K_REAL || key->kind == K_LENGTHS) && key->unit != MC_UNIT_NONE)
+                code_list(mc_unit_suffixes(key->unit), unit, sizeof unit);
+            else
+                mc_key_fmt(unit, sizeof unit, "-");
+            mc_key_describe(key, 0, range, sizeof range);
+            if (key->def_from)
+                mc_key_fmt(def, sizeof def, "same as `%s`", key->def_from);
+            else if (key->def && key->def_rule)
+                mc_key_fmt(def, sizeof def, "%s", key->def);
+            else if (key->def)
+                mc_key_fmt(def, sizeof def, "`%s`", key->def);
+            else if (key->required && key->use == USE_WHEN) {
+                mc_key_words_joined(key->use_values, ", ", vals, sizeof vals);
+                mc_key_fmt(def, sizeof def, "required for %s = %s", key->use_key, vals);
+            } else if (key->required)
+                mc_key_fmt(def, sizeof def, "required");
+            else
+                mc_key_fmt(def, sizeof def, "-");
+            size_t o = 0;
+            if (key->use == USE_WHEN) {
+                mc_key_words_joined(key->use_values, ", ", vals, sizeof vals);
+                mc_key_fmt(note, sizeof note, " Used by %s = %s.", key->use_key, vals);
+            } else if (key->use == USE_UNLESS)
+                mc_key_fmt(note, sizeof note, " Not with %s.", key->use_key);
+            o = strlen(note);
+            if (key->group) {
+                size_t m = 0;
+                int defaulted = 0;
+                char members[200] = "";
+                for (int j = 0; j < mc_nkeys; j++)
+                    if (mc_keys[j].group && strcmp(mc_keys[j].group, key->group) == 0 &&
+                        strcmp(mc_keys[j].section, sec) == 0) {
+                        mc_key_fmt(members + m, sizeof members - m, "%s%s", m ? ", " : "", mc_keys[j].name);
+                        m = strlen(members);
+                        defaulted |= mc_keys[j].def != NULL;
+                    }
+                mc_key_fmt(note + o, sizeof note - o, " Give %s one of %s.",
+                    defaulted ? "at most" : "exactly", members);
+            }
+            sb_add(&b, "| `%s` | %s | %s | %s | %s%s |\n", key->name, unit, def, range, key->doc,
+                   note);
+        }
+    }
+    if (b.nomem) {
+        mc_free(b.s);
+        return NULL;
+    }
+    return b.s;
+}
+
+/* ---- table self-check ------------------------------------------------------------------------ */
+
+int mc_case_check_table(mc_error *err)
+{
+    mc_scene def, got;
+    mc_scene_defaults(&def);
+    for (int k = 0; k < mc_nkeys; k++) {
+        const case_key *key = &mc_keys[k];
+        const char *texts[] = {key->doc, key->def, key->choices, key->use_values, key->lo_text};
+        for (size_t t = 0; t < sizeof texts / sizeof texts[0]; t++)
+            if (texts[t] && strchr(texts[t], '|'))
+                return mc_fail(err, MC_ERR_INTERNAL, "[%s] %s: '|' would break the Markdown table",
+                               key->section, key->name);
+        if (!mc_key_section(key->section))
+            return mc_fail(err, MC_ERR_INTERNAL, "[%s] %s: section not in the section table",
+                           key->section, key->name);
+        if (mc_key_find(key->section, key->name) != k)
+            return mc_fail(err, MC_ERR_INTERNAL, "[%s] %s declared twice", key->section, key->name);
+        if (key->use != USE_ALWAYS) {
+            int sel = mc_key_selector(k);
+            if (sel < 0)
+                return mc_fail(err, MC_ERR_INTERNAL, "[%s] %s: use_key is not a key",
+                               key->section, key->name);
+            if (key->use == USE_UNLESS && !mc_keys[sel].tagged)
+                return mc_fail(err, MC_ERR_INTERNAL,
+                               "[%s] %s: the use_key of USE_UNLESS must be a tagged key",
+                               key->section, key->name);
+            char w[64];
+            for (int i = 0; key->use == USE_WHEN && mc_key_word(key->use_values, i, w, sizeof w);
+                 i++) {
+                int ok = mc_keys[sel].kind == K_ENUM   ? mc_key_word_index(mc_keys[sel].choices, w) >= 0
+                         : mc_keys[sel].kind == K_BOOL ? strcmp(w, "yes") == 0 || strcmp(w, "no") == 0
+                                                    : 0;
+                if (!ok)
+                    return mc_fail(err, MC_ERR_INTERNAL, "[%s] %s: '%s' is not a value of %s",
+                                   key->section, key->name, w, key->use_key);
+            }
+        }
+        if (key->def_from) {
+            int from = mc_key_find(key->section, key->def_from);
+            if (from < 0 || mc_keys[from].kind != K_REAL || key->kind != K_REAL)
+                return mc_fail(err, MC_ERR_INTERNAL, "[%s] %s: bad def_from", key->section,
+                               key->name);
+        }
+        if (key->group) {
+            int n = 0, ndef = 0;
+            for (int j = 0; j < mc_nkeys; j++)
+                if (mc_keys[j].group && strcmp(mc_keys[j].group, key->group) == 0 &&
+                    strcmp(mc_keys[j].section, key->section) == 0) {
+                    n++;
+                    ndef += mc_keys[j].def != NULL;
+                }
+            if (n < 2 || key->required || ndef > 1 || (key->def && (key->def_rule || key->def_from)))
+                return mc_fail(err, MC_ERR_INTERNAL,
+                               "[%s] %s: a group needs 2+ members, none required, at most one "
+                               "defaulted (by a value)",
+                               key->section, key->name);
+        }
+        if (!key->def || key->def_rule || key->def_from)
+            continue;
+        /* The documented default must be exactly what mc_scene_defaults gives. */
+        char why[256];
+        got = def;
+        if (mc_key_convert(key, key->def, NULL, &got, why, sizeof why))
+            return mc_fail(err, MC_ERR_INTERNAL, "[%s] %s: default '%s' does not parse: %s",
+                           key->section, key->name, key->def, why);
+        size_t size = key->kind == K_REAL   ? sizeof(double)
+                      : key->kind == K_SEED ? sizeof(uint64_t)
+                                            : sizeof(int);
+        if (memcmp((char *)&got + key->off, (char *)&def + key->off, size) != 0)
+            return mc_fail(err, MC_ERR_INTERNAL,
+                           "[%s] %s: documented default '%s' differs from mc_scene_defaults",
+                           key->section, key->name, key->def);
+    }
+    return MC_OK;
+}
+
+/* ---- the table applied to a scene ------------------------------------------------------------ */
+
+int mc_key_selector(int k)
+{
+    const char *u = mc_keys[k].use_key, *dot = u ? strchr(u, '.') : NULL;
+    if (!u)
+        return -1;
+    if (!dot)
+        return mc_key_find(mc_keys[k].section, u);
+    char sec[32];
+    mc_key_fmt(sec, sizeof sec, "%.*s", (int)(dot - u), u);
+    return mc_key_find(sec, dot + 1);
+}
+
+void mc_key_value_text(const mc_scene *sc, int k, char *buf, size_t len)
+{
+    int v = mc_key_get_int(sc, mc_keys[k].off);
+    if (mc_keys[k].kind == K_BOOL)
+        mc_key_fmt(buf, len, "%s", v ? "yes" : "no");
+    else if (!mc_key_word(mc_keys[k].choices, v, buf, len))
+        mc_key_fmt(buf, len, "%d", v);
+}
+
+/* A tagged key is in force when the scene holds its tag. */
+static int tag_in_force(const mc_scene *sc, int k)
+{
+    return mc_key_get_int(sc, mc_keys[k].tag_off) == mc_keys[k].tag;
+}
+
+int mc_key_used_in_scene(const mc_scene *sc, int k)
+{
+    const case_key *key = &mc_keys[k];
+    if (key->tagged && !tag_in_force(sc, k))
+        return 0;
+    if (key->use == USE_ALWAYS)
+        return 1;
+    int sel = mc_key_selector(k);
+    if (key->use == USE_UNLESS)
+        return !(mc_keys[sel].tagged && tag_in_force(sc, sel));
+    char v[64];
+    mc_key_value_text(sc, sel, v, sizeof v);
+    return mc_key_word_index(key->use_values, v) >= 0;
+}
+
+static int section_on(const mc_scene *sc, const char *section)
+{
+    const case_section *s = mc_key_section(section);
+    if (!s || !s->switch_key)
+        return 1;
+    return mc_key_get_int(sc, mc_keys[mc_key_find(section, s->switch_key)].off) != 0;
+}
+
+static double get_real(const mc_scene *sc, size_t off)
+{
+    double v;
+    memcpy(&v, (const char *)sc + off, sizeof v);
+    return v;
+}
+
+/* A value that stands for "not given" in a scene built in code: 0 for a key whose default is a
+ * rule (lambda_long: the domain) or a member of a group (rq or rms_slope); the word's value. */
+static int unset_real(const case_key *k, double v)
+{
+    if (k->word && v == k->word_value)
+        return 1;
+    return v == 0 && (k->def_rule || (k->group && !k->tagged));
+}
+
+static int fail_key(const case_key *k, mc_error *err, const char **section, const char **key,
+                    const char *value, const char *item)
+{
+    char what[200];
+    mc_key_describe(k, 1, what, sizeof what);
+    if (section)
+        *section = k->section;
+    if (key)
+        *key = k->name;
+    return mc_fail(err, MC_ERR_INPUT, "[%s] %s%s = %s: must be %s", k->section, k->name, item,
+                   value, what);
+}
+
+static int check_lengths(const mc_scene *sc, const case_key *k, mc_error *err,
+                         const char **section, const char **key)
+{
+    int n;
+    memcpy(&n, (const char *)sc + k->count_off, sizeof n);
+    char v[64], item[32];
+    if (n < 1 || n > MC_MAX_DEPTHS) {
+        mc_key_fmt(v, sizeof v, "%d items", n);
+        return fail_key(k, err, section, key, v, "");
+    }
+    const double *z = (const double *)((const char *)sc + k->off);
+    for (int i = 0; i < n; i++)
+        if (!(isfinite(z[i]) && mc_key_in_range(k, z[i]) && (i == 0 || z[i] > z[i - 1]))) {
+            mc_key_fmt(v, sizeof v, "%g %s", z[i], mc_unit_si_symbol(k->unit));
+            mc_key_fmt(item, sizeof item, " item %d", i + 1);
+            return fail_key(k, err, section, key, v, item);
+        }
+    return MC_OK;
+}
+
+int mc_keys_check_scene(const mc_scene *sc, const char *only, mc_error *err, const char **section,
+                        const char **key)
+{
+    char v[96];
+    for (int k = 0; k < mc_nkeys; k++) {
+        const case_key *row = &mc_keys[k];
+        if ((only && strcmp(row->section, only) != 0) || !section_on(sc, row->section) ||
+            !mc_key_used_in_scene(sc, k))
+            continue;
+        switch (row->kind) {
+        case K_INT: {
+            int x = mc_key_get_int(sc, row->off);
+            if (!(x >= row->lo && x <= row->hi)) {
+                mc_key_fmt(v, sizeof v, "%d", x);
+                return fail_key(row, err, section, key, v, "");
+            }
+            break;
+        }
+        case K_ENUM: {
+            int x = mc_key_get_int(sc, row->off);
+            if (x < 0 || !mc_key_word(row->choices, x, v, sizeof v)) {
+                mc_key_fmt(v, sizeof v, "%d (no such choice)", x);
+                return fail_key(row, err, section, key, v, "");
+            }
+            break;
+        }
+        case K_BOOL: {
+            int x = mc_key_get_int(sc, row->off);
+            if (x != 0 && x != 1) {
+                mc_key_fmt(v, sizeof v, "%d", x);
+                return fail_key(row, err, section, key, v, "");
+            }
+            break;
+        }
+        case K_REAL: {
+            double x = get_real(sc, row->off);
+            if (unset_real(row, x))
+                break;
+            if (!mc_key_in_range(row, x) || isnan(x)) {
+                if (row->unit == MC_UNIT_NONE)
+                    mc_key_fmt(v, sizeof v, "%g", x);
+                else
+                    mc_key_fmt(v, sizeof v, "%g %s", x, mc_unit_si_symbol(row->unit));
+                return fail_key(row, err, section, key, v, "");
+            }
+            break;
+        }
+        case K_PATH:
+            if ((row->required || row->tagged) && !((const char *)sc + row->off)[0])
+                return fail_key(row, err, section, key, "\"\"", "");
+            break;
+        case K_LENGTHS: {
+            int rc = check_lengths(sc, row, err, section, key);
+            if (rc)
+                return rc;
+            break;
+        }
+        case K_SEED: break;
+        }
+    }
+    return MC_OK;
+}
+
+void mc_keys_defaults(mc_scene *sc)
+{
+    char why[256];
+    for (int k = 0; k < mc_nkeys; k++) {
+        const case_key *row = &mc_keys[k];
+        if (!row->def || row->def_rule || row->def_from || row->kind == K_PATH)
+            continue;
+        /* the table's own check (mc_case_check_table) proves every default converts */
+        (void)mc_key_convert(row, row->def, NULL, sc, why, sizeof why);
+    }
+}
