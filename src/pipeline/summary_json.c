@@ -1,0 +1,324 @@
+/* summary_json.c - summary.json of the output contract (DESIGN.md), built as a jansson document
+ * from a scene and its results (see summary_json.h). Every allocation inside jansson is checked:
+ * a failure gives MC_ERR_NOMEM, never a partial document.
+ */
+#include "pipeline/summary_json.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "kernels/kernel.h"
+
+#define OUT_FORMAT_VERSION 1
+
+typedef struct {
+    int bad; /* an allocation inside jansson failed */
+} jbuild;
+
+/* Infinities (e.g. no pressure cap) and NaN become null: JSON has no such numbers. */
+static json_t *jnum(double v) { return isfinite(v) ? json_real(v) : json_null(); }
+
+static void jset(jbuild *b, json_t *obj, const char *key, json_t *v)
+{
+    if (!obj) {
+        json_decref(v);
+        b->bad = 1;
+    } else if (json_object_set_new(obj, key, v) != 0) { /* steals v, also on failure */
+        b->bad = 1;
+    }
+}
+
+/* Attach a new child object; returns it (borrowed) or NULL when that failed. */
+static json_t *jchild(jbuild *b, json_t *parent, const char *key, json_t *child)
+{
+    if (!child || !parent) {
+        json_decref(child);
+        b->bad = 1;
+        return NULL;
+    }
+    if (json_object_set_new(parent, key, child) != 0) {
+        b->bad = 1;
+        return NULL;
+    }
+    return child;
+}
+
+/* Length of the valid UTF-8 sequence at s (RFC 3629: no overlongs, surrogates or > U+10FFFF),
+ * 0 if invalid. */
+static size_t utf8_seq(const unsigned char *s)
+{
+    unsigned char c = s[0];
+    if (c < 0x80)
+        return 1;
+    size_t n;
+    unsigned char lo = 0x80, hi = 0xBF;
+    if (c >= 0xC2 && c <= 0xDF)
+        n = 2;
+    else if (c >= 0xE0 && c <= 0xEF) {
+        n = 3;
+        if (c == 0xE0)
+            lo = 0xA0;
+        if (c == 0xED)
+            hi = 0x9F;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+        n = 4;
+        if (c == 0xF0)
+            lo = 0x90;
+        if (c == 0xF4)
+            hi = 0x8F;
+    } else
+        return 0;
+    if (s[1] < lo || s[1] > hi)
+        return 0;
+    for (size_t k = 2; k < n; k++)
+        if (s[k] < 0x80 || s[k] > 0xBF)
+            return 0;
+    return n;
+}
+
+/* A JSON string; bytes that are not UTF-8 (a Latin-1 file name) become '?' rather than failing. */
+static json_t *jstr(const char *s)
+{
+    if (!s)
+        return json_null();
+    char buf[MC_PATH_MAX + 1];
+    size_t k = 0;
+    const unsigned char *u = (const unsigned char *)s;
+    while (*u && k < MC_PATH_MAX) {
+        size_t m = utf8_seq(u);
+        if (m == 0 || k + m > MC_PATH_MAX) {
+            buf[k++] = '?';
+            u++;
+            continue;
+        }
+        memcpy(buf + k, u, m);
+        k += m;
+        u += m;
+    }
+    buf[k] = '\0';
+    return json_string(buf);
+}
+
+static json_t *jxyz(const double v[3])
+{
+    json_t *a = json_array();
+    if (!a)
+        return NULL;
+    for (int k = 0; k < 3; k++)
+        if (json_array_append_new(a, jnum(v[k])) != 0) {
+            json_decref(a);
+            return NULL;
+        }
+    return a;
+}
+
+static const char *shape_name(mc_shape s)
+{
+    switch (s) {
+    case MC_SHAPE_FLAT: return "flat";
+    case MC_SHAPE_SPHERE: return "sphere";
+    case MC_SHAPE_CYLINDER: return "cylinder";
+    case MC_SHAPE_ELLIPSOID: return "ellipsoid";
+    }
+    return "unknown";
+}
+
+static const char *rough_name(mc_roughness_type t)
+{
+    switch (t) {
+    case MC_ROUGH_NONE: return "none";
+    case MC_ROUGH_GAUSSIAN: return "gaussian";
+    case MC_ROUGH_SELF_AFFINE: return "self_affine";
+    case MC_ROUGH_FILE: return "file";
+    }
+    return "unknown";
+}
+
+static const char *load_name(mc_load_kind k)
+{
+    switch (k) {
+    case MC_LOAD_FORCE: return "force";
+    case MC_LOAD_FORCE_PER_LENGTH: return "force_per_length";
+    case MC_LOAD_APPROACH: return "approach";
+    case MC_LOAD_PRESSURE_FILE: return "pressure_file";
+    }
+    return "unknown";
+}
+
+
+/* JSON integers are signed 64-bit: a seed beyond INT64_MAX is written as a decimal string. */
+static json_t *jseed(unsigned long long seed)
+{
+    if (seed <= (unsigned long long)INT64_MAX)
+        return json_integer((json_int_t)seed);
+    char t[32];
+    snprintf(t, sizeof t, "%llu", seed);
+    return json_string(t);
+}
+
+static void summary_inputs(jbuild *b, json_t *root, const mc_scene *s, const mc_results *r)
+{
+    const mc_grid *g = &r->grid;
+    json_t *o = jchild(b, root, "mesh", json_object());
+    jset(b, o, "nx", json_integer(g->nx));
+    jset(b, o, "ny", json_integer(g->ny));
+    jset(b, o, "dx", jnum(g->dx));
+    jset(b, o, "dy", jnum(g->dy));
+    jset(b, o, "periodic_x", json_boolean(g->periodic_x));
+    jset(b, o, "periodic_y", json_boolean(g->periodic_y));
+
+    o = jchild(b, root, "geometry", json_object());
+    jset(b, o, "shape", jstr(shape_name(s->geometry.shape)));
+    if (s->geometry.shape == MC_SHAPE_SPHERE || s->geometry.shape == MC_SHAPE_CYLINDER)
+        jset(b, o, "radius", jnum(s->geometry.radius));
+    if (s->geometry.shape == MC_SHAPE_ELLIPSOID) {
+        jset(b, o, "radius_x", jnum(s->geometry.radius_x));
+        jset(b, o, "radius_y", jnum(s->geometry.radius_y));
+    }
+
+    o = jchild(b, root, "materials", json_object());
+    json_t *m = jchild(b, o, "body1", json_object());
+    jset(b, m, "E", jnum(s->body1.E));
+    jset(b, m, "nu", jnum(s->body1.nu));
+    m = jchild(b, o, "body2", json_object());
+    jset(b, m, "E", jnum(s->body2.E));
+    jset(b, m, "nu", jnum(s->body2.nu));
+    jset(b, m, "rigid", json_boolean(s->body2.rigid));
+    jset(b, o, "estar", jnum(mc_combined_modulus(s->body1.E, s->body1.nu, s->body2.E,
+                                                 s->body2.nu, s->body2.rigid)));
+
+    o = jchild(b, root, "load", json_object());
+    jset(b, o, "kind", jstr(load_name(s->load.kind)));
+    if (s->load.kind == MC_LOAD_PRESSURE_FILE)
+        jset(b, o, "pressure_file", jstr(s->load.pressure_file));
+    else
+        jset(b, o, "value", jnum(s->load.value));
+    jset(b, o, "lubricant_pressure", jnum(s->load.lubricant_pressure));
+    jset(b, o, "pressure_cap", jnum(s->load.pressure_cap));
+
+    o = jchild(b, root, "roughness", json_object());
+    const mc_roughness_type t = s->roughness.type;
+    jset(b, o, "type", jstr(rough_name(t)));
+    if (t == MC_ROUGH_GAUSSIAN || t == MC_ROUGH_SELF_AFFINE) {
+        jset(b, o, "seed", jseed(r->roughness_seed));
+        jset(b, o, "rq", jnum(s->roughness.rq));
+    }
+    if (t == MC_ROUGH_GAUSSIAN) {
+        jset(b, o, "correlation_x", jnum(s->roughness.correlation_x));
+        jset(b, o, "correlation_y", jnum(s->roughness.correlation_y));
+    } else if (t == MC_ROUGH_SELF_AFFINE) {
+        jset(b, o, "hurst", jnum(s->roughness.hurst));
+        jset(b, o, "rms_slope", jnum(s->roughness.rms_slope));
+        jset(b, o, "lambda_long", jnum(s->roughness.lambda_long));
+        jset(b, o, "lambda_short", jnum(s->roughness.lambda_short));
+    } else if (t == MC_ROUGH_FILE) {
+        jset(b, o, "file", jstr(s->roughness.file));
+    }
+}
+
+/* How the stress stage computed (mc_stress_layout): the depth rule and the windows, each with its
+ * layers, its cells and their extent (cell edges, m), outside which the fields hold 0. */
+static void stress_layout(jbuild *b, json_t *o, const mc_scene *s, const mc_results *r)
+{
+    const mc_stress_layout *l = &r->stress_layout;
+    const mc_grid *g = &r->grid;
+    jset(b, o, "depth_rule", jstr(l->depth_auto ? "auto" : "given"));
+    if (l->depth_auto) {
+        jset(b, o, "patches", json_integer(l->patches));
+        jset(b, o, "patch_radius", jnum(l->patch_radius));
+    }
+    jset(b, o, "loaded_cells", json_integer(l->loaded_cells));
+    jset(b, o, "window", jstr(s->stress.window == MC_STRESS_WINDOW_FULL ? "full" : "auto"));
+    jset(b, o, "windowed", json_boolean(l->windowed));
+    json_t *arr = jchild(b, o, "windows", json_array());
+    for (int k = 0; arr && k < l->nwindows; k++) {
+        const mc_stress_window *w = &l->window[k];
+        json_t *e = json_object();
+        const double x0 = mc_grid_x(g, w->i0) - 0.5 * g->dx, x1 = mc_grid_x(g, w->i1) + 0.5 * g->dx;
+        const double y0 = mc_grid_y(g, w->j0) - 0.5 * g->dy, y1 = mc_grid_y(g, w->j1) + 0.5 * g->dy;
+        json_t *v[5] = {json_pack("[ii]", w->k0, w->k1), json_pack("[ii]", w->i0, w->i1),
+                        json_pack("[ii]", w->j0, w->j1), json_pack("[ff]", x0, x1),
+                        json_pack("[ff]", y0, y1)};
+        static const char *keys[5] = {"layers", "cells_x", "cells_y", "x", "y"};
+        for (int q = 0; q < 5; q++)
+            jset(b, e, keys[q], v[q]);
+        jset(b, e, "method", jstr(w->direct ? "direct" : "fft"));
+        if (!e || json_array_append_new(arr, e) != 0)
+            b->bad = 1;
+    }
+}
+
+static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc_results *r)
+{
+    const mc_contact_summary *cs = &r->contact;
+    json_t *o = jchild(b, root, "contact", json_object());
+    jset(b, o, "load", jnum(cs->load));
+    jset(b, o, "solid_load", jnum(cs->solid_load));
+    jset(b, o, "p_max", jnum(cs->p_max));
+    jset(b, o, "area", jnum(cs->area));
+    jset(b, o, "contact_ratio", jnum(cs->contact_ratio));
+    jset(b, o, "approach", jnum(cs->approach));
+    jset(b, o, "iterations", json_integer(cs->iterations));
+    jset(b, o, "residual", jnum(cs->residual));
+    /* a prescribed pressure was not solved for: no convergence is claimed either way */
+    jset(b, o, "state",
+         jstr(!cs->solved ? "prescribed" : cs->converged ? "converged" : "not_converged"));
+    jset(b, o, "converged", cs->solved ? json_boolean(cs->converged) : json_null());
+    jset(b, o, "solver", jstr(cs->solver));
+    jset(b, o, "operator", jstr(mc_backend_name(cs->op)));
+    jset(b, o, "capped_cells", json_integer(cs->capped_cells));
+    jset(b, o, "solved", json_boolean(cs->solved));
+    if (cs->solved) {
+        jset(b, o, "tolerance", jnum(s->solver.tolerance));
+        jset(b, o, "max_iterations", json_integer(s->solver.max_iterations));
+    }
+
+    if (r->nlayers > 0) {
+        const mc_stress_summary *ss = &r->stress_summary;
+        o = jchild(b, root, "stress", json_object());
+        jset(b, o, "vm_max", jnum(ss->vm_max));
+        jset(b, o, "vm_max_at", jxyz(ss->vm_max_at));
+        jset(b, o, "hydro_at_vm_max", jnum(ss->hydro_at_vm_max));
+        jset(b, o, "tresca_max", jnum(ss->tresca_max));
+        jset(b, o, "tresca_max_at", jxyz(ss->tresca_max_at));
+        jset(b, o, "layers", json_integer(r->nlayers));
+        jset(b, o, "depth_min", jnum(ss->depth_min));
+        jset(b, o, "depth_max", jnum(ss->depth_max));
+        jset(b, o, "kernel", jstr(ss->kernel));
+        jset(b, o, "friction", jnum(ss->friction));
+        stress_layout(b, o, s, r);
+    }
+
+    o = jchild(b, root, "timing", json_object());
+    jset(b, o, "total_s", jnum(r->timing.total_s));
+    jset(b, o, "setup_s", jnum(r->timing.setup_s));
+    jset(b, o, "contact_s", jnum(r->timing.contact_s));
+    jset(b, o, "stress_s", jnum(r->timing.stress_s));
+}
+int mc_summary_json(const mc_scene *scene, const mc_results *res, const char *const *files,
+                    int nfiles, const char *self, json_t **out, mc_error *err)
+{
+    jbuild b = {0};
+    *out = NULL;
+    json_t *root = json_object();
+    if (!root)
+        return mc_fail(err, MC_ERR_NOMEM, "summary.json: no memory to build the document");
+    jset(&b, root, "format", json_string("microcontact-output"));
+    jset(&b, root, "format_version", json_integer(OUT_FORMAT_VERSION));
+    jset(&b, root, "case", jstr(scene->path));
+    summary_inputs(&b, root, scene, res);
+    summary_results(&b, root, scene, res);
+    json_t *list = jchild(&b, root, "files", json_array());
+    for (int k = 0; list && k < nfiles; k++)
+        if (json_array_append_new(list, json_string(files[k])) != 0)
+            b.bad = 1;
+    if (list && self && json_array_append_new(list, json_string(self)) != 0)
+        b.bad = 1;
+    if (b.bad) {
+        json_decref(root);
+        return mc_fail(err, MC_ERR_NOMEM, "summary.json: no memory to build the document");
+    }
+    *out = root;
+    return MC_OK;
+}
