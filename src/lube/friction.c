@@ -1,0 +1,92 @@
+/* friction.c - solid/lubricant split, pocket height and mixed friction (friction.h). */
+#include "lube/friction.h"
+
+#include <math.h>
+#include <string.h>
+
+static const char *const psi_names[] = {"load", "area"};
+
+const char *mc_psi_name(mc_psi_kind k)
+{
+    return (int)k >= 0 && (int)k < 2 ? psi_names[k] : NULL;
+}
+
+int mc_psi_from_name(const char *name, mc_psi_kind *out, mc_error *err)
+{
+    for (int k = 0; name && k < 2; k++)
+        if (strcmp(name, psi_names[k]) == 0) {
+            *out = (mc_psi_kind)k;
+            return MC_OK;
+        }
+    return mc_fail(err, MC_ERR_INPUT, "solid contact ratio psi '%s' is unknown; accepted: load | area",
+                   name ? name : "(none)");
+}
+
+int mc_pocket_height(double volume, double a_nom, double a_contact, double *h, mc_error *err)
+{
+    if (!(a_nom > 0 && isfinite(a_nom)) || !(a_contact >= 0 && a_contact <= a_nom))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "pocket height: nominal area %g m^2 must be finite and > 0, contact area "
+                       "%g m^2 in [0, nominal area]",
+                       a_nom, a_contact);
+    if (!(volume >= 0 && isfinite(volume)))
+        return mc_fail(err, MC_ERR_INPUT, "pocket height: volume %g m^3 must be finite and >= 0",
+                       volume);
+    double free_area = a_nom - a_contact;
+    *h = free_area > 0 ? volume / free_area : 0.0;
+    return MC_OK;
+}
+
+int mc_friction_mu(double psi, double mu_solid, double mu_fluid, double *mu, mc_error *err)
+{
+    if (!(psi >= 0 && psi <= 1))
+        return mc_fail(err, MC_ERR_INPUT, "friction: psi %g must be in [0, 1]", psi);
+    if (!(mu_solid >= 0 && isfinite(mu_solid)) || !(mu_fluid >= 0 && isfinite(mu_fluid)))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "friction: mu_solid %g and mu_fluid %g must be finite and >= 0", mu_solid,
+                       mu_fluid);
+    *mu = psi * mu_solid + (1.0 - psi) * mu_fluid;
+    return MC_OK;
+}
+
+double mc_lube_split_psi(const mc_lube_split *s, mc_psi_kind k)
+{
+    return k == MC_PSI_AREA ? s->psi_area : s->psi_load;
+}
+
+int mc_lube_split_of(const double *p, const double *gap, size_t n, double dA, double p_lub,
+                     double f_n, mc_lube_split *s, mc_error *err)
+{
+    if (n == 0 || !(dA > 0 && isfinite(dA)) || !(p_lub >= 0 && isfinite(p_lub)) ||
+        !(f_n > 0 && isfinite(f_n)))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "lubricant split: need cells > 0 (%zu), cell area > 0 (%g m^2), lubricant "
+                       "pressure >= 0 (%g Pa) and load > 0 (%g N), all finite",
+                       n, dA, p_lub, f_n);
+    double sum_c = 0, sum_cx = 0, sum_g = 0;
+    size_t nc = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(p[i]) || !isfinite(gap[i]))
+            return mc_fail(err, MC_ERR_INPUT, "lubricant split: non-finite pressure or gap at cell %zu",
+                           i);
+        if (p[i] > p_lub) {
+            sum_c += p[i];
+            sum_cx += p[i] - p_lub;
+            nc++;
+        }
+        sum_g += gap[i];
+    }
+    memset(s, 0, sizeof *s);
+    s->a_nom = dA * (double)n;
+    s->a_contact = dA * (double)nc;
+    s->f_solid = dA * sum_c;
+    s->f_solid_excess = dA * sum_cx;
+    s->f_fluid = p_lub * dA * (double)(n - nc);
+    s->volume = dA * sum_g;
+    s->psi_load = s->f_solid / f_n;
+    s->psi_area = (double)nc / (double)n;
+    s->psi_load_excess = s->f_solid_excess / f_n;
+    /* a gap within round-off of zero may sum slightly negative in a nearly closed contact */
+    double v = s->volume > 0 ? s->volume : 0.0;
+    return mc_pocket_height(v, s->a_nom, s->a_contact, &s->pocket_height, err);
+}

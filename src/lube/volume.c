@@ -1,0 +1,264 @@
+/* volume.c - lubricant volume equilibrium by a bracketed root over contact solves (volume.h). */
+#include "lube/volume.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/grid.h"
+
+typedef struct {
+    mc_contact_solver *s;
+    mc_operator *K;
+    const mc_volume_problem *prob;
+    size_t n;
+    double dA, pnom;
+    double *p, *u, *gap; /* the caller's outputs: always the state of the last evaluation */
+    double *warm;        /* pressure of the last solve, the next one's start */
+    int have_warm;
+    mc_volume_result *res;
+} eval_ctx;
+
+const char *mc_lube_regime_name(mc_lube_regime r)
+{
+    switch (r) {
+    case MC_REGIME_DRY: return "dry";
+    case MC_REGIME_MIXED: return "mixed";
+    case MC_REGIME_FULL_FILM: return "full_film";
+    }
+    return "?";
+}
+
+static double gap_volume(const double *gap, size_t n, double dA)
+{
+    double v = 0;
+    for (size_t i = 0; i < n; i++)
+        v += gap[i];
+    return dA * v;
+}
+
+/* The onset state p_lub = p_nominal (the fluid carries F_N, no solid contact), lifted by `lift`
+ * (m) beyond touching: p = p_nominal, gap = h~ - min h~ + lift, h~ = h + h_extra + K p. This is
+ * the contact solver's own answer when the lubricant carries the load (contact.c), without
+ * asking it to decide the sign of F_N - p_lub A_nom at round-off. Returns V. */
+static double onset_state(eval_ctx *c, double lift)
+{
+    const size_t n = c->n;
+    for (size_t i = 0; i < n; i++)
+        c->p[i] = c->pnom;
+    mc_operator_apply(c->K, c->p, c->gap); /* K p, the lubricant's deformation */
+    if (c->u)
+        memcpy(c->u, c->gap, n * sizeof *c->u);
+    double hmin = INFINITY;
+    for (size_t i = 0; i < n; i++) {
+        c->gap[i] += c->prob->h[i] + (c->prob->h_extra ? c->prob->h_extra[i] : 0.0);
+        hmin = fmin(hmin, c->gap[i]);
+    }
+    for (size_t i = 0; i < n; i++)
+        c->gap[i] += lift - hmin;
+    mc_contact_summary *sum = &c->res->contact;
+    memset(sum, 0, sizeof *sum);
+    sum->solved = 1;
+    sum->load = c->pnom * c->dA * (double)n;
+    sum->p_max = c->pnom;
+    sum->approach = hmin - lift;
+    sum->converged = 1;
+    sum->solver = "full-film";
+    sum->op = mc_operator_backend(c->K);
+    return gap_volume(c->gap, n, c->dA);
+}
+
+/* One contact solve at lubricant pressure plub; *v = V(plub). p_lub >= p_nominal is the onset
+ * state (no solve). */
+static int eval_volume(eval_ctx *c, double plub, double *v, mc_error *err)
+{
+    if (plub >= c->pnom) {
+        *v = onset_state(c, 0.0);
+        return MC_OK;
+    }
+    const mc_volume_problem *pr = c->prob;
+    mc_contact_problem cp = {.h = pr->h,
+                             .h_extra = pr->h_extra,
+                             .p_lub = plub,
+                             .p_cap = INFINITY,
+                             .control = MC_CONTROL_FORCE,
+                             .load = pr->load,
+                             .p_start = c->have_warm ? c->warm : pr->p_start};
+    int rc = mc_contact_solve(c->s, &cp, c->p, c->u, c->gap, &c->res->contact, err);
+    c->res->solves++;
+    c->res->iterations += c->res->contact.iterations;
+    if (rc == MC_NOT_CONVERGED) { /* the outputs hold this state: say which it is */
+        c->res->p_lub = plub;
+        c->res->volume = gap_volume(c->gap, c->n, c->dA);
+        c->res->rel_error = c->res->v_target > 0
+                                ? fabs(c->res->volume - c->res->v_target) / c->res->v_target
+                                : 0.0;
+        c->res->converged = 0;
+        return mc_fail(err, MC_NOT_CONVERGED,
+                       "volume equilibrium: the contact solve at p_lub = %.6g Pa did not converge "
+                       "(%d iterations, residual %.3g); the pocket volume is not reliable",
+                       plub, c->res->contact.iterations, c->res->contact.residual);
+    }
+    if (rc != MC_OK)
+        return mc_error_prefix(err, "volume equilibrium at p_lub = %.6g Pa: ", plub);
+    memcpy(c->warm, c->p, c->n * sizeof *c->warm);
+    c->have_warm = 1;
+    *v = gap_volume(c->gap, c->n, c->dA);
+    return MC_OK;
+}
+
+static int check_problem(const mc_volume_problem *pr, double *p, double *gap, mc_error *err)
+{
+    if (!pr || !pr->h || !p || !gap)
+        return mc_fail(err, MC_ERR_INPUT, "volume equilibrium: topography and outputs are required");
+    if (!(pr->load > 0 && isfinite(pr->load)))
+        return mc_fail(err, MC_ERR_INPUT, "volume equilibrium: load %g N must be finite and > 0",
+                       pr->load);
+    if (!(pr->h_target >= 0 && isfinite(pr->h_target)))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "volume equilibrium: film thickness %g m must be finite and >= 0",
+                       pr->h_target);
+    if (pr->tolerance > 0.1 || isnan(pr->tolerance))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "volume equilibrium: tolerance %g must be in (0, 0.1] (or <= 0 for the "
+                       "default %g)",
+                       pr->tolerance, MC_VOLUME_TOL_DEFAULT);
+    return MC_OK;
+}
+
+/* Brent's zeroin on f(x) = V(x) - V*, bracket [0, p_nominal] with f(0) < 0 < f(p_nominal).
+ * Stops as soon as a freshly evaluated point meets |f| <= tol V* (so that the outputs, which hold
+ * the last evaluation, belong to the returned p_lub). */
+static int brent(eval_ctx *c, double fa, double fb, double vstar, double tol, int cap,
+                 mc_error *err)
+{
+    double a = 0.0, b = c->pnom, cc = a, fc = fa, d = b - a, e = d;
+    double x_last = b, f_last = fb;
+    for (;;) {
+        if ((fb > 0) == (fc > 0)) { /* keep the root between b and cc */
+            cc = a;
+            fc = fa;
+            d = e = b - a;
+        }
+        if (fabs(fc) < fabs(fb)) { /* b is the best estimate */
+            a = b;
+            b = cc;
+            cc = a;
+            fa = fb;
+            fb = fc;
+            fc = fa;
+        }
+        /* resolution in p_lub: relative to b, floored at round-off of p_nominal (b may be 0) */
+        double tol1 = 2.0 * DBL_EPSILON * (fabs(b) + c->pnom), m = 0.5 * (cc - b);
+        if (fabs(m) <= tol1 || fb == 0)
+            break; /* the bracket collapsed onto round-off */
+        if (c->res->solves >= cap)
+            break;
+        if (fabs(e) >= tol1 && fabs(fa) > fabs(fb)) {
+            double s = fb / fa, pp, q;
+            if (a == cc) { /* secant */
+                pp = 2.0 * m * s;
+                q = 1.0 - s;
+            } else { /* inverse quadratic interpolation through a, b, cc */
+                double qa = fa / fc, r = fb / fc;
+                pp = s * (2.0 * m * qa * (qa - r) - (b - a) * (r - 1.0));
+                q = (qa - 1.0) * (r - 1.0) * (s - 1.0);
+            }
+            if (pp > 0)
+                q = -q;
+            else
+                pp = -pp;
+            /* accept the interpolation only if it stays well inside and shrinks fast enough */
+            if (2.0 * pp < fmin(3.0 * m * q - fabs(tol1 * q), fabs(e * q))) {
+                e = d;
+                d = pp / q;
+            } else {
+                d = m;
+                e = m;
+            }
+        } else {
+            d = m;
+            e = m;
+        }
+        a = b;
+        fa = fb;
+        b += fabs(d) > tol1 ? d : (m > 0 ? tol1 : -tol1);
+        double v;
+        int rc = eval_volume(c, b, &v, err);
+        if (rc != MC_OK)
+            return rc;
+        fb = v - vstar;
+        x_last = b;
+        f_last = fb;
+        if (fabs(fb) <= tol * vstar) {
+            c->res->p_lub = b;
+            c->res->volume = v;
+            c->res->rel_error = fabs(fb) / vstar;
+            c->res->converged = 1;
+            return MC_OK;
+        }
+    }
+    c->res->p_lub = x_last;
+    c->res->volume = f_last + vstar;
+    c->res->rel_error = fabs(f_last) / vstar;
+    c->res->converged = 0;
+    return mc_fail(err, MC_NOT_CONVERGED,
+                   "volume equilibrium: no p_lub with |V - V*| <= %.3g V* after %d contact solves "
+                   "(last p_lub = %.9g Pa, |V - V*| / V* = %.3g)%s",
+                   tol, c->res->solves, x_last, c->res->rel_error,
+                   c->res->solves >= cap ? "" : "; the bracket shrank to round-off first: the "
+                                                "contact tolerance is too coarse for this one");
+}
+
+int mc_volume_equilibrium(mc_contact_solver *s, mc_operator *K, const mc_volume_problem *prob,
+                          double *p, double *u, double *gap, mc_volume_result *res,
+                          mc_error *err)
+{
+    memset(res, 0, sizeof *res);
+    if (!s || !K)
+        return mc_fail(err, MC_ERR_INPUT, "volume equilibrium: a planned solver and operator are required");
+    int rc = check_problem(prob, p, gap, err);
+    if (rc != MC_OK)
+        return rc;
+    const mc_grid *g = mc_operator_grid(K);
+    eval_ctx c = {.s = s, .K = K, .prob = prob, .n = mc_grid_cells(g), .dA = mc_grid_cell_area(g),
+                  .p = p, .u = u, .gap = gap, .res = res};
+    const double a_nom = c.dA * (double)c.n;
+    const double tol = prob->tolerance > 0 ? prob->tolerance : MC_VOLUME_TOL_DEFAULT;
+    const int cap = prob->max_solves > 0 ? prob->max_solves : MC_VOLUME_MAX_SOLVES;
+    c.pnom = prob->load / a_nom;
+    res->p_nominal = c.pnom;
+    res->v_target = prob->h_target * a_nom;
+    const double vstar = res->v_target;
+
+    /* full film first: it needs no contact solve */
+    res->v_onset = onset_state(&c, 0.0);
+    if (vstar >= res->v_onset) {
+        res->regime = MC_REGIME_FULL_FILM;
+        res->p_lub = c.pnom;
+        res->separation = (vstar - res->v_onset) / a_nom;
+        res->volume = onset_state(&c, res->separation);
+        res->converged = 1;
+        return MC_OK;
+    }
+
+    if (!(c.warm = mc_malloc(c.n * sizeof *c.warm)))
+        return mc_fail(err, MC_ERR_NOMEM, "volume equilibrium: out of memory for %zu cells", c.n);
+    double v0;
+    rc = eval_volume(&c, 0.0, &v0, err);
+    if (rc == MC_OK) {
+        res->v_dry = v0;
+        if (vstar <= v0 || vstar == 0) { /* (a fully closed gap sums to +-round-off) */
+            res->regime = MC_REGIME_DRY;
+            res->p_lub = 0.0;
+            res->volume = v0;
+            res->converged = 1;
+        } else {
+            res->regime = MC_REGIME_MIXED;
+            rc = brent(&c, v0 - vstar, res->v_onset - vstar, vstar, tol, cap, err);
+        }
+    }
+    mc_free(c.warm);
+    return rc;
+}
