@@ -350,7 +350,7 @@ static const bad_case bad[] = {
     {"; only a comment\n\n   \n", {NAME ": empty case file"}},
     {"[meshh]\n",
      {NAME ":1: unknown section [meshh]; known sections: mesh, geometry, roughness, body1, body2, "
-           "load, solver, stress, output"}},
+           "load, solver, stress, lubrication, output"}},
     {"[Mesh]\nnx = 3\n", {NAME ":1: unknown section [Mesh]", "known sections: mesh,"}},
     {BASE "[mesh]\nnxx = 3\n",
      {NAME ":8: [mesh] unknown key 'nxx'; keys of [mesh]: nx, ny, dx, dy, periodic_x, periodic_y"}},

@@ -26,9 +26,13 @@ _Static_assert(sizeof(mc_contact_method) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_spacing) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_stress_kernel) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_stress_window_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_film_source) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_film_formula) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_psi_kind) == sizeof(int), "enum size");
 _Static_assert(MC_SHAPE_ELLIPSOID == 3 && MC_ROUGH_FILE == 3 && MC_BACKEND_DIRECT == 1 &&
                    MC_METHOD_ACTIVE_SET == 2 && MC_SPACING_GEOMETRIC == 1 && MC_STRESS_POINT == 1 &&
-                   MC_STRESS_WINDOW_FULL == 1,
+                   MC_STRESS_WINDOW_FULL == 1 && MC_FILM_GIVEN == 1 && MC_FILM_HAMROCK_DOWSON_MIN == 5 &&
+                   MC_PSI_AREA == 1,
                "choice lists below follow the enum order");
 
 
@@ -148,8 +152,9 @@ const case_key mc_keys[] = {
             "solve."},
     {.section = "load", .name = "lubricant_pressure", .kind = K_REAL, .unit = MC_UNIT_PRESSURE,
      .lo = 0, .hi = HUGE_VAL, .def = "0", .use = USE_UNLESS, .use_key = "pressure_file",
-     .off = AT(load.lubricant_pressure),
-     .doc = "Lower bound of the pressure outside solid contact (a lubricant film)."},
+     .word = "auto", .word_value = MC_LUBRICANT_AUTO, .off = AT(load.lubricant_pressure),
+     .doc = "Lower bound of the pressure outside solid contact (a lubricant film); auto: from "
+            "the lubricant volume equilibrium of [lubrication]."},
     {.section = "load", .name = "pressure_cap", .kind = K_REAL, .unit = MC_UNIT_PRESSURE, .lo = 0,
      .lo_open = 1, .hi = HUGE_VAL, .lo_text = "> lubricant_pressure", .def = "none (unbounded)",
      .def_rule = 1, .use = USE_UNLESS, .use_key = "pressure_file", .off = AT(load.pressure_cap),
@@ -214,6 +219,72 @@ const case_key mc_keys[] = {
             "von Mises stress; the other cells hold 0 and summary.json lists the windows. full: "
             "every cell of every layer."},
 
+    /* [lubrication] */
+    {.section = "lubrication", .name = "enabled", .kind = K_BOOL,
+     .def = "yes, when [lubrication] is present", .def_rule = 1, .off = AT(lubrication.enabled),
+     .doc = "Run the lubricant volume equilibrium (needs [load] lubricant_pressure = auto)."},
+    {.section = "lubrication", .name = "film", .kind = K_ENUM, .choices = "ehl given",
+     .def = "ehl", .off = AT(lubrication.film),
+     .doc = "Film thickness h_EHD of the smooth surfaces: from an EHL formula, or given."},
+    {.section = "lubrication", .name = "film_thickness", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
+     .lo = 0, .lo_open = 1, .hi = 1e-3, .required = 1, .use = USE_WHEN, .use_key = "film",
+     .use_values = "given", .off = AT(lubrication.film_thickness),
+     .doc = "h_EHD: the lubricant volume is h_EHD times the nominal area."},
+    {.section = "lubrication", .name = "formula", .kind = K_ENUM,
+     .choices = "pan_hamrock_central pan_hamrock_min dowson_toyoda dowson_higginson "
+                "hamrock_dowson_central hamrock_dowson_min",
+     .def = "pan_hamrock_central", .use = USE_WHEN, .use_key = "film", .use_values = "ehl",
+     .off = AT(lubrication.formula),
+     .doc = "EHL film formula (isothermal, fully flooded; line contact unless hamrock_dowson)."},
+    {.section = "lubrication", .name = "viscosity", .kind = K_REAL, .unit = MC_UNIT_VISCOSITY,
+     .lo = 0, .lo_open = 1, .hi = 1e6, .required = 1, .use = USE_WHEN, .use_key = "film",
+     .use_values = "ehl", .off = AT(lubrication.viscosity),
+     .doc = "Dynamic viscosity eta0 at the inlet temperature."},
+    {.section = "lubrication", .name = "pressure_viscosity", .kind = K_REAL,
+     .unit = MC_UNIT_NONE, .lo = 0, .lo_open = 1, .hi = 1e-6, .required = 1, .use = USE_WHEN,
+     .use_key = "film", .use_values = "ehl", .off = AT(lubrication.pressure_viscosity),
+     .doc = "Pressure-viscosity coefficient alpha (Barus) in 1/Pa, e.g. 2e-8."},
+    {.section = "lubrication", .name = "speed", .kind = K_REAL, .unit = MC_UNIT_SPEED, .lo = 0,
+     .lo_open = 1, .hi = 1e3, .group = "entrainment", .use = USE_WHEN, .use_key = "film",
+     .use_values = "ehl", .off = AT(lubrication.speed),
+     .doc = "Mean entrainment speed u = (u1 + u2)/2 (or give rpm)."},
+    {.section = "lubrication", .name = "rpm", .kind = K_REAL, .unit = MC_UNIT_ROTATION, .lo = 0,
+     .lo_open = 1, .hi = 1e5, .group = "entrainment", .use = USE_WHEN, .use_key = "film",
+     .use_values = "ehl", .off = AT(lubrication.rpm),
+     .doc = "Speed of disc 1 (with radius1, radius2); u_i = 2 pi n_i R_i / 60."},
+    {.section = "lubrication", .name = "rpm2", .kind = K_REAL, .unit = MC_UNIT_ROTATION, .lo = 0,
+     .hi = 1e5, .def = "equal surface speeds", .def_rule = 1, .use = USE_WHEN, .use_key = "film",
+     .use_values = "ehl", .off = AT(lubrication.rpm2),
+     .doc = "Speed of disc 2 (rolling-sliding); with rpm only."},
+    {.section = "lubrication", .name = "radius1", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
+     .lo = 0, .lo_open = 1, .hi = 100, .use = USE_WHEN, .use_key = "film", .use_values = "ehl",
+     .off = AT(lubrication.radius1),
+     .doc = "Radius of disc 1 (needed with rpm; with radius2 it gives R_x if macro_radius is "
+            "absent)."},
+    {.section = "lubrication", .name = "radius2", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
+     .lo = 0, .lo_open = 1, .hi = 100, .use = USE_WHEN, .use_key = "film", .use_values = "ehl",
+     .off = AT(lubrication.radius2), .doc = "Radius of disc 2."},
+    {.section = "lubrication", .name = "macro_radius", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
+     .lo = 0, .lo_open = 1, .hi = 100, .off = AT(lubrication.macro_radius),
+     .doc = "Reduced radius R_x of the macro line contact that the flat patch stands for (its "
+            "centre, loaded with the Hertz pressure p_H)."},
+    {.section = "lubrication", .name = "width", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .lo_open = 1, .hi = 100, .off = AT(lubrication.width),
+     .doc = "Contact (face) width L of the macro contact: w' = F_N / L."},
+    {.section = "lubrication", .name = "mu_solid", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
+     .hi = 2, .def = "0.1", .off = AT(lubrication.mu_solid),
+     .doc = "Friction coefficient of solid (boundary) contact (an assumption: 0.1-0.15 typical)."},
+    {.section = "lubrication", .name = "mu_fluid", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
+     .hi = 2, .def = "0.02", .off = AT(lubrication.mu_fluid),
+     .doc = "Friction coefficient of the fluid film (an assumption; from EHL traction)."},
+    {.section = "lubrication", .name = "psi", .kind = K_ENUM, .choices = "load area",
+     .def = "load", .off = AT(lubrication.psi),
+     .doc = "Solid contact ratio of the friction mix mu = psi mu_solid + (1 - psi) mu_fluid: "
+            "load (F_solid / F_N) or area (A_C / A_nom)."},
+    {.section = "lubrication", .name = "tolerance", .kind = K_REAL, .unit = MC_UNIT_NONE,
+     .lo = 1e-12, .hi = 0.1, .def = "1e-6", .off = AT(lubrication.tolerance),
+     .doc = "Relative tolerance of the volume root: abs(V - V*) / V*."},
+
     /* [output] */
     {.section = "output", .name = "dir", .kind = K_PATH, .def = "out/(case file name without .ini)",
      .def_rule = 1, .off = AT(output.dir),
@@ -245,6 +316,14 @@ const case_section mc_key_sections[] = {
      "section is present (in the file, or created by an override such as --set "
      "stress.enabled=yes) and enabled. Layers run from depth_min to depth_max (layers, spacing) "
      "or are listed in depths; depth_max = auto (the default) takes the depth from the contact."},
+    {"lubrication", "enabled",
+     "The lubricant volume equilibrium (Mevissen et al. 2025): the lubricant pressure of the "
+     "boundary condition is the one at which the pocket volume of the loaded rough gap equals "
+     "h_EHD times the nominal area. Runs when this section is present and [load] "
+     "lubricant_pressure = auto. A flat patch with macro_radius and width stands for the centre "
+     "of a macro line contact under [load] force = F_N: it is loaded with the macro Hertz "
+     "pressure p_H (w' = F_N / width); without macro_radius (film = given) the scene's load is "
+     "used as it is."},
     {"output", NULL, "Where the results go (see DESIGN.md, output contract)."},
 };
 
@@ -649,13 +728,15 @@ static double get_real(const mc_scene *sc, size_t off)
     return v;
 }
 
-/* A value that stands for "not given" in a scene built in code: 0 for a key whose default is a
- * rule (lambda_long: the domain) or a member of a group (rq or rms_slope); the word's value. */
+/* A value that stands for "not given": 0 for an optional key without a default value (its
+ * absence is a rule, e.g. lambda_long: the domain; macro_radius: no macro contact) or for an
+ * untagged member of a group (rq or rms_slope); the word's value (auto). */
 static int unset_real(const case_key *k, double v)
 {
     if (k->word && v == k->word_value)
         return 1;
-    return v == 0 && (k->def_rule || (k->group && !k->tagged));
+    int optional = !k->required && (!k->def || k->def_rule);
+    return v == 0 && ((optional && !k->tagged) || (k->group && !k->tagged));
 }
 
 static int fail_key(const case_key *k, mc_error *err, const char **section, const char **key,

@@ -597,11 +597,18 @@ static int parse_and_check(ctx *c, int noverrides, const char *const *overrides)
         if (key->tagged && c->slot[k] >= 0)
             mc_key_put_int(&c->sc, key->tag_off, key->tag);
     }
-    int stress_present = 0;
-    for (int i = 0; i < c->n; i++)
-        stress_present |= strcmp(c->e[i].section, "stress") == 0;
-    if (stress_present && c->slot[mc_key_find("stress", "enabled")] < 0)
-        c->sc.stress.enabled = 1;
+    /* a section with a switch key ([stress], [lubrication]) is on when it is present */
+    for (int s = 0; s < mc_nsections; s++) {
+        const case_section *sec = &mc_key_sections[s];
+        if (!sec->switch_key)
+            continue;
+        int present = 0;
+        for (int i = 0; i < c->n; i++)
+            present |= strcmp(c->e[i].section, sec->name) == 0;
+        int k = mc_key_find(sec->name, sec->switch_key);
+        if (present && c->slot[k] < 0)
+            mc_key_put_int(&c->sc, mc_keys[k].off, 1);
+    }
 
     if ((rc = check_use(c)) || (rc = check_required(c)))
         return rc;

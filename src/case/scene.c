@@ -44,6 +44,58 @@ static int stress_rules(const mc_scene *s, mc_error *err, const char **section,
     return MC_OK;
 }
 
+/* The rules of the lubricant volume equilibrium ([lubrication] with lubricant_pressure = auto). */
+static int lubrication_rules(const mc_scene *s, mc_error *err, const char **section,
+                             const char **keyname)
+{
+    const int automatic = s->load.lubricant_pressure == MC_LUBRICANT_AUTO;
+    if (automatic && !s->lubrication.enabled)
+        BLAME("load", "lubricant_pressure",
+              "[load] lubricant_pressure = auto needs a [lubrication] section (the film "
+              "thickness that sets the lubricant volume)");
+    if (!s->lubrication.enabled)
+        return MC_OK;
+    if (!automatic)
+        BLAME("lubrication", "enabled",
+              "[lubrication] has no effect unless [load] lubricant_pressure = auto");
+    if (s->load.kind != MC_LOAD_FORCE)
+        BLAME("load", "force",
+              "[lubrication] needs [load] force (the macro normal force F_N); approach, "
+              "force_per_length and pressure_file are not supported with the volume equilibrium");
+    if (s->geometry.shape != MC_SHAPE_FLAT)
+        BLAME("geometry", "shape",
+              "[lubrication] needs [geometry] shape = flat: a rough patch standing for the "
+              "centre of the macro contact (a curved macro geometry is not supported yet)");
+    if (isfinite(s->load.pressure_cap))
+        BLAME("load", "pressure_cap",
+              "[load] pressure_cap cannot be combined with [lubrication] (not supported)");
+    const double rx = s->lubrication.macro_radius;
+    if (rx > 0 && !(s->lubrication.width > 0))
+        BLAME("lubrication", "width",
+              "[lubrication] macro_radius needs width (the load per length w' = F_N / width)");
+    if (s->lubrication.film == MC_FILM_EHL) {
+        const int by_rpm = s->lubrication.rpm > 0;
+        if (by_rpm && !(s->lubrication.radius1 > 0 && s->lubrication.radius2 > 0))
+            BLAME("lubrication", "rpm", "[lubrication] rpm needs radius1 and radius2");
+        if (!by_rpm && s->lubrication.rpm2 > 0)
+            BLAME("lubrication", "rpm2", "[lubrication] rpm2 has no effect without rpm");
+        if (!by_rpm && (s->lubrication.radius1 > 0) != (s->lubrication.radius2 > 0))
+            BLAME("lubrication", "radius1",
+                  "[lubrication] give both radius1 and radius2 or neither");
+        if (!(rx > 0) && !(s->lubrication.radius1 > 0 && s->lubrication.radius2 > 0))
+            BLAME("lubrication", "macro_radius",
+                  "[lubrication] film = ehl needs the reduced radius R_x: macro_radius, or "
+                  "radius1 and radius2");
+        if (!(s->lubrication.width > 0))
+            BLAME("lubrication", "width",
+                  "[lubrication] film = ehl needs width (the load per length w' = F_N / width)");
+    } else if (!(rx > 0) && s->lubrication.width > 0)
+        BLAME("lubrication", "width",
+              "[lubrication] width has no effect without macro_radius when film = given (the "
+              "scene's own load is used)");
+    return MC_OK;
+}
+
 /* The rules that tie keys together; each key's own bounds are the table's (mc_keys_check_scene).
  * A key that is given but has no effect in its scene is refused here or by the table's use
  * conditions, never silently ignored. */
@@ -77,10 +129,14 @@ static int scene_rules(const mc_scene *s, mc_error *err, const char **section,
             BLAME("load", "pressure_cap",
                   "[load] pressure_cap has no effect with pressure_file (the pressure is "
                   "prescribed, not solved for): remove it");
-    } else if (!(s->load.pressure_cap > s->load.lubricant_pressure))
+    } else if (s->load.lubricant_pressure != MC_LUBRICANT_AUTO &&
+               !(s->load.pressure_cap > s->load.lubricant_pressure))
         BLAME("load", "pressure_cap",
               "[load] pressure_cap = %g Pa: must be > lubricant_pressure = %g Pa",
               s->load.pressure_cap, s->load.lubricant_pressure);
+    int rc = lubrication_rules(s, err, section, keyname);
+    if (rc != MC_OK)
+        return rc;
     if (s->stress.enabled)
         return stress_rules(s, err, section, keyname);
     return MC_OK;

@@ -18,6 +18,8 @@
 #include "core/grid.h"
 #include "operator/operator.h"
 #include "contact/contact.h"
+#include "lube/film.h"
+#include "lube/friction.h"
 #include "stress/stress.h"
 #include "surface/surface.h"
 
@@ -33,6 +35,11 @@ typedef enum {
 typedef enum { MC_SPACING_LINEAR, MC_SPACING_GEOMETRIC, MC_SPACING_LIST } mc_spacing;
 /* [stress] window: auto = only the loaded region plus a depth-dependent margin (stress.h) */
 typedef enum { MC_STRESS_WINDOW_AUTO, MC_STRESS_WINDOW_FULL } mc_stress_window_mode;
+
+/* [load] lubricant_pressure = auto: from the lubricant volume equilibrium ([lubrication]) */
+#define MC_LUBRICANT_AUTO (-1.0)
+
+typedef enum { MC_FILM_EHL, MC_FILM_GIVEN } mc_film_source;
 
 /* [stress] depth_max = auto: derived from the contact by the stress stage (stress.h) */
 #define MC_STRESS_DEPTH_AUTO 0.0
@@ -82,6 +89,23 @@ typedef struct {
         double friction;             /* q_x = friction * p (sliding in +x), default 0 */
         mc_stress_window_mode window; /* default auto */
     } stress;
+
+    struct { /* [lubrication]: the lubricant volume equilibrium (runs when enabled) */
+        int enabled;                 /* case files: 1 when [lubrication] is present */
+        mc_film_source film;         /* ehl (formula) or given (film_thickness) */
+        double film_thickness;       /* given: h_EHD, m */
+        mc_film_formula formula;     /* ehl */
+        double viscosity;            /* eta0, Pa s */
+        double pressure_viscosity;   /* alpha (Barus), 1/Pa */
+        double speed;                /* mean entrainment speed, m/s (0: from rpm) */
+        double rpm, rpm2;            /* disc speeds, rad/s (rpm2 0: equal surface speeds) */
+        double radius1, radius2;     /* disc radii, m */
+        double macro_radius;         /* reduced radius R_x of the macro contact, m (0: unset) */
+        double width;                /* contact width (face width), m (0: unset) */
+        double mu_solid, mu_fluid;   /* friction coefficients of solid and fluid contact */
+        mc_psi_kind psi;             /* load- or area-based solid contact ratio */
+        double tolerance;            /* relative tolerance of the volume root */
+    } lubrication;
 
     struct { /* [output] */
         char dir[MC_PATH_MAX]; /* "": derive from path (mc_scene_output_dir); case files fill it */

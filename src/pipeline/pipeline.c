@@ -12,6 +12,7 @@
 #include "operator/operator.h"
 #include "stress/stress.h"
 #include "pipeline/stage_stress.h"
+#include "pipeline/stage_lube.h"
 #include "surface/surface.h"
 
 double mc_clock(void)
@@ -82,7 +83,7 @@ static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_e
                               .max_iterations = sc->solver.max_iterations,
                               .estar = mc_scene_estar(sc)};
     mc_contact_problem prob = {.h = res->topography,
-                               .p_lub = sc->load.lubricant_pressure,
+                               .p_lub = fmax(sc->load.lubricant_pressure, 0.0), /* auto: -1 */
                                .p_cap = sc->load.pressure_cap};
     switch (sc->load.kind) {
     case MC_LOAD_FORCE:
@@ -107,8 +108,11 @@ static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_e
     if (rc != MC_OK)
         return rc;
     t0 = mc_clock();
-    rc = mc_contact_solve(solver, &prob, res->pressure, res->displacement, res->gap, &res->contact,
-                          err);
+    if (sc->load.lubricant_pressure == MC_LUBRICANT_AUTO)
+        rc = mc_lube_stage(sc, K, solver, NULL, NULL, res, err);
+    else
+        rc = mc_contact_solve(solver, &prob, res->pressure, res->displacement, res->gap,
+                              &res->contact, err);
     res->timing.contact_s = mc_clock() - t0;
     mc_contact_destroy(&solver);
     return rc;

@@ -36,6 +36,31 @@ typedef struct {
     double patch_radius;   /* m: radius of the largest patch (depth_auto) */
 } mc_stress_layout;
 
+/* The lubricant volume equilibrium ([lubrication], lubricant_pressure = auto). */
+typedef struct {
+    int enabled;
+    const char *film;      /* "ehl" | "given" */
+    const char *formula;   /* film formula name ("" when given) */
+    double h_ehd;          /* film thickness of the smooth surfaces, m */
+    double entrainment;    /* mean entrainment speed u, m/s (0 when given) */
+    double srr;            /* slide-to-roll ratio */
+    double macro_load;     /* F_N, N */
+    double load_per_length;/* w' = F_N / width, N/m (0 without the macro contact) */
+    double macro_radius;   /* R_x, m (0 without) */
+    double hertz_pressure; /* p_H of the macro line contact, Pa (0 without) */
+    double hertz_half_width; /* b, m (0 without) */
+    double nominal_pressure; /* the patch's nominal pressure F / A_nom, Pa */
+    double patch_load;     /* load on the patch, N */
+    double p_lub;          /* lubricant pressure, Pa */
+    const char *regime;    /* "dry" | "mixed" | "full_film" */
+    double volume, v_target, rel_error; /* pocket volume and its target h_EHD A_nom, m^3 */
+    int solves;            /* contact solves of the root */
+    int converged;
+    double psi_load, psi_area, pocket_height; /* solid contact ratios; V / (A_nom - A_C), m */
+    double mu;             /* mu = psi mu_solid + (1 - psi) mu_fluid */
+    const char *psi_kind;  /* "load" | "area": the psi of mu */
+} mc_lube_summary;
+
 typedef struct {
     /* seconds: the whole run; kernel tables, spectra and plans of the operator; the contact solve
      * (with its coarse-grid start and the plans it makes for the contact's box); the stress stage */
@@ -59,11 +84,19 @@ typedef struct {
     mc_stress_summary stress_summary;
     mc_stress_layout stress_layout;
 
+    mc_lube_summary lube;
+
     mc_timing timing;
     unsigned long long roughness_seed;
 } mc_results;
 
 /* Free every owned array and zero the struct (safe on a zeroed or half-filled struct). */
 void mc_results_free(mc_results *r);
+
+/* The stress members (nlayers, depths, stress, von_mises, hydrostatic, tresca, stress_summary,
+ * stress_layout): free and zero them in r; or move them from `from` into `to`, replacing (and
+ * freeing) what `to` held, and leaving them zero in `from`. */
+void mc_results_free_stress(mc_results *r);
+void mc_results_move_stress(mc_results *to, mc_results *from);
 
 #endif

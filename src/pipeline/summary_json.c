@@ -194,7 +194,10 @@ static void summary_inputs(jbuild *b, json_t *root, const mc_scene *s, const mc_
         jset(b, o, "pressure_file", jstr(s->load.pressure_file));
     else
         jset(b, o, "value", jnum(s->load.value));
-    jset(b, o, "lubricant_pressure", jnum(s->load.lubricant_pressure));
+    if (s->load.lubricant_pressure == MC_LUBRICANT_AUTO)
+        jset(b, o, "lubricant_pressure", jstr("auto")); /* the value: lubrication.p_lub */
+    else
+        jset(b, o, "lubricant_pressure", jnum(s->load.lubricant_pressure));
     jset(b, o, "pressure_cap", jnum(s->load.pressure_cap));
 
     o = jchild(b, root, "roughness", json_object());
@@ -288,6 +291,40 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
         jset(b, o, "kernel", jstr(ss->kernel));
         jset(b, o, "friction", jnum(ss->friction));
         stress_layout(b, o, s, r);
+    }
+
+    if (r->lube.enabled) {
+        const mc_lube_summary *l = &r->lube;
+        o = jchild(b, root, "lubrication", json_object());
+        jset(b, o, "film", jstr(l->film));
+        jset(b, o, "formula", l->formula[0] ? jstr(l->formula) : json_null());
+        jset(b, o, "h_ehd", jnum(l->h_ehd));
+        jset(b, o, "p_lub", jnum(l->p_lub));
+        jset(b, o, "regime", jstr(l->regime ? l->regime : ""));
+        jset(b, o, "psi_load", jnum(l->psi_load));
+        jset(b, o, "psi_area", jnum(l->psi_area));
+        jset(b, o, "pocket_height", jnum(l->pocket_height));
+        jset(b, o, "mu", jnum(l->mu));
+        jset(b, o, "psi", jstr(l->psi_kind));
+        jset(b, o, "entrainment_speed", jnum(l->entrainment));
+        jset(b, o, "slide_to_roll", jnum(l->srr));
+        jset(b, o, "macro_load", jnum(l->macro_load));
+        jset(b, o, "load_per_length", jnum(l->load_per_length));
+        jset(b, o, "macro_radius", jnum(l->macro_radius));
+        jset(b, o, "hertz_pressure", jnum(l->hertz_pressure));
+        jset(b, o, "hertz_half_width", jnum(l->hertz_half_width));
+        jset(b, o, "nominal_pressure", jnum(l->nominal_pressure));
+        jset(b, o, "patch_load", jnum(l->patch_load));
+        jset(b, o, "volume", jnum(l->volume));
+        jset(b, o, "volume_target", jnum(l->v_target));
+        jset(b, o, "volume_rel_error", jnum(l->rel_error));
+        jset(b, o, "contact_solves", json_integer(l->solves));
+        jset(b, o, "converged", json_boolean(l->converged));
+        jset(b, o, "note",
+             jstr(l->hertz_pressure > 0
+                      ? "the patch stands for the centre of the macro line contact and carries "
+                        "its Hertz pressure p_H as nominal pressure"
+                      : "the scene's own load on the whole grid (no macro contact)"));
     }
 
     o = jchild(b, root, "timing", json_object());

@@ -176,7 +176,7 @@ row empty_file        o 1 "empty.ini" "empty case file" -- empty.ini --out o
 row case_is_directory o 1 "a_directory" "cannot read: Is a directory" -- a_directory --out o
 row case_is_device    o 1 "/dev/zero" "larger than 16 MiB; not a case file" -- /dev/zero --out o
 row unknown_section   o 1 "unknown_section.ini:10:" "unknown section [lod]" \
-    "known sections: mesh, geometry, roughness, body1, body2, load, solver, stress, output" \
+    "known sections: mesh, geometry, roughness, body1, body2, load, solver, stress, lubrication, output" \
     -- unknown_section.ini --out o
 row unknown_key       o 1 "unknown_key.ini:4:" "[mesh] unknown key 'nz'" \
     "keys of [mesh]: nx, ny, dx, dy, periodic_x, periodic_y" -- unknown_key.ini --out o
@@ -222,6 +222,22 @@ row pfile_tolerance   o 1 "[solver] tolerance cannot be combined with load.press
     -- pressure_ok_text.ini --out o --set solver.tolerance=1e-6
 row radius_flat       o 1 "[geometry] radius is not used by shape = flat" \
     -- good.ini --out o --set geometry.shape=flat
+# the lubricant volume equilibrium
+control control_lube          o 0 lube_ok.ini --out o
+row lube_auto_no_section o 1 "lube_auto_no_section.ini:10:" \
+    "[load] lubricant_pressure = auto needs a [lubrication] section" -- lube_auto_no_section.ini --out o
+row lube_without_auto o 1 "lube_ok.ini" "[lubrication] has no effect unless [load] lubricant_pressure = auto" \
+    -- lube_ok.ini --out o --set load.lubricant_pressure=0
+row lube_formula      o 1 "--set lubrication.formula=hamrock" "[lubrication] formula = hamrock" \
+    "one of pan_hamrock_central, pan_hamrock_min, dowson_toyoda" -- lube_ok.ini --out o --set lubrication.formula=hamrock
+row lube_viscosity    o 1 "--set lubrication.viscosity" "[lubrication] viscosity = -30 mPa*s" "must be a viscosity > 0" \
+    -- lube_ok.ini --out o --set "lubrication.viscosity=-30 mPa*s"
+row lube_speed_and_rpm o 1 "lube_ok.ini" "give exactly one of speed, rpm" \
+    -- lube_ok.ini --out o --set lubrication.speed=2
+row lube_rpm_radius   o 1 "lube_rpm_noradius.ini" "[lubrication] rpm needs radius1 and radius2" \
+    -- lube_rpm_noradius.ini --out o
+row lube_curved       o 1 "--set geometry.shape=sphere" "[lubrication] needs [geometry] shape = flat" \
+    -- lube_ok.ini --out o --set geometry.shape=sphere --set geometry.radius=10mm
 # the default output directory (out/<case name>) must not appear either
 row default_out_dir   out/nx_zero 1 "nx_zero.ini:2:" "[mesh] nx = 0" -- nx_zero.ini
 

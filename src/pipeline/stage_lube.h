@@ -1,0 +1,27 @@
+/* stage_lube.h - the lubrication stage: the scene's [lubrication] turned into the macro contact,
+ * the EHL film thickness and the lubricant volume equilibrium of the patch (lube/), and the
+ * friction mix. docs/theory.md §10-§12.
+ */
+#ifndef MC_STAGE_LUBE_H
+#define MC_STAGE_LUBE_H
+
+#include "case/scene.h"
+#include "contact/contact.h"
+#include "core/error.h"
+#include "operator/operator.h"
+#include "pipeline/results.h"
+
+/* The macro contact and film of the scene (no contact solve): h_EHD, entrainment, w', R_x,
+ * p_H, b and the patch's load (p_H A_nom with a macro radius, else the scene's force) into
+ * res->lube. MC_OK or MC_ERR_INPUT (a film formula input out of its range). */
+int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, mc_error *err);
+
+/* Solve the patch: the lubricant pressure from the volume equilibrium (lube/volume.h) with the
+ * contact solver s over K (h_extra, e.g. a residual displacement, may be NULL; p_start a warm
+ * start or NULL), the fields into res (pressure, displacement, gap), res->contact and
+ * res->lube (ratios, pocket height, mu). MC_OK, MC_NOT_CONVERGED (fields still filled) or an
+ * error. */
+int mc_lube_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, const double *h_extra,
+                  const double *p_start, mc_results *res, mc_error *err);
+
+#endif
