@@ -1,0 +1,74 @@
+/* eigen.h - influence functions of a cuboid of uniform eigenstrain (plastic strain) in an
+ * isotropic elastic half-space z >= 0: pure math, no state, no allocation.
+ *
+ * Conventions (dossier plastic-lubrication §0, as kernel.h): z is depth into the body; stresses
+ * tension positive; u_z > 0 into the body; tensor (not engineering) strains; component order
+ * xx, yy, zz, xy, yz, xz (MC_SXX..MC_SXZ of kernel.h) for stresses AND eigenstrains.
+ *
+ * Eigenstrain columns. Every function returns the response per unit eigenstrain component c,
+ * where the unit eigenstrain of a shear column c = xy (yz, xz) has BOTH tensor entries
+ * eps*_xy = eps*_yx = 1 (etc.). The response to a general uniform eps* in the cuboid is therefore
+ * the plain sum over c = 0..5 of (column c) * eps*_c with eps*_c the six tensor components; no
+ * factor 2 is needed by the caller (it is inside the shear columns).
+ *
+ * Stress normalisation. Stress outputs are dimensionless: the physical stress (Pa) is
+ * sigma_i = 2 G * sum_c S[i][c] eps*_c, G = E / (2 (1 + nu)) the shear modulus. Lengths may be in
+ * any unit (m, or cell units): D scales with length, S is scale invariant.
+ *
+ * Validity. nu in (-1, 0.5). Stress field points may lie on a face plane of a cuboid: the face
+ * belongs to the cuboid when it is a lower face (x = -hx, y = -hy, z = z1) and not when it is an
+ * upper face (the half-open cuboid [-hx, hx) x [-hy, hy) x [z1, z2)); the traction sigma.n is the
+ * same from both sides, the other components jump by the eigenstrain step. Stress field points
+ * with two coordinates on face planes at once (an edge of the cuboid or of its mirror, or the
+ * line extending one) are not allowed: the stress is log-singular on an edge and the corner terms
+ * overflow on its extension (inf or NaN). The cell-centred lattice (field points at cell centres,
+ * faces at half-cell offsets, so x and y are never on a face plane; top layer z1 = 0, also
+ * observed at z = 0) never meets such a line.
+ *
+ * Accuracy. Values are corner sums of terms that do not decay with the distance d, while the
+ * field decays like (h/d)^3 (h the box size): the absolute error stays at round-off of the
+ * near-field values (S: ~3e-16; D: ~1e-15 h ln(d/h) ... 1e-12 h at d = 1000 h), the relative
+ * error grows like eps (d/h)^3: measured 1e-12 at d = 10 h, 2e-9 at 100 h, 6e-6 at 1000 h.
+ */
+#ifndef MC_EIGEN_H
+#define MC_EIGEN_H
+
+/* Surface normal displacement per unit eigenstrain (Betti reciprocity; Jacq et al. 2002;
+ * dossier plastic-lubrication §2.2). Cuboid [x1,x2] x [y1,y2] x [z1,z2], coordinates relative to
+ * the observation point X on the surface (SOURCE minus FIELD), 0 <= z1 < z2, x1 < x2, y1 < y2.
+ * Output D[6] (length unit of the inputs) in the column convention above:
+ *   u_z(X) = sum_c D[c] eps*_c,  D[diag] = D_ii,  D[xy] = D_xy + D_yx = 2 D_xy (etc.),
+ *   D_ij = integral_box sigma^B_ij dV = lambda delta_ij tr J + G (J_ij + J_ji)  (per unit force),
+ * sigma^B the Boussinesq stress of a unit compressive point force at X. D depends on nu and the
+ * geometry only (not on E). Reflecting the box about X in x (in y) multiplies D[c] by -1 to the
+ * number of x (y) indices of c: xx, yy, zz even, xy odd in x and in y, xz odd in x, yz odd in y.
+ * X may lie on any face plane or edge line of the box (the kernel stays finite and continuous
+ * there), but must not be one of its corners (possible only when z1 = 0). */
+void mc_eigen_surface_uz(double x1, double x2, double y1, double y2, double z1, double z2,
+                         double nu, double D[6]);
+
+/* Residual stress of the cuboid |x'| <= hx, |y'| <= hy, z1 <= z' <= z2 (0 <= z1 < z2) in the
+ * half-space WITHOUT the surface-normal-traction correction S3, i.e. S1 + S2 (Chiu 1977, 1978;
+ * Mura 1987; dossier plastic-lubrication §2.3):
+ *   S1 = the cuboid in an infinite space (includes -C:eps* inside the cuboid),
+ *   S2 = the mirror cuboid z' -> -z' carrying R eps* R, R = diag(1, 1, -1) (shear columns yz, xz
+ *        change sign), which makes sigma_xz = sigma_yz = 0 and u_z = 0 on z = 0.
+ * Field point (x, y, z), z >= 0, relative to the cuboid's lateral centre (FIELD minus SOURCE).
+ * Output S[i][c]: stress component i (rows xx..xz) per unit eigenstrain component c (columns, see
+ * above), divided by 2G. The full residual stress adds the half-space stress of the surface
+ * pressure p3 = 2G * sum_c s[c] eps*_c from mc_eigen_surface_szz12 (mc_rect_stress_p per cell). */
+void mc_eigen_stress12(double x, double y, double z, double hx, double hy, double z1, double z2,
+                       double nu, double S[6][6]);
+
+/* S1 alone: the same cuboid and conventions in an infinite space (no mirror), any z. */
+void mc_eigen_stress1(double x, double y, double z, double hx, double hy, double z1, double z2,
+                      double nu, double S[6][6]);
+
+/* sigma_zz of S1 + S2 on the surface z = 0 at (x, y) relative to the cuboid's lateral centre, per
+ * unit eigenstrain component c, divided by 2G (the "p3" of dossier §2.3: a tensile value is a
+ * positive pushing pressure p3 = 2G sum_c s[c] eps*_c that the S3 term must carry). By the mirror
+ * symmetry it equals 2 sigma_zz^S1(x, y, 0). Equal to row MC_SZZ of mc_eigen_stress12 at z = 0. */
+void mc_eigen_surface_szz12(double x, double y, double hx, double hy, double z1, double z2,
+                            double nu, double s[6]);
+
+#endif
