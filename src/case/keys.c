@@ -118,6 +118,12 @@ const case_key mc_keys[] = {
      .use_key = "type", .use_values = "file", .off = AT(roughness.file), .relative = 1,
      .doc = "Height map (.npy or whitespace-separated text), relative to the case file."},
 
+    {.section = "roughness", .name = "cutoff", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .lo_open = 1, .hi = 1, .def = "ISO 4288 from Ra", .def_rule = 1, .use = USE_WHEN,
+     .use_key = "type", .use_values = "gaussian self_affine file", .off = AT(roughness.cutoff),
+     .doc = "Cut-off wavelength lambda_c of the Gaussian filter (ISO 16610-21) for the "
+            "roughness parameters in summary.json; clipped with a warning on a short surface."},
+
     /* [body1], [body2] */
     {.section = "body1", .name = "E", .kind = K_REAL, .unit = MC_UNIT_PRESSURE, .lo = 0,
      .lo_open = 1, .hi = 1e13, .def = "210 GPa", .off = AT(body1.E), .doc = "Young's modulus."},

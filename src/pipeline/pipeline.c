@@ -118,6 +118,28 @@ static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_e
     return rc;
 }
 
+/* The ISO parameters of the roughness heights (surface/roughness.h), for summary.json. */
+static int roughness_parameters(const mc_scene *sc, mc_results *res, mc_error *err)
+{
+    const mc_grid *g = &sc->grid;
+    double *heights = mc_zeros(mc_grid_cells(g));
+    if (!heights)
+        return mc_fail(err, MC_ERR_NOMEM, "out of memory for the roughness heights");
+    int rc = mc_surface_roughness(g, &sc->roughness, heights, err);
+    if (rc == MC_OK) {
+        mc_roughness_options opt;
+        mc_roughness_options_default(&opt);
+        opt.cutoff = sc->roughness.cutoff;
+        opt.periodic_x = g->periodic_x;
+        opt.periodic_y = g->periodic_y;
+        rc = mc_roughness_compute(heights, NULL, g->nx, g->ny, g->dx, g->dy, &opt,
+                                  &res->roughness_initial, err);
+        res->has_roughness = rc == MC_OK;
+    }
+    mc_free(heights);
+    return rc;
+}
+
 static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
 {
     double t_start = mc_clock();
@@ -137,6 +159,8 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
             return mc_fail(err, MC_ERR_NOMEM, "out of memory for the %d x %d surface fields",
                            sc->grid.nx, sc->grid.ny);
     rc = mc_surface_topography(&sc->grid, &sc->geometry, &sc->roughness, res->topography, err);
+    if (rc == MC_OK && sc->roughness.type != MC_ROUGH_NONE)
+        rc = roughness_parameters(sc, res, err);
     if (rc != MC_OK)
         return rc;
 

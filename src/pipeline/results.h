@@ -7,6 +7,7 @@
 #include "core/grid.h"
 #include "operator/operator.h"
 #include "contact/contact.h"
+#include "surface/roughness.h"
 
 typedef struct {
     double vm_max, vm_max_at[3];         /* von Mises maximum, Pa, and its (x, y, z), m */
@@ -85,6 +86,10 @@ typedef struct {
     mc_stress_layout stress_layout;
 
     mc_lube_summary lube;
+
+    /* ISO roughness parameters of the roughness heights (not the shape) before the run */
+    int has_roughness;
+    mc_roughness_params roughness_initial;
 
     mc_timing timing;
     unsigned long long roughness_seed;

@@ -218,6 +218,22 @@ static void summary_inputs(jbuild *b, json_t *root, const mc_scene *s, const mc_
     } else if (t == MC_ROUGH_FILE) {
         jset(b, o, "file", jstr(s->roughness.file));
     }
+    if (r->has_roughness) {
+        /* ISO parameters, named as the standards write them, SI (m; Mr and Sdr in %) */
+        const mc_roughness_params *rp = &r->roughness_initial;
+        mc_roughness_entry e[MC_ROUGHNESS_NENTRIES];
+        int ne = mc_roughness_entries(rp, e);
+        json_t *init = jchild(b, o, "initial", json_object());
+        for (int k = 0; k < ne; k++)
+            jset(b, init, e[k].name, jnum(e[k].value));
+        jset(b, init, "cutoff_auto", json_boolean(rp->cutoff_auto));
+        jset(b, init, "cutoff_clipped", json_boolean(rp->cutoff_clipped));
+        jset(b, init, "evaluation_length", jnum(rp->evaluation_length));
+        jset(b, init, "sampling_lengths", json_integer(rp->n_sampling));
+        jset(b, init, "filtered", json_boolean(rp->filtered));
+        if (rp->warning[0])
+            jset(b, init, "warning", jstr(rp->warning));
+    }
 }
 
 /* How the stress stage computed (mc_stress_layout): the depth rule and the windows, each with its

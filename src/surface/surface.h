@@ -38,6 +38,7 @@ typedef struct {
         double lambda_long, lambda_short;    /* self_affine cut-offs, m (0: mc_scene_cutoffs) */
         uint64_t seed;                       /* generator seed (reproducible) */
         char file[MC_PATH_MAX];              /* file: height map path (relative to the case) */
+        double cutoff; /* lambda_c of the roughness parameters, m; 0: ISO 4288 from Ra */
     } mc_roughness_spec;
 
 /* ---- reproducible random numbers: xoshiro256** seeded by splitmix64 --------------------- */
