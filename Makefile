@@ -20,8 +20,8 @@ DEB_PACKAGES = pkg-config libfftw3-dev libgsl-dev libinih-dev libjansson-dev che
 OPT      ?= -O2
 CFLAGS_BASE = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $(OPT) -g -fopenmp \
               -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes \
-              -Isrc -Iverify -Ibench
-LIBS     = -linih -ljansson -lgsl -lgslcblas -lfftw3_omp -lfftw3 -lm
+              -Isrc -Iverify -Ibench $(shell pkg-config --cflags libxml-2.0 2>/dev/null)
+LIBS     = -linih -ljansson -lgsl -lgslcblas -lfftw3_omp -lfftw3 -lzip -lxml2 -lnettle -lm
 TESTLIBS = -lcheck_pic -lsubunit -lrt -lpthread
 
 ifeq ($(SAN),1)
@@ -132,13 +132,16 @@ check-sanitize: deps
 # (-fno-sanitize-recover) so that undefined behaviour counts as a crash.
 FUZZ_TARGETS = $(patsubst tests/fuzz/%.c,build/fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))
 FUZZ_LIB_SRC = src/core/error.c src/core/alloc.c src/case/units.c src/case/keys.c src/case/reader.c src/case/scene.c \
-               src/kernels/kernel.c src/core/grid.c src/io/npy.c src/io/heightmap.c
+               src/kernels/kernel.c src/core/grid.c src/io/npy.c src/io/heightmap.c \
+               src/io/npy_header.c src/io/surface_file.c src/io/x3p_read.c src/io/x3p_write.c \
+               src/io/sdf.c src/io/gsf.c src/io/xyz.c
 FUZZ_CFLAGS  = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -g -O1 -Isrc \
                -Wall -Wextra -Werror -Wno-unknown-pragmas \
-               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
-build/fuzz/%: tests/fuzz/%.c tests/fuzz/fuzz_common.h $(FUZZ_LIB_SRC) $(wildcard src/*/*.h)
+               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+               $(shell pkg-config --cflags libxml-2.0 2>/dev/null)
+build/fuzz/%: tests/fuzz/%.c tests/fuzz/fuzz_common.h tests/fuzz/fuzz_surface.h $(FUZZ_LIB_SRC) $(wildcard src/*/*.h)
 	@mkdir -p $(dir $@)
-	clang $(FUZZ_CFLAGS) $< $(FUZZ_LIB_SRC) -o $@ -linih -lgsl -lgslcblas -lm
+	clang $(FUZZ_CFLAGS) $< $(FUZZ_LIB_SRC) -o $@ -linih -lgsl -lgslcblas -lzip -lxml2 -lnettle -lm
 
 fuzz: deps
 	@$(MAKE) --no-print-directory $(FUZZ_TARGETS)

@@ -66,8 +66,8 @@ static void shown(char *out, size_t outlen, const char *s, size_t n)
         memcpy(out + outlen - 4, "...", 4);
 }
 
-static int parse_number(const char *tb, size_t tl, const char *what, long line, double *v,
-                        mc_error *err)
+static int parse_number(const char *tb, size_t tl, const char *what, long line, int finite_only,
+                        double *v, mc_error *err)
 {
     char tok[TOKEN_MAX + 1], show[40];
     shown(show, sizeof show, tb, tl);
@@ -84,15 +84,15 @@ static int parse_number(const char *tb, size_t tl, const char *what, long line, 
                        "%s:%ld: '%s' is not a number (values are separated by spaces or tabs; "
                        "'#' starts a comment)",
                        what, line, show);
-    if (!isfinite(x))
+    if (finite_only && !isfinite(x))
         return mc_fail(err, MC_ERR_INPUT, "%s:%ld: value '%s' is not finite; values must be finite",
                        what, line, show);
     *v = x;
     return MC_OK;
 }
 
-int mc_text_matrix_parse(const char *text, size_t len, const char *what, double **data, int *rows,
-                         int *cols, mc_error *err)
+static int text_matrix(const char *text, size_t len, const char *what, int finite_only,
+                       double **data, int *rows, int *cols, mc_error *err)
 {
     *data = NULL;
     if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) { /* UTF-8 byte order mark */
@@ -140,7 +140,7 @@ int mc_text_matrix_parse(const char *text, size_t len, const char *what, double 
     while (next_line(&r2, &b, &e)) {
         const char *p = b;
         while (next_token(&p, e, &tb, &tl)) {
-            int st = parse_number(tb, tl, what, r2.lineno, &d[k++], err);
+            int st = parse_number(tb, tl, what, r2.lineno, finite_only, &d[k++], err);
             if (st != MC_OK) {
                 mc_free(d);
                 return st;
@@ -151,6 +151,18 @@ int mc_text_matrix_parse(const char *text, size_t len, const char *what, double 
     *rows = (int)nrows;
     *cols = (int)ncols;
     return MC_OK;
+}
+
+int mc_text_matrix_parse(const char *text, size_t len, const char *what, double **data, int *rows,
+                         int *cols, mc_error *err)
+{
+    return text_matrix(text, len, what, 1, data, rows, cols, err);
+}
+
+int mc_text_matrix_parse_any(const char *text, size_t len, const char *what, double **data,
+                             int *rows, int *cols, mc_error *err)
+{
+    return text_matrix(text, len, what, 0, data, rows, cols, err);
 }
 
 int mc_heightmap_read(const char *path, int ny, int nx, double **data, mc_error *err)

@@ -25,4 +25,9 @@ int mc_heightmap_read(const char *path, int ny, int nx, double **data, mc_error 
 int mc_text_matrix_parse(const char *text, size_t len, const char *what, double **data, int *rows,
                          int *cols, mc_error *err);
 
+/* As mc_text_matrix_parse, but non-finite values ("nan", "inf" in strtod syntax) are accepted and
+ * kept as they are (measured surfaces: the caller marks them as missing points). */
+int mc_text_matrix_parse_any(const char *text, size_t len, const char *what, double **data,
+                             int *rows, int *cols, mc_error *err);
+
 #endif

@@ -1,9 +1,8 @@
 /* npy.c - NumPy .npy reader and writer (see npy.h).
  *
- * Format: "\x93NUMPY", major, minor, header length (uint16 LE for 1.0, uint32 LE for 2.0/3.0),
- * then a Python dict literal {'descr': ..., 'fortran_order': ..., 'shape': (...)} padded with
- * spaces and a newline, then the raw data. The reader parses the dict with a small bounded
- * scanner (never a NUL-terminated string function on the input) because mc_npy_parse is fuzzed.
+ * The preamble and header dict are parsed by npy_header.c (bounded, fuzzed). mc_npy_parse is the
+ * strict float64 reader of the contact pipeline's maps; mc_npy_parse_any converts every float
+ * and integer dtype, either byte order and either memory order, for measured surfaces.
  */
 #include "io/npy.h"
 
@@ -16,10 +15,10 @@
 #include <sys/stat.h>
 
 #include "core/alloc.h"
+#include "io/npy_header.h"
 
 #define NPY_MAGIC "\x93NUMPY"
 #define NPY_MAGIC_LEN 6
-#define NPY_MAX_RANK 64 /* NumPy's own limit (NPY_MAXDIMS) */
 #define NPY_ALIGN 64
 #define NPY_PATH_MAX 4096
 #define NPY_CHUNK 512 /* doubles encoded per fwrite */
@@ -48,261 +47,54 @@ static void le64_put(unsigned char *b, double d)
     }
 }
 
-/* A printable, bounded copy of untrusted bytes for an error message. */
-static void printable(char *out, size_t outlen, const unsigned char *s, size_t n)
+/* Rank, emptiness and data size shared by both readers: fills the matrix shape (a 1-D array is
+ * 1 x n) and the value count n, after checking that the image holds exactly n * itemsize bytes of
+ * data. need = what the reader accepts, for the messages. */
+static int check_shape(const mc_npy_header *h, const char *what, size_t itemsize, const char *need,
+                       int *rows, int *cols, size_t *count, mc_error *err)
 {
-    size_t k = 0;
-    for (; k < n && k + 1 < outlen; k++)
-        out[k] = (s[k] >= 0x20 && s[k] < 0x7f) ? (char)s[k] : '?';
-    out[k] = '\0';
-    if (k < n && outlen > 4)
-        memcpy(out + outlen - 4, "...", 4);
-}
+    char shp[96];
+    mc_npy_shape_text(shp, sizeof shp, h);
+    if (h->rank != 1 && h->rank != 2)
+        return mc_fail(err, MC_ERR_INPUT, "%s: %d-dimensional array (shape %s) not supported; %s",
+                       what, h->rank, shp, need);
+    if (h->dim_big)
+        return mc_fail(err, MC_ERR_INPUT, "%s: shape %s too large: each dimension must be <= %d",
+                       what, shp, INT_MAX);
+    int r = h->rank == 1 ? 1 : (int)h->dim[0];
+    int cl = (int)h->dim[h->rank - 1];
+    if (r == 0 || cl == 0)
+        return mc_fail(err, MC_ERR_INPUT, "%s: empty array (shape %s); %s", what, shp, need);
 
-/* ---- header dict scanner ----------------------------------------------------------------- */
-
-typedef struct {
-    const unsigned char *p, *end, *start;
-} cursor;
-
-static void skip_ws(cursor *c)
-{
-    while (c->p < c->end && (*c->p == ' ' || *c->p == '\t' || *c->p == '\n' || *c->p == '\r'))
-        c->p++;
-}
-
-static int accept_char(cursor *c, char ch)
-{
-    skip_ws(c);
-    if (c->p < c->end && *c->p == (unsigned char)ch) {
-        c->p++;
-        return 1;
-    }
-    return 0;
-}
-
-static long cur_pos(const cursor *c) { return (long)(c->p - c->start); }
-
-/* A quoted Python string without escapes (all NumPy writes); *s, *n point into the buffer. */
-static int scan_string(cursor *c, const unsigned char **s, size_t *n)
-{
-    skip_ws(c);
-    if (c->p >= c->end || (*c->p != '\'' && *c->p != '"'))
-        return 0;
-    unsigned char q = *c->p++;
-    const unsigned char *b = c->p;
-    while (c->p < c->end && *c->p != q) {
-        if (*c->p == '\\')
-            return 0;
-        c->p++;
-    }
-    if (c->p >= c->end)
-        return 0;
-    *s = b;
-    *n = (size_t)(c->p - b);
-    c->p++;
-    return 1;
-}
-
-static int scan_word(cursor *c, const char *w)
-{
-    skip_ws(c);
-    size_t n = strlen(w);
-    if ((size_t)(c->end - c->p) < n || memcmp(c->p, w, n) != 0)
-        return 0;
-    const unsigned char *after = c->p + n;
-    if (after < c->end && ((*after >= 'a' && *after <= 'z') || (*after >= 'A' && *after <= 'Z') ||
-                           (*after >= '0' && *after <= '9') || *after == '_'))
-        return 0;
-    c->p = after;
-    return 1;
-}
-
-/* Non-negative integer, optional Python 2 'L' suffix; *big = 1 if it exceeds INT_MAX. */
-static int scan_dim(cursor *c, long long *v, int *big)
-{
-    skip_ws(c);
-    if (c->p >= c->end || *c->p < '0' || *c->p > '9')
-        return 0;
-    long long x = 0;
-    while (c->p < c->end && *c->p >= '0' && *c->p <= '9') {
-        if (x <= INT_MAX)
-            x = x * 10 + (*c->p - '0');
-        c->p++;
-    }
-    if (c->p < c->end && (*c->p == 'L' || *c->p == 'l'))
-        c->p++;
-    *big = x > INT_MAX;
-    *v = x;
-    return 1;
-}
-
-typedef struct {
-    int have_descr, have_order, have_shape;
-    const unsigned char *descr;
-    size_t descr_len;
-    int descr_is_list;
-    int fortran;
-    int rank;
-    long long dim[NPY_MAX_RANK];
-    int dim_big;
-} npy_header;
-
-static int header_error(mc_error *err, const char *what, const cursor *c, const char *expected)
-{
-    return mc_fail(err, MC_ERR_INPUT,
-                   "%s: malformed .npy header: %s at byte %ld of the header dict", what, expected,
-                   cur_pos(c));
-}
-
-static int parse_shape(cursor *c, npy_header *h, const char *what, mc_error *err)
-{
-    h->rank = 0;
-    h->dim_big = 0;
-    if (!accept_char(c, '('))
-        return header_error(err, what, c, "expected '(' to open 'shape'");
-    if (accept_char(c, ')'))
-        return MC_OK;
-    for (;;) {
-        long long v;
-        int big;
-        if (!scan_dim(c, &v, &big))
-            return header_error(err, what, c, "expected a non-negative integer in 'shape'");
-        if (h->rank >= NPY_MAX_RANK)
-            return mc_fail(err, MC_ERR_INPUT, "%s: 'shape' has more than %d dimensions; %s", what,
-                           NPY_MAX_RANK, accepted);
-        h->dim[h->rank++] = v;
-        h->dim_big |= big;
-        if (accept_char(c, ')'))
-            return MC_OK;
-        if (!accept_char(c, ','))
-            return header_error(err, what, c, "expected ',' or ')' in 'shape'");
-        if (accept_char(c, ')'))
-            return MC_OK;
-    }
-}
-
-static int parse_dict(cursor *c, npy_header *h, const char *what, mc_error *err)
-{
-    memset(h, 0, sizeof *h);
-    if (!accept_char(c, '{'))
-        return header_error(err, what, c, "expected '{'");
-    for (;;) {
-        if (accept_char(c, '}'))
-            break;
-        const unsigned char *key;
-        size_t klen;
-        if (!scan_string(c, &key, &klen))
-            return header_error(err, what, c, "expected a quoted key or '}'");
-        if (!accept_char(c, ':'))
-            return header_error(err, what, c, "expected ':' after a key");
-        int st = MC_OK;
-        if (klen == 5 && memcmp(key, "descr", 5) == 0) {
-            if (h->have_descr)
-                return header_error(err, what, c, "duplicate key 'descr'");
-            h->have_descr = 1;
-            skip_ws(c);
-            if (c->p < c->end && *c->p == '[') {
-                h->descr_is_list = 1;
-                /* Structured dtype: refused below; skip to the matching bracket. */
-                int depth = 0;
-                do {
-                    if (*c->p == '[')
-                        depth++;
-                    else if (*c->p == ']')
-                        depth--;
-                    c->p++;
-                } while (depth > 0 && c->p < c->end);
-                if (depth != 0)
-                    return header_error(err, what, c, "unterminated '[' in 'descr'");
-            } else if (!scan_string(c, &h->descr, &h->descr_len)) {
-                return header_error(err, what, c, "expected a quoted dtype for 'descr'");
-            }
-        } else if (klen == 13 && memcmp(key, "fortran_order", 13) == 0) {
-            if (h->have_order)
-                return header_error(err, what, c, "duplicate key 'fortran_order'");
-            h->have_order = 1;
-            if (scan_word(c, "True"))
-                h->fortran = 1;
-            else if (scan_word(c, "False"))
-                h->fortran = 0;
-            else
-                return header_error(err, what, c, "expected True or False for 'fortran_order'");
-        } else if (klen == 5 && memcmp(key, "shape", 5) == 0) {
-            if (h->have_shape)
-                return header_error(err, what, c, "duplicate key 'shape'");
-            h->have_shape = 1;
-            st = parse_shape(c, h, what, err);
-        } else {
-            char k[40];
-            printable(k, sizeof k, key, klen);
-            return mc_fail(err, MC_ERR_INPUT,
-                           "%s: malformed .npy header: unknown key '%s' (expected 'descr', "
-                           "'fortran_order', 'shape')",
-                           what, k);
-        }
-        if (st != MC_OK)
-            return st;
-        if (accept_char(c, '}'))
-            break;
-        if (!accept_char(c, ','))
-            return header_error(err, what, c, "expected ',' or '}' after a value");
-    }
-    skip_ws(c);
-    while (c->p < c->end && *c->p == '\0') /* some writers pad with NULs */
-        c->p++;
-    if (c->p != c->end)
-        return header_error(err, what, c, "unexpected text after '}'");
-    if (!h->have_descr || !h->have_order || !h->have_shape)
-        return mc_fail(err, MC_ERR_INPUT, "%s: malformed .npy header: missing key '%s'", what,
-                       !h->have_descr ? "descr" : !h->have_order ? "fortran_order" : "shape");
-    return MC_OK;
-}
-
-static void shape_text(char *out, size_t outlen, const npy_header *h)
-{
-    size_t k = 0;
-    k += (size_t)snprintf(out, outlen, "(");
-    for (int d = 0; d < h->rank && k < outlen; d++) {
-        if (h->dim[d] > INT_MAX)
-            k += (size_t)snprintf(out + k, outlen - k, "%s>%d", d ? ", " : "", INT_MAX);
+    size_t avail = h->data_len, n, bytes;
+    int fits = mc_size_mul((size_t)r, (size_t)cl, &n) && mc_size_mul(n, itemsize, &bytes);
+    if (!fits || bytes > avail) {
+        char want[48];
+        if (fits)
+            snprintf(want, sizeof want, "%zu bytes", bytes);
         else
-            k += (size_t)snprintf(out + k, outlen - k, "%s%lld", d ? ", " : "", h->dim[d]);
+            snprintf(want, sizeof want, "more bytes than memory can address");
+        return mc_fail(err, MC_ERR_INPUT,
+                       "%s: truncated: header says %d x %d values (%s), file has %zu bytes of data",
+                       what, r, cl, want, avail);
     }
-    if (k < outlen)
-        snprintf(out + k, outlen - k, "%s)", h->rank == 1 ? "," : "");
+    if (bytes < avail)
+        return mc_fail(err, MC_ERR_INPUT,
+                       "%s: header says %d x %d values (%zu bytes), file has %zu bytes of data "
+                       "(trailing bytes after the array)",
+                       what, r, cl, bytes, avail);
+    *rows = r;
+    *cols = cl;
+    *count = n;
+    return MC_OK;
 }
 
 int mc_npy_parse(const unsigned char *buf, size_t len, const char *what, double **data, int *rows,
                  int *cols, mc_error *err)
 {
     *data = NULL;
-    if (len < NPY_MAGIC_LEN + 2 || memcmp(buf, NPY_MAGIC, NPY_MAGIC_LEN) != 0)
-        return mc_fail(err, MC_ERR_INPUT, "%s: not a NumPy .npy file (no \\x93NUMPY magic)", what);
-    int major = buf[6], minor = buf[7];
-    size_t pre, hlen;
-    if (major == 1 && len >= 10) {
-        pre = 10;
-        hlen = (size_t)buf[8] | (size_t)buf[9] << 8;
-    } else if ((major == 2 || major == 3) && len >= 12) {
-        pre = 12;
-        hlen = (size_t)buf[8] | (size_t)buf[9] << 8 | (size_t)buf[10] << 16 | (size_t)buf[11] << 24;
-    } else if (major >= 1 && major <= 3) {
-        return mc_fail(err, MC_ERR_INPUT, "%s: truncated .npy file (%zu bytes, no header length)",
-                       what, len);
-    } else {
-        return mc_fail(err, MC_ERR_INPUT,
-                       "%s: .npy format version %d.%d not supported; need 1.0, 2.0 or 3.0", what,
-                       major, minor);
-    }
-    if (hlen > len - pre)
-        return mc_fail(err, MC_ERR_INPUT,
-                       "%s: truncated .npy file: header length %zu, only %zu bytes follow", what,
-                       hlen, len - pre);
-
-    cursor c = {buf + pre, buf + pre + hlen, buf + pre};
-    npy_header h;
-    int st = parse_dict(&c, &h, what, err);
+    mc_npy_header h;
+    int st = mc_npy_header_parse(buf, len, what, &h, err);
     if (st != MC_OK)
         return st;
 
@@ -311,7 +103,7 @@ int mc_npy_parse(const unsigned char *buf, size_t len, const char *what, double 
                        "%s: structured dtype not supported; need float64 ('<f8')", what);
     if (h.descr_len != 3 || memcmp(h.descr, "<f8", 3) != 0) {
         char d[40];
-        printable(d, sizeof d, h.descr, h.descr_len);
+        mc_npy_printable(d, sizeof d, h.descr, h.descr_len);
         return mc_fail(err, MC_ERR_INPUT, "%s: dtype '%s' not supported; need float64 ('<f8')",
                        what, d);
     }
@@ -320,38 +112,13 @@ int mc_npy_parse(const unsigned char *buf, size_t len, const char *what, double 
                        "%s: fortran_order True not supported; need a C-order array "
                        "(fortran_order False)",
                        what);
-    char shp[96];
-    shape_text(shp, sizeof shp, &h);
-    if (h.rank != 1 && h.rank != 2)
-        return mc_fail(err, MC_ERR_INPUT, "%s: %d-dimensional array (shape %s) not supported; %s",
-                       what, h.rank, shp, accepted);
-    if (h.dim_big)
-        return mc_fail(err, MC_ERR_INPUT, "%s: shape %s too large: each dimension must be <= %d",
-                       what, shp, INT_MAX);
-    int r = h.rank == 1 ? 1 : (int)h.dim[0];
-    int cl = (int)h.dim[h.rank - 1];
-    if (r == 0 || cl == 0)
-        return mc_fail(err, MC_ERR_INPUT, "%s: empty array (shape %s); %s", what, shp, accepted);
+    int r, cl;
+    size_t n;
+    st = check_shape(&h, what, sizeof(double), accepted, &r, &cl, &n, err);
+    if (st != MC_OK)
+        return st;
 
-    size_t avail = len - pre - hlen, n, bytes;
-    int fits = mc_size_mul((size_t)r, (size_t)cl, &n) && mc_size_mul(n, sizeof(double), &bytes);
-    if (!fits || bytes > avail) {
-        char need[48];
-        if (fits)
-            snprintf(need, sizeof need, "%zu bytes", bytes);
-        else
-            snprintf(need, sizeof need, "more bytes than memory can address");
-        return mc_fail(err, MC_ERR_INPUT,
-                       "%s: truncated: header says %d x %d values (%s), file has %zu bytes of data",
-                       what, r, cl, need, avail);
-    }
-    if (bytes < avail)
-        return mc_fail(err, MC_ERR_INPUT,
-                       "%s: header says %d x %d values (%zu bytes), file has %zu bytes of data "
-                       "(trailing bytes after the array)",
-                       what, r, cl, bytes, avail);
-
-    const unsigned char *src = buf + pre + hlen;
+    const unsigned char *src = h.data;
     for (size_t k = 0; k < n; k++) {
         double v = le64_get(src + 8 * k);
         if (!isfinite(v)) {
@@ -364,11 +131,122 @@ int mc_npy_parse(const unsigned char *buf, size_t len, const char *what, double 
                            what, k / (size_t)cl, k % (size_t)cl, k, kind);
         }
     }
-    double *d = mc_malloc(bytes);
+    double *d = mc_malloc(n * sizeof(double));
     if (!d)
         return mc_fail(err, MC_ERR_NOMEM, "%s: no memory for %d x %d values", what, r, cl);
     for (size_t k = 0; k < n; k++)
         d[k] = le64_get(src + 8 * k);
+    *data = d;
+    *rows = r;
+    *cols = cl;
+    return MC_OK;
+}
+
+/* ---- any numeric dtype ------------------------------------------------------------------- */
+
+typedef enum { KIND_FLOAT, KIND_INT, KIND_UINT } num_kind;
+
+static const char any_need[] =
+    "need a 1-D or 2-D array of a float (f2, f4, f8) or integer (i1..i8, u1..u8) dtype";
+
+static int in_set(const char *set, unsigned char c) { return c != 0 && strchr(set, c) != NULL; }
+
+/* Decode a dtype string such as "<f4", ">i2", "|u1" into kind, size and byte order. */
+static int parse_dtype(const mc_npy_header *h, const char *what, num_kind *kind, size_t *size,
+                       int *big_endian, mc_error *err)
+{
+    char d[40];
+    mc_npy_printable(d, sizeof d, h->descr, h->descr_len);
+    if (h->descr_is_list)
+        return mc_fail(err, MC_ERR_INPUT, "%s: structured dtype not supported; %s", what, any_need);
+    if (h->descr_len != 3 || !in_set("<>|=", h->descr[0]) || !in_set("fiu", h->descr[1]) ||
+        !in_set("1248", h->descr[2]))
+        return mc_fail(err, MC_ERR_INPUT, "%s: dtype '%s' not supported; %s", what, d, any_need);
+    *kind = h->descr[1] == 'f' ? KIND_FLOAT : h->descr[1] == 'i' ? KIND_INT : KIND_UINT;
+    *size = (size_t)(h->descr[2] - '0');
+    if (*kind == KIND_FLOAT && *size == 1)
+        return mc_fail(err, MC_ERR_INPUT, "%s: dtype '%s' not supported; %s", what, d, any_need);
+    /* NumPy writes '<' or '>' (or '|' for one-byte types); '=' (native) says nothing about the
+     * machine that wrote the file. */
+    if (*size > 1 && (h->descr[0] == '|' || h->descr[0] == '='))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "%s: dtype '%s' has no byte order; need '<' (little-endian) or '>' "
+                       "(big-endian)",
+                       what, d);
+    *big_endian = h->descr[0] == '>';
+    return MC_OK;
+}
+
+/* IEEE 754 binary16 to double (subnormals, infinities and NaN included). */
+static double half_to_double(unsigned u)
+{
+    unsigned e = (u >> 10) & 0x1f, m = u & 0x3ff;
+    double v;
+    if (e == 0)
+        v = ldexp((double)m, -24);
+    else if (e == 31)
+        v = m ? NAN : INFINITY;
+    else
+        v = ldexp((double)(m | 0x400), (int)e - 25);
+    return (u & 0x8000) ? -v : v;
+}
+
+static double decode_value(const unsigned char *b, num_kind kind, size_t size, int big)
+{
+    uint64_t u = 0;
+    for (size_t k = 0; k < size; k++)
+        u = (u << 8) | b[big ? k : size - 1 - k];
+    if (kind == KIND_FLOAT) {
+        if (size == 2)
+            return half_to_double((unsigned)u);
+        if (size == 4) {
+            uint32_t w = (uint32_t)u;
+            float f;
+            memcpy(&f, &w, sizeof f);
+            return (double)f;
+        }
+        double d;
+        memcpy(&d, &u, sizeof d);
+        return d;
+    }
+    if (kind == KIND_UINT)
+        return (double)u;
+    /* sign-extend a two's complement integer of size bytes */
+    if (size < 8 && (u >> (8 * size - 1)) & 1)
+        u |= ~(uint64_t)0 << (8 * size);
+    int64_t s;
+    memcpy(&s, &u, sizeof s);
+    return (double)s;
+}
+
+int mc_npy_parse_any(const unsigned char *buf, size_t len, const char *what, double **data,
+                     int *rows, int *cols, mc_error *err)
+{
+    *data = NULL;
+    mc_npy_header h;
+    int st = mc_npy_header_parse(buf, len, what, &h, err);
+    if (st != MC_OK)
+        return st;
+    num_kind kind = KIND_FLOAT;
+    size_t size = 8;
+    int big = 0;
+    st = parse_dtype(&h, what, &kind, &size, &big, err);
+    if (st != MC_OK)
+        return st;
+    int r, cl;
+    size_t n;
+    st = check_shape(&h, what, size, any_need, &r, &cl, &n, err);
+    if (st != MC_OK)
+        return st;
+    double *d = mc_malloc(n * sizeof(double));
+    if (!d)
+        return mc_fail(err, MC_ERR_NOMEM, "%s: no memory for %d x %d values", what, r, cl);
+    /* Fortran order stores element (i, j) of an r x c array at j*r + i: transpose to C order. */
+    int fortran = h.fortran && h.rank == 2;
+    for (size_t k = 0; k < n; k++) {
+        size_t at = fortran ? (k % (size_t)cl) * (size_t)r + k / (size_t)cl : k;
+        d[k] = decode_value(h.data + at * size, kind, size, big);
+    }
     *data = d;
     *rows = r;
     *cols = cl;
