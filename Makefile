@@ -48,7 +48,7 @@ else
 endif
 TESTS     = $(BUILD)/tests/run_tests
 
-.PHONY: all deps run check _check verify bench reports check-sanitize fuzz clean bless help
+.PHONY: all deps run check _check verify bench reports check-sanitize fuzz clean bless help sample-x3p
 
 all: $(LIBRARY) $(PROGRAM)
 
@@ -119,6 +119,11 @@ bench: deps
 	./$(PROGRAM) bench --reports reports
 
 reports: verify bench
+
+# the measured-surface example of cases/measured.ini (see tools/make_sample_x3p.c)
+sample-x3p: $(LIBRARY)
+	$(CC) $(ALL_CFLAGS) -o $(BUILD)/make_sample_x3p tools/make_sample_x3p.c $(LIBRARY) $(LDFLAGS) $(LIBS)
+	SOURCE_DATE_EPOCH=1764000000 $(BUILD)/make_sample_x3p cases/data/ground_sample.x3p
 
 check-sanitize: deps
 	@$(MAKE) --no-print-directory BUILD=build/san SAN=1 OPT=-O1 _check

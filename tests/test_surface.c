@@ -422,7 +422,8 @@ START_TEST(test_file_roughness_and_topography)
     mc_grid g2 = make_grid(6, 8, 1e-6, 1e-6);
     ck_assert_int_eq(mc_surface_roughness(&g2, &s.roughness, h, &err), MC_ERR_INPUT);
     ck_assert_msg(strstr(err.msg, "[roughness] file: ") == err.msg &&
-                      strstr(err.msg, "h.npy: shape 6 x 8, the mesh is 8 x 6 (ny x nx)"),
+                      strstr(err.msg, "h.npy: the height map has 6 x 8 points (ny x nx)") &&
+                      strstr(err.msg, "the mesh 8 x 6"),
                   "%s", err.msg);
 
     s.roughness.type = MC_ROUGH_NONE;

@@ -116,7 +116,46 @@ const case_key mc_keys[] = {
      .doc = "Random seed: the same seed gives the same surface on every run."},
     {.section = "roughness", .name = "file", .kind = K_PATH, .required = 1, .use = USE_WHEN,
      .use_key = "type", .use_values = "file", .off = AT(roughness.file), .relative = 1,
-     .doc = "Height map (.npy or whitespace-separated text), relative to the case file."},
+     .doc = "Measured height map, relative to the case file: X3P, SDF, GSF, text matrix, x y z "
+            "triplets or .npy (by extension, or format). Without nx, ny, dx, dy in [mesh] the "
+            "mesh is the file's."},
+    {.section = "roughness", .name = "format", .kind = K_ENUM,
+     .choices = "auto x3p sdf gsf txt xyz npy", .def = "auto", .use = USE_WHEN, .use_key = "type",
+     .use_values = "file", .off = AT(roughness.format),
+     .doc = "File format; auto: by extension (.x3p .sdf .gsf .txt/.asc/.dat .xyz .npy)."},
+    {.section = "roughness", .name = "units", .kind = K_ENUM, .choices = "m mm um nm",
+     .def = "m", .use = USE_WHEN, .use_key = "type", .use_values = "file",
+     .off = AT(roughness.units),
+     .doc = "Unit of the numbers in a txt, xyz or npy file (X3P, SDF and GSF carry their own)."},
+    {.section = "roughness", .name = "verify_checksum", .kind = K_BOOL, .def = "yes",
+     .use = USE_WHEN, .use_key = "type", .use_values = "file",
+     .off = AT(roughness.verify_checksum),
+     .doc = "X3P: an MD5 mismatch is an error (no: read the file anyway)."},
+    {.section = "roughness", .name = "region", .kind = K_REGION, .unit = MC_UNIT_LENGTH,
+     .use = USE_WHEN, .use_key = "type", .use_values = "file", .off = AT(roughness.region),
+     .tagged = 1, .tag = 1, .tag_off = AT(roughness.has_region),
+     .doc = "Crop: x0, y0, width, height in the file's coordinates, e.g. 0 mm, 0 mm, 0.5 mm, "
+            "0.2 mm."},
+    {.section = "roughness", .name = "detrend", .kind = K_ENUM,
+     .choices = "none mean plane quadratic", .def = "plane", .use = USE_WHEN, .use_key = "type",
+     .use_values = "file", .off = AT(roughness.detrend),
+     .doc = "Levelling of the measured map by least squares (after the crop)."},
+    {.section = "roughness", .name = "missing", .kind = K_ENUM, .choices = "error fill",
+     .def = "error", .use = USE_WHEN, .use_key = "type", .use_values = "file",
+     .off = AT(roughness.missing),
+     .doc = "Points the instrument did not measure: an error, or filled by harmonic "
+            "interpolation from their neighbours (the count is reported)."},
+    {.section = "roughness", .name = "resample", .kind = K_ENUM, .choices = "none linear",
+     .def = "none", .use = USE_WHEN, .use_key = "type", .use_values = "file",
+     .off = AT(roughness.resample),
+     .doc = "When [mesh] gives a grid other than the file's: none is an error naming both, "
+            "linear interpolates onto the mesh."},
+    {.section = "roughness", .name = "scale", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = -1e6,
+     .hi = 1e6, .def = "1", .use = USE_WHEN, .use_key = "type", .use_values = "file",
+     .off = AT(roughness.scale), .doc = "Factor on the heights (not 0)."},
+    {.section = "roughness", .name = "invert", .kind = K_BOOL, .def = "no", .use = USE_WHEN,
+     .use_key = "type", .use_values = "file", .off = AT(roughness.invert),
+     .doc = "Negate the heights (a counter body measured face up)."},
 
     {.section = "roughness", .name = "cutoff", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "ISO 4288 from Ra", .def_rule = 1, .use = USE_WHEN,
@@ -442,6 +481,10 @@ void mc_key_describe(const case_key *k, int noun, char *buf, size_t len)
         else
             mc_key_fmt(buf, len, "%s", k->relative ? "path, relative to the case file" : "path");
         return;
+    case K_REGION:
+        mc_key_fmt(buf, len, "%sx0, y0, width, height: four lengths, width and height > 0",
+                   noun ? "" : "");
+        return;
     case K_LENGTHS:
         mc_key_fmt(buf, len, "%scomma-separated lengths >= 0, strictly increasing, at most %d",
             noun ? "a list of " : "", MC_MAX_DEPTHS);
@@ -510,6 +553,48 @@ int mc_key_get_int(const mc_scene *sc, size_t off)
 
 /* Comma-separated lengths; a line break (continuation) also separates, and a comma may end a
  * line. */
+/* x0, y0, width, height (lengths; width and height > 0). */
+static int convert_region(const case_key *k, const char *v, mc_scene *sc, char *why, size_t wl)
+{
+    static const char *const what[4] = {"x0", "y0", "width", "height"};
+    double r[4];
+    const char *p = v;
+    for (int n = 0; n < 4; n++) {
+        size_t len = strcspn(p, ",");
+        if (!p[len] && n < 3) {
+            mc_key_fmt(why, wl, "%d value%s given; give x0, y0, width, height", n + 1,
+                       n ? "s" : "");
+            return 1;
+        }
+        char item[160], shown[96], uwhy[200];
+        size_t il = len < sizeof item - 1 ? len : sizeof item - 1;
+        memcpy(item, p, il);
+        item[il] = '\0';
+        char *a = item;
+        while (isspace((unsigned char)*a))
+            a++;
+        size_t al = strlen(a);
+        while (al > 0 && isspace((unsigned char)a[al - 1]))
+            a[--al] = '\0';
+        mc_text_quote(a, shown, sizeof shown);
+        if (mc_parse_quantity(a, k->unit, &r[n], uwhy, sizeof uwhy)) {
+            mc_key_fmt(why, wl, "%s (%s): %s", what[n], shown, uwhy);
+            return 1;
+        }
+        if (n >= 2 && !(r[n] > 0)) {
+            mc_key_fmt(why, wl, "%s (%s) must be > 0", what[n], shown);
+            return 1;
+        }
+        p += len + (p[len] ? 1 : 0);
+        if (n == 3 && *p) {
+            mc_key_fmt(why, wl, "more than four values; give x0, y0, width, height");
+            return 1;
+        }
+    }
+    memcpy((char *)sc + k->off, r, sizeof r);
+    return 0;
+}
+
 static int convert_lengths(const case_key *k, const char *v, mc_scene *sc, char *why, size_t wl)
 {
     double z[MC_MAX_DEPTHS];
@@ -669,6 +754,7 @@ int mc_key_convert(const case_key *k, const char *v, const char *base, mc_scene 
         return 0;
     }
     case K_LENGTHS: return convert_lengths(k, v, sc, why, wl);
+    case K_REGION: return convert_region(k, v, sc, why, wl);
     }
     return 1;
 }
@@ -836,6 +922,15 @@ int mc_keys_check_scene(const mc_scene *sc, const char *only, mc_error *err, con
             break;
         }
         case K_SEED: break;
+        case K_REGION: {
+            const double *r = (const double *)((const char *)sc + row->off);
+            if (!(isfinite(r[0]) && isfinite(r[1]) && r[2] > 0 && r[3] > 0 && isfinite(r[2]) &&
+                  isfinite(r[3]))) {
+                mc_key_fmt(v, sizeof v, "%g, %g, %g, %g m", r[0], r[1], r[2], r[3]);
+                return fail_key(row, err, section, key, v, "");
+            }
+            break;
+        }
         }
     }
     return MC_OK;

@@ -22,7 +22,8 @@ typedef enum {
     K_ENUM,   /* one of choices; stored as the index */
     K_BOOL,   /* yes/no; stored as 0/1 in an int */
     K_PATH,   /* char[MC_PATH_MAX] */
-    K_LENGTHS /* comma-separated lengths, strictly increasing, >= 0 */
+    K_LENGTHS, /* comma-separated lengths, strictly increasing, >= 0 */
+    K_REGION   /* x0, y0, width, height: four lengths, width and height > 0 */
 } key_kind;
 
 typedef enum {

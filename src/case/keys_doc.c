@@ -93,7 +93,8 @@ char *mc_case_reference_markdown(void)
             if (strcmp(key->section, sec) != 0)
                 continue;
             char unit[160], def[128], range[200], note[256] = "", vals[96];
-            if ((key->kind == K_REAL || key->kind == K_LENGTHS) && key->unit != MC_UNIT_NONE)
+            if ((key->kind == K_REAL || key->kind == K_LENGTHS || key->kind == K_REGION) &&
+                key->unit != MC_UNIT_NONE)
                 code_list(mc_unit_suffixes(key->unit), unit, sizeof unit);
             else
                 mc_key_fmt(unit, sizeof unit, "-");

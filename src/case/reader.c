@@ -20,6 +20,7 @@
 
 #include "case/keys.h"
 #include "core/alloc.h"
+#include "surface/surface.h"
 
 #define MAX_FILE_BYTES (16L << 20) /* a case file is a few kB; refuse to slurp devices */
 
@@ -50,6 +51,7 @@ typedef struct {
     int bad_line; /* first line the reader refused, with its reason */
     char bad[200];
     int unterminated; /* first "[section" line without ']' */
+    int mesh_from_file; /* [mesh] nx, ny (dx, dy) come from the [roughness] file */
 
     entry *e;
     int n, cap;
@@ -473,6 +475,8 @@ static int check_required(ctx *c)
         const case_key *key = &mc_keys[k];
         if (c->slot[k] >= 0 || !used(c, k) || !section_active(c, key->section))
             continue;
+        if (c->mesh_from_file && strcmp(key->section, "mesh") == 0)
+            continue; /* the grid came from the height map */
         condition_text(c, k, cond, sizeof cond);
         mc_key_describe(key, 1, range, sizeof range);
         if (key->required)
@@ -497,6 +501,56 @@ static int check_required(ctx *c)
         return fail_at(c, NULL, 0, "[%s] give exactly one of %s%s: none is given", key->section,
                        members, cond);
     }
+    return MC_OK;
+}
+
+/* [roughness] type = file without nx and ny in [mesh]: the mesh is the file's (its size, and its
+ * spacing unless [mesh] gives dx, dy). The map is read here (errors name the line of [roughness]
+ * file); the run reads it again. */
+static int mesh_from_file(ctx *c)
+{
+    if (c->sc.roughness.type != MC_ROUGH_FILE)
+        return MC_OK;
+    const int knx = mc_key_find("mesh", "nx"), kny = mc_key_find("mesh", "ny"),
+              kdx = mc_key_find("mesh", "dx"), kdy = mc_key_find("mesh", "dy");
+    const int given = (c->slot[knx] >= 0) + (c->slot[kny] >= 0);
+    const int kfile = mc_key_find("roughness", "file");
+    if (given == 2 || c->slot[kfile] < 0)
+        return MC_OK; /* the run reads the map onto the given mesh; no file: check_required */
+    const entry *fe = &c->e[c->slot[kfile]];
+    if (given == 1)
+        return fail_at(c, &c->e[c->slot[c->slot[knx] >= 0 ? knx : kny]],
+                       c->e[c->slot[c->slot[knx] >= 0 ? knx : kny]].line,
+                       "[mesh] give both nx and ny, or neither (then the mesh is the height "
+                       "map's of [roughness] file)");
+    mc_measured_spec ms;
+    mc_measured m;
+    mc_surface_measured_spec(&c->sc.roughness, &ms);
+    int rc = mc_measured_load(&ms, &m, c->err);
+    if (rc != MC_OK) {
+        char head[MC_ERROR_MSG_MAX];
+        prefix(c, fe, fe->line, head, sizeof head);
+        if (c->err)
+            mc_error_prefix(c->err, "%s[roughness] file: ", head);
+        return rc;
+    }
+    mc_grid *g = &c->sc.grid;
+    g->nx = m.grid.nx;
+    g->ny = m.grid.ny;
+    if (c->slot[kdx] < 0) {
+        if (!(m.grid.dx > 0)) {
+            mc_measured_free(&m);
+            return fail_at(c, fe, fe->line,
+                           "[roughness] file: this %s file states no lateral spacing: give "
+                           "[mesh] dx (and dy)",
+                           m.format);
+        }
+        g->dx = m.grid.dx;
+        if (c->slot[kdy] < 0)
+            g->dy = m.grid.dy;
+    }
+    mc_measured_free(&m);
+    c->mesh_from_file = 1;
     return MC_OK;
 }
 
@@ -610,7 +664,7 @@ static int parse_and_check(ctx *c, int noverrides, const char *const *overrides)
             mc_key_put_int(&c->sc, mc_keys[k].off, 1);
     }
 
-    if ((rc = check_use(c)) || (rc = check_required(c)))
+    if ((rc = check_use(c)) || (rc = mesh_from_file(c)) || (rc = check_required(c)))
         return rc;
 
     if (c->slot[mc_key_find("output", "dir")] < 0) {

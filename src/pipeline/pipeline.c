@@ -125,7 +125,22 @@ static int roughness_parameters(const mc_scene *sc, mc_results *res, mc_error *e
     double *heights = mc_zeros(mc_grid_cells(g));
     if (!heights)
         return mc_fail(err, MC_ERR_NOMEM, "out of memory for the roughness heights");
-    int rc = mc_surface_roughness(g, &sc->roughness, heights, err);
+    int rc;
+    if (sc->roughness.type == MC_ROUGH_FILE) { /* also what the file held: format, missing */
+        mc_measured_spec ms;
+        mc_measured m;
+        mc_surface_measured_spec(&sc->roughness, &ms);
+        rc = mc_measured_load(&ms, &m, err);
+        if (rc == MC_OK)
+            rc = mc_measured_onto(&m, g, (mc_resample_rule)sc->roughness.resample, heights, err);
+        if (rc == MC_OK) {
+            res->surface_missing = m.missing;
+            res->surface_filled = m.filled;
+            memcpy(res->surface_format, m.format, sizeof res->surface_format);
+        }
+        mc_measured_free(&m);
+    } else
+        rc = mc_surface_roughness(g, &sc->roughness, heights, err);
     if (rc == MC_OK) {
         mc_roughness_options opt;
         mc_roughness_options_default(&opt);

@@ -90,6 +90,8 @@ typedef struct {
     /* ISO roughness parameters of the roughness heights (not the shape) before the run */
     int has_roughness;
     mc_roughness_params roughness_initial;
+    long surface_missing, surface_filled; /* [roughness] file: points not measured, filled */
+    char surface_format[16];              /* [roughness] file: the format read */
 
     mc_timing timing;
     unsigned long long roughness_seed;

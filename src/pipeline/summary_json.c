@@ -217,6 +217,9 @@ static void summary_inputs(jbuild *b, json_t *root, const mc_scene *s, const mc_
         jset(b, o, "lambda_short", jnum(s->roughness.lambda_short));
     } else if (t == MC_ROUGH_FILE) {
         jset(b, o, "file", jstr(s->roughness.file));
+        jset(b, o, "format", jstr(r->surface_format));
+        jset(b, o, "missing_points", json_integer(r->surface_missing));
+        jset(b, o, "filled_points", json_integer(r->surface_filled));
     }
     if (r->has_roughness) {
         /* ISO parameters, named as the standards write them, SI (m; Mr and Sdr in %) */

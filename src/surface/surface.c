@@ -201,6 +201,22 @@ static int synthesize(const mc_grid *g, uint64_t seed, const psd_params *p, doub
 
 static int finite_nonneg(double v) { return isfinite(v) && v >= 0.0; }
 
+void mc_surface_measured_spec(const mc_roughness_spec *s, mc_measured_spec *out)
+{
+    static const double unit_m[] = {1.0, 1e-3, 1e-6, 1e-9};
+    memset(out, 0, sizeof *out);
+    out->path = s->file;
+    out->format = (mc_surface_format)s->format;
+    out->units = s->units >= 0 && s->units < 4 ? unit_m[s->units] : 1.0;
+    out->verify_checksum = s->verify_checksum;
+    out->has_region = s->has_region;
+    memcpy(out->region, s->region, sizeof out->region);
+    out->missing = (mc_missing_rule)s->missing;
+    out->detrend = (mc_detrend_kind)s->detrend;
+    out->scale = s->scale;
+    out->invert = s->invert;
+}
+
 int mc_surface_roughness(const mc_grid *g, const mc_roughness_spec *s, double *heights,
                          mc_error *err)
 {
@@ -215,16 +231,16 @@ int mc_surface_roughness(const mc_grid *g, const mc_roughness_spec *s, double *h
         memset(heights, 0, n * sizeof(double));
         return MC_OK;
     case MC_ROUGH_FILE: {
-        double *d = NULL;
-        st = mc_heightmap_read(s->file, g->ny, g->nx, &d, err);
-        if (st != MC_OK) {
-            if (err)
-                mc_error_prefix(err, "[roughness] file: ");
-            return st;
-        }
-        memcpy(heights, d, n * sizeof(double));
-        mc_free(d);
-        return MC_OK;
+        mc_measured_spec ms;
+        mc_measured m;
+        mc_surface_measured_spec(s, &ms);
+        st = mc_measured_load(&ms, &m, err);
+        if (st == MC_OK)
+            st = mc_measured_onto(&m, g, (mc_resample_rule)s->resample, heights, err);
+        mc_measured_free(&m);
+        if (st != MC_OK && err)
+            mc_error_prefix(err, "[roughness] file: ");
+        return st;
     }
     case MC_ROUGH_GAUSSIAN:
         if (!finite_nonneg(s->rq) || !finite_nonneg(s->correlation_x) ||

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/grid.h"
 #include "core/paths.h"
+#include "surface/measured.h"
 
 typedef enum { MC_SHAPE_FLAT, MC_SHAPE_SPHERE, MC_SHAPE_CYLINDER, MC_SHAPE_ELLIPSOID } mc_shape;
 
@@ -39,6 +40,17 @@ typedef struct {
         uint64_t seed;                       /* generator seed (reproducible) */
         char file[MC_PATH_MAX];              /* file: height map path (relative to the case) */
         double cutoff; /* lambda_c of the roughness parameters, m; 0: ISO 4288 from Ra */
+        /* file: how the map is read and prepared (surface/measured.h) */
+        int format;                          /* mc_surface_format */
+        int units;                           /* 0 m, 1 mm, 2 um, 3 nm */
+        int verify_checksum;
+        int has_region;
+        double region[4];                    /* x0, y0, width, height, m */
+        int detrend;                         /* mc_detrend_kind */
+        int missing;                         /* mc_missing_rule */
+        int resample;                        /* mc_resample_rule */
+        double scale;
+        int invert;
     } mc_roughness_spec;
 
 /* ---- reproducible random numbers: xoshiro256** seeded by splitmix64 --------------------- */
@@ -85,6 +97,9 @@ void mc_surface_shape(const mc_grid *g, const mc_shape_spec *s, double *h);
  * MC_ERR_IO (file), MC_ERR_NOMEM, MC_ERR_INTERNAL (FFTW planning failed). */
 int mc_surface_roughness(const mc_grid *g, const mc_roughness_spec *s, double *heights,
                          mc_error *err);
+
+/* The measured-map settings of a file roughness spec. */
+void mc_surface_measured_spec(const mc_roughness_spec *s, mc_measured_spec *out);
 
 /* Whole topography: shape - roughness (ny*nx), m. Errors as mc_surface_roughness. */
 int mc_surface_topography(const mc_grid *g, const mc_shape_spec *shape,

@@ -30,7 +30,7 @@ trap 'rm -rf "$T"' EXIT INT TERM
 
 KNOWN_DEFECTS=""
 
-cp "$CASES"/*.ini "$T"/ || exit 2
+cp "$CASES"/*.ini "$T"/ && cp -r "$CASES"/surfaces "$T"/ || exit 2
 cd "$T" || exit 2
 
 # ---- fixtures ----------------------------------------------------------------------------------
@@ -222,6 +222,27 @@ row pfile_tolerance   o 1 "[solver] tolerance cannot be combined with load.press
     -- pressure_ok_text.ini --out o --set solver.tolerance=1e-6
 row radius_flat       o 1 "[geometry] radius is not used by shape = flat" \
     -- good.ini --out o --set geometry.shape=flat
+# measured surfaces: every reader's error names the case line, the file and what is wrong
+row surf_truncated    o 1 "surf_truncated.ini:5:" "[roughness] file" "surfaces/truncated.x3p" \
+    "truncated or corrupt zip archive" -- surf_truncated.ini --out o
+row surf_checksum     o 1 "surf_bad_checksum.ini:5:" "surfaces/bad_checksum.x3p: MD5 mismatch" \
+    "set verify_checksum = no" -- surf_bad_checksum.ini --out o
+row surf_no_main      o 1 "surf_no_main.ini:5:" "no main.xml in the zip archive" -- surf_no_main.ini --out o
+row surf_entity       o 1 "surf_entity.ini:5:" "declares XML entities" -- surf_entity.ini --out o
+row surf_size         o 1 "surf_size_mismatch.ini:5:" "sizes do not match the data" \
+    -- surf_size_mismatch.ini --out o
+row surf_empty        o 1 "surf_empty.ini:5:" "surfaces/empty.x3p: empty file (0 bytes)" -- surf_empty.ini --out o
+row surf_absurd       o 1 "surf_absurd.ini:5:" "absurd dimensions 100000000 x 100000000" \
+    -- surf_absurd.ini --out o
+row surf_spacing      o 1 "surfaces/good.x3p" "16 x 16 points of 8e-07 x 1e-06 m" \
+    "the mesh 16 x 16 cells of 1e-06 x 1e-06 m" "resample = linear" -- surf_good.ini --out o
+control control_surf_checksum_off o 0 surf_bad_checksum.ini --out o --set roughness.verify_checksum=no \
+    --set roughness.resample=linear --set mesh.dx=0.7um --set mesh.dy=0.9um
+control control_surf_resample o 0 surf_good.ini --out o --set roughness.resample=linear \
+    --set mesh.dx=0.7um --set mesh.dy=0.9um
+row surf_resample_beyond o 1 "surfaces/good.x3p" "reach beyond the source extent" \
+    -- surf_good.ini --out o --set roughness.resample=linear
+
 # the lubricant volume equilibrium
 control control_lube          o 0 lube_ok.ini --out o
 row lube_auto_no_section o 1 "lube_auto_no_section.ini:10:" \
@@ -260,10 +281,10 @@ row pressure_nan       o 1 "nan.npy" "value [2, 5] (flat index 37) is NaN; value
     "[load] pressure_file" -- pressure_nan.ini --out o
 row pressure_nan_text  o 1 "nan_16x16.txt:4:" "value 'nan' is not finite; values must be finite" \
     "[load] pressure_file" -- pressure_nan_text.ini --out o
-row roughness_nan      o 1 "nan.npy" "value [2, 5] (flat index 37) is NaN; values must be finite" \
-    "[roughness] file" -- roughness_nan.ini --out o
-row roughness_nan_text o 1 "nan_16x16.txt:4:" "value 'nan' is not finite; values must be finite" \
-    "[roughness] file" -- roughness_nan_text.ini --out o
+row roughness_nan      o 1 "nan.npy: 1 of 256 points are missing" "row 2, column 5" \
+    "set [roughness] missing = fill" "[roughness] file" -- roughness_nan.ini --out o
+row roughness_nan_text o 1 "nan_16x16.txt: 1 of 256 points are missing" \
+    "set [roughness] missing = fill" "[roughness] file" -- roughness_nan_text.ini --out o
 row roughness_missing  o 1 "does_not_exist.txt" "cannot open: No such file or directory" \
     "[roughness] file" -- roughness_missing.ini --out o
 # a pressure_file given by --set is relative to the current directory, not to the case file
