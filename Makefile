@@ -109,6 +109,7 @@ _check: $(PROGRAM) $(TESTS)
 	./$(PROGRAM) verify --fast --reports $(BUILD)/reports-fast
 	tests/cli/bad_input.sh ./$(PROGRAM)
 	tests/cli/cases.sh ./$(PROGRAM)
+	tests/cli/robustness.sh ./$(PROGRAM)
 
 verify: deps
 	@$(MAKE) --no-print-directory all

@@ -43,7 +43,7 @@ static int run(const mc_hertz_point *hz, int N, const config_t *cf, int with_str
     sc.load.kind = MC_LOAD_FORCE;
     sc.load.value = LOAD;
     sc.solver.method = cf->method;
-    sc.solver.op = cf->op;
+    sc.solver.backend = cf->op;
     sc.solver.tolerance = BENCH_TOL;
     sc.solver.max_iterations = 5000;
     if (with_stress) { /* five layers bracketing the depth of the von Mises maximum */

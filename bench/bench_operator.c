@@ -120,8 +120,11 @@ int mc_bench_operator(vf_ctx *ctx, int quick)
         char id[32], q[96];
         snprintf(id, sizeof id, "apply_ratio_%d", N);
         snprintf(q, sizeof q, "apply / FFT pair at %d²", N);
-        vf_check(ctx, id, q, "target <= 1.15 at 1024²", 1.0, ta / tp,
-                 N == 1024 ? 1.15 : INFINITY, VF_MAX);
+        if (N == 1024) /* the target binds at 1024² only; the other sizes are shown */
+            vf_check(ctx, id, q, "target <= 1.15 at 1024²", 1.0, ta / tp, 1.15, VF_MAX);
+        else
+            vf_info(ctx, id, q, "ideal 1; the target <= 1.15 binds at 1024² only", 1.0,
+                    ta / tp);
         mc_operator_destroy(&a.op);
         mc_free(a.in);
         mc_free(a.out);

@@ -136,7 +136,7 @@ static int small_contact(int N, double a_cells, double W_scale, mc_scene *sc, mc
 /* The stress skips, each on a scene where it applies: the symmetric quadrant transforms on a
  * small Hertz contact (radius N/32 cells); the window on a smaller one (N/64: the window pays
  * when the contact is small against the grid, its margin being 7 R + 2.5 z); the automatic depth
- * against covering 10 a at the same layer spacing; the direct sum on a contact of a few cells. */
+ * against covering 10 a at the same layer spacing; the sparse sum on a contact of a few cells. */
 static void stress_skips(vf_ctx *ctx, int quick)
 {
     const int N = quick ? 256 : 512;
@@ -180,7 +180,7 @@ static void stress_skips(vf_ctx *ctx, int quick)
     }
     if (small_contact(N, N / 32.0, 1e-4, &sc, &res) == MC_OK) {
         double t_sp = stage_time(&sc, &res, &on), t_nsp = stage_time(&sc, &res, &no_sparse);
-        vf_text(ctx, "| direct sum over the loaded cells (cost model) | a %ld-cell contact on %d², "
+        vf_text(ctx, "| sparse sum over the loaded cells (cost model) | a %ld-cell contact on %d², "
                      "32 layers | %.3f | %.3f | %.0f %% |\n",
                 (long)(res.contact.area / 1e-12 + 0.5), N, t_sp, t_nsp, 100 * (1 - t_sp / t_nsp));
         mc_results_free(&res);
@@ -228,6 +228,6 @@ int mc_bench_skips(vf_ctx *ctx, int quick)
     stress_skips(ctx, quick);
     vf_text(ctx, "\nEach skip leaves the results unchanged within its stated tolerance: tests in "
                  "tests/test_contact.c (nested start, box), tests/test_stress.c (window, symmetric "
-                 "transforms, direct sums) and tests/test_operator.c (periodic axes).\n\n");
+                 "transforms, sparse sums) and tests/test_operator.c (periodic axes).\n\n");
     return 0;
 }

@@ -108,7 +108,7 @@ START_TEST(test_case_a)
     EQ(s.load.value, 1500.0);
     EQ(s.load.lubricant_pressure, 2e6);
     EQ(s.load.pressure_cap, 3e9);
-    ck_assert_int_eq(s.solver.op, MC_BACKEND_DIRECT);
+    ck_assert_int_eq(s.solver.backend, MC_BACKEND_DIRECT);
     ck_assert_int_eq(s.solver.method, MC_METHOD_ACTIVE_SET);
     EQ(s.solver.tolerance, 1e-10);
     ck_assert_int_eq(s.solver.max_iterations, 500);
@@ -184,7 +184,7 @@ START_TEST(test_case_b)
     EQ(s.body1.nu, 0.3);
     ck_assert_int_eq(s.solver.max_iterations, 2000);
     EQ(s.solver.tolerance, 1e-8);
-    ck_assert_int_eq(s.solver.op, MC_BACKEND_FFT);
+    ck_assert_int_eq(s.solver.backend, MC_BACKEND_FFT);
     ck_assert_int_eq(s.solver.method, MC_METHOD_CG);
 }
 END_TEST
@@ -350,7 +350,7 @@ static const bad_case bad[] = {
     {"; only a comment\n\n   \n", {NAME ": empty case file"}},
     {"[meshh]\n",
      {NAME ":1: unknown section [meshh]; known sections: mesh, geometry, roughness, body1, body2, "
-           "load, solver, stress, lubrication, output"}},
+           "load, solver, stress, lubrication, plasticity, output"}},
     {"[Mesh]\nnx = 3\n", {NAME ":1: unknown section [Mesh]", "known sections: mesh,"}},
     {BASE "[mesh]\nnxx = 3\n",
      {NAME ":8: [mesh] unknown key 'nxx'; keys of [mesh]: nx, ny, dx, dy, periodic_x, periodic_y"}},

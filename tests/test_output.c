@@ -1,5 +1,7 @@
 /* test_output.c - the output contract (output.c, results.c): every file read back and compared,
- * stale files, atomicity under I/O errors and injected allocation failures. */
+ * stale files, atomicity under I/O errors and injected allocation failures. (The directory
+ * itself - creation on commit, the lock, stale staging areas, interruption - is test_outdir.c.)
+ * Each test removes its temporary directory when it passes. */
 #include <check.h>
 #include <dirent.h>
 #include <jansson.h>
@@ -114,6 +116,28 @@ static char *listing(const char *dir)
     }
     free(e);
     return out;
+}
+
+/* Remove a test directory and what is in it (one level of subdirectories is all tests make). */
+static void rm_dir(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (d) {
+        struct dirent *e;
+        while ((e = readdir(d)) != NULL) {
+            if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
+                continue;
+            char p[1024];
+            struct stat sb;
+            snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+            if (lstat(p, &sb) == 0 && S_ISDIR(sb.st_mode))
+                rm_dir(p);
+            else
+                unlink(p);
+        }
+        closedir(d);
+    }
+    rmdir(dir);
 }
 
 /* Listing plus an FNV-1a hash of every file's bytes: any change to DIR shows. */
@@ -490,6 +514,7 @@ START_TEST(test_write_all_combinations)
             ck_assert_msg(mc_output_write(dir, &s, &r, &err) == MC_OK, "%s", err.msg);
             check_all(dir, &s, &r);
             mc_results_free(&r);
+            rm_dir(dir);
         }
 }
 END_TEST
@@ -516,23 +541,33 @@ START_TEST(test_stale_files_removed)
     ck_assert_int_eq(unlink(path_in(dir, "notes.txt")), 0);
     check_all(dir, &s, &r); /* also: the listing equals the summary's file list */
     mc_results_free(&r);
+    rm_dir(dir);
 }
 END_TEST
 
 START_TEST(test_prepare)
 {
+    /* prepare checks and creates nothing: the directory appears with the results only */
     const char *tmp = test_tmpdir();
     mc_error err = {0};
     char dir[600];
     snprintf(dir, sizeof dir, "%s/a/b//c/", tmp);
     ck_assert_msg(mc_output_prepare(dir, &err) == MC_OK, "%s", err.msg);
-    struct stat sb;
-    ck_assert(stat(path_in(tmp, "a/b/c"), &sb) == 0 && S_ISDIR(sb.st_mode));
     ck_assert_int_eq(mc_output_prepare(dir, &err), MC_OK); /* idempotent */
-    char *l = listing(path_in(tmp, "a/b/c"));
-    ck_assert_str_eq(l, ""); /* the probe file is gone */
+    char *l = listing(tmp);
+    ck_assert_str_eq(l, "");
     free(l);
     ck_assert_int_eq(mc_output_prepare("", &err), MC_ERR_INPUT);
+    mc_results r;
+    mc_scene s;
+    make_results(&r, 0);
+    make_scene(&s, 0);
+    ck_assert_msg(mc_output_write(dir, &s, &r, &err) == MC_OK, "%s", err.msg);
+    struct stat sb;
+    ck_assert(stat(path_in(tmp, "a/b/c"), &sb) == 0 && S_ISDIR(sb.st_mode));
+    ck_assert_msg(mc_output_prepare(dir, &err) == MC_OK, "%s", err.msg); /* existing now */
+    mc_results_free(&r);
+    rm_dir(tmp);
 }
 END_TEST
 
@@ -547,14 +582,14 @@ START_TEST(test_unwritable)
     char dir[600];
     snprintf(dir, sizeof dir, "%s/file/out", tmp);
     mc_error err = {0};
-    ck_assert_int_eq(mc_output_prepare(dir, &err), MC_ERR_IO);
+    ck_assert_int_eq(mc_output_prepare(dir, &err), MC_ERR_ENV);
     ck_assert_msg(strstr(err.msg, dir) && strstr(err.msg, "Not a directory"), "%s", err.msg);
 
     mc_results r;
     mc_scene s;
     make_results(&r, 1);
     make_scene(&s, 1);
-    ck_assert_int_eq(mc_output_write(dir, &s, &r, &err), MC_ERR_IO);
+    ck_assert_int_eq(mc_output_write(dir, &s, &r, &err), MC_ERR_ENV);
     ck_assert_msg(strstr(err.msg, dir), "%s", err.msg);
     char *l = listing(tmp);
     ck_assert_str_eq(l, "file\n");
@@ -562,6 +597,7 @@ START_TEST(test_unwritable)
     struct stat sb;
     ck_assert(stat(file, &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size == 5);
     mc_results_free(&r);
+    rm_dir(tmp);
 }
 END_TEST
 
@@ -580,13 +616,14 @@ START_TEST(test_target_is_directory)
     mc_results_free(&r);
     make_results(&r, 1);
     r.pressure[0] = 7.0; /* different data */
-    ck_assert_int_eq(mc_output_write(dir, &s, &r, &err), MC_ERR_IO);
+    ck_assert_int_eq(mc_output_write(dir, &s, &r, &err), MC_ERR_ENV);
     ck_assert_msg(strstr(err.msg, "'axis.csv' is a directory"), "%s", err.msg);
     char *after = snapshot(dir);
     ck_assert_str_eq(after, before);
     free(before);
     free(after);
     mc_results_free(&r);
+    rm_dir(dir);
 }
 END_TEST
 
@@ -636,6 +673,7 @@ START_TEST(test_fault_injection)
     check_npy2(dir, "pressure.npy", r.pressure);
     mc_results_free(&old);
     mc_results_free(&r);
+    rm_dir(dir);
 }
 END_TEST
 
@@ -661,6 +699,7 @@ START_TEST(test_strings_and_seed)
     ck_assert_double_eq(jreal(jobj(root, "load"), "pressure_cap"), 2e9);
     json_decref(root);
     mc_results_free(&r);
+    rm_dir(dir);
 }
 END_TEST
 
@@ -685,6 +724,7 @@ START_TEST(test_profile_ties)
     }
     free_lines(l, n);
     mc_results_free(&r);
+    rm_dir(dir);
 }
 END_TEST
 
@@ -706,6 +746,7 @@ START_TEST(test_bad_results)
     ck_assert_str_eq(l, "");
     free(l);
     mc_results_free(&r);
+    rm_dir(dir);
 }
 END_TEST
 

@@ -1,8 +1,8 @@
-/* test_stress.c - subsurface stress (src/stress.c, src/stress_table.c, src/stress_sym.c,
- * src/stress_stage.c): kernel tables against a plain per-entry evaluation of the rectangle
+/* test_stress.c - subsurface stress (src/stress/stress.c, stress_table.c, stress_sym.c,
+ * src/pipeline/stage_stress.c): kernel tables against a plain per-entry evaluation of the rectangle
  * functions, the convergence of the periodic tails, the exact strip, direct vs fft, surface limits,
  * impulse response, linearity, Hertz point and line contact against the closed forms of hertz.h,
- * the speed-ups against the plain paths (quadrant tables, symmetric transforms, direct sums over
+ * the speed-ups against the plain paths (quadrant tables, symmetric transforms, sparse sums over
  * the loaded cells and their cost model, windows, depths from the contact), and the pipeline
  * stage. Sections refer to shared/physics/elastic.md. */
 #include <stdio.h>
@@ -454,14 +454,14 @@ static double **stress_run(const mc_grid *g, mc_stress_kernel kernel, const doub
                                    (p ? MC_TRACTION_P : 0) | (qx ? MC_TRACTION_QX : 0) |
                                        (qy ? MC_TRACTION_QY : 0)};
     mc_error err;
-    mc_stress_op *op = NULL;
-    int rc = mc_stress_create(g, &opt, &op, &err);
+    mc_stress_plan *plan = NULL;
+    int rc = mc_stress_create(g, &opt, &plan, &err);
     ck_assert_msg(rc == MC_OK, "create: %s", err.msg);
     double **s = vols(6, mc_grid_cells(g) * (size_t)nz);
-    rc = mc_stress_field(op, p, qx, qy, s, &err);
+    rc = mc_stress_field(plan, p, qx, qy, s, &err);
     ck_assert_msg(rc == MC_OK, "field: %s", err.msg);
-    mc_stress_destroy(&op);
-    ck_assert_ptr_null(op);
+    mc_stress_destroy(&plan);
+    ck_assert_ptr_null(plan);
     return s;
 }
 
@@ -603,19 +603,19 @@ START_TEST(test_layer_matches_field)
     const mc_stress_options opt = {MC_STRESS_PATCH, NU, 3, z, MC_BACKEND_FFT,
                                    MC_TRACTION_P | MC_TRACTION_QX | MC_TRACTION_QY};
     mc_error err;
-    mc_stress_op *op = NULL;
-    ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_OK);
+    mc_stress_plan *plan = NULL;
+    ck_assert_int_eq(mc_stress_create(&g, &opt, &plan, &err), MC_OK);
     double **one = vols(6, n);
     for (int k = 0; k < 3; k++) {
-        ck_assert_int_eq(mc_stress_layer(op, k, p, qx, NULL, one, &err), MC_OK);
+        ck_assert_int_eq(mc_stress_layer(plan, k, p, qx, NULL, one, &err), MC_OK);
         for (int c = 0; c < MC_NSTRESS; c++)
             ck_assert(memcmp(one[c], all[c] + (size_t)k * n, n * sizeof(double)) == 0);
     }
     mc_stress_timing t;
-    mc_stress_timing_get(op, &t);
+    mc_stress_timing_get(plan, &t);
     ck_assert_int_eq(t.layers, 3);
     ck_assert(t.tables > 0.0 && t.apply > 0.0);
-    mc_stress_destroy(&op);
+    mc_stress_destroy(&plan);
     vols_free(all, 6);
     vols_free(one, 6);
     free(p);
@@ -853,34 +853,34 @@ START_TEST(test_bad_input)
     const mc_grid g = {6, 5, 1.0, 1.0, 0, 0};
     const double z[] = {0.0, 1.0}, zneg = -1.0;
     mc_error err;
-    mc_stress_op *op = NULL;
+    mc_stress_plan *plan = NULL;
     mc_stress_options opt = {MC_STRESS_POINT, NU, 2, z, MC_BACKEND_FFT, MC_TRACTION_P};
-    ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_ERR_INPUT); /* point at z = 0 */
-    ck_assert_ptr_null(op);
+    ck_assert_int_eq(mc_stress_create(&g, &opt, &plan, &err), MC_ERR_INPUT); /* point at z = 0 */
+    ck_assert_ptr_null(plan);
     opt.kernel = MC_STRESS_PATCH;
     opt.loads = 0;
-    ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_stress_create(&g, &opt, &plan, &err), MC_ERR_INPUT);
     opt.loads = MC_TRACTION_P;
     opt.nu = 0.7;
-    ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_stress_create(&g, &opt, &plan, &err), MC_ERR_INPUT);
     opt.nu = NU;
     opt.depths = &zneg;
     opt.nlayers = 1;
-    ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_stress_create(&g, &opt, &plan, &err), MC_ERR_INPUT);
     opt.depths = z;
     opt.nlayers = 0;
-    ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_stress_create(&g, &opt, &plan, &err), MC_ERR_INPUT);
     opt.nlayers = 2;
-    ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_OK);
+    ck_assert_int_eq(mc_stress_create(&g, &opt, &plan, &err), MC_OK);
     double *f = calloc(30, sizeof *f);
     double **s = vols(6, 60);
-    ck_assert_int_eq(mc_stress_field(op, f, f, NULL, s, &err), MC_ERR_INPUT); /* qx unannounced */
-    ck_assert_int_eq(mc_stress_layer(op, 2, f, NULL, NULL, s, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_stress_field(plan, f, f, NULL, s, &err), MC_ERR_INPUT); /* qx unannounced */
+    ck_assert_int_eq(mc_stress_layer(plan, 2, f, NULL, NULL, s, &err), MC_ERR_INPUT);
     s[0][0] = 1.0;
-    ck_assert_int_eq(mc_stress_field(op, NULL, NULL, NULL, s, &err), MC_OK); /* no load: zero */
+    ck_assert_int_eq(mc_stress_field(plan, NULL, NULL, NULL, s, &err), MC_OK); /* no load: zero */
     ck_assert_double_eq(s[0][0], 0.0);
-    mc_stress_destroy(&op);
-    mc_stress_destroy(&op); /* NULL-safe */
+    mc_stress_destroy(&plan);
+    mc_stress_destroy(&plan); /* NULL-safe */
     mc_stress_tables *tb = NULL;
     ck_assert_int_eq(mc_stress_tables_create(&g, 10, 9, MC_STRESS_PATCH, NU, 0, &tb, &err),
                      MC_ERR_INPUT); /* 10 < 2 nx - 1 */
@@ -905,18 +905,18 @@ START_TEST(test_create_nomem)
     mc_error err;
     int failures = 0;
     for (long k = 1;; k++) {
-        mc_stress_op *op = NULL;
+        mc_stress_plan *plan = NULL;
         const long before = mc_alloc_injected();
         mc_alloc_fail_at(k);
-        const int rc = mc_stress_create(&g, &opt, &op, &err);
+        const int rc = mc_stress_create(&g, &opt, &plan, &err);
         mc_alloc_fail_at(0);
         if (mc_alloc_injected() == before) { /* k is past the last allocation */
             ck_assert_int_eq(rc, MC_OK);
-            mc_stress_destroy(&op);
+            mc_stress_destroy(&plan);
             break;
         }
         ck_assert_int_eq(rc, MC_ERR_NOMEM);
-        ck_assert_ptr_null(op);
+        ck_assert_ptr_null(plan);
         failures++;
     }
     ck_assert_int_ge(failures, 5);
@@ -1087,7 +1087,7 @@ START_TEST(test_stage_bad)
 }
 END_TEST
 
-/* ---- the speed-ups: quadrant tables, symmetric transforms, direct sums (stress.h) ------------- */
+/* ---- the speed-ups: quadrant tables, symmetric transforms, sparse sums (stress.h) -------------- */
 
 /* Free grids for the symmetric engine: odd and even sizes, nx != ny, dx != dy, a single row or
  * column, 2 x 2, and sizes whose 7-smooth half period m exceeds n (11 -> 12, 13 -> 14). */
@@ -1113,7 +1113,7 @@ static void check_each_component(double *const a[6], double *const b[6], size_t 
     }
 }
 
-/* Stresses as stress_run, with the speed-ups of tune; the op's timing in *t (if not NULL). */
+/* Stresses as stress_run, with the speed-ups of tune; the plan's timing in *t (if not NULL). */
 static double **stress_run_tuned(const mc_grid *g, mc_stress_kernel kernel, const double *depths,
                                  int nz, mc_backend b, const mc_stress_tuning *tune,
                                  const double *p, const double *qx, const double *qy,
@@ -1123,15 +1123,15 @@ static double **stress_run_tuned(const mc_grid *g, mc_stress_kernel kernel, cons
                                    (p ? MC_TRACTION_P : 0) | (qx ? MC_TRACTION_QX : 0) |
                                        (qy ? MC_TRACTION_QY : 0)};
     mc_error err;
-    mc_stress_op *op = NULL;
-    int rc = mc_stress_create_tuned(g, &opt, tune, &op, &err);
+    mc_stress_plan *plan = NULL;
+    int rc = mc_stress_create_tuned(g, &opt, tune, &plan, &err);
     ck_assert_msg(rc == MC_OK, "create: %s", err.msg);
     double **s = vols(6, mc_grid_cells(g) * (size_t)nz);
-    rc = mc_stress_field(op, p, qx, qy, s, &err);
+    rc = mc_stress_field(plan, p, qx, qy, s, &err);
     ck_assert_msg(rc == MC_OK, "field: %s", err.msg);
     if (t)
-        mc_stress_timing_get(op, t);
-    mc_stress_destroy(&op);
+        mc_stress_timing_get(plan, t);
+    mc_stress_destroy(&plan);
     return s;
 }
 
@@ -1273,7 +1273,7 @@ static double *sparse_load(const mc_grid *g, int ncells, unsigned long long seed
     return f;
 }
 
-/* The direct sum over the loaded cells against the transforms, on both engines and the direct
+/* The sparse sum over the loaded cells against the transforms, on both engines and the direct
  * backend, free and periodic grids: round-off. */
 START_TEST(test_sparse_vs_fft)
 {
@@ -1302,7 +1302,7 @@ START_TEST(test_sparse_vs_fft)
 }
 END_TEST
 
-/* The cost model picks the direct sum for one loaded cell and the transforms for a Hertz contact
+/* The cost model picks the sparse sum for one loaded cell and the transforms for a Hertz contact
  * that fills the grid; the choice follows mc_stress_cost. */
 START_TEST(test_cost_model)
 {
@@ -1324,14 +1324,14 @@ START_TEST(test_cost_model)
     ck_assert_int_eq(th.sparse_layers, 0);
     const mc_stress_options opt = {MC_STRESS_PATCH, NU, 3, z, MC_BACKEND_FFT, MC_TRACTION_P};
     mc_error err;
-    mc_stress_op *op = NULL;
-    ck_assert_int_eq(mc_stress_create(&g, &opt, &op, &err), MC_OK);
-    double fft1, dir1, ffth, dirh;
-    mc_stress_cost(op, 1, 1, &fft1, &dir1);
-    mc_stress_cost(op, loaded, 1, &ffth, &dirh);
-    ck_assert(dir1 < fft1 && dirh > ffth);
-    ck_assert(fft1 == ffth && fft1 > 0.0);
-    mc_stress_destroy(&op);
+    mc_stress_plan *plan = NULL;
+    ck_assert_int_eq(mc_stress_create(&g, &opt, &plan, &err), MC_OK);
+    double full1, sparse1, fullh, sparseh;
+    mc_stress_cost(plan, 1, 1, &full1, &sparse1);
+    mc_stress_cost(plan, loaded, 1, &fullh, &sparseh);
+    ck_assert(sparse1 < full1 && sparseh > fullh);
+    ck_assert(full1 == fullh && full1 > 0.0);
+    mc_stress_destroy(&plan);
     vols_free(a, 6);
     vols_free(b, 6);
     free(one);
@@ -1347,9 +1347,9 @@ START_TEST(test_tuning_bad)
     const mc_stress_options opt = {MC_STRESS_PATCH, NU, 1, &z, MC_BACKEND_FFT, MC_TRACTION_P};
     const mc_stress_tuning bad = {MC_STRESS_AUTO, (mc_stress_switch)7, MC_STRESS_AUTO};
     mc_error err;
-    mc_stress_op *op = NULL;
-    ck_assert_int_eq(mc_stress_create_tuned(&g, &opt, &bad, &op, &err), MC_ERR_INPUT);
-    ck_assert_ptr_null(op);
+    mc_stress_plan *plan = NULL;
+    ck_assert_int_eq(mc_stress_create_tuned(&g, &opt, &bad, &plan, &err), MC_ERR_INPUT);
+    ck_assert_ptr_null(plan);
 }
 END_TEST
 

@@ -12,7 +12,6 @@
 
 #include "pipeline/pipeline.h"
 
-#define MAX_ROWS 1024
 #define MAX_TEXT 65536
 #define MAX_FIGS 32
 #define MAX_OPEN 16
@@ -22,14 +21,16 @@ typedef struct {
     double expected, measured, tol, error;
     vf_kind kind;
     int pass;
+    int info; /* an information row (vf_info): shown, never fails, not counted as a check */
 } vf_row;
 
 struct vf_ctx {
     const vf_suite *suite;
     char dir[1024];
     int fast;
-    vf_row rows[MAX_ROWS];
-    int nrows, nfail;
+    vf_row *rows; /* grown as needed (the full stability matrix records over a thousand) */
+    int nrows, cap_rows, nfail, ninfo;
+    int lost_rows; /* rows that could not be stored (out of memory): the suite fails */
     char text[MAX_TEXT];
     size_t ntext;
     char figs[MAX_FIGS][2][256];
@@ -51,30 +52,62 @@ static double row_error(vf_kind kind, double expected, double measured)
     return NAN;
 }
 
+static int add_row(vf_ctx *ctx, const char *id, const char *quantity, const char *reference,
+                   double expected, double measured, double tol, double e, vf_kind kind, int pass,
+                   int info)
+{
+    if (ctx->nrows == ctx->cap_rows) {
+        int cap = ctx->cap_rows ? 2 * ctx->cap_rows : 256;
+        vf_row *grown = realloc(ctx->rows, (size_t)cap * sizeof *grown);
+        if (!grown) {
+            ctx->lost_rows++;
+            return 0;
+        }
+        ctx->rows = grown;
+        ctx->cap_rows = cap;
+    }
+    vf_row *r = &ctx->rows[ctx->nrows++];
+    snprintf(r->id, sizeof r->id, "%s", id);
+    snprintf(r->quantity, sizeof r->quantity, "%s", quantity);
+    snprintf(r->reference, sizeof r->reference, "%s", reference);
+    r->expected = expected;
+    r->measured = measured;
+    r->tol = tol;
+    r->error = e;
+    r->kind = kind;
+    r->pass = pass;
+    r->info = info;
+    return 1;
+}
+
 int vf_check(vf_ctx *ctx, const char *id, const char *quantity, const char *reference,
              double expected, double measured, double tol, vf_kind kind)
 {
     double e = row_error(kind, expected, measured);
-    int pass = isfinite(e) && e <= tol;
-    if (ctx->nrows < MAX_ROWS) {
-        vf_row *r = &ctx->rows[ctx->nrows++];
-        snprintf(r->id, sizeof r->id, "%s", id);
-        snprintf(r->quantity, sizeof r->quantity, "%s", quantity);
-        snprintf(r->reference, sizeof r->reference, "%s", reference);
-        r->expected = expected;
-        r->measured = measured;
-        r->tol = tol;
-        r->error = e;
-        r->kind = kind;
-        r->pass = pass;
-    }
+    /* an infinite (or NaN) tolerance would make a check that cannot fail */
+    int pass = isfinite(e) && isfinite(tol) && e <= tol;
+    add_row(ctx, id, quantity, reference, expected, measured, tol, e, kind, pass, 0);
     if (!pass)
         ctx->nfail++;
-    printf("%s %s.%s: %s = %.6g (reference %.6g, %s %.3g, tolerance %.3g)\n",
+    printf("%s %s.%s: %s = %.6g (reference %.6g, %s %.3g, tolerance %.3g)%s\n",
            pass ? "PASS" : "FAIL", ctx->suite->name, id, quantity, measured, expected,
-           kind == VF_REL ? "rel. error" : kind == VF_ABS ? "abs. error" : "value", e, tol);
+           kind == VF_REL ? "rel. error" : kind == VF_ABS ? "abs. error" : "value", e, tol,
+           isfinite(tol) ? "" : " - a check that cannot fail: record it with vf_info");
     fflush(stdout);
     return pass;
+}
+
+void vf_info(vf_ctx *ctx, const char *id, const char *quantity, const char *reference,
+             double expected, double measured)
+{
+    ctx->ninfo +=
+        add_row(ctx, id, quantity, reference, expected, measured, NAN, NAN, VF_MAX, 0, 1);
+    char ref[48] = "";
+    if (!isnan(expected))
+        snprintf(ref, sizeof ref, " against %.6g", expected);
+    printf("INFO %s.%s: %s = %.6g%s (%s; information, not a check)\n", ctx->suite->name, id,
+           quantity, measured, ref, reference);
+    fflush(stdout);
 }
 
 void vf_fail(vf_ctx *ctx, const char *id, const char *fmt, ...)
@@ -195,18 +228,26 @@ static int write_report(vf_ctx *ctx, double seconds)
     int npass = 0;
     for (int k = 0; k < ctx->nrows; k++)
         npass += ctx->rows[k].pass;
+    char info[96] = "";
+    if (ctx->ninfo)
+        snprintf(info, sizeof info, "; %d information row%s, shown but not counted as checks",
+                 ctx->ninfo, ctx->ninfo == 1 ? "" : "s");
     fprintf(f, "# %s\n\n", ctx->suite->title);
-    fprintf(f, "Suite `%s`%s: **%d of %d checks pass** (%s). Run time %.1f s.\n",
-            ctx->suite->name, ctx->fast ? " (fast variant)" : "", npass, ctx->nrows,
-            ctx->nfail ? "FAIL" : "PASS", seconds);
+    fprintf(f, "Suite `%s`%s: **%d of %d checks pass** (%s%s). Run time %.1f s.\n",
+            ctx->suite->name, ctx->fast ? " (fast variant)" : "", npass, ctx->nrows - ctx->ninfo,
+            ctx->nfail ? "FAIL" : "PASS", info, seconds);
     if (ctx->suite->regenerate)
         fprintf(f, "Regenerate with `%s`.\n\n", ctx->suite->regenerate);
     else
         fprintf(f, "Regenerate with `microcontact verify %s%s` (or `make verify`).\n\n",
                 ctx->fast ? "--fast " : "", ctx->suite->name);
     fputs(ctx->text, f);
-    fprintf(f, "\n## Checks\n\n| id | quantity | reference | expected | measured | error | tolerance "
-               "| result |\n|---|---|---|---|---|---|---|---|\n");
+    fprintf(f, "\n## Checks\n\n");
+    if (ctx->ninfo)
+        fprintf(f, "Rows marked *info* show a measured value for information: no tolerance, never "
+                   "a failure, not counted among the checks.\n\n");
+    fprintf(f, "| id | quantity | reference | expected | measured | error | tolerance | result "
+               "|\n|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < ctx->nrows; k++) {
         const vf_row *r = &ctx->rows[k];
         char e[32], m[32], er[32], t[32];
@@ -214,6 +255,11 @@ static int write_report(vf_ctx *ctx, double seconds)
         fmt_num(m, sizeof m, r->measured);
         fmt_num(er, sizeof er, r->error);
         fmt_num(t, sizeof t, r->tol);
+        if (r->info) {
+            fprintf(f, "| %s | %s | %s | %s | %s | - | - | info |\n", r->id, r->quantity,
+                    r->reference, isnan(r->expected) ? "-" : e, m);
+            continue;
+        }
         fprintf(f, "| %s | %s | %s | %s | %s | %s %s | %s | %s |\n", r->id, r->quantity,
                 r->reference, e, m, er,
                 r->kind == VF_REL ? "(rel.)" : r->kind == VF_ABS ? "(abs.)" : "(value)", t,
@@ -251,13 +297,17 @@ int vf_run_suite(const vf_suite *suite, const char *reports_dir, int fast)
     if (rc != 0)
         vf_fail(ctx, "suite", "the suite stopped early (status %d)", rc);
     double dt = mc_clock() - t0;
-    int failures = ctx->nfail;
+    int failures = ctx->nfail + ctx->lost_rows;
+    if (ctx->lost_rows)
+        fprintf(stderr, "microcontact: out of memory: %d rows of suite %s are missing from its "
+                        "report\n", ctx->lost_rows, suite->name);
     if (write_report(ctx, dt) != 0) {
         fprintf(stderr, "microcontact: cannot write %s/report.md\n", ctx->dir);
         failures++;
     }
-    printf("== suite %s: %d checks, %d failed, %.1f s -> %s/report.md\n", suite->name, ctx->nrows,
-           ctx->nfail, dt, ctx->dir);
+    printf("== suite %s: %d checks, %d failed, %d information rows, %.1f s -> %s/report.md\n",
+           suite->name, ctx->nrows - ctx->ninfo, ctx->nfail, ctx->ninfo, dt, ctx->dir);
+    free(ctx->rows);
     free(ctx);
     return failures;
 }

@@ -3,7 +3,8 @@
  *
  * A suite is a function that computes, calls vf_check() for every comparison, writes its data as
  * CSV and its figures via gnuplot; the harness turns the recorded rows into
- * <reports>/<suite>/report.md and prints one PASS/FAIL line per check. The suites are a front
+ * <reports>/<suite>/report.md and prints one PASS/FAIL line per check (INFO per information
+ * row, which is shown but not counted as a check). The suites are a front
  * end (like the CLI): they may print; the library may not.
  */
 #ifndef MC_VERIFY_HARNESS_H
@@ -31,9 +32,18 @@ typedef struct {
 /* All suites, in report order. */
 const vf_suite *vf_suites(int *count);
 
-/* Record one check; returns 1 on PASS. id must be unique within the suite. */
+/* Record one check; returns 1 on PASS. id must be unique within the suite. A check must be
+ * able to fail: a tolerance that is not finite (INFINITY, NaN) makes the check FAIL, with a
+ * note to record the value with vf_info instead. */
 int vf_check(vf_ctx *ctx, const char *id, const char *quantity, const char *reference,
              double expected, double measured, double tol, vf_kind kind);
+
+/* Record an information row: a measured value (and, if not NaN, the value it is read against,
+ * e.g. a target that binds only elsewhere) shown in the checks table with the result "info".
+ * It has no tolerance, never fails and is not counted among the checks. id shares the check
+ * ids' name space. */
+void vf_info(vf_ctx *ctx, const char *id, const char *quantity, const char *reference,
+             double expected, double measured);
 
 /* A free paragraph of Markdown for the report (printf-style). */
 void vf_text(vf_ctx *ctx, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

@@ -54,7 +54,7 @@ static int run_mesh(const mc_hertz_point *hz, int N, mc_backend op, row_t *row, 
     sc.load.kind = MC_LOAD_FORCE;
     sc.load.value = LOAD;
     sc.solver.tolerance = SOLVER_TOL;
-    sc.solver.op = op;
+    sc.solver.backend = op;
     mc_results res;
     mc_error err = {0};
     int rc = mc_pipeline_run(&sc, &res, &err);

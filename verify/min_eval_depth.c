@@ -184,7 +184,7 @@ static int operator_column(const mc_grid *g, mc_stress_kernel kernel, const doub
                            .depths = z,
                            .backend = MC_BACKEND_FFT,
                            .loads = MC_TRACTION_P};
-    mc_stress_op *op = NULL;
+    mc_stress_plan *op = NULL;
     size_t n = mc_grid_cells(g);
     double *buf = malloc(sizeof *buf * n * 6);
     if (!buf)

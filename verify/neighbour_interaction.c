@@ -374,7 +374,7 @@ static int run_superposition(study_t *st, mc_error *err)
                            .depths = z,
                            .backend = MC_BACKEND_FFT,
                            .loads = MC_TRACTION_P};
-    mc_stress_op *op = NULL;
+    mc_stress_plan *op = NULL;
     int rc = mc_stress_create(&g, &o, &op, err);
     double *s[6];
     for (int q = 0; q < 6; q++)
@@ -448,7 +448,7 @@ static double run_direct(const study_t *st, int pat, int q, mc_error *err, int *
                            .depths = z,
                            .backend = MC_BACKEND_FFT,
                            .loads = MC_TRACTION_P};
-    mc_stress_op *op = NULL;
+    mc_stress_plan *op = NULL;
     *rc = mc_stress_create(&g, &o, &op, err);
     double *s[6], worst = 0;
     for (int cc = 0; cc < 6; cc++)
@@ -508,7 +508,7 @@ static peak_t run_periodic(const study_t *st, int q, mc_error *err, int *rc)
                            .depths = st->z,
                            .backend = MC_BACKEND_FFT,
                            .loads = MC_TRACTION_P};
-    mc_stress_op *op = NULL;
+    mc_stress_plan *op = NULL;
     *rc = mc_stress_create(&g, &o, &op, err);
     double *s[6], vm[64], hy[64];
     for (int cc = 0; cc < 6; cc++)
@@ -673,7 +673,8 @@ int vf_suite_neighbour_interaction(vf_ctx *ctx, int fast)
             "pattern and isolated cell largely cancels; measured 0.047-0.051 at a/dx = 6 and 12, "
             "a clean h^2); superposition against the direct run within %.0e p0 (round-off: the "
             "same kernel tables); the infinite-array limit within %.0e (the 2- and 3-term "
-            "extrapolations differ by <= 5e-5) + %.2f (dx/a)^2 (measured 0.045); at d = 8 a every "
+            "extrapolations differ by <= 5e-5: information row `extrapolation`) + %.2f (dx/a)^2 "
+            "(measured 0.045); at d = 8 a every "
             "pattern within %.0f %% of the isolated cell (the brief).\n\n",
             P_H * 1e-6, NU, HALF, 2 * HALF * st.A + 1, st.A, pat_label[val_pat], d_list[val_q],
             st.h, VM_ISO, Z_ISO, hamilton_peak(PAT_LINE, 1, 1.0).hydro, Z_ISO, C_VM, C_DEPTH,
@@ -825,10 +826,13 @@ int vf_suite_neighbour_interaction(vf_ctx *ctx, int fast)
                  "ratio, worst |error| over d/a",
                  "Hamilton sums N = 21, 41, 81, extrapolated", 0, worst_inf, EXTRAP + C_RATIO * h2,
                  VF_MAX);
-        vf_check(ctx, "extrapolation",
-                 "2-term against 3-term extrapolation of the Hamilton "
-                 "sums, worst over d/a",
-                 "EXTRAP / 4", 0, worst_extrap, EXTRAP / 4, VF_MAX);
+        /* The spread of the two fits measures the reference's own uncertainty (the budget
+         * behind EXTRAP), not microcontact code - both fits use the same Hamilton sums: shown,
+         * not counted as a check. */
+        vf_info(ctx, "extrapolation",
+                "reference uncertainty: 2-term against 3-term extrapolation of the Hamilton "
+                "sums, worst over d/a",
+                "part of the EXTRAP budget of infinite_array", EXTRAP, worst_extrap);
         vf_check(ctx, "squares_converge",
                  "distances d/a at which 3x3, 5x5, 7x7 do not approach the infinite array "
                  "monotonically (of 7)",

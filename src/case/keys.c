@@ -29,10 +29,14 @@ _Static_assert(sizeof(mc_stress_window_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_film_source) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_film_formula) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_psi_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_yield_criterion) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_hardening_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_table_unit) == sizeof(int), "enum size");
 _Static_assert(MC_SHAPE_ELLIPSOID == 3 && MC_ROUGH_FILE == 3 && MC_BACKEND_DIRECT == 1 &&
                    MC_METHOD_ACTIVE_SET == 2 && MC_SPACING_GEOMETRIC == 1 && MC_STRESS_POINT == 1 &&
                    MC_STRESS_WINDOW_FULL == 1 && MC_FILM_GIVEN == 1 && MC_FILM_HAMROCK_DOWSON_MIN == 5 &&
-                   MC_PSI_AREA == 1,
+                   MC_PSI_AREA == 1 && MC_HARDENING_TABLE == 3 &&
+                   MC_CRITERION_PRESSURE_CAP == 1 && MC_TABLE_UNIT_GPA == 2,
                "choice lists below follow the enum order");
 
 
@@ -207,7 +211,7 @@ const case_key mc_keys[] = {
 
     /* [solver] */
     {.section = "solver", .name = "operator", .kind = K_ENUM, .choices = "fft direct",
-     .def = "fft", .off = AT(solver.op),
+     .def = "fft", .off = AT(solver.backend),
      .doc = "Convolution backend: fft (DC-FFT) or direct (O(N^2) sums, the reference)."},
     {.section = "solver", .name = "method", .kind = K_ENUM, .choices = "cg pk active-set",
      .def = "cg", .use = USE_UNLESS, .use_key = "load.pressure_file", .off = AT(solver.method),
@@ -330,6 +334,100 @@ const case_key mc_keys[] = {
      .lo = 1e-12, .hi = 0.1, .def = "1e-6", .off = AT(lubrication.tolerance),
      .doc = "Relative tolerance of the volume root: abs(V - V*) / V*."},
 
+    /* [plasticity] */
+    {.section = "plasticity", .name = "enabled", .kind = K_BOOL,
+     .def = "yes, when [plasticity] is present", .def_rule = 1, .off = AT(plasticity.enabled),
+     .doc = "Run the elastic-plastic stage (body 1 yields)."},
+    {.section = "plasticity", .name = "criterion", .kind = K_ENUM,
+     .choices = "von_mises pressure_cap", .def = "von_mises", .off = AT(plasticity.criterion),
+     .doc = "von_mises: J2 yield of the volume stress with Prandtl-Reuss flow (the paper); "
+            "pressure_cap: the usual limiting-pressure model (the contact pressure is capped at "
+            "the hardness; the penetration there is the plastic deformation)."},
+    {.section = "plasticity", .name = "hardness", .kind = K_REAL, .unit = MC_UNIT_PRESSURE,
+     .lo = 0, .lo_open = 1, .hi = 1e12, .required = 1, .use = USE_WHEN, .use_key = "criterion",
+     .use_values = "pressure_cap", .off = AT(plasticity.hardness),
+     .doc = "Limiting pressure of criterion = pressure_cap (e.g. 3 Y)."},
+    {.section = "plasticity", .name = "hardening", .kind = K_ENUM,
+     .choices = "perfect linear swift table", .def = "perfect", .use = USE_WHEN,
+     .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.hardening),
+     .doc = "Isotropic hardening law sigma_y(p) of the accumulated plastic strain p."},
+    {.section = "plasticity", .name = "yield_stress", .kind = K_REAL, .unit = MC_UNIT_PRESSURE,
+     .lo = 0, .lo_open = 1, .hi = 1e12, .required = 1, .use = USE_WHEN, .use_key = "hardening",
+     .use_values = "perfect linear", .off = AT(plasticity.yield_stress),
+     .doc = "Initial yield stress Y0 (uniaxial)."},
+    {.section = "plasticity", .name = "tangent_modulus", .kind = K_REAL, .unit = MC_UNIT_PRESSURE,
+     .lo = 0, .hi = 1e13, .lo_text = ">= 0 and < E of body1", .required = 1, .use = USE_WHEN,
+     .use_key = "hardening", .use_values = "linear", .off = AT(plasticity.tangent_modulus),
+     .doc = "Slope E_t of the uniaxial stress-strain curve beyond yield (plastic modulus "
+            "H = E E_t / (E - E_t))."},
+    {.section = "plasticity", .name = "swift_B", .kind = K_REAL, .unit = MC_UNIT_PRESSURE, .lo = 0,
+     .lo_open = 1, .hi = 1e12, .required = 1, .use = USE_WHEN, .use_key = "hardening",
+     .use_values = "swift", .off = AT(plasticity.swift_B),
+     .doc = "Swift law sigma_y = B (C + 1e6 p)^n with p in micro-strain through the 1e6: B, a "
+            "stress (AISI 52100: 1280 MPa)."},
+    {.section = "plasticity", .name = "swift_C", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
+     .lo_open = 1, .hi = 1e9, .required = 1, .use = USE_WHEN, .use_key = "hardening",
+     .use_values = "swift", .off = AT(plasticity.swift_C),
+     .doc = "Swift C, in micro-strain: the initial yield is B C^n (AISI 52100: 4)."},
+    {.section = "plasticity", .name = "swift_n", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
+     .hi = 1, .hi_open = 1, .required = 1, .use = USE_WHEN, .use_key = "hardening",
+     .use_values = "swift", .off = AT(plasticity.swift_n),
+     .doc = "Swift hardening exponent n (AISI 52100: 0.095)."},
+    {.section = "plasticity", .name = "table", .kind = K_PATH, .required = 1, .use = USE_WHEN,
+     .use_key = "hardening", .use_values = "table", .off = AT(plasticity.table), .relative = 1,
+     .doc = "CSV of (eps_p, sigma_y) rows, eps_p increasing from 0, sigma_y not decreasing; "
+            "relative to the case file."},
+    {.section = "plasticity", .name = "table_unit", .kind = K_ENUM, .choices = "Pa MPa GPa",
+     .def = "MPa", .use = USE_WHEN, .use_key = "hardening", .use_values = "table",
+     .off = AT(plasticity.table_unit), .doc = "Unit of sigma_y in the table."},
+    {.section = "plasticity", .name = "bodies", .kind = K_ENUM, .choices = "one both",
+     .def = "one", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
+     .off = AT(plasticity.both),
+     .doc = "one: body 1 yields, body 2 stays elastic (or rigid); both: the two bodies are of "
+            "the same material and deform alike (each takes the same residual displacement)."},
+    {.section = "plasticity", .name = "load_steps", .kind = K_INT, .lo = 1, .hi = 10000,
+     .def = "10", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
+     .off = AT(plasticity.load_steps), .doc = "Load increments up to the full load."},
+    {.section = "plasticity", .name = "relaxation", .kind = K_REAL, .unit = MC_UNIT_NONE,
+     .lo = 0, .lo_open = 1, .hi = 1, .def = "0.7", .use = USE_WHEN, .use_key = "criterion",
+     .use_values = "von_mises", .off = AT(plasticity.relaxation),
+     .doc = "Under-relaxation omega of the residual displacement between outer iterations."},
+    {.section = "plasticity", .name = "tolerance", .kind = K_REAL, .unit = MC_UNIT_NONE,
+     .lo = 1e-12, .hi = 0.5, .def = "1e-3", .use = USE_WHEN, .use_key = "criterion",
+     .use_values = "von_mises", .off = AT(plasticity.tolerance),
+     .doc = "Outer iteration: relative change of the residual displacement that ends a step."},
+    {.section = "plasticity", .name = "max_outer", .kind = K_INT, .lo = 1, .hi = 100000,
+     .def = "30", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
+     .off = AT(plasticity.max_outer),
+     .doc = "Outer iterations per load step; reaching it is reported as not converged."},
+    {.section = "plasticity", .name = "plastic_tolerance", .kind = K_REAL, .unit = MC_UNIT_NONE,
+     .lo = 1e-15, .hi = 0.1, .def = "1e-7", .use = USE_WHEN, .use_key = "criterion",
+     .use_values = "von_mises", .off = AT(plasticity.plastic_tolerance),
+     .doc = "Fixed point of the plastic strain increment: change relative to max(increment, "
+            "1e-3)."},
+    {.section = "plasticity", .name = "max_plastic", .kind = K_INT, .lo = 1, .hi = 100000,
+     .def = "100", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
+     .off = AT(plasticity.max_plastic), .doc = "Fixed-point sweeps per outer iteration."},
+    {.section = "plasticity", .name = "dz", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .lo_open = 1, .hi = 1, .def = "min(dx, dy)", .def_rule = 1, .use = USE_WHEN,
+     .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.dz),
+     .doc = "Thickness of the volume cells."},
+    {.section = "plasticity", .name = "depth", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .lo_open = 1, .hi = 1, .def = "auto", .word = "auto", .word_value = 0, .use = USE_WHEN,
+     .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.depth),
+     .doc = "Depth of the plastic volume; auto: where the elastic von Mises stress at the full "
+            "load falls below half the initial yield stress, plus 25 %."},
+    {.section = "plasticity", .name = "margin", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
+     .lo_open = 1, .hi = 1, .def = "auto", .word = "auto", .word_value = 0, .use = USE_WHEN,
+     .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.margin),
+     .doc = "Columns of plastic cells: the elastic contact's bounding box widened by this on "
+            "every side; auto: the depth of the volume."},
+    {.section = "plasticity", .name = "friction", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
+     .hi = 1, .def = "0", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
+     .off = AT(plasticity.friction),
+     .doc = "Coulomb coefficient of the traction q_x = friction (p - p_lub) in solid contact "
+            "(sliding in +x), in the stresses that drive yield."},
+
     /* [output] */
     {.section = "output", .name = "dir", .kind = K_PATH, .def = "out/(case file name without .ini)",
      .def_rule = 1, .off = AT(output.dir),
@@ -369,6 +467,12 @@ const case_section mc_key_sections[] = {
      "of a macro line contact under [load] force = F_N: it is loaded with the macro Hertz "
      "pressure p_H (w' = F_N / width); without macro_radius (film = given) the scene's load is "
      "used as it is."},
+    {"plasticity", "enabled",
+     "The elastic-plastic stage (Jacq et al. 2002; Mevissen et al. 2025): the load rises in "
+     "steps; in each the contact, the elastic stress of the pressure, the J2 return mapping of "
+     "the volume stress (stress-based yield, not a pressure cap) and the residual surface "
+     "displacement of the plastic strain are iterated to convergence; then the load is removed "
+     "and the run-in topography and residual stresses remain. Body 1 yields."},
     {"output", NULL, "Where the results go (see DESIGN.md, output contract)."},
 };
 
@@ -802,7 +906,7 @@ int mc_key_used_in_scene(const mc_scene *sc, int k)
         return !(mc_keys[sel].tagged && tag_in_force(sc, sel));
     char v[64];
     mc_key_value_text(sc, sel, v, sizeof v);
-    return mc_key_word_index(key->use_values, v) >= 0;
+    return mc_key_word_index(key->use_values, v) >= 0 && mc_key_used_in_scene(sc, sel);
 }
 
 static int section_on(const mc_scene *sc, const char *section)

@@ -329,7 +329,8 @@ static int used(const ctx *c, int k)
         return c->slot[sel] < 0;
     char v[64];
     value_text(c, sel, v, sizeof v);
-    return mc_key_word_index(key->use_values, v) >= 0;
+    /* a selector that is itself unused selects nothing (hardening under criterion = pressure_cap) */
+    return mc_key_word_index(key->use_values, v) >= 0 && used(c, sel);
 }
 
 /* The section's requirements apply (its switch key, if any, is on). */
@@ -586,6 +587,30 @@ static int parse_override(ctx *c, const char *ovr)
             strlen(c->e[i].section) == (size_t)(s1 - s0) &&
             memcmp(c->e[i].section, s0, (size_t)(s1 - s0)) == 0)
             e = &c->e[i];
+    if (ok && vn == 0 && e) {
+        /* "section.key=" removes the key (e.g. --set load.force= --set load.approach=1um):
+         * the entry goes, as if the file never had it; its section header stays */
+        mc_free(e->section);
+        mc_free(e->name);
+        mc_free(e->value);
+        size_t i = (size_t)(e - c->e);
+        memmove(e, e + 1, sizeof *e * ((size_t)c->n - i - 1));
+        c->n--;
+        mc_free(key);
+        mc_free(val);
+        return MC_OK;
+    }
+    if (ok && vn == 0) { /* a known key the file does not give: nothing to remove */
+        char *sec = dup_range(s0, (size_t)(s1 - s0));
+        int known = sec && mc_key_find(sec, key) >= 0;
+        ok = sec != NULL;
+        mc_free(sec);
+        if (known) {
+            mc_free(key);
+            mc_free(val);
+            return MC_OK;
+        }
+    }
     if (ok && e) {
         ok = set_value(e, val);
         e->line = e->cont_line = 0;

@@ -96,6 +96,47 @@ static int lubrication_rules(const mc_scene *s, mc_error *err, const char **sect
     return MC_OK;
 }
 
+/* The rules of the elastic-plastic stage. */
+static int plasticity_rules(const mc_scene *s, mc_error *err, const char **section,
+                            const char **keyname)
+{
+    if (!s->plasticity.enabled)
+        return MC_OK;
+    if (s->load.kind != MC_LOAD_FORCE)
+        BLAME("load", "force",
+              "[plasticity] needs [load] force (the load rises in steps to it); approach, "
+              "force_per_length and pressure_file are not supported by the elastic-plastic stage");
+    if (s->grid.periodic_x || s->grid.periodic_y)
+        BLAME("mesh", s->grid.periodic_x ? "periodic_x" : "periodic_y",
+              "[plasticity] needs free (non-periodic) mesh axes: the residual fields of a local "
+              "plastic zone are not periodic");
+    if (isfinite(s->load.pressure_cap))
+        BLAME("load", "pressure_cap",
+              "[load] pressure_cap cannot be combined with [plasticity] (criterion = "
+              "pressure_cap takes its limit from [plasticity] hardness)");
+    if (s->plasticity.criterion == MC_CRITERION_PRESSURE_CAP)
+        return MC_OK;
+    if (!(s->body1.nu < 0.5))
+        BLAME("body1", "nu",
+              "[body1] nu = 0.5 with [plasticity]: an incompressible body has no finite bulk "
+              "modulus for the return mapping (give nu < 0.5)");
+    if (s->plasticity.hardening == MC_HARDENING_LINEAR &&
+        !(s->plasticity.tangent_modulus < s->body1.E))
+        BLAME("plasticity", "tangent_modulus",
+              "[plasticity] tangent_modulus = %g Pa: must be < E of body1 = %g Pa",
+              s->plasticity.tangent_modulus, s->body1.E);
+    if (s->plasticity.both &&
+        (s->body2.rigid || s->body2.E != s->body1.E || s->body2.nu != s->body1.nu))
+        BLAME("plasticity", "bodies",
+              "[plasticity] bodies = both needs body 2 of the same material as body 1 (E, nu; "
+              "not rigid)");
+    if (s->lubrication.enabled)
+        BLAME("lubrication", "enabled",
+              "[lubrication] with [plasticity] is not supported yet (the volume equilibrium runs "
+              "with the elastic stage only)");
+    return MC_OK;
+}
+
 /* The rules that tie keys together; each key's own bounds are the table's (mc_keys_check_scene).
  * A key that is given but has no effect in its scene is refused here or by the table's use
  * conditions, never silently ignored. */
@@ -135,6 +176,8 @@ static int scene_rules(const mc_scene *s, mc_error *err, const char **section,
               "[load] pressure_cap = %g Pa: must be > lubricant_pressure = %g Pa",
               s->load.pressure_cap, s->load.lubricant_pressure);
     int rc = lubrication_rules(s, err, section, keyname);
+    if (rc == MC_OK)
+        rc = plasticity_rules(s, err, section, keyname);
     if (rc != MC_OK)
         return rc;
     if (s->stress.enabled)

@@ -20,6 +20,7 @@
 #include "contact/contact.h"
 #include "lube/film.h"
 #include "lube/friction.h"
+#include "plastic/hardening.h"
 #include "stress/stress.h"
 #include "surface/surface.h"
 
@@ -40,6 +41,8 @@ typedef enum { MC_STRESS_WINDOW_AUTO, MC_STRESS_WINDOW_FULL } mc_stress_window_m
 #define MC_LUBRICANT_AUTO (-1.0)
 
 typedef enum { MC_FILM_EHL, MC_FILM_GIVEN } mc_film_source;
+typedef enum { MC_CRITERION_VON_MISES, MC_CRITERION_PRESSURE_CAP } mc_yield_criterion;
+typedef enum { MC_TABLE_UNIT_PA, MC_TABLE_UNIT_MPA, MC_TABLE_UNIT_GPA } mc_table_unit;
 
 /* [stress] depth_max = auto: derived from the contact by the stress stage (stress.h) */
 #define MC_STRESS_DEPTH_AUTO 0.0
@@ -70,7 +73,7 @@ typedef struct {
     } load;
 
     struct { /* [solver] */
-        mc_backend op;            /* operator backend (default fft) */
+        mc_backend backend;       /* operator backend (default fft) */
         mc_contact_method method; /* default cg */
         double tolerance;         /* relative stopping tolerance (default 1e-8) */
         int max_iterations;       /* default 2000 */
@@ -106,6 +109,29 @@ typedef struct {
         mc_psi_kind psi;             /* load- or area-based solid contact ratio */
         double tolerance;            /* relative tolerance of the volume root */
     } lubrication;
+
+    struct { /* [plasticity]: the elastic-plastic stage (runs when enabled) */
+        int enabled;                  /* case files: 1 when [plasticity] is present */
+        mc_yield_criterion criterion; /* von_mises (the paper) or pressure_cap */
+        double hardness;              /* pressure_cap: the limiting pressure, Pa */
+        mc_hardening_kind hardening;  /* perfect, linear, swift, table */
+        double yield_stress;          /* perfect, linear: initial yield stress Y0, Pa */
+        double tangent_modulus;       /* linear: E_t, Pa */
+        double swift_B, swift_C, swift_n; /* swift: sigma_y = B (C + 1e6 p)^n */
+        char table[MC_PATH_MAX];      /* table: CSV of (eps_p, sigma_y) */
+        mc_table_unit table_unit;     /* unit of sigma_y in the table */
+        int both;                     /* bodies = both: body 2 is the same material */
+        int load_steps;
+        double relaxation;            /* omega of the outer iteration */
+        double tolerance;             /* relative change of the residual displacement */
+        int max_outer;
+        double plastic_tolerance;     /* fixed point of the plastic strain increment */
+        int max_plastic;
+        double dz;                    /* layer thickness, m; 0: min(dx, dy) */
+        double depth;                 /* m; 0: auto */
+        double margin;                /* columns around the contact's box, m; 0: auto */
+        double friction;              /* q_x = friction (p - p_lub) in solid contact */
+    } plasticity;
 
     struct { /* [output] */
         char dir[MC_PATH_MAX]; /* "": derive from path (mc_scene_output_dir); case files fill it */

@@ -1,9 +1,42 @@
-/* cli.h - the commands of the microcontact executable (each returns the process exit status). */
+/* cli.h - the commands of the microcontact executable (each returns the process exit status:
+ * 0 success, 1 solver failure, 2 bad input or usage, 3 the environment; see main.c). */
 #ifndef MC_CLI_H
 #define MC_CLI_H
+
+#define MC_USAGE_RUN "usage: microcontact run CASE.ini [--out DIR] [--set section.key=value]..."
+#define MC_USAGE_VERIFY "usage: microcontact verify [SUITE...] [--fast] [--reports DIR] [--list]"
+#define MC_USAGE_BENCH "usage: microcontact bench [--quick] [--reports DIR]"
+#define MC_USAGE_KEYS "usage: microcontact keys [SECTION]"
+
+/* The exit-status paragraph shared by every --help text. */
+#define MC_EXIT_STATUS_HELP                                                                        \
+    "exit status: 0 success, 1 solver failure (not converged: results are still written),\n"     \
+    "  2 bad input (case file, --set, data files, usage), 3 the environment (not enough memory,\n" \
+    "  output directory not writable, not a directory, full or in use by another run),\n"        \
+    "  128 + signal when stopped by SIGINT, SIGTERM or SIGHUP\n"
 
 int mc_cli_run(int argc, char **argv);
 int mc_cli_verify(int argc, char **argv);
 int mc_cli_bench(int argc, char **argv);
+int mc_cli_keys(int argc, char **argv);
+
+/* 1 when s is -h or --help. */
+int mc_cli_is_help(const char *s);
+
+/* SIGINT, SIGTERM and SIGHUP during `run` (signals.c): blocked in every thread and received by a
+ * watcher thread. A signal while no result is being written ends the process at once (nothing
+ * of this run exists on disk yet: the output directory is created only by the commit); a signal
+ * during a commit asks it to stop (mc_output_interrupt), and the run then ends with
+ * mc_cli_signal_exit once the partial files are removed. A second signal ends the process at
+ * once (the next run removes what it left). Signals ignored at start (nohup, background jobs of
+ * a shell) stay ignored. Call before any thread is created. Returns 0, or -1 if the watcher could
+ * not be started (signals then keep their default action). */
+int mc_cli_signals_start(void);
+
+/* The signal received so far (0 if none). */
+int mc_cli_signal_caught(void);
+
+/* End the process by signal sig, as its default action does (the shell shows 128 + sig). */
+_Noreturn void mc_cli_signal_exit(int sig);
 
 #endif

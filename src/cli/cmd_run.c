@@ -1,5 +1,11 @@
-/* cmd_run.c - `microcontact run CASE.ini [--out DIR] [--set section.key=value]...` */
+/* cmd_run.c - `microcontact run CASE.ini [--out DIR] [--set section.key=value]...`
+ *
+ * Order of a run: parse the case; check the output directory without creating it (and lock it
+ * when it exists: one run per directory); solve; print the solve (stdout is line buffered, so a
+ * log shows each stage as it ends); commit the results (the directory is created here); print
+ * where they are. Errors found after parsing name the case file. */
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,10 +17,58 @@
 
 #define MAX_SETS 256
 
+static const char run_help[] =
+    MC_USAGE_RUN "\n\n"
+    "Solve the scene of CASE.ini and write its results (summary.json, *.npy, *.csv, VTK) to DIR\n"
+    "(default: [output] dir of the case, else out/<case name>).\n\n"
+    "  --out DIR                output directory\n"
+    "  --set section.key=value  change one key of the case without editing it (repeatable);\n"
+    "                           section.key= (empty) removes the key, e.g.\n"
+    "                           --set load.force= --set load.approach=1um\n"
+    "  -h, --help               this text\n\n"
+    "Output directory: created, with its parents, only when the results are committed (a run\n"
+    "that fails creates nothing). Results go to DIR/.staging-XXXXXX first and are moved into DIR\n"
+    "when all are complete: DIR holds the earlier results or the new ones, never a mix.\n"
+    "One run per output directory at a time: a run locks DIR (flock); a second run into it\n"
+    "refuses at once (exit 3) and names the pid of the run that holds it.\n"
+    "SIGINT, SIGTERM or SIGHUP ends the run with status 128 + signal: at once while it\n"
+    "computes (nothing is written yet); while results are written, once the partial files\n"
+    "are removed. Staging areas a killed run left behind (SIGKILL) are removed by the next\n"
+    "run into that directory.\n\n" MC_EXIT_STATUS_HELP;
+
 static int fail(const mc_error *err)
 {
     fprintf(stderr, "microcontact: error: %s\n", err->msg);
     return mc_status_exit_code(err->code);
+}
+
+/* An error found after parsing: name the case file unless the message does already. */
+static int fail_case(const char *case_path, const mc_error *err)
+{
+    size_t n = strlen(case_path);
+    if (strncmp(err->msg, case_path, n) == 0 && err->msg[n] == ':')
+        return fail(err);
+    fprintf(stderr, "microcontact: error: %s: %s\n", case_path, err->msg);
+    return mc_status_exit_code(err->code);
+}
+
+static int usage_error(const char *what, const char *a, const char *b)
+{
+    if (b)
+        fprintf(stderr, "microcontact run: %s (got '%s' and '%s')\n%s\n", what, a, b, MC_USAGE_RUN);
+    else
+        fprintf(stderr, "microcontact run: %s '%s'\n%s\n", what, a, MC_USAGE_RUN);
+    return 2;
+}
+
+static const char *signal_name(int sig)
+{
+    switch (sig) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    case SIGHUP: return "SIGHUP";
+    }
+    return "a signal";
 }
 
 /* Peak resident memory of this process (VmHWM), MiB; NAN where /proc is not there. */
@@ -32,14 +86,14 @@ static double peak_memory_mib(void)
     return kb / 1024.0;
 }
 
-static void print_summary(const char *dir, const mc_results *r)
+static void print_solve(const mc_results *r)
 {
     const mc_contact_summary *c = &r->contact;
     printf("microcontact: %d x %d cells, dx = %.4g um, dy = %.4g um\n", r->grid.nx, r->grid.ny,
            r->grid.dx * 1e6, r->grid.dy * 1e6);
     if (c->solved)
         printf("  contact (%s, %s operator): %s in %d iterations, residual %.2e\n", c->solver,
-               mc_backend_name(c->op), c->converged ? "converged" : "NOT CONVERGED", c->iterations,
+               mc_backend_name(c->backend), c->converged ? "converged" : "NOT CONVERGED", c->iterations,
                c->residual);
     else
         printf("  prescribed pressure (no contact solve)\n");
@@ -55,9 +109,16 @@ static void print_summary(const char *dir, const mc_results *r)
     printf("  time %.3f s (setup %.3f, contact %.3f, stress %.3f), peak memory %.0f MiB\n",
            r->timing.total_s, r->timing.setup_s, r->timing.contact_s, r->timing.stress_s,
            peak_memory_mib());
-    printf("  results in %s/ (summary.json, pressure.npy, gap.npy, displacement.npy, "
-           "topography.npy, profile_x.csv%s)\n",
-           dir, r->nlayers > 0 ? ", von_mises.npy, stress_*.npy, axis.csv, depths.csv" : "");
+}
+
+static int add_set(const char **sets, int *nsets, const char *s)
+{
+    if (*nsets == MAX_SETS) {
+        fprintf(stderr, "microcontact: error: more than %d --set options\n", MAX_SETS);
+        return 2;
+    }
+    sets[(*nsets)++] = s;
+    return 0;
 }
 
 int mc_cli_run(int argc, char **argv)
@@ -66,39 +127,37 @@ int mc_cli_run(int argc, char **argv)
     const char *sets[MAX_SETS];
     int nsets = 0;
     for (int k = 0; k < argc; k++) {
+        if (mc_cli_is_help(argv[k])) {
+            fputs(run_help, stdout);
+            return 0;
+        }
         if (!strcmp(argv[k], "--out") && k + 1 < argc) {
             out = argv[++k];
         } else if (!strcmp(argv[k], "--set") && k + 1 < argc) {
-            if (nsets == MAX_SETS) {
-                fprintf(stderr, "microcontact: error: more than %d --set options\n", MAX_SETS);
+            if (add_set(sets, &nsets, argv[++k]))
                 return 2;
-            }
-            sets[nsets++] = argv[++k];
         } else if (!strncmp(argv[k], "--set=", 6)) {
-            if (nsets == MAX_SETS) {
-                fprintf(stderr, "microcontact: error: more than %d --set options\n", MAX_SETS);
+            if (add_set(sets, &nsets, argv[k] + 6))
                 return 2;
-            }
-            sets[nsets++] = argv[k] + 6;
         } else if (!strncmp(argv[k], "--out=", 6)) {
             out = argv[k] + 6;
         } else if (argv[k][0] == '-') {
-            fprintf(stderr, "microcontact run: unknown or incomplete option '%s'\n"
-                            "usage: microcontact run CASE.ini [--out DIR] [--set section.key=value]...\n",
-                    argv[k]);
-            return 2;
+            return usage_error("unknown or incomplete option", argv[k], NULL);
         } else if (!case_path) {
             case_path = argv[k];
         } else {
-            fprintf(stderr, "microcontact run: one case file only (got '%s' and '%s')\n",
-                    case_path, argv[k]);
-            return 2;
+            return usage_error("one case file only", case_path, argv[k]);
         }
     }
     if (!case_path) {
-        fprintf(stderr, "usage: microcontact run CASE.ini [--out DIR] [--set section.key=value]...\n");
+        fprintf(stderr, "%s\n", MC_USAGE_RUN);
         return 2;
     }
+    /* a log of a run that is killed shows every stage that ended */
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    mc_cli_signals_start(); /* on failure signals keep their default action: nothing is lost
+                             * but the staging area of an interrupted commit */
+
     static mc_scene scene;
     mc_error err = {0};
     if (mc_case_load(case_path, nsets, sets, &scene, &err) != MC_OK)
@@ -114,22 +173,48 @@ int mc_cli_run(int argc, char **argv)
     } else if (mc_scene_output_dir(&scene, dir, sizeof dir, &err) != MC_OK) {
         return fail(&err);
     }
-    if (mc_output_prepare(dir, &err) != MC_OK)
+    static mc_outdir od;
+    if (mc_output_open(&od, dir, &err) != MC_OK) {
+        mc_output_close(&od);
         return fail(&err);
+    }
 
     mc_results res;
     int rc = mc_pipeline_run(&scene, &res, &err);
     if (rc != MC_OK && rc != MC_NOT_CONVERGED) {
         mc_results_free(&res);
-        return fail(&err);
+        mc_output_close(&od);
+        return fail_case(case_path, &err);
     }
+    print_solve(&res);
+    printf("  writing results to %s/\n", dir);
     mc_error werr = {0};
-    if (mc_output_write(dir, &scene, &res, &werr) != MC_OK) {
+    int wrc = mc_output_commit(&od, &scene, &res, &werr);
+    if (wrc == MC_ERR_INTERRUPTED) {
+        int sig = mc_cli_signal_caught();
+        fprintf(stderr,
+                "microcontact: stopped by %s while writing results: the partial files are "
+                "removed, '%s' is as it was\n",
+                signal_name(sig), dir);
         mc_results_free(&res);
+        mc_output_close(&od);
+        if (sig)
+            mc_cli_signal_exit(sig);
+        return mc_status_exit_code(MC_ERR_INTERRUPTED);
+    }
+    if (wrc != MC_OK) {
+        mc_results_free(&res);
+        mc_output_close(&od);
         return fail(&werr);
     }
-    print_summary(dir, &res);
+    printf("  results in %s/ (summary.json, pressure.npy, gap.npy, displacement.npy, "
+           "topography.npy, profile_x.csv%s)\n",
+           dir, res.nlayers > 0 ? ", von_mises.npy, stress_*.npy, axis.csv, depths.csv" : "");
     mc_results_free(&res);
+    mc_output_close(&od);
+    int sig = mc_cli_signal_caught();
+    if (sig) /* it came during the final renames: the results are complete */
+        mc_cli_signal_exit(sig);
     if (rc == MC_NOT_CONVERGED) {
         fprintf(stderr, "microcontact: %s\n", err.msg);
         return 1;

@@ -3,18 +3,23 @@
  *   microcontact run CASE.ini [--out DIR] [--set section.key=value]...
  *   microcontact verify [SUITE...] [--fast] [--reports DIR] [--list]
  *   microcontact bench [--quick] [--reports DIR]
- *   microcontact keys        the case-file reference (Markdown)
+ *   microcontact keys [SECTION]
  *   microcontact help | --help | --version
+ * Every command takes -h/--help (usage on stdout, exit 0) and refuses arguments it does not
+ * know with its usage on stderr (exit 2). Exit statuses: see MC_EXIT_STATUS_HELP in cli.h.
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/alloc.h"
-#include "case/case.h"
 #include "cli/cli.h"
 
 #define MC_VERSION "0.1.0"
+
+int mc_cli_is_help(const char *s)
+{
+    return !strcmp(s, "-h") || !strcmp(s, "--help");
+}
 
 static void usage(FILE *f)
 {
@@ -23,29 +28,29 @@ static void usage(FILE *f)
             "usage:\n"
             "  microcontact run CASE.ini [--out DIR] [--set section.key=value]...\n"
             "        solve the scene of CASE.ini; results (summary.json, *.npy, *.csv) go to DIR\n"
-            "        (default: [output] dir of the case, else out/<case name>)\n"
+            "        (default: [output] dir of the case, else out/<case name>); one run per\n"
+            "        output directory at a time\n"
             "  microcontact verify [SUITE...] [--fast] [--reports DIR] [--list]\n"
             "        run verification suites (all by default); reports in DIR/<suite>/report.md\n"
             "  microcontact bench [--quick] [--reports DIR]\n"
             "        benchmark report in DIR/bench/report.md\n"
-            "  microcontact keys\n"
-            "        print the case-file reference (also in docs/case-format.md)\n"
+            "  microcontact keys [SECTION]\n"
+            "        print the case-file reference (also in docs/case-format.md), or one section\n"
             "  microcontact help | --help | --version\n\n"
-            "exit status: 0 success, 1 solver failure (e.g. not converged), 2 bad input\n"
+            "microcontact COMMAND --help describes a command.\n\n"
+            "%s\n"
             "case-file reference: docs/case-format.md or `microcontact keys`\n",
-            MC_VERSION);
+            MC_VERSION, MC_EXIT_STATUS_HELP);
 }
 
-static int cmd_keys(void)
+/* help and --version take no argument */
+static int no_arguments(int argc, char **argv)
 {
-    char *md = mc_case_reference_markdown();
-    if (!md) {
-        fprintf(stderr, "microcontact: out of memory\n");
-        return 1;
-    }
-    fputs(md, stdout);
-    mc_free(md);
-    return 0;
+    if (argc <= 2)
+        return 0;
+    fprintf(stderr, "microcontact %s: unexpected argument '%s'\n\n", argv[1], argv[2]);
+    usage(stderr);
+    return 2;
 }
 
 int main(int argc, char **argv)
@@ -55,11 +60,15 @@ int main(int argc, char **argv)
         return 2;
     }
     const char *cmd = argv[1];
-    if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) {
+    if (!strcmp(cmd, "help") || mc_cli_is_help(cmd)) {
+        if (no_arguments(argc, argv))
+            return 2;
         usage(stdout);
         return 0;
     }
     if (!strcmp(cmd, "--version") || !strcmp(cmd, "version")) {
+        if (no_arguments(argc, argv))
+            return 2;
         printf("microcontact %s\n", MC_VERSION);
         return 0;
     }
@@ -70,7 +79,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "bench"))
         return mc_cli_bench(argc - 2, argv + 2);
     if (!strcmp(cmd, "keys"))
-        return cmd_keys();
+        return mc_cli_keys(argc - 2, argv + 2);
     fprintf(stderr, "microcontact: unknown command '%s'\n\n", cmd);
     usage(stderr);
     return 2;

@@ -52,7 +52,7 @@ long mc_contact_last_coarse_applies(const mc_contact_solver *s)
     return n;
 }
 
-/* ---- nested start: restriction to, and prolongation from, a 2:1 coarser grid ------------- */
+/* ---- coarse start: restriction to, and prolongation from, a 2:1 coarser grid ------------- */
 
 static int coarsen_factor(int n, int periodic)
 {
@@ -169,13 +169,13 @@ int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_
     s->n = n;
     s->A = mc_grid_cell_area(g);
     s->opt = *opt;
-    /* plow, capq and tmp (K p_lower) are allocated by the first solve that needs them */
-    double **arrays[] = {&s->htil, &s->q, &s->u, &s->r, &s->z, &s->d, &s->w};
+    /* plow, capq and ulow (K p_lower) are allocated by the first solve that needs them */
+    double **arrays[] = {&s->htil, &s->q, &s->u, &s->gap, &s->z, &s->dir, &s->kdir};
     int ok = 1;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         ok &= (*arrays[k] = mc_zeros(n)) != NULL;
-    ok &= (s->mask = mc_calloc(n, 1)) != NULL;
-    ok &= (s->mask_old = mc_calloc(n, 1)) != NULL;
+    ok &= (s->free_set = mc_calloc(n, 1)) != NULL;
+    ok &= (s->free_prev = mc_calloc(n, 1)) != NULL;
     if (!ok) {
         mc_contact_destroy(&s);
         return mc_fail(err, MC_ERR_NOMEM, "contact solver: out of memory for %zu cells", n);
@@ -200,12 +200,12 @@ void mc_contact_destroy(mc_contact_solver **sp)
     if (!sp || !*sp)
         return;
     mc_contact_solver *s = *sp;
-    double *arrays[] = {s->htil, s->plow, s->capq, s->q,   s->u,     s->r,
-                        s->z,    s->d,    s->w,    s->tmp, s->dense, s->factor};
+    double *arrays[] = {s->htil, s->plow, s->capq, s->q,    s->u,     s->gap,
+                        s->z,    s->dir,  s->kdir, s->ulow, s->dense, s->factor};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         mc_free(arrays[k]);
-    mc_free(s->mask);
-    mc_free(s->mask_old);
+    mc_free(s->free_set);
+    mc_free(s->free_prev);
     mc_free(s->map);
     mc_free(s->coarse_h);
     mc_free(s->coarse_low);
@@ -271,8 +271,8 @@ static int check_problem(const mc_contact_solver *s, const mc_contact_problem *p
     if (!p->h)
         return mc_fail(err, MC_ERR_INPUT, "contact: no topography given");
     if (!(p->p_lub >= 0 && isfinite(p->p_lub)))
-        return mc_fail(err, MC_ERR_INPUT, "contact: lubricant pressure %g Pa must be finite and >= 0",
-                       p->p_lub);
+        return mc_fail(err, MC_ERR_INPUT,
+                       "contact: lubricant pressure %g Pa must be finite and >= 0", p->p_lub);
     if (p->control == MC_CONTROL_FORCE && !(p->load > 0 && isfinite(p->load)))
         return mc_fail(err, MC_ERR_INPUT, "contact: load %g N must be finite and > 0", p->load);
     if (p->control == MC_CONTROL_APPROACH && !isfinite(p->approach))
@@ -293,7 +293,8 @@ static int check_problem(const mc_contact_solver *s, const mc_contact_problem *p
         double hi = p->p_upper ? p->p_upper[i] : p->p_cap;
         if (!(hi > lo))
             return mc_fail(err, MC_ERR_INPUT,
-                           "contact: pressure cap %g Pa must exceed the lower bound %g Pa (cell %zu)",
+                           "contact: pressure cap %g Pa must exceed the lower bound %g Pa (cell "
+                           "%zu)",
                            hi, lo, i);
     }
     /* Periodic in x and y the displacement has zero mean (operator.h: K 1 = 0), so the mean gap
@@ -355,14 +356,14 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
     int rc = check_problem(s, prob, err);
     if (rc != MC_OK)
         return rc;
-    mc_contact_problem nested = *prob;
+    mc_contact_problem started = *prob; /* with the coarse start as its warm start */
     const mc_contact_problem *p = prob;
     if (s->coarse && !prob->p_start) {
         rc = coarse_start(s, prob, err);
         if (rc != MC_OK)
             return rc;
-        nested.p_start = s->z;
-        p = &nested;
+        started.p_start = s->z;
+        p = &started;
     }
 
     /* shift to the excess pressure: the lubricant pressure loads the half-space too */
@@ -370,10 +371,11 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
     for (size_t i = 0; p->p_lower && i < n && !any_lower; i++)
         any_lower = p->p_lower[i] != 0;
     int capped = p->p_upper || isfinite(p->p_cap);
-    if ((any_lower && ((!s->plow && !(s->plow = mc_zeros(n))) || (!s->tmp && !(s->tmp = mc_zeros(n))))) ||
+    if ((any_lower && ((!s->plow && !(s->plow = mc_zeros(n))) ||
+                       (!s->ulow && !(s->ulow = mc_zeros(n))))) ||
         (capped && !s->capq && !(s->capq = mc_zeros(n))))
-        return mc_fail(err, MC_ERR_NOMEM, "contact solver: out of memory for the bounds of %zu cells",
-                       n);
+        return mc_fail(err, MC_ERR_NOMEM,
+                       "contact solver: out of memory for the bounds of %zu cells", n);
     s->plow_on = any_lower;
     double lower_sum = 0;
     if (any_lower) {
@@ -381,10 +383,10 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
             s->plow[i] = p->p_lower ? p->p_lower[i] : p->p_lub;
             lower_sum += s->plow[i];
         }
-        mc_contact_apply(s, s->plow, s->tmp);
+        mc_contact_apply(s, s->plow, s->ulow);
     }
     for (size_t i = 0; i < n; i++)
-        s->htil[i] = p->h[i] + (p->h_extra ? p->h_extra[i] : 0.0) + (any_lower ? s->tmp[i] : 0.0);
+        s->htil[i] = p->h[i] + (p->h_extra ? p->h_extra[i] : 0.0) + (any_lower ? s->ulow[i] : 0.0);
     /* work relative to the lowest point: the gap h~ + u - delta then never cancels a large
      * offset (a 1 m datum under micrometre deformations kept the residual at 1e-7) */
     double hshift = INFINITY, hmax = -INFINITY;
@@ -394,8 +396,8 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
         s->htil[i] -= hshift;
         hmax = fmax(hmax, s->htil[i]);
     }
-    /* s->tmp keeps K p_lower until the end */
-    const double *ulow = any_lower ? s->tmp : NULL;
+    /* s->ulow keeps K p_lower until the end */
+    const double *ulow = any_lower ? s->ulow : NULL;
     const double *plow = any_lower ? s->plow : NULL;
     if (capped)
         for (size_t i = 0; i < n; i++)
@@ -427,8 +429,8 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
                 capacity += s->capq[i];
             if (s->A * capacity <= qp.W)
                 return mc_fail(err, MC_ERR_INPUT,
-                               "contact: the load %g N exceeds what the whole grid can carry at the "
-                               "pressure cap (%g N)",
+                               "contact: the load %g N exceeds what the whole grid can carry at "
+                               "the pressure cap (%g N)",
                                p->load, p->load - qp.W + s->A * capacity);
         }
         start_value(s, p, &qp, q);
@@ -484,7 +486,7 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
     sum->residual = res.residual;
     sum->converged = res.converged;
     sum->solver = methods[method].name;
-    sum->op = mc_operator_backend(s->K);
+    sum->backend = mc_operator_backend(s->K);
     sum->capped_cells = (int)ncap;
     if (!res.converged && rc == MC_OK)
         rc = MC_NOT_CONVERGED;

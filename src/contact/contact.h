@@ -26,9 +26,9 @@
  *   active-set - the paper's algorithm (Mevissen et al. 2025, Fig. 3-1): dense influence matrix,
  *                GSL Cholesky solve of the free cells with the load equation eliminated by
  *                superposition (K + c 11' on periodic grids, where K alone is singular or
- *                indefinite; the load fixes the sum, c leaves the pressure unchanged), cells with p < p_lower
- *                leave, penetrating cells re-enter (plastic-lubrication.md 5); O(N^3): refused
- *                above MC_ACTIVE_SET_MAX_CELLS.
+ *                indefinite; the load fixes the sum, c leaves the pressure unchanged), cells
+ *                with p < p_lower leave, penetrating cells re-enter (plastic-lubrication.md 5);
+ *                O(N^3): refused above MC_ACTIVE_SET_MAX_CELLS.
  *
  * Restriction (cg): when the contact found by the start (coarse solution or warm start) has a
  * bounding box of at most MC_BOX_FRACTION of the grid, the solve runs on that box (plus a margin)
@@ -75,7 +75,7 @@ typedef struct {
     double residual;      /* final value of the stopping measure (see contact.h) */
     int converged;
     const char *solver;   /* "cg", "pk", "active-set" or "prescribed" */
-    mc_backend op;
+    mc_backend backend;   /* the operator's backend */
     int capped_cells;     /* cells at the pressure cap */
 } mc_contact_summary;
 
@@ -131,7 +131,7 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
 void mc_contact_destroy(mc_contact_solver **s);
 
 /* Operator applications of the last solve on this grid, and on all coarser grids of the
- * nested start (for benchmarks). */
+ * coarse start (for benchmarks). */
 long mc_contact_last_applies(const mc_contact_solver *s);
 long mc_contact_last_coarse_applies(const mc_contact_solver *s);
 

@@ -1,5 +1,5 @@
 /* contact_active.c - the paper's reference solver (Mevissen et al. 2025, Fig. 3-1): a dense
- * influence matrix and direct solves on the set C of free cells.
+ * influence matrix and Cholesky solves on the set C of free cells.
  *
  *   1. C = all cells.
  *   2. Solve K_CC q_C = delta 1 - h~_C - K_CU cap_U, with A sum(q) = W for force control (the
@@ -34,14 +34,13 @@ int mc_contact_active_set_prepare(mc_contact_solver *s, mc_error *err)
     if (!mc_size_mul(n, n, &nn) || !(s->dense = mc_malloc(nn * sizeof(double))) ||
         !(s->factor = mc_malloc(nn * sizeof(double))) || !(s->map = mc_malloc(n * sizeof(size_t))))
         return mc_fail(err, MC_ERR_NOMEM, "active-set: out of memory for a %zu x %zu matrix", n, n);
-    /* column j = K e_j; K is symmetric, so rows equal columns */
-    if (!s->tmp && !(s->tmp = mc_zeros(n)))
-        return mc_fail(err, MC_ERR_NOMEM, "active-set: out of memory");
-    memset(s->tmp, 0, n * sizeof *s->tmp);
+    /* column j = K e_j (e_j in the scratch z); K is symmetric, so rows equal columns */
+    double *e = s->z;
+    memset(e, 0, n * sizeof *e);
     for (size_t j = 0; j < n; j++) {
-        s->tmp[j] = 1.0;
-        mc_operator_apply(s->K, s->tmp, s->dense + j * n);
-        s->tmp[j] = 0.0;
+        e[j] = 1.0;
+        mc_operator_apply(s->K, e, s->dense + j * n);
+        e[j] = 0.0;
     }
     return MC_OK;
 }
@@ -52,7 +51,7 @@ static int solve_free(mc_contact_solver *s, const mc_qproblem *qp, const unsigne
 {
     const size_t n = s->n;
     size_t m = 0, *map = s->map;
-    double *x1 = s->r, *x2 = s->z;
+    double *x1 = s->gap, *x2 = s->z; /* scratch */
     for (size_t i = 0; i < n; i++)
         if (state[i] == AT_FREE)
             map[m++] = i;
@@ -161,7 +160,7 @@ int mc_contact_active_set(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_q
                           mc_error *err)
 {
     const size_t n = s->n;
-    unsigned char *state = s->mask;
+    unsigned char *state = s->free_set; /* AT_FREE, AT_LOWER or AT_CAP */
     double delta = qp->delta;
     mc_gsl_quiet();
     memset(state, AT_FREE, n);

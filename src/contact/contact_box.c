@@ -6,57 +6,22 @@
 
 #include "core/alloc.h"
 #include "contact/contact_internal.h"
+#include "operator/box.h"
 
 #define BOX_ROUNDS 4
 
-typedef struct {
-    int i0, j0, nx, ny;
-} box_t;
+#define BOX_MARGIN 4 /* cells at least, each side */
 
-/* Widen [lo, hi] by a margin (an eighth of its width, at least 4 cells) within 0..n-1; a periodic
- * axis always keeps its full length (the box must keep the period). */
-static void widen(int lo, int hi, int n, int periodic, int *start, int *len)
+/* The box around the cells flagged in mark, widened by the solvers' margin, and never smaller
+ * than prev when given; 0 if no cell is flagged. */
+static int box_of(const mc_contact_solver *s, const unsigned char *mark, const mc_box *prev,
+                  mc_box *b)
 {
-    if (periodic) {
-        *start = 0;
-        *len = n;
-        return;
-    }
-    int m = (hi - lo + 1) / 8;
-    if (m < 4)
-        m = 4;
-    lo = lo - m < 0 ? 0 : lo - m;
-    hi = hi + m > n - 1 ? n - 1 : hi + m;
-    *start = lo;
-    *len = hi - lo + 1;
-}
-
-/* Box around the cells flagged in mark (plus the previous box when given); 0 if none. */
-static int box_of(const mc_contact_solver *s, const unsigned char *mark, const box_t *prev,
-                  box_t *b)
-{
-    const int nx = s->g.nx, ny = s->g.ny;
-    int ilo = nx, ihi = -1, jlo = ny, jhi = -1;
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++)
-            if (mark[(size_t)j * nx + i]) {
-                ilo = i < ilo ? i : ilo;
-                ihi = i > ihi ? i : ihi;
-                jlo = j < jlo ? j : jlo;
-                jhi = j > jhi ? j : jhi;
-            }
-    if (ihi < 0)
+    if (!mc_box_bound(&s->g, mark, NULL, b))
         return 0;
-    widen(ilo, ihi, nx, s->g.periodic_x, &b->i0, &b->nx);
-    widen(jlo, jhi, ny, s->g.periodic_y, &b->j0, &b->ny);
-    if (prev) { /* never shrink while widening */
-        int i1 = b->i0 + b->nx, j1 = b->j0 + b->ny;
-        int pi1 = prev->i0 + prev->nx, pj1 = prev->j0 + prev->ny;
-        b->i0 = b->i0 < prev->i0 ? b->i0 : prev->i0;
-        b->j0 = b->j0 < prev->j0 ? b->j0 : prev->j0;
-        b->nx = (i1 > pi1 ? i1 : pi1) - b->i0;
-        b->ny = (j1 > pj1 ? j1 : pj1) - b->j0;
-    }
+    mc_box_widen(&s->g, mc_box_margin(b->nx, BOX_MARGIN), mc_box_margin(b->ny, BOX_MARGIN), b);
+    if (prev) /* never shrink while widening */
+        *b = mc_box_union(b, prev);
     return 1;
 }
 
@@ -72,7 +37,7 @@ static void free_box(mc_contact_solver *s)
 }
 
 /* A box solver of the box's size (kept while the size stays). */
-static int ensure_box(mc_contact_solver *s, const box_t *b, mc_error *err)
+static int ensure_box(mc_contact_solver *s, const mc_box *b, mc_error *err)
 {
     if (s->box && s->bnx == b->nx && s->bny == b->ny)
         return MC_OK;
@@ -104,15 +69,15 @@ int mc_contact_box_solve(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qr
 {
     const size_t n = s->n;
     const int nx = s->g.nx;
-    unsigned char *mark = s->mask_old;
+    unsigned char *mark = s->free_prev; /* scratch until the method runs */
     *handled = 0;
     s->box_cells = s->box_applies = 0;
     if (s->opt.method != MC_METHOD_CG || s->opt.no_box || !(s->opt.estar > 0))
         return MC_OK;
     for (size_t i = 0; i < n; i++)
         mark[i] = q[i] > 0;
-    box_t b;
-    if (!box_of(s, mark, NULL, &b) || (double)b.nx * b.ny > MC_BOX_FRACTION * (double)n)
+    mc_box b;
+    if (!box_of(s, mark, NULL, &b) || (double)mc_box_cells(&b) > MC_BOX_FRACTION * (double)n)
         return MC_OK;
     int iters = 0;
     for (int round = 0; round < BOX_ROUNDS; round++) {
@@ -157,16 +122,16 @@ int mc_contact_box_solve(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qr
                 outside |= mark[f];
             }
         if (!outside) {
-            s->box_cells = (long)b.nx * b.ny;
+            s->box_cells = mc_box_cells(&b);
             res->iterations = iters;
             res->residual = mc_contact_residual(s, qp, q, s->u, qp->delta);
             res->converged = res->residual <= s->opt.tolerance;
             *handled = 1;
             return res->converged ? MC_OK : MC_NOT_CONVERGED;
         }
-        box_t wider;
+        mc_box wider;
         if (!box_of(s, mark, &b, &wider) ||
-            (double)wider.nx * wider.ny > MC_BOX_FRACTION * (double)n)
+            (double)mc_box_cells(&wider) > MC_BOX_FRACTION * (double)n)
             break; /* q is now a good warm start for the full-grid solve */
         b = wider;
     }

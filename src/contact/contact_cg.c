@@ -4,11 +4,12 @@
  * One solve minimises the complementary energy 1/2 q'Kq + q'(h~ - delta) over 0 <= q <= cap,
  * under force control with the load as a linear constraint (delta is its multiplier). Each
  * iteration: free set S (cells strictly inside their bounds, plus bound cells whose gradient
- * points inwards), preconditioned residual z = P M P r on S (P: zero-mean projection that keeps
- * the load; M: precond.h), conjugate direction (restarted when S changes by more than
- * RESTART_FRAC, or when it stops being a descent direction), exact step, projection
- * onto the bounds. One operator application per iteration, plus one after an iteration that
- * clipped (u = K q is recomputed then, and before convergence is declared).
+ * points inwards), the gradient g = gap on S, preconditioned z = P M P g (P: zero-mean projection
+ * that keeps the load; M: precond.h), conjugate direction d (restarted when S changes by more than
+ * RESTART_FRAC, or when it stops being a descent direction), exact step along d, projection
+ * onto the bounds. One operator application per iteration (K d), plus one after an iteration that
+ * clipped (u = K q is recomputed then, and before convergence is declared). The buffers are named
+ * as in contact_internal.h, and as in the other methods.
  */
 #include <math.h>
 #include <string.h>
@@ -58,20 +59,20 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
     const size_t n = s->n;
     const int force = qp->control == MC_CONTROL_FORCE;
     const double *cap = qp->cap;
-    double *u = s->u, *r = s->r, *z = s->z, *d = s->d, *w = s->w;
-    unsigned char *S = s->mask, *S_old = s->mask_old;
-    double rz_old = 1, delta = qp->delta;
+    double *u = s->u, *g = s->gap, *z = s->z, *d = s->dir, *Kd = s->kdir;
+    unsigned char *S = s->free_set, *S_prev = s->free_prev;
+    double gz_old = 1, delta = qp->delta;
     int restart = 1, fresh = 0, it = 0, rc = MC_OK;
 
     mc_contact_apply(s, q, u);
     fresh = 1;
-    memset(S_old, 0, n);
+    memset(S_prev, 0, n);
     res->converged = 0;
     for (;;) {
         if (force)
             delta = force_delta(s, qp, q);
         for (size_t i = 0; i < n; i++)
-            r[i] = qp->h[i] + u[i] - delta;
+            g[i] = qp->h[i] + u[i] - delta;
         res->residual = mc_contact_residual(s, qp, q, u, delta);
         if (res->residual <= s->opt.tolerance) {
             if (fresh) {
@@ -89,10 +90,9 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         size_t m = 0, nchanged = 0;
         for (size_t i = 0; i < n; i++) {
             double c = cap ? cap[i] : INFINITY;
-            unsigned char free_ = (q[i] > 0 && q[i] < c) || (q[i] <= 0 && r[i] < 0) ||
-                                  (q[i] >= c && r[i] > 0);
+            unsigned char free_ = mc_contact_free(q[i], c, g[i]);
             S[i] = free_;
-            nchanged += free_ != S_old[i];
+            nchanged += free_ != S_prev[i];
             m += free_;
         }
         int changed = nchanged > 0;
@@ -102,39 +102,39 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
             rc = mc_precond_set_mask(s->pc, S, err);
             if (rc != MC_OK)
                 return rc;
-            memcpy(S_old, S, n);
+            memcpy(S_prev, S, n);
             if ((double)nchanged > RESTART_FRAC * (double)m)
                 restart = 1;
         }
-        if (force) { /* P r: directions must keep sum(q) */
-            double mr = mean_on(r, S, n);
+        if (force) { /* P g: directions must keep sum(q) */
+            double mg = mean_on(g, S, n);
             for (size_t i = 0; i < n; i++)
-                r[i] = S[i] ? r[i] - mr : 0.0;
+                g[i] = S[i] ? g[i] - mg : 0.0;
         } else {
             for (size_t i = 0; i < n; i++)
                 if (!S[i])
-                    r[i] = 0.0;
+                    g[i] = 0.0;
         }
-        mc_precond_apply(s->pc, S, r, z);
+        mc_precond_apply(s->pc, S, g, z);
         if (force) {
             double mz = mean_on(z, S, n);
             for (size_t i = 0; i < n; i++)
                 if (S[i])
                     z[i] -= mz;
         }
-        double rz = 0;
+        double gz = 0;
         for (size_t i = 0; i < n; i++)
-            rz += r[i] * z[i];
-        if (!(rz > 0)) { /* M lost definiteness on this set (round-off): steepest descent */
-            memcpy(z, r, n * sizeof *z);
-            rz = 0;
+            gz += g[i] * z[i];
+        if (!(gz > 0)) { /* M lost definiteness on this set (round-off): steepest descent */
+            memcpy(z, g, n * sizeof *z);
+            gz = 0;
             for (size_t i = 0; i < n; i++)
-                rz += r[i] * r[i];
+                gz += g[i] * g[i];
             restart = 1;
-            if (!(rz > 0))
+            if (!(gz > 0))
                 break;
         }
-        double beta = restart ? 0.0 : rz / rz_old, rd = 0;
+        double beta = restart ? 0.0 : gz / gz_old, gd = 0;
         for (size_t i = 0; i < n; i++)
             d[i] = S[i] ? z[i] + beta * d[i] : 0.0;
         if (force && beta != 0.0) { /* the old direction lost cells that left S: keep the load */
@@ -144,20 +144,20 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
                     d[i] -= md;
         }
         for (size_t i = 0; i < n; i++)
-            rd += r[i] * d[i];
-        if (!(rd > 0)) { /* the set changed under the recurrence: not a descent direction */
+            gd += g[i] * d[i];
+        if (!(gd > 0)) { /* the set changed under the recurrence: not a descent direction */
             memcpy(d, z, n * sizeof *d);
-            rd = rz;
+            gd = gz;
         }
-        mc_contact_apply(s, d, w);
+        mc_contact_apply(s, d, Kd);
         double dkd = 0;
         for (size_t i = 0; i < n; i++)
-            dkd += d[i] * w[i];
+            dkd += d[i] * Kd[i];
         if (!(dkd > 0)) {
             rc = mc_fail(err, MC_ERR_NUMERIC, "contact cg: non-positive curvature d'Kd = %g", dkd);
             break;
         }
-        double alpha = rd / dkd;
+        double alpha = gd / dkd;
         int clipped = 0;
         double qsum = 0;
         for (size_t i = 0; i < n; i++) {
@@ -176,11 +176,11 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
             }
             q[i] = v;
             qsum += v;
-            u[i] -= alpha * w[i];
+            u[i] -= alpha * Kd[i];
         }
         for (size_t i = 0; i < n; i++)
             if (!S[i])
-                u[i] -= alpha * w[i];
+                u[i] -= alpha * Kd[i];
         fresh = 0;
         if (clipped) {
             if (force && !cap && qsum > 0) { /* clipping added load: restore the balance */
@@ -192,7 +192,7 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
             fresh = 1;
         }
         restart = 0;
-        rz_old = rz;
+        gz_old = gz;
     }
     if (force)
         qp->delta = delta;

@@ -33,14 +33,21 @@ struct mc_contact_solver {
     size_t n;
     double A; /* cell area, m^2 */
     mc_contact_options opt;
-    /* workspaces, n each, allocated once */
-    double *htil, *q, *u, *r, *z, *d, *w;
-    double *plow, *capq, *tmp; /* lower bound, upper bound of q, K p_lower: on first need */
-    int plow_on;               /* the current solve has a non-zero lower bound in plow */
-    unsigned char *mask, *mask_old;
+    /* workspaces, n each, allocated once; every method (cg, pk, active set) names them alike:
+     *   htil  h~;  q  the excess pressure p - p_lower (the iterate);  u  K q
+     *   gap   g = h~ + u - delta, the gradient of the energy (cg projects it onto the free set)
+     *   z     cg: the preconditioned gradient M g; the active set and the coarse start use it
+     *         as scratch
+     *   dir   the search direction d;  kdir  K d
+     *   free_set   the cells free to move S (the active set keeps AT_FREE / AT_LOWER / AT_CAP)
+     *   free_prev  the free set of the previous iteration (the box solve marks cells in it) */
+    double *htil, *q, *u, *gap, *z, *dir, *kdir;
+    double *plow, *capq, *ulow; /* lower bound, upper bound of q, K p_lower: on first need */
+    int plow_on;                /* the current solve has a non-zero lower bound in plow */
+    unsigned char *free_set, *free_prev;
     mc_precond *pc;
     long applies;
-    /* nested start (cg): the same problem on a 2:1 coarser grid (NULL when not coarsened) */
+    /* coarse start (cg): the same problem on a 2:1 coarser grid (NULL when not coarsened) */
     mc_contact_solver *coarse;
     mc_operator *coarse_op;
     int fx, fy;                    /* coarsening factor per axis (1 or 2) */
@@ -57,6 +64,13 @@ struct mc_contact_solver {
     size_t *map; /* free-cell indices */
 };
 
+/* A cell can move: strictly inside its bounds 0 < q < cap, or at a bound with the gap g pointing
+ * inwards (penetrating at 0, opening at the cap). */
+static inline int mc_contact_free(double q, double cap, double g)
+{
+    return (q > 0 && q < cap) || (q <= 0 && g < 0) || (q >= cap && g > 0);
+}
+
 /* u = K in, counted. */
 void mc_contact_apply(mc_contact_solver *s, const double *in, double *out);
 
@@ -68,7 +82,8 @@ double mc_contact_residual(const mc_contact_solver *s, const mc_qproblem *qp, co
                            const double *u, double delta);
 
 /* Methods: q holds the start on entry (feasible: 0 <= q <= cap) and the solution on exit; s->u
- * holds K q on exit; qp->delta is set for force control. MC_NOT_CONVERGED leaves the last iterate. */
+ * holds K q on exit; qp->delta is set for force control. MC_NOT_CONVERGED leaves the last iterate.
+ * The other workspaces are theirs. */
 int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err);
 int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err);
 int mc_contact_nested(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,

@@ -2,7 +2,9 @@
  * elastic.md 6.2, on the excess pressure (lower bound, 6.3) and with the free-set cap variant
  * (6.4), which falls back to the nested solver when its free set empties. Kept unpreconditioned
  * on purpose: it is the baseline the preconditioned method is measured against. Two operator
- * applications per iteration (K q and K t), as in the original.
+ * applications per iteration (K q and K d), as in the original. The paper's g (gap), t
+ * (direction), I_c (free set) and tau (step) are here g, d, S and alpha, the names of
+ * contact_internal.h shared with the other methods.
  */
 #include <math.h>
 #include <string.h>
@@ -14,10 +16,10 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
     const size_t n = s->n;
     const int force = qp->control == MC_CONTROL_FORCE;
     const double *cap = qp->cap;
-    double *u = s->u, *g = s->r, *t = s->d, *rr = s->w;
-    unsigned char *Ic = s->mask;
+    double *u = s->u, *g = s->gap, *d = s->dir, *Kd = s->kdir;
+    unsigned char *S = s->free_set, *S_prev = s->free_prev;
     double G_old = 1, delta = qp->delta;
-    int cg = 0, it = 0;
+    int restart = 1, it = 0;
 
     if (force && cap) {
         /* elastic.md 6.4: start from the converged uncapped solution */
@@ -32,8 +34,8 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
             if (q[i] > cap[i])
                 q[i] = cap[i];
     }
-    memset(t, 0, n * sizeof *t);
-    memset(s->mask_old, 0, n);
+    memset(d, 0, n * sizeof *d);
+    memset(S_prev, 0, n);
     res->converged = 0;
     for (;;) {
         mc_contact_apply(s, q, u);
@@ -41,8 +43,8 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         double gsum = 0;
         for (size_t i = 0; i < n; i++) {
             g[i] = qp->h[i] + u[i];
-            Ic[i] = q[i] > 0 && (!cap || q[i] < cap[i]);
-            if (Ic[i]) {
+            S[i] = q[i] > 0 && (!cap || q[i] < cap[i]);
+            if (S[i]) {
                 gsum += g[i];
                 m++;
             }
@@ -66,19 +68,19 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
             g[i] -= delta;
         if (!force) {
             /* approach control has no load to rescale with: bound cells whose gradient points
-             * inwards join the CG set directly (projected gradient), restarting CG on change */
+             * inwards join the free set directly (projected gradient), restarting the conjugate
+             * recurrence on change */
             int changed = 0;
             m = 0;
             for (size_t i = 0; i < n; i++) {
                 double c = cap ? cap[i] : INFINITY;
-                unsigned char f = (q[i] > 0 && q[i] < c) || (q[i] <= 0 && g[i] < 0) ||
-                                  (q[i] >= c && g[i] > 0);
-                changed |= f != s->mask_old[i];
-                Ic[i] = s->mask_old[i] = f;
+                unsigned char f = mc_contact_free(q[i], c, g[i]);
+                changed |= f != S_prev[i];
+                S[i] = S_prev[i] = f;
                 m += f;
             }
             if (changed)
-                cg = 0;
+                restart = 1;
         }
         res->residual = mc_contact_residual(s, qp, q, u, delta);
         if (res->residual <= s->opt.tolerance) {
@@ -90,44 +92,44 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         it++;
         double G = 0;
         for (size_t i = 0; i < n; i++)
-            if (Ic[i])
+            if (S[i])
                 G += g[i] * g[i];
-        double beta = cg && G_old > 0 ? G / G_old : 0.0;
+        double beta = !restart && G_old > 0 ? G / G_old : 0.0;
         for (size_t i = 0; i < n; i++)
-            t[i] = Ic[i] ? g[i] + beta * t[i] : 0.0;
+            d[i] = S[i] ? g[i] + beta * d[i] : 0.0;
         G_old = G;
-        mc_contact_apply(s, t, rr);
+        mc_contact_apply(s, d, Kd);
         if (force) {
-            double rm = 0;
+            double mKd = 0;
             for (size_t i = 0; i < n; i++)
-                if (Ic[i])
-                    rm += rr[i];
-            rm /= (double)m;
+                if (S[i])
+                    mKd += Kd[i];
+            mKd /= (double)m;
             for (size_t i = 0; i < n; i++)
-                rr[i] -= rm;
+                Kd[i] -= mKd;
         }
         double num = 0, den = 0;
         for (size_t i = 0; i < n; i++)
-            if (Ic[i]) {
-                num += g[i] * t[i];
-                den += rr[i] * t[i];
+            if (S[i]) {
+                num += g[i] * d[i];
+                den += Kd[i] * d[i];
             }
-        double tau = den != 0 ? num / den : 0.0;
+        double alpha = den != 0 ? num / den : 0.0;
         int overlap = 0;
         for (size_t i = 0; i < n; i++) {
             double c = cap ? cap[i] : INFINITY;
-            if (Ic[i]) {
-                double v = q[i] - tau * t[i];
+            if (S[i]) {
+                double v = q[i] - alpha * d[i];
                 q[i] = v < 0 ? 0 : (v > c ? c : v);
             } else if (q[i] <= 0 && g[i] < 0) { /* penetrating cell at the lower bound */
-                q[i] = fmin(-tau * g[i], c);
+                q[i] = fmin(-alpha * g[i], c);
                 overlap = 1;
             } else if (cap && q[i] >= c && g[i] > 0) { /* capped cell that wants to open */
-                q[i] = fmax(c - tau * g[i], 0.0);
+                q[i] = fmax(c - alpha * g[i], 0.0);
                 overlap = 1;
             }
         }
-        cg = !overlap;
+        restart = overlap;
         if (force) { /* load balance: scale the excess of the uncapped cells */
             double sum_free = 0, sum_cap = 0;
             for (size_t i = 0; i < n; i++) {

@@ -52,6 +52,8 @@ const char *mc_status_name(mc_status code)
     case MC_ERR_NUMERIC: return "numeric";
     case MC_NOT_CONVERGED: return "not-converged";
     case MC_ERR_INTERNAL: return "internal";
+    case MC_ERR_ENV: return "environment";
+    case MC_ERR_INTERRUPTED: return "interrupted";
     }
     return "unknown";
 }
@@ -62,8 +64,10 @@ int mc_status_exit_code(mc_status code)
     case MC_OK: return 0;
     case MC_ERR_INPUT:
     case MC_ERR_IO:
-    case MC_ERR_NOMEM:
     case MC_ERR_LIMIT: return 2;
+    case MC_ERR_NOMEM:
+    case MC_ERR_ENV:
+    case MC_ERR_INTERRUPTED: return 3;
     case MC_ERR_NUMERIC:
     case MC_NOT_CONVERGED:
     case MC_ERR_INTERNAL: return 1;

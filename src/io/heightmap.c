@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "core/alloc.h"
 #include "io/npy.h"
@@ -175,8 +176,16 @@ int mc_heightmap_read(const char *path, int ny, int nx, double **data, mc_error 
         return st;
     double *d = NULL;
     int rows = 0, cols = 0;
+    size_t pl = strlen(path);
+    const int npy_name = pl >= 4 && strcasecmp(path + pl - 4, ".npy") == 0;
     if (len >= 6 && memcmp(buf, "\x93NUMPY", 6) == 0)
         st = mc_npy_parse(buf, len, path, &d, &rows, &cols, err);
+    else if (npy_name) /* named .npy but without the magic: say so, not a text complaint */
+        st = mc_fail(err, MC_ERR_INPUT,
+                     len == 0 ? "%s: not a .npy file (empty, 0 bytes)"
+                              : "%s: not a .npy file (it does not start with the NumPy magic "
+                                "\\x93NUMPY)",
+                     path);
     else
         st = mc_text_matrix_parse((const char *)buf, len, path, &d, &rows, &cols, err);
     mc_free(buf);

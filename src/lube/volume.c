@@ -65,7 +65,7 @@ static double onset_state(eval_ctx *c, double lift)
     sum->approach = hmin - lift;
     sum->converged = 1;
     sum->solver = "full-film";
-    sum->op = mc_operator_backend(c->K);
+    sum->backend = mc_operator_backend(c->K);
     return gap_volume(c->gap, n, c->dA);
 }
 

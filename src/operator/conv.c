@@ -1,33 +1,24 @@
 /* conv.c - the transform engine: one grid, one backend, many kernels (see operator.h).
  * Backends are rows of a table chosen by name; each row owns its workspace in the engine. */
-#include <fftw3.h>
 #include <math.h>
 #include <string.h>
 
 #include "core/alloc.h"
 #include "core/fftsize.h"
 #include "operator/operator.h"
+#include "operator/padfft.h"
 
 /* Below this many values a memory-bound loop is not worth waking the thread team. */
 #define PAR_MIN MC_THREADS_MIN_CELLS
-/* Transforms smaller than this run on one thread (see MC_THREADS_MIN_CELLS). */
-#define FFT_THREADS_MIN MC_THREADS_MIN_CELLS
 
 typedef struct conv_ops conv_ops;
 
 struct mc_conv {
     mc_grid g;
     const conv_ops *ops;
-    int tx, ty;          /* kernel table (and transform) size */
-    size_t speclen;      /* doubles per spectrum */
-    double *rbuf;        /* fft: ty*tx real workspace (the padded field) */
-    fftw_complex *cbuf;  /* fft: ty*(tx/2+1) half spectrum */
-    fftw_plan r2c, c2r;  /* fft: rbuf -> cbuf and back (2-D plans) */
-    /* fft, free y axis: the same transforms pruned of the all-zero padding rows — rows are
-     * transformed only where the field has data (forward) or where output is wanted (inverse),
-     * columns in full: 1/4 fewer butterflies than the 2-D pair, identical results to round-off */
-    int pruned;
-    fftw_plan row_r2c, col_fwd, col_bwd, row_c2r;
+    int tx, ty;     /* kernel table (and transform) size */
+    size_t speclen; /* doubles per spectrum */
+    mc_padfft fft;  /* fft: the padded transforms (2-D pair for tables, pruned for fields) */
 };
 
 struct conv_ops {
@@ -45,123 +36,33 @@ struct conv_ops {
 
 /* ---- fft: DC-FFT (elastic.md 5.1) and cyclic FFT (5.2) ------------------------------------- */
 
-static size_t half_len(const mc_conv *c) { return (size_t)c->ty * (size_t)(c->tx / 2 + 1); }
+static size_t half_len(const mc_conv *c) { return mc_padfft_spectrum_len(&c->fft) / 2; }
 
 static int fft_create(mc_conv *c, mc_error *err)
 {
-    int rc = mc_fftw_prepare(err);
-    if (rc)
-        return rc;
-    size_t nr, nc = half_len(c);
-    if (!mc_size_mul((size_t)c->tx, (size_t)c->ty, &nr) ||
-        !(c->rbuf = mc_malloc(nr * sizeof *c->rbuf)) ||
-        !(c->cbuf = mc_malloc(nc * sizeof *c->cbuf)))
-        return mc_fail(err, MC_ERR_NOMEM, "fft engine %d x %d: out of memory", c->tx, c->ty);
-    if ((size_t)c->tx * c->ty < FFT_THREADS_MIN)
-        fftw_plan_with_nthreads(1);
-    /* row-major (ty, tx) with x fastest; ESTIMATE: no trial runs, the same plan every time */
-    c->r2c = fftw_plan_dft_r2c_2d(c->ty, c->tx, c->rbuf, c->cbuf, FFTW_ESTIMATE);
-    c->c2r = fftw_plan_dft_c2r_2d(c->ty, c->tx, c->cbuf, c->rbuf, FFTW_ESTIMATE);
-    if (!c->r2c || !c->c2r)
-        return mc_fail(err, MC_ERR_NOMEM, "fft engine: FFTW could not plan %d x %d", c->tx, c->ty);
-    c->pruned = c->ty > c->g.ny;
-    if (c->pruned) {
-        const int hx = c->tx / 2 + 1, ny = c->g.ny;
-        int nrow[1] = {c->tx}, ncol[1] = {c->ty};
-        c->row_r2c = fftw_plan_many_dft_r2c(1, nrow, ny, c->rbuf, NULL, 1, c->tx, c->cbuf, NULL, 1,
-                                            hx, FFTW_ESTIMATE);
-        c->row_c2r = fftw_plan_many_dft_c2r(1, nrow, ny, c->cbuf, NULL, 1, hx, c->rbuf, NULL, 1,
-                                            c->tx, FFTW_ESTIMATE);
-        c->col_fwd = fftw_plan_many_dft(1, ncol, hx, c->cbuf, NULL, hx, 1, c->cbuf, NULL, hx, 1,
-                                        FFTW_FORWARD, FFTW_ESTIMATE);
-        c->col_bwd = fftw_plan_many_dft(1, ncol, hx, c->cbuf, NULL, hx, 1, c->cbuf, NULL, hx, 1,
-                                        FFTW_BACKWARD, FFTW_ESTIMATE);
-        if (!c->row_r2c || !c->row_c2r || !c->col_fwd || !c->col_bwd)
-            return mc_fail(err, MC_ERR_NOMEM, "fft engine: FFTW could not plan the pruned %d x %d",
-                           c->tx, c->ty);
-    }
-    c->speclen = 2 * nc;
-    return MC_OK;
+    int rc = mc_padfft_create(&c->fft, c->g.nx, c->g.ny, c->tx, c->ty, 1, err);
+    if (rc == MC_OK)
+        c->speclen = mc_padfft_spectrum_len(&c->fft);
+    return rc;
 }
 
-static void fft_destroy(mc_conv *c)
-{
-    fftw_plan plans[] = {c->r2c, c->c2r, c->row_r2c, c->row_c2r, c->col_fwd, c->col_bwd};
-    for (size_t k = 0; k < sizeof plans / sizeof plans[0]; k++)
-        if (plans[k])
-            fftw_destroy_plan(plans[k]);
-    mc_free(c->rbuf);
-    mc_free(c->cbuf);
-}
+static void fft_destroy(mc_conv *c) { mc_padfft_destroy(&c->fft); }
 
 static void fft_kernel(mc_conv *c, const double *table, double *kspec)
 {
     const size_t nc = half_len(c);
     const double scale = 1.0 / ((double)c->tx * (double)c->ty); /* FFTW does not normalise */
-    memcpy(c->rbuf, table, (size_t)c->tx * (size_t)c->ty * sizeof *table);
-    fftw_execute(c->r2c);
-    const double *s = (const double *)c->cbuf;
+    mc_padfft_table(&c->fft, table);
+    const double *s = (const double *)c->fft.cbuf;
     for (size_t q = 0; q < 2 * nc; q++)
         kspec[q] = scale * s[q];
 }
 
-/* The zero-padded field into rbuf (the padding is rewritten each time: c2r leaves it dirty);
- * the pruned transform reads only the first ny rows. */
-static void fft_fill(mc_conv *c, const double *field)
-{
-    const int nx = c->g.nx, ny = c->g.ny, tx = c->tx, ty = c->pruned ? c->g.ny : c->ty;
-    double *r = c->rbuf;
-#pragma omp parallel for schedule(static) if ((size_t)tx * ty > PAR_MIN)
-    for (int j = 0; j < ty; j++) {
-        double *row = r + (size_t)j * tx;
-        if (j < ny) {
-            memcpy(row, field + (size_t)j * nx, (size_t)nx * sizeof *row);
-            memset(row + nx, 0, (size_t)(tx - nx) * sizeof *row);
-        } else {
-            memset(row, 0, (size_t)tx * sizeof *row);
-        }
-    }
-}
-
-/* The first ny rows and nx columns of rbuf into out. */
-static void fft_crop(mc_conv *c, double *out)
-{
-    const int nx = c->g.nx, ny = c->g.ny, tx = c->tx;
-#pragma omp parallel for schedule(static) if ((size_t)nx * ny > PAR_MIN)
-    for (int j = 0; j < ny; j++)
-        memcpy(out + (size_t)j * nx, c->rbuf + (size_t)j * tx, (size_t)nx * sizeof *out);
-}
-
-/* rbuf (field rows) -> cbuf (half spectrum) */
-static void fft_forward(mc_conv *c)
-{
-    if (!c->pruned) {
-        fftw_execute(c->r2c);
-        return;
-    }
-    const size_t hx = (size_t)(c->tx / 2 + 1);
-    fftw_execute(c->row_r2c);
-    memset(c->cbuf + (size_t)c->g.ny * hx, 0, (size_t)(c->ty - c->g.ny) * hx * sizeof *c->cbuf);
-    fftw_execute(c->col_fwd);
-}
-
-/* cbuf -> rbuf (at least the first ny rows); destroys cbuf */
-static void fft_inverse(mc_conv *c)
-{
-    if (!c->pruned) {
-        fftw_execute(c->c2r);
-        return;
-    }
-    fftw_execute(c->col_bwd);
-    fftw_execute(c->row_c2r);
-}
-
 static void fft_load(mc_conv *c, const double *field, double *lspec)
 {
-    fft_fill(c, field);
-    fft_forward(c);
+    mc_padfft_forward(&c->fft, field, c->fft.cbuf);
     const long n = 2 * (long)half_len(c);
-    const double *s = (const double *)c->cbuf;
+    const double *s = (const double *)c->fft.cbuf;
 #pragma omp parallel for schedule(static) if (n > 2 * PAR_MIN)
     for (long q = 0; q < n; q++)
         lspec[q] = s[q];
@@ -171,7 +72,7 @@ static void fft_apply(mc_conv *c, int nterms, const double *const *kspec,
                       const double *const *lspec, double *out)
 {
     const long nc = (long)half_len(c);
-    double *s = (double *)c->cbuf;
+    double *s = (double *)c->fft.cbuf;
 #pragma omp parallel for schedule(static) if (nc > PAR_MIN)
     for (long q = 0; q < nc; q++) {
         double re = 0.0, im = 0.0;
@@ -184,28 +85,40 @@ static void fft_apply(mc_conv *c, int nterms, const double *const *kspec,
         s[2 * q] = re;
         s[2 * q + 1] = im;
     }
-    fft_inverse(c); /* destroys cbuf: it is ours */
-    fft_crop(c, out);
+    mc_padfft_inverse(&c->fft, out); /* destroys cbuf: it is ours */
 }
 
-/* One kernel, one load, without the intermediate load spectrum: the operator's hot path. */
+/* One kernel, one load, without the intermediate load spectrum: the operator's hot path. The
+ * kernel's spectrum is complex (kspec) or, for an even kernel, its real parts (kre). */
+static void fft_convolve_one(mc_conv *c, const double *kspec, const double *kre,
+                             const double *field, double *out)
+{
+    mc_padfft_forward(&c->fft, field, c->fft.cbuf);
+    const long nc = (long)half_len(c);
+    double *s = (double *)c->fft.cbuf;
+    if (kre) {
+#pragma omp parallel for schedule(static) if (nc > PAR_MIN)
+        for (long q = 0; q < nc; q++) {
+            s[2 * q] *= kre[q];
+            s[2 * q + 1] *= kre[q];
+        }
+    } else {
+#pragma omp parallel for schedule(static) if (nc > PAR_MIN)
+        for (long q = 0; q < nc; q++) {
+            const double kr = kspec[2 * q], ki = kspec[2 * q + 1];
+            const double lr = s[2 * q], li = s[2 * q + 1];
+            s[2 * q] = kr * lr - ki * li;
+            s[2 * q + 1] = kr * li + ki * lr;
+        }
+    }
+    mc_padfft_inverse(&c->fft, out);
+}
+
 static void fft_convolve(mc_conv *c, const double *kspec, const double *field, double *out,
                          double *work)
 {
     (void)work;
-    fft_fill(c, field);
-    fft_forward(c);
-    const long nc = (long)half_len(c);
-    double *s = (double *)c->cbuf;
-#pragma omp parallel for schedule(static) if (nc > PAR_MIN)
-    for (long q = 0; q < nc; q++) {
-        const double kr = kspec[2 * q], ki = kspec[2 * q + 1];
-        const double lr = s[2 * q], li = s[2 * q + 1];
-        s[2 * q] = kr * lr - ki * li;
-        s[2 * q + 1] = kr * li + ki * lr;
-    }
-    fft_inverse(c);
-    fft_crop(c, out);
+    fft_convolve_one(c, kspec, NULL, field, out);
 }
 
 /* ---- direct: the O(N^2) reference ----------------------------------------------------------- */
@@ -391,9 +304,8 @@ int mc_conv_kernel_real(mc_conv *c, const mc_kernel_table *t, double *kre)
     if (c->ops->id != MC_BACKEND_FFT || table_matches(c, t, NULL) != MC_OK)
         return 0; /* mc_conv_kernel then reports the mismatch */
     const size_t nc = half_len(c);
-    memcpy(c->rbuf, t->k, (size_t)c->tx * (size_t)c->ty * sizeof *t->k);
-    fftw_execute(c->r2c);
-    const double *s = (const double *)c->cbuf;
+    mc_padfft_table(&c->fft, t->k);
+    const double *s = (const double *)c->fft.cbuf;
     double re = 0, im = 0;
     for (size_t q = 0; q < nc; q++) {
         re = fmax(re, fabs(s[2 * q]));
@@ -409,17 +321,7 @@ int mc_conv_kernel_real(mc_conv *c, const mc_kernel_table *t, double *kre)
 
 void mc_conv_convolve_real(mc_conv *c, const double *kre, const double *field, double *out)
 {
-    fft_fill(c, field);
-    fft_forward(c);
-    const long nc = (long)half_len(c);
-    double *s = (double *)c->cbuf;
-#pragma omp parallel for schedule(static) if (nc > PAR_MIN)
-    for (long q = 0; q < nc; q++) {
-        s[2 * q] *= kre[q];
-        s[2 * q + 1] *= kre[q];
-    }
-    fft_inverse(c);
-    fft_crop(c, out);
+    fft_convolve_one(c, NULL, kre, field, out);
 }
 
 mc_backend mc_conv_backend(const mc_conv *c) { return c->ops->id; }

@@ -39,7 +39,7 @@ int mc_table_offset(int t, int n, int len, int *used)
     return o;
 }
 
-static int check_table(const mc_grid *g, int tx, int ty, mc_error *err)
+int mc_kernel_table_check(const mc_grid *g, int tx, int ty, mc_error *err)
 {
     int rc = mc_grid_check(g, err);
     if (rc)
@@ -74,6 +74,46 @@ void mc_kernel_table_free(mc_kernel_table *t)
     t->tx = t->ty = 0;
 }
 
+/* Value of a table entry at the cell offsets (ox, oy) (field minus source). */
+typedef double (*entry_fn)(int ox, int oy, const void *ctx);
+
+/* k[jt tx + it] = entry(ox, oy) for every used entry of a tx x ty table of grid g, ox and oy its
+ * offsets (mc_table_offset); the padding slots are left as they are. OpenMP over table rows. */
+static void fill_entries(const mc_grid *g, int tx, int ty, double *k, entry_fn entry,
+                         const void *ctx)
+{
+#pragma omp parallel for schedule(dynamic)
+    for (int jt = 0; jt < ty; jt++) {
+        int usedy, oy = mc_table_offset(jt, g->ny, ty, &usedy);
+        for (int it = 0; it < tx && usedy; it++) {
+            int usedx, ox = mc_table_offset(it, g->nx, tx, &usedx);
+            if (usedx)
+                k[(size_t)jt * tx + it] = entry(ox, oy, ctx);
+        }
+    }
+}
+
+/* The image sum of mc_kernel_table_build at one offset. */
+typedef struct {
+    const mc_grid *g;
+    const mc_kernel_fn *fn;
+    int images, mx, my, tail;
+} image_sum;
+
+static double image_sum_entry(int ox, int oy, const void *ctx)
+{
+    const image_sum *c = ctx;
+    const mc_grid *g = c->g;
+    double s = 0.0;
+    for (int l = -c->my; l <= c->my; l++)
+        for (int m = -c->mx; m <= c->mx; m++)
+            s += c->fn->value((ox + (double)m * g->nx) * g->dx, (oy + (double)l * g->ny) * g->dy,
+                              c->fn->ctx);
+    if (c->tail)
+        s += c->fn->tail(ox * g->dx, oy * g->dy, g, c->images, c->fn->ctx);
+    return s;
+}
+
 int mc_kernel_table_build(const mc_grid *g, int tx, int ty, const mc_kernel_fn *fn, int images,
                           mc_kernel_table *out, mc_error *err)
 {
@@ -81,29 +121,12 @@ int mc_kernel_table_build(const mc_grid *g, int tx, int ty, const mc_kernel_fn *
     if (!fn || !fn->value || images < 0)
         return mc_fail(err, MC_ERR_INPUT, "kernel table: no kernel function, or images %d < 0",
                        images);
-    int rc = check_table(g, tx, ty, err);
+    int rc = mc_kernel_table_check(g, tx, ty, err);
     if (rc || (rc = table_alloc(g, tx, ty, out, err)))
         return rc;
-    const int mx = g->periodic_x ? images : 0, my = g->periodic_y ? images : 0;
-    const int tail = fn->tail && (g->periodic_x || g->periodic_y);
-    double *k = out->k;
-#pragma omp parallel for schedule(dynamic)
-    for (int jt = 0; jt < ty; jt++) {
-        int usedy, oy = mc_table_offset(jt, g->ny, ty, &usedy);
-        for (int it = 0; it < tx && usedy; it++) {
-            int usedx, ox = mc_table_offset(it, g->nx, tx, &usedx);
-            if (!usedx)
-                continue;
-            double s = 0.0;
-            for (int l = -my; l <= my; l++)
-                for (int m = -mx; m <= mx; m++)
-                    s += fn->value((ox + (double)m * g->nx) * g->dx,
-                                   (oy + (double)l * g->ny) * g->dy, fn->ctx);
-            if (tail)
-                s += fn->tail(ox * g->dx, oy * g->dy, g, images, fn->ctx);
-            k[(size_t)jt * tx + it] = s;
-        }
-    }
+    const image_sum c = {g, fn, images, g->periodic_x ? images : 0, g->periodic_y ? images : 0,
+                         fn->tail && (g->periodic_x || g->periodic_y)};
+    fill_entries(g, tx, ty, out->k, image_sum_entry, &c);
     return MC_OK;
 }
 
@@ -257,6 +280,32 @@ static inline double lattice_love(const double *f, int np, int m, int l)
     return (hi[m + 1] - lo[m + 1] - hi[m] + lo[m]) / M_PI;
 }
 
+/* An even kernel's table entry from its values at offsets >= 0: q[|oy| stride + |ox|], or with
+ * swap q[|ox| stride + |oy|] (the first axis of q is then x). */
+typedef struct {
+    const double *q;
+    int stride, swap;
+} quarter_view;
+
+static double quarter_entry(int ox, int oy, const void *ctx)
+{
+    const quarter_view *c = ctx;
+    const int a = abs(c->swap ? oy : ox), b = abs(c->swap ? ox : oy);
+    return c->q[(size_t)b * c->stride + a];
+}
+
+/* Love's rectangle from the corner lattice (lattice_love) at offsets >= 0. */
+typedef struct {
+    const double *f;
+    int np;
+} lattice_view;
+
+static double lattice_entry(int ox, int oy, const void *ctx)
+{
+    const lattice_view *c = ctx;
+    return lattice_love(c->f, c->np, abs(ox), abs(oy));
+}
+
 /* Both axes free: the kernel is even in both offsets; only |ox| < nx, |oy| < ny are evaluated. */
 static int love_free(const mc_grid *g, double *k, int tx, int ty, mc_error *err)
 {
@@ -264,23 +313,17 @@ static int love_free(const mc_grid *g, double *k, int tx, int ty, mc_error *err)
     double *f = corner_lattice(np, g->ny + 1, g->dx, g->dy);
     if (!f)
         return mc_fail(err, MC_ERR_NOMEM, "Love table: out of memory for the corner lattice");
-#pragma omp parallel for schedule(static)
-    for (int jt = 0; jt < ty; jt++) {
-        int usedy, oy = mc_table_offset(jt, g->ny, ty, &usedy);
-        for (int it = 0; it < tx && usedy; it++) {
-            int usedx, ox = mc_table_offset(it, g->nx, tx, &usedx);
-            if (usedx)
-                k[(size_t)jt * tx + it] = lattice_love(f, np, abs(ox), abs(oy));
-        }
-    }
+    const lattice_view c = {f, np};
+    fill_entries(g, tx, ty, k, lattice_entry, &c);
     mc_free(f);
     return MC_OK;
 }
 
 /* One periodic axis. Axis f is free (nf cells of df), axis p periodic (npd cells of dp); swap says
- * the periodic axis is x. The kernel is even in both offsets: the quarter |of| < nf, |op| <= npd/2
- * is computed row by row (central image on the corner lattice, further images exact near and
- * multipole far, the tail from its corner values) and mirrored into the table. */
+ * the periodic axis is x. The kernel is even in both offsets: the quarter of offsets (in cells)
+ * 0 <= o_free < nf, 0 <= o_per <= npd/2 is computed row by row (central image on the corner
+ * lattice, further images exact near and multipole far, the tail from its corner values) and
+ * mirrored into the table. */
 static int love_one_periodic(const mc_grid *g, double *k, int tx, int ty, mc_error *err)
 {
     const int swap = g->periodic_x;
@@ -290,47 +333,38 @@ static int love_one_periodic(const mc_grid *g, double *k, int tx, int ty, mc_err
     const int hp = npd / 2 + 1, np = nf + 1;
     const tail_1d tail = tail_1d_init(df, dp, npd, MC_LOVE_IMAGES);
     double *f = corner_lattice(np, hp + 1, df, dp);
-    double *quarter = mc_malloc((size_t)hp * (size_t)nf * sizeof *quarter);
+    double *quart = mc_malloc((size_t)hp * (size_t)nf * sizeof *quart);
     double *tq = mc_malloc((size_t)hp * (size_t)np * sizeof *tq);
-    if (!f || !quarter || !tq) {
+    if (!f || !quart || !tq) {
         mc_free(f);
-        mc_free(quarter);
+        mc_free(quart);
         mc_free(tq);
         return mc_fail(err, MC_ERR_NOMEM, "Love table: out of memory for the image sum");
     }
 #pragma omp parallel for schedule(dynamic)
-    for (int op = 0; op < hp; op++) {
-        const double y = op * dp;
-        double *row = quarter + (size_t)op * nf, *trow = tq + (size_t)op * np;
+    for (int o_per = 0; o_per < hp; o_per++) {
+        const double y = o_per * dp;
+        double *row = quart + (size_t)o_per * nf, *trow = tq + (size_t)o_per * np;
         for (int p = 0; p < np; p++)
             trow[p] = tail_prim(&tail, (p - 0.5) * df, y);
-        for (int of = 0; of < nf; of++)
-            row[of] = lattice_love(f, np, of, op);
+        for (int o_free = 0; o_free < nf; o_free++)
+            row[o_free] = lattice_love(f, np, o_free, o_per);
         for (int m = MC_LOVE_IMAGES; m >= 1; m--)
             for (int side = -1; side <= 1; side += 2) {
                 const double yy = y + side * m * L, rest = far * far - yy * yy;
                 const int near = rest < 0.0 ? 0 : (int)fmin(nf, floor(sqrt(rest) / df) + 1.0);
-                for (int of = 0; of < near; of++)
-                    row[of] += mc_love_uz(of * df, yy, a, b);
-                for (int of = near; of < nf; of++)
-                    row[of] += love_far(of * df, yy, a, b);
+                for (int o_free = 0; o_free < near; o_free++)
+                    row[o_free] += mc_love_uz(o_free * df, yy, a, b);
+                for (int o_free = near; o_free < nf; o_free++)
+                    row[o_free] += love_far(o_free * df, yy, a, b);
             }
-        for (int of = 0; of < nf; of++)
-            row[of] += tail_diff(&tail, trow[of + 1], trow[of]);
+        for (int o_free = 0; o_free < nf; o_free++)
+            row[o_free] += tail_diff(&tail, trow[o_free + 1], trow[o_free]);
     }
-#pragma omp parallel for schedule(static)
-    for (int jt = 0; jt < ty; jt++) {
-        int usedy, oy = mc_table_offset(jt, g->ny, ty, &usedy);
-        for (int it = 0; it < tx && usedy; it++) {
-            int usedx, ox = mc_table_offset(it, g->nx, tx, &usedx);
-            if (!usedx)
-                continue;
-            const int of = abs(swap ? oy : ox), op = abs(swap ? ox : oy);
-            k[(size_t)jt * tx + it] = quarter[(size_t)op * nf + of];
-        }
-    }
+    const quarter_view c = {quart, nf, swap};
+    fill_entries(g, tx, ty, k, quarter_entry, &c);
     mc_free(f);
-    mc_free(quarter);
+    mc_free(quart);
     mc_free(tq);
     return MC_OK;
 }
@@ -444,7 +478,7 @@ int mc_kernel_table_love(const mc_grid *g, int tx, int ty, double Estar, mc_kern
     out->k = NULL;
     if (!(isfinite(Estar) && Estar > 0.0))
         return mc_fail(err, MC_ERR_INPUT, "Love table: E* = %g Pa must be finite and > 0", Estar);
-    int rc = check_table(g, tx, ty, err);
+    int rc = mc_kernel_table_check(g, tx, ty, err);
     if (rc || (rc = table_alloc(g, tx, ty, out, err)))
         return rc;
     if (g->periodic_x && g->periodic_y)

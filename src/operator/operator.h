@@ -15,6 +15,9 @@
  *   mc_conv         - the transform engine of one grid and backend (shared by many kernels:
  *                     the stress stage convolves one load with six kernels per layer);
  *   mc_operator     - conv + one kernel: plan / apply / destroy, what a solver uses.
+ * Helpers of this folder with headers of their own: padfft.h (the zero-padded real 2-D FFT,
+ * pruned along a free y axis, of the fft backend and of the symmetric stress engine), box.h
+ * (bounding boxes of cell sets plus a margin), precond.h (the contact solvers' preconditioner).
  */
 #ifndef MC_OPERATOR_H
 #define MC_OPERATOR_H
@@ -49,6 +52,10 @@ typedef struct {
  * *used (if not NULL) to 0 for the padding slots of a free axis (then the offset is meaningless),
  * else to 1. */
 int mc_table_offset(int t, int n, int len, int *used);
+
+/* MC_OK if g is a valid grid (mc_grid_check) and tx x ty a table size for it as above (periodic
+ * axis: n, free axis: >= 2n - 1); else MC_ERR_INPUT. */
+int mc_kernel_table_check(const mc_grid *g, int tx, int ty, mc_error *err);
 
 /* A scalar kernel for the generic table builder. */
 typedef struct {

@@ -7,9 +7,11 @@
 
 #include "core/alloc.h"
 #include "core/fftsize.h"
+#include "operator/box.h"
 #include "operator/operator.h"
 
 #define PLAN_CACHE 6
+#define BOX_MARGIN 2 /* cells at least, each side */
 
 typedef struct {
     int fx, fy;           /* transform size */
@@ -19,7 +21,7 @@ typedef struct {
 
 struct mc_precond {
     mc_grid g;
-    int i0, j0, bx, by;   /* current box: origin and size in cells */
+    mc_box box;           /* the current box */
     box_plan *cur;
     box_plan cache[PLAN_CACHE];
     int ncached, next_evict;
@@ -131,86 +133,59 @@ static box_plan *plan_for(mc_precond *pc, int fx, int fy, mc_error *err)
     return b;
 }
 
-/* Bounding interval of the set along one axis, widened by a margin so the periodic wrap of the
- * box does not couple opposite edges of the contact strongly. */
-static void axis_box(int lo, int hi, int n, int periodic, int *start, int *len, int *flen)
+/* Transform length along an axis for a box of len cells: the box's own length on a periodic axis
+ * (where the box is the whole axis), else a 7-smooth length >= len, capped at the grid's own. */
+static int box_fft_len(int len, int n, int periodic)
 {
-    if (periodic) {
-        *start = 0;
-        *len = n;
-        *flen = n;
-        return;
-    }
-    int w = hi - lo + 1;
-    int margin = w / 8 > 2 ? w / 8 : 2;
-    lo = lo - margin < 0 ? 0 : lo - margin;
-    hi = hi + margin >= n ? n - 1 : hi + margin;
-    *start = lo;
-    *len = hi - lo + 1;
-    *flen = mc_fft_good_size(*len);
-    if (*flen > mc_fft_good_size(n))
-        *flen = mc_fft_good_size(n);
+    if (periodic)
+        return n;
+    const int f = mc_fft_good_size(len), fmax_ = mc_fft_good_size(n);
+    return f > fmax_ ? fmax_ : f;
 }
 
 int mc_precond_set_mask(mc_precond *pc, const unsigned char *mask, mc_error *err)
 {
-    const int nx = pc->g.nx, ny = pc->g.ny;
-    int ilo = nx, ihi = -1, jlo = ny, jhi = -1;
-    for (int j = 0; j < ny; j++) {
-        const unsigned char *row = mask + (size_t)j * nx;
-        int any = 0;
-        for (int i = 0; i < nx; i++) {
-            if (row[i]) {
-                if (i < ilo)
-                    ilo = i;
-                if (i > ihi)
-                    ihi = i;
-                any = 1;
-            }
-        }
-        if (any) {
-            if (j < jlo)
-                jlo = j;
-            jhi = j;
-        }
-    }
-    if (ihi < 0) { /* empty set: any box works, apply returns zeros */
-        ilo = ihi = jlo = jhi = 0;
-    }
-    int fx, fy;
-    axis_box(ilo, ihi, nx, pc->g.periodic_x, &pc->i0, &pc->bx, &fx);
-    axis_box(jlo, jhi, ny, pc->g.periodic_y, &pc->j0, &pc->by, &fy);
-    box_plan *b = plan_for(pc, fx, fy, err);
-    if (!b)
+    mc_box b;
+    if (!mc_box_bound(&pc->g, mask, NULL, &b))
+        b = (mc_box){0, 0, 1, 1}; /* empty set: any box works, apply returns zeros */
+    /* the margin keeps the periodic wrap of the box from coupling opposite edges of the contact
+     * strongly */
+    mc_box_widen(&pc->g, mc_box_margin(b.nx, BOX_MARGIN), mc_box_margin(b.ny, BOX_MARGIN), &b);
+    const int fx = box_fft_len(b.nx, pc->g.nx, pc->g.periodic_x);
+    const int fy = box_fft_len(b.ny, pc->g.ny, pc->g.periodic_y);
+    box_plan *p = plan_for(pc, fx, fy, err);
+    if (!p)
         return err ? err->code : MC_ERR_NOMEM;
-    pc->cur = b;
+    pc->box = b;
+    pc->cur = p;
     return MC_OK;
 }
 
 void mc_precond_apply(mc_precond *pc, const unsigned char *mask, const double *r, double *z)
 {
     const int nx = pc->g.nx, ny = pc->g.ny;
-    const box_plan *b = pc->cur;
-    const int fx = b->fx, fy = b->fy, hx = fx / 2 + 1;
+    const box_plan *p = pc->cur;
+    const int fx = p->fx, fy = p->fy, hx = fx / 2 + 1;
     memset(pc->real, 0, sizeof(double) * (size_t)fx * (size_t)fy);
-    for (int j = 0; j < pc->by; j++) {
-        size_t src = (size_t)(pc->j0 + j) * nx + (size_t)pc->i0;
+    const mc_box *box = &pc->box;
+    for (int j = 0; j < box->ny; j++) {
+        size_t src = (size_t)(box->j0 + j) * nx + (size_t)box->i0;
         double *dst = pc->real + (size_t)j * fx;
-        for (int i = 0; i < pc->bx; i++)
+        for (int i = 0; i < box->nx; i++)
             dst[i] = mask[src + i] ? r[src + i] : 0.0;
     }
-    fftw_execute(b->fwd);
+    fftw_execute(p->fwd);
     const size_t nspec = (size_t)fy * (size_t)hx;
     for (size_t k = 0; k < nspec; k++) {
-        pc->spec[k][0] *= b->symbol[k];
-        pc->spec[k][1] *= b->symbol[k];
+        pc->spec[k][0] *= p->symbol[k];
+        pc->spec[k][1] *= p->symbol[k];
     }
-    fftw_execute(b->inv);
+    fftw_execute(p->inv);
     memset(z, 0, sizeof(double) * (size_t)nx * (size_t)ny);
-    for (int j = 0; j < pc->by; j++) {
-        size_t dst = (size_t)(pc->j0 + j) * nx + (size_t)pc->i0;
+    for (int j = 0; j < box->ny; j++) {
+        size_t dst = (size_t)(box->j0 + j) * nx + (size_t)box->i0;
         const double *src = pc->real + (size_t)j * fx;
-        for (int i = 0; i < pc->bx; i++)
+        for (int i = 0; i < box->nx; i++)
             if (mask[dst + i])
                 z[dst + i] = src[i];
     }

@@ -29,7 +29,7 @@ double mc_scene_memory_estimate(const mc_scene *s)
     double bytes = 4 * 8 * cells; /* topography, pressure, gap, displacement */
     if (s->load.kind == MC_LOAD_PRESSURE_FILE)
         bytes += 8 * cells; /* the map as read */
-    bytes += operator_bytes(g->nx, g->ny, g->periodic_x, g->periodic_y, s->solver.op);
+    bytes += operator_bytes(g->nx, g->ny, g->periodic_x, g->periodic_y, s->solver.backend);
     if (s->load.kind != MC_LOAD_PRESSURE_FILE) {
         /* ten work arrays, two masks, the preconditioner's box buffers */
         double solver = (10 * 8 + 2 + 16) * cells;
@@ -38,7 +38,7 @@ double mc_scene_memory_estimate(const mc_scene *s)
         /* nested start: each coarse level a quarter of the one above (operator and solver) */
         if (s->solver.method == MC_METHOD_CG && g->nx >= MC_COARSEN_MIN)
             solver += (solver + operator_bytes(g->nx, g->ny, g->periodic_x, g->periodic_y,
-                                               s->solver.op)) / 3.0;
+                                               s->solver.backend)) / 3.0;
         bytes += solver;
     }
     if (s->stress.enabled) {

@@ -1,9 +1,11 @@
 /* output.c - the output contract of DESIGN.md, written atomically (see output.h).
  *
- * Protocol: every file goes into DIR/.staging-XXXXXX; only when all of them are complete are
- * they renamed into DIR: first the old summary.json is removed (so a summary.json in DIR always
- * describes the files beside it), then the data files are renamed, contract files of an earlier
- * run that this run does not produce are removed, and summary.json is renamed last.
+ * Protocol: the directory is created if needed and locked (outdir.c), stale staging areas of
+ * killed runs are removed, every file goes into DIR/.staging-XXXXXX; only when all of them are
+ * complete are they renamed into DIR: first the old summary.json is removed (so a summary.json in
+ * DIR always describes the files beside it), then the data files are renamed, contract files of
+ * an earlier run that this run does not produce are removed, and summary.json is renamed last.
+ * A request to stop (mc_output_interrupt) is honoured before each file and before the renames.
  */
 #include "pipeline/output.h"
 
@@ -11,6 +13,7 @@
 #include <errno.h>
 #include <jansson.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -55,53 +58,24 @@ static int join(char *out, const char *a, const char *b, mc_error *err)
     return MC_OK;
 }
 
-/* ---- prepare ----------------------------------------------------------------------------- */
+/* ---- interruption ------------------------------------------------------------------------ */
 
-static int mkdir_one(const char *dir, const char *path, mc_error *err)
+/* Dekker-style handshake (sequentially consistent atomics): a commit increments `active` and
+ * then reads `stop`; mc_output_interrupt sets `stop` and then reads `active`. Either the commit
+ * sees the request, or the interrupter sees the commit. */
+static atomic_int stop_requested;
+static atomic_int active_commits;
+
+int mc_output_interrupt(int on)
 {
-    if (mkdir(path, 0777) == 0)
-        return MC_OK;
-    int e = errno;
-    struct stat sb;
-    if (e == EEXIST && stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
-        return MC_OK;
-    if (e == EEXIST)
-        e = ENOTDIR;
-    return mc_fail(err, MC_ERR_IO, "output directory '%s': cannot create '%s': %s", dir, path,
-                   strerror(e));
+    atomic_store(&stop_requested, on ? 1 : 0);
+    return atomic_load(&active_commits) > 0;
 }
 
-int mc_output_prepare(const char *dir, mc_error *err)
+static int check_stop(mc_error *err)
 {
-    if (!dir || !*dir)
-        return mc_fail(err, MC_ERR_INPUT, "output directory: empty path");
-    char path[OUT_PATH_MAX];
-    if (snprintf(path, sizeof path, "%s", dir) >= (int)sizeof path)
-        return mc_fail(err, MC_ERR_INPUT, "output directory '%s': path too long", dir);
-    for (char *p = path + 1; *p; p++) {
-        if (*p != '/' || p[-1] == '/')
-            continue;
-        *p = '\0';
-        int st = mkdir_one(dir, path, err);
-        *p = '/';
-        if (st != MC_OK)
-            return st;
-    }
-    int st = mkdir_one(dir, path, err);
-    if (st != MC_OK)
-        return st;
-    char probe[OUT_PATH_MAX];
-    st = join(probe, dir, ".mc-probe-XXXXXX", err);
-    if (st != MC_OK)
-        return st;
-    int fd = mkstemp(probe);
-    if (fd < 0)
-        return mc_fail(err, MC_ERR_IO, "output directory '%s': not writable: %s", dir,
-                       strerror(errno));
-    close(fd);
-    if (unlink(probe) != 0)
-        return mc_fail(err, MC_ERR_IO, "output directory '%s': cannot remove probe file '%s': %s",
-                       dir, probe, strerror(errno));
+    if (atomic_load(&stop_requested))
+        return mc_fail(err, MC_ERR_INTERRUPTED, "output: interrupted; no result was committed");
     return MC_OK;
 }
 
@@ -110,7 +84,9 @@ int mc_output_prepare(const char *dir, mc_error *err)
 static int open_staged(out_ctx *c, const char *name, FILE **f, mc_error *err)
 {
     char path[OUT_PATH_MAX];
-    int st = join(path, c->stage, name, err);
+    int st = check_stop(err);
+    if (st == MC_OK)
+        st = join(path, c->stage, name, err);
     if (st != MC_OK)
         return st;
     *f = fopen(path, "wb");
@@ -161,7 +137,9 @@ static int write_npy(out_ctx *c, const char *name, const double *data, int ndim,
                      const size_t *shape, mc_error *err)
 {
     char path[OUT_PATH_MAX];
-    int st = join(path, c->stage, name, err);
+    int st = check_stop(err);
+    if (st == MC_OK)
+        st = join(path, c->stage, name, err);
     if (st == MC_OK)
         st = mc_npy_write(path, data, ndim, shape, err);
     if (st == MC_OK)
@@ -514,14 +492,55 @@ static void locate_pmax(out_ctx *c)
         }
 }
 
-int mc_output_write(const char *dir, const mc_scene *scene, const mc_results *res, mc_error *err)
+/* Stage every file and rename them into place; the caller holds DIR. */
+static int stage_and_commit(out_ctx *c, mc_error *err)
+{
+    int st = join(c->stage, c->dir, ".staging-XXXXXX", err);
+    if (st != MC_OK)
+        return st;
+    if (!mkdtemp(c->stage))
+        return mc_fail(err, MC_ERR_ENV,
+                       "output directory '%s': cannot create a staging directory: %s", c->dir,
+                       strerror(errno));
+    const mc_results *res = c->res;
+    st = write_surface_fields(c, err);
+    if (st == MC_OK)
+        st = write_profile(c, err);
+    if (st == MC_OK && res->nlayers > 0)
+        st = write_stress_fields(c, err);
+    if (st == MC_OK && c->scene->output.vtk)
+        st = write_vti(c, err);
+    if (st == MC_OK && c->scene->output.vtk && res->nlayers > 0)
+        st = write_vtr(c, err);
+    if (st == MC_OK)
+        st = write_summary(c, err);
+    if (st == MC_OK)
+        st = check_stop(err);
+    if (st == MC_OK)
+        st = commit(c, err);
+    remove_stage(c->stage);
+    return st;
+}
+
+int mc_output_open(mc_outdir *out, const char *dir, mc_error *err)
+{
+    mc_outdir_init(out);
+    return mc_outdir_open(out, dir, err);
+}
+
+void mc_output_close(mc_outdir *out)
+{
+    mc_outdir_release(out);
+}
+
+int mc_output_commit(mc_outdir *out, const mc_scene *scene, const mc_results *res, mc_error *err)
 {
     static int jansson_ready;
     if (!jansson_ready) {
         json_set_alloc_funcs(mc_malloc, mc_free);
         jansson_ready = 1;
     }
-    if (!dir || !*dir)
+    if (!out->path[0])
         return mc_fail(err, MC_ERR_INPUT, "output directory: empty path");
     if (!scene || !res)
         return mc_fail(err, MC_ERR_INTERNAL, "output: no scene or no results");
@@ -530,30 +549,44 @@ int mc_output_write(const char *dir, const mc_scene *scene, const mc_results *re
         return st;
     out_ctx c;
     memset(&c, 0, sizeof c);
-    c.dir = dir;
+    c.dir = out->path;
     c.scene = scene;
     c.res = res;
     locate_pmax(&c);
-    st = join(c.stage, dir, ".staging-XXXXXX", err);
-    if (st != MC_OK)
-        return st;
-    if (!mkdtemp(c.stage))
-        return mc_fail(err, MC_ERR_IO,
-                       "output directory '%s': cannot create a staging directory: %s", dir,
-                       strerror(errno));
-    st = write_surface_fields(&c, err);
+
+    atomic_fetch_add(&active_commits, 1);
+    st = check_stop(err);
     if (st == MC_OK)
-        st = write_profile(&c, err);
-    if (st == MC_OK && res->nlayers > 0)
-        st = write_stress_fields(&c, err);
-    if (st == MC_OK && scene->output.vtk)
-        st = write_vti(&c, err);
-    if (st == MC_OK && scene->output.vtk && res->nlayers > 0)
-        st = write_vtr(&c, err);
+        st = mc_outdir_acquire(out, err);
+    if (st == MC_OK) {
+        mc_outdir_sweep(out, contract_files, N_CONTRACT);
+        st = stage_and_commit(&c, err);
+        if (st != MC_OK)
+            mc_outdir_rollback(out);
+    }
+    atomic_fetch_sub(&active_commits, 1);
+    if (st == MC_ERR_IO) { /* writing into DIR failed: the environment (disk full, quota, ...) */
+        if (err)
+            err->code = MC_ERR_ENV;
+        st = MC_ERR_ENV;
+    }
+    return st;
+}
+
+int mc_output_prepare(const char *dir, mc_error *err)
+{
+    mc_outdir out;
+    int st = mc_output_open(&out, dir, err);
+    mc_output_close(&out);
+    return st;
+}
+
+int mc_output_write(const char *dir, const mc_scene *scene, const mc_results *res, mc_error *err)
+{
+    mc_outdir out;
+    int st = mc_output_open(&out, dir, err);
     if (st == MC_OK)
-        st = write_summary(&c, err);
-    if (st == MC_OK)
-        st = commit(&c, err);
-    remove_stage(c.stage);
+        st = mc_output_commit(&out, scene, res, err);
+    mc_output_close(&out);
     return st;
 }

@@ -1,25 +1,65 @@
 /* output.h - the output contract of DESIGN.md: summary.json, .npy fields, .csv profiles and
- * VTK files, written atomically.
+ * VTK files, written atomically into an output directory that one run holds at a time.
  *
  * Files are first written into a staging directory inside DIR (DIR/.staging-XXXXXX) and renamed
- * into DIR only when all of them succeeded: a failed run leaves no half-written result and no
- * partial set. Contract files of an earlier run that this run does not produce (von_mises.npy
- * after a run without stress, field.vti without vtk, ...) are removed, so DIR never mixes two
- * runs; other files in DIR are left alone. The old summary.json is removed first and the new one
- * renamed last, so a summary.json in DIR always describes the files beside it. */
+ * into DIR only when all of them succeeded: a failed or interrupted run leaves no half-written
+ * result and no partial set. Contract files of an earlier run that this run does not produce
+ * (von_mises.npy after a run without stress, field.vti without vtk, ...) are removed, so DIR
+ * never mixes two runs; other files in DIR are left alone. The old summary.json is removed first
+ * and the new one renamed last, so a summary.json in DIR always describes the files beside it.
+ *
+ * DIR and its missing parents are created only when results are committed (and removed again,
+ * while empty, if the commit fails): a run that fails before leaves no directory behind.
+ *
+ * One run per output directory at a time (pipeline/outdir.h): a run holds an exclusive flock on
+ * DIR - from mc_output_open when DIR exists then, else from the commit - until mc_output_close or
+ * its end. A second run refuses at once with MC_ERR_ENV naming DIR and the holder's pid; it does
+ * not wait. Commits into one directory are therefore serial and the committed set is always one
+ * run's. Staging areas left by a killed run (SIGKILL) are removed by the next run's commit.
+ *
+ * Interruption: mc_output_interrupt (from a signal watcher) makes a commit in progress stop at
+ * the next file, remove its staging area and the directories it created, and return
+ * MC_ERR_INTERRUPTED with DIR as it was. The final renames are not interrupted (they take
+ * microseconds): a commit that reached them completes.
+ */
 #ifndef MC_OUTPUT_H
 #define MC_OUTPUT_H
 
 #include "core/error.h"
+#include "pipeline/outdir.h"
 #include "pipeline/results.h"
 #include "case/scene.h"
 
-/* Create DIR (and parents, like mkdir -p) if needed and check that it is writable by creating
- * and removing a probe file, before any computation, so a bad output directory fails fast.
- * MC_ERR_IO naming the directory and strerror; MC_ERR_INPUT for an empty or too long path. */
+/* Start a run's use of DIR, before any computation, so a bad output directory fails fast:
+ * initialises *out, checks that DIR can be created and written without creating anything
+ * (mc_outdir_open: every existing prefix a directory, a dangling symbolic link named as such, the
+ * deepest existing one writable) and, when DIR exists, takes its lock.
+ * MC_OK; MC_ERR_INPUT (empty or too long path); MC_ERR_ENV (not a directory, not writable, in
+ * use by another run: the message names DIR, the reason and the holder's pid). *out needs
+ * mc_output_close in every case. */
+int mc_output_open(mc_outdir *out, const char *dir, mc_error *err);
+
+/* Commit the results into the directory of out (see mc_output_write for the files): creates DIR
+ * if needed and locks it (unless out holds it), removes stale staging areas, stages, renames.
+ * Returns what mc_output_write returns, plus MC_ERR_INTERRUPTED (see above); on any failure DIR
+ * is as it was and the directories this call created are removed. */
+int mc_output_commit(mc_outdir *out, const mc_scene *scene, const mc_results *res, mc_error *err);
+
+/* Release the lock (idempotent). */
+void mc_output_close(mc_outdir *out);
+
+/* Ask commits in progress in this process to stop (on = 1) or clear the request (on = 0).
+ * Thread-safe and async-signal-safe (atomics only); a request stays until cleared, and a commit
+ * started after it stops before creating anything. Returns 1 when a commit is in progress (it
+ * will return MC_ERR_INTERRUPTED, or MC_OK if it already reached its final renames), 0 when none
+ * is (nothing of this process is being written: it may end at once). */
+int mc_output_interrupt(int on);
+
+/* mc_output_open + mc_output_close: the checks alone (nothing is created, no lock is kept). */
 int mc_output_prepare(const char *dir, mc_error *err);
 
-/* Write every file the results call for into the existing directory dir:
+/* mc_output_open + mc_output_commit + mc_output_close. Write every file the results call for
+ * into dir:
  *  always     summary.json, pressure.npy, gap.npy, displacement.npy, topography.npy (ny x nx,
  *             .npy 1.0 float64), profile_x.csv ("x,pressure,gap,displacement": row j of the
  *             maximum pressure, x at cell centres);
@@ -41,8 +81,9 @@ int mc_output_prepare(const char *dir, mc_error *err);
  * contact (the mc_contact_summary, plus the solver tolerance and max_iterations of the scene),
  * stress (the mc_stress_summary, when stress was run), timing (total_s, setup_s, contact_s,
  * stress_s) and files (every file written, summary.json last).
- * Returns MC_OK; MC_ERR_IO (dir missing or not writable, a write failed, a result file name in
- * DIR is taken by a directory: DIR unchanged); MC_ERR_NOMEM (DIR unchanged); MC_ERR_INTERNAL
+ * Returns MC_OK; MC_ERR_ENV (DIR cannot be created or locked, a write failed - disk full,
+ * file too large -, a result file name in DIR is taken by a directory: DIR unchanged);
+ * MC_ERR_NOMEM (DIR unchanged); MC_ERR_INPUT (empty path, invalid grid); MC_ERR_INTERNAL
  * (results lack a field the contract needs). Only a failing rename after the commit started
  * (practically impossible within one directory) leaves DIR without summary.json. */
 int mc_output_write(const char *dir, const mc_scene *scene, const mc_results *res, mc_error *err);

@@ -13,6 +13,7 @@
 #include "stress/stress.h"
 #include "pipeline/stage_stress.h"
 #include "pipeline/stage_lube.h"
+#include "pipeline/stage_plastic.h"
 #include "surface/surface.h"
 
 double mc_clock(void)
@@ -70,7 +71,7 @@ static int run_prescribed(const mc_scene *sc, mc_operator *K, mc_results *res, m
     c->approach = delta;
     c->converged = 0; /* nothing was solved: "prescribed" is its own state (summary.json) */
     c->solver = "prescribed";
-    c->op = mc_operator_backend(K);
+    c->backend = mc_operator_backend(K);
     res->timing.contact_s = mc_clock() - t0;
     return MC_OK;
 }
@@ -108,7 +109,9 @@ static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_e
     if (rc != MC_OK)
         return rc;
     t0 = mc_clock();
-    if (sc->load.lubricant_pressure == MC_LUBRICANT_AUTO)
+    if (sc->plasticity.enabled)
+        rc = mc_plastic_stage(sc, K, solver, res, err);
+    else if (sc->load.lubricant_pressure == MC_LUBRICANT_AUTO)
         rc = mc_lube_stage(sc, K, solver, NULL, NULL, res, err);
     else
         rc = mc_contact_solve(solver, &prob, res->pressure, res->displacement, res->gap,
@@ -181,7 +184,7 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
 
     mc_operator *K = NULL;
     double t0 = mc_clock();
-    rc = mc_operator_plan_love(&sc->grid, mc_scene_estar(sc), sc->solver.op, &K, err);
+    rc = mc_operator_plan_love(&sc->grid, mc_scene_estar(sc), sc->solver.backend, &K, err);
     res->timing.setup_s = mc_clock() - t0;
     if (rc != MC_OK)
         return rc;

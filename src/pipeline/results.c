@@ -6,6 +6,46 @@
 #include "core/alloc.h"
 #include "kernels/kernel.h"
 
+/* The stress members, as a list of the owned arrays. */
+static void stress_arrays(mc_results *r, double **a[MC_NSTRESS + 4])
+{
+    a[0] = &r->depths;
+    for (int c = 0; c < MC_NSTRESS; c++)
+        a[1 + c] = &r->stress[c];
+    a[MC_NSTRESS + 1] = &r->von_mises;
+    a[MC_NSTRESS + 2] = &r->hydrostatic;
+    a[MC_NSTRESS + 3] = &r->tresca;
+}
+
+void mc_results_free_stress(mc_results *r)
+{
+    double **a[MC_NSTRESS + 4];
+    stress_arrays(r, a);
+    for (int k = 0; k < MC_NSTRESS + 4; k++) {
+        mc_free(*a[k]);
+        *a[k] = NULL;
+    }
+    r->nlayers = 0;
+    memset(&r->stress_summary, 0, sizeof r->stress_summary);
+    memset(&r->stress_layout, 0, sizeof r->stress_layout);
+}
+
+void mc_results_move_stress(mc_results *to, mc_results *from)
+{
+    mc_results_free_stress(to);
+    double **a[MC_NSTRESS + 4], **b[MC_NSTRESS + 4];
+    stress_arrays(to, a);
+    stress_arrays(from, b);
+    for (int k = 0; k < MC_NSTRESS + 4; k++) {
+        *a[k] = *b[k];
+        *b[k] = NULL;
+    }
+    to->nlayers = from->nlayers;
+    to->stress_summary = from->stress_summary;
+    to->stress_layout = from->stress_layout;
+    from->nlayers = 0;
+}
+
 void mc_results_free(mc_results *r)
 {
     if (!r)
@@ -14,11 +54,6 @@ void mc_results_free(mc_results *r)
     mc_free(r->pressure);
     mc_free(r->gap);
     mc_free(r->displacement);
-    mc_free(r->depths);
-    for (int c = 0; c < MC_NSTRESS; c++)
-        mc_free(r->stress[c]);
-    mc_free(r->von_mises);
-    mc_free(r->hydrostatic);
-    mc_free(r->tresca);
+    mc_results_free_stress(r);
     memset(r, 0, sizeof *r);
 }

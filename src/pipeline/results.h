@@ -8,6 +8,7 @@
 #include "operator/operator.h"
 #include "contact/contact.h"
 #include "surface/roughness.h"
+#include "plastic/loop.h"
 
 typedef struct {
     double vm_max, vm_max_at[3];         /* von Mises maximum, Pa, and its (x, y, z), m */
@@ -24,7 +25,8 @@ typedef struct {
 typedef struct {
     int k0, k1;         /* layers k0..k1 (inclusive) */
     int i0, i1, j0, j1; /* cells computed, i0..i1 x j0..j1 (inclusive); all others hold 0 */
-    int direct;         /* 1: direct summation over the loaded cells, 0: DC-FFT */
+    int sparse;         /* 1: the sparse sum over the loaded cells; 0: the convolution over the
+                         * whole window (DC-FFT, or the direct backend's O(N^2) sum) */
 } mc_stress_window;
 
 typedef struct {
@@ -62,6 +64,26 @@ typedef struct {
     const char *psi_kind;  /* "load" | "area": the psi of mu */
 } mc_lube_summary;
 
+/* The elastic-plastic stage ([plasticity]). */
+typedef struct {
+    int enabled;
+    int converged;             /* every load step converged (1 also for the elastic shortcut) */
+    const char *criterion;     /* "von_mises" | "pressure_cap" */
+    const char *hardening;     /* "perfect" | "linear" | "swift" | "table" ("" for a cap) */
+    double yield_initial;      /* sigma_y(0), Pa (von_mises) */
+    double vm_elastic_max;     /* largest von Mises stress of the elastic solve at full load, Pa */
+    int elastic_shortcut;      /* 1: nothing yields at full load, no plastic loop was run */
+    int load_steps, steps_done, outer_iterations;
+    double peq_max, peq_max_at[3]; /* largest accumulated plastic strain and its cell, m */
+    double plastic_volume;     /* m^3 of cells that yielded */
+    double residual_max;       /* largest residual displacement (into the body), m */
+    double depth, dz;          /* plastic volume's depth and layer thickness, m */
+    int nz, depth_auto;
+    int i0, j0, wnx, wny;      /* columns carrying plastic cells (window of the surface grid) */
+    long volume_cells;         /* nz wnx wny */
+    mc_plastic_step *steps;    /* steps_done records (owned) */
+} mc_plastic_summary;
+
 typedef struct {
     /* seconds: the whole run; kernel tables, spectra and plans of the operator; the contact solve
      * (with its coarse-grid start and the plans it makes for the contact's box); the stress stage */
@@ -86,6 +108,13 @@ typedef struct {
     mc_stress_layout stress_layout;
 
     mc_lube_summary lube;
+
+    /* elastic-plastic stage (NULL / 0 when not run) */
+    mc_plastic_summary plastic;
+    double *residual_displacement; /* ny*nx, m, positive into the body */
+    double *topography_final;      /* ny*nx, m: the unloaded gap the next load sees */
+    double *plastic_strain;        /* nz*ny*nx accumulated equivalent plastic strain */
+    double *residual_von_mises;    /* nz*ny*nx von Mises of the residual stress, Pa */
 
     /* ISO roughness parameters of the roughness heights (not the shape) before the run */
     int has_roughness;

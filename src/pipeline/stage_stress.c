@@ -1,6 +1,6 @@
-/* stress_stage.c - the stress stage of the pipeline (see stress.h): the depths (given, or from the
- * contact patches), the windows of a compact load, the layers group by group, the invariants and
- * the summary. */
+/* stage_stress.c - the stress stage of the pipeline (see stage_stress.h): the depths (given, or
+ * from the contact patches), the windows of a compact load, the layers group by group, the
+ * invariants and the summary. */
 #include <limits.h>
 #include <math.h>
 #include <string.h>
@@ -8,6 +8,7 @@
 #include "core/alloc.h"
 #include "kernels/invariants.h"
 #include "kernels/kernel.h"
+#include "operator/box.h"
 #include "stress/stress.h"
 #include "pipeline/stage_stress.h"
 #include "stress/stress_internal.h"
@@ -144,99 +145,62 @@ static int stage_depths(const mc_scene *sc, const mc_results *res, double *depth
 
 /* ---- windows ------------------------------------------------------------------------------------ */
 
-typedef struct {
-    int i0, i1, j0, j1; /* inclusive cell ranges */
-} box;
-
-static long box_cells(const box *b) { return (long)(b->i1 - b->i0 + 1) * (b->j1 - b->j0 + 1); }
-
-/* Bounding box of the non-zero cells of p; 0 if there is none. */
-static int load_box(const mc_grid *g, const double *p, box *b)
-{
-    *b = (box){g->nx, -1, g->ny, -1};
-    for (int j = 0; j < g->ny; j++)
-        for (int i = 0; i < g->nx; i++)
-            if (p[(size_t)j * g->nx + i] != 0.0) {
-                b->i0 = i < b->i0 ? i : b->i0;
-                b->i1 = i > b->i1 ? i : b->i1;
-                b->j0 = j < b->j0 ? j : b->j0;
-                b->j1 = j > b->j1 ? j : b->j1;
-            }
-    return b->i1 >= 0;
-}
-
 /* The window of depth z around the load box lb (MC_STRESS_WINDOW_CR), clipped to the grid (free
  * axes). */
-static box window_of(const mc_grid *g, const box *lb, double z)
+static mc_box window_of(const mc_grid *g, const mc_box *lb, double z)
 {
-    const double R = 0.5 * fmax((lb->i1 - lb->i0 + 1) * g->dx, (lb->j1 - lb->j0 + 1) * g->dy);
+    const double R = 0.5 * fmax(lb->nx * g->dx, lb->ny * g->dy);
     const double m = MC_STRESS_WINDOW_CR * R + MC_STRESS_WINDOW_CZ * z;
     const int mx = (int)fmax(MC_STRESS_WINDOW_MIN, fmin(ceil(m / g->dx), g->nx));
     const int my = (int)fmax(MC_STRESS_WINDOW_MIN, fmin(ceil(m / g->dy), g->ny));
-    box w = {lb->i0 - mx > 0 ? lb->i0 - mx : 0, lb->i1 + mx < g->nx - 1 ? lb->i1 + mx : g->nx - 1,
-             lb->j0 - my > 0 ? lb->j0 - my : 0, lb->j1 + my < g->ny - 1 ? lb->j1 + my : g->ny - 1};
+    mc_box w = *lb;
+    mc_box_widen(g, mx, my, &w);
     return w;
 }
 
-static box box_union(const box *a, const box *b)
+/* Layers k0..k1 on box w, as the layout lists them (inclusive cell ranges). */
+static mc_stress_window window_entry(int k0, int k1, const mc_box *w)
 {
-    box u = {a->i0 < b->i0 ? a->i0 : b->i0, a->i1 > b->i1 ? a->i1 : b->i1,
-             a->j0 < b->j0 ? a->j0 : b->j0, a->j1 > b->j1 ? a->j1 : b->j1};
-    return u;
+    return (mc_stress_window){k0, k1, w->i0, w->i0 + w->nx - 1, w->j0, w->j0 + w->ny - 1, 0};
 }
 
 /* Groups of consecutive layers and their windows into lay (windowed = 0: one group, the grid). */
 static void plan_windows(const mc_grid *g, const double *p, const double *depths, int nd,
                          int windowed, mc_stress_layout *lay)
 {
-    const box full = {0, g->nx - 1, 0, g->ny - 1};
-    box lb;
+    const mc_box full = {0, 0, g->nx, g->ny};
+    mc_box lb;
     lay->nwindows = 0;
     lay->windowed = 0;
     /* A periodic axis repeats the load: beyond a period it acts as a line load, whose stress
      * decays like 1/r (a traction's sigma_xx at the surface), not like the 1/r^2 the margin was
      * measured for: no window then. No load: one trivial group. */
-    if (!windowed || g->periodic_x || g->periodic_y || !load_box(g, p, &lb)) {
-        lay->window[0] = (mc_stress_window){0, nd - 1, full.i0, full.i1, full.j0, full.j1, 0};
+    if (!windowed || g->periodic_x || g->periodic_y || !mc_box_bound(g, NULL, p, &lb)) {
+        lay->window[0] = window_entry(0, nd - 1, &full);
         lay->nwindows = 1;
         return;
     }
     int k = 0;
     while (k < nd) {
-        box w = window_of(g, &lb, depths[k]);
-        const long a0 = box_cells(&w);
+        mc_box w = window_of(g, &lb, depths[k]);
+        const long a0 = mc_box_cells(&w);
         int k1 = k;
         /* the last group takes every remaining layer */
         const int last = lay->nwindows == MC_STRESS_MAX_WINDOWS - 1;
         while (k1 + 1 < nd) {
-            const box v = window_of(g, &lb, depths[k1 + 1]), u = box_union(&w, &v);
-            if (!last && (double)box_cells(&u) > GROUP_GROWTH * (double)a0)
+            const mc_box v = window_of(g, &lb, depths[k1 + 1]), u = mc_box_union(&w, &v);
+            if (!last && (double)mc_box_cells(&u) > GROUP_GROWTH * (double)a0)
                 break;
             w = u;
             k1++;
         }
-        lay->window[lay->nwindows++] = (mc_stress_window){k, k1, w.i0, w.i1, w.j0, w.j1, 0};
-        lay->windowed |= box_cells(&w) < box_cells(&full);
+        lay->window[lay->nwindows++] = window_entry(k, k1, &w);
+        lay->windowed |= mc_box_cells(&w) < mc_box_cells(&full);
         k = k1 + 1;
     }
 }
 
 /* ---- the stage ---------------------------------------------------------------------------------- */
-
-/* The arrays the stage fills; moved into the results only when everything succeeded. */
-typedef struct {
-    double *depths, *stress[MC_NSTRESS], *vm, *hydro, *tresca;
-} stage_arrays;
-
-static void stage_arrays_free(stage_arrays *a)
-{
-    mc_free(a->depths);
-    for (int c = 0; c < MC_NSTRESS; c++)
-        mc_free(a->stress[c]);
-    mc_free(a->vm);
-    mc_free(a->hydro);
-    mc_free(a->tresca);
-}
 
 /* Work arrays of the stage: the traction, the loads cropped to a window, one layer of a window. */
 typedef struct {
@@ -282,41 +246,44 @@ static void volume_point(const mc_grid *g, const double *depths, size_t idx, dou
     at[2] = depths[k];
 }
 
-/* The summary; MC_ERR_NUMERIC if a stress is not finite (von Mises and Tresca involve every
- * component, the hydrostatic stress the normal ones), so no NaN reaches the outputs. */
-static int stage_summary(const mc_scene *sc, const mc_grid *g, const stage_arrays *a, int nd,
-                         mc_stress_summary *ss, mc_error *err)
+/* The summary of the volumes in vol; MC_ERR_NUMERIC if a stress is not finite (von Mises and
+ * Tresca involve every component, the hydrostatic stress the normal ones), so no NaN reaches the
+ * outputs. */
+static int stage_summary(const mc_scene *sc, mc_results *vol, mc_error *err)
 {
+    const mc_grid *g = &vol->grid;
+    const int nd = vol->nlayers;
     const size_t nv = mc_grid_cells(g) * (size_t)nd;
+    mc_stress_summary *ss = &vol->stress_summary;
     int finite = 1;
     double hmax;
     memset(ss, 0, sizeof *ss);
-    const size_t iv = argmax(a->vm, nv, &ss->vm_max, &finite);
-    const size_t it = argmax(a->tresca, nv, &ss->tresca_max, &finite);
-    argmax(a->hydro, nv, &hmax, &finite);
+    const size_t iv = argmax(vol->von_mises, nv, &ss->vm_max, &finite);
+    const size_t it = argmax(vol->tresca, nv, &ss->tresca_max, &finite);
+    argmax(vol->hydrostatic, nv, &hmax, &finite);
     if (!finite)
         return mc_fail(err, MC_ERR_NUMERIC,
                        "stress: non-finite stresses (the pressure or the tractions are not finite "
                        "or out of range)");
-    volume_point(g, a->depths, iv, ss->vm_max_at);
-    ss->hydro_at_vm_max = a->hydro[iv];
-    volume_point(g, a->depths, it, ss->tresca_max_at);
+    volume_point(g, vol->depths, iv, ss->vm_max_at);
+    ss->hydro_at_vm_max = vol->hydrostatic[iv];
+    volume_point(g, vol->depths, it, ss->tresca_max_at);
     ss->layers = nd;
-    ss->depth_min = ss->depth_max = a->depths[0];
+    ss->depth_min = ss->depth_max = vol->depths[0];
     for (int k = 1; k < nd; k++) {
-        ss->depth_min = fmin(ss->depth_min, a->depths[k]);
-        ss->depth_max = fmax(ss->depth_max, a->depths[k]);
+        ss->depth_min = fmin(ss->depth_min, vol->depths[k]);
+        ss->depth_max = fmax(ss->depth_max, vol->depths[k]);
     }
     ss->kernel = sc->stress.kernel == MC_STRESS_POINT ? "point" : "patch";
     ss->friction = sc->stress.friction;
     return MC_OK;
 }
 
-/* One group of layers on its window w: the loads cropped to it, an operator for its sub-grid,
+/* One group of layers on its window w: the loads cropped to it, a stress plan for its sub-grid,
  * each layer computed and put in place in the volumes (zeros outside the window). */
 static int stage_group(const mc_scene *sc, const mc_results *res, const mc_stress_tuning *tune,
                        const double *depths, mc_stress_window *w, stage_work *wk,
-                       stage_arrays *a, mc_error *err)
+                       mc_results *vol, mc_error *err)
 {
     const mc_grid *g = &res->grid;
     const size_t n = mc_grid_cells(g);
@@ -340,50 +307,51 @@ static int stage_group(const mc_scene *sc, const mc_results *res, const mc_stres
                                    .nu = sc->body1.nu,
                                    .nlayers = nl,
                                    .depths = depths + w->k0,
-                                   .backend = sc->solver.op,
+                                   .backend = sc->solver.backend,
                                    .loads = MC_TRACTION_P | (q ? MC_TRACTION_QX : 0)};
-    mc_stress_op *op = NULL;
-    int rc = mc_stress_create_tuned(&sub, &opt, tune, &op, err);
+    mc_stress_plan *plan = NULL;
+    int rc = mc_stress_create_tuned(&sub, &opt, tune, &plan, err);
     if (rc == MC_OK)
-        rc = mc_stress_prepare(op, p, q, NULL, err);
+        rc = mc_stress_prepare(plan, p, q, NULL, err);
     if (rc == MC_OK)
-        w->direct = mc_stress_is_direct(op);
+        w->sparse = mc_stress_is_sparse(plan);
     for (int k = 0; k < nl && rc == MC_OK; k++) {
         const size_t at = (size_t)(w->k0 + k) * n;
         double *out[MC_NSTRESS];
         for (int c = 0; c < MC_NSTRESS; c++)
-            out[c] = whole ? a->stress[c] + at : wk->layer[c];
-        rc = mc_stress_compute(op, k, out, err);
+            out[c] = whole ? vol->stress[c] + at : wk->layer[c];
+        rc = mc_stress_compute(plan, k, out, err);
         if (rc || whole)
             continue;
         for (int c = 0; c < MC_NSTRESS; c++) {
-            double *vol = a->stress[c] + at;
-            memset(vol, 0, sizeof *vol * n);
+            double *v = vol->stress[c] + at;
+            memset(v, 0, sizeof *v * n);
             for (int j = 0; j < wy; j++)
-                memcpy(vol + (size_t)(w->j0 + j) * g->nx + w->i0, out[c] + (size_t)j * wx,
-                       sizeof *vol * (size_t)wx);
+                memcpy(v + (size_t)(w->j0 + j) * g->nx + w->i0, out[c] + (size_t)j * wx,
+                       sizeof *v * (size_t)wx);
         }
     }
-    mc_stress_destroy(&op);
+    mc_stress_destroy(&plan);
     return rc;
 }
 
 /* The invariants of one group: over the whole layers, or only inside the window (the rest of
  * the layers holds zero stress, whose invariants are 0), point by point with the scalar
  * functions, which mc_invariants_volume equals bit for bit. */
-static int group_invariants(const mc_grid *g, const mc_stress_window *w, stage_arrays *a,
-                            mc_error *err)
+static int group_invariants(mc_results *vol, const mc_stress_window *w, mc_error *err)
 {
+    const mc_grid *g = &vol->grid;
     const size_t n = mc_grid_cells(g), at = (size_t)w->k0 * n;
     const size_t nl = (size_t)(w->k1 - w->k0 + 1);
     if (w->i1 - w->i0 + 1 == g->nx && w->j1 - w->j0 + 1 == g->ny)
-        return mc_invariants_volume(
-            nl * n, a->stress[MC_SXX] + at, a->stress[MC_SYY] + at, a->stress[MC_SZZ] + at,
-            a->stress[MC_SXY] + at, a->stress[MC_SYZ] + at, a->stress[MC_SXZ] + at, a->vm + at,
-            a->hydro + at, a->tresca + at, err);
-    memset(a->vm + at, 0, sizeof(double) * nl * n);
-    memset(a->hydro + at, 0, sizeof(double) * nl * n);
-    memset(a->tresca + at, 0, sizeof(double) * nl * n);
+        return mc_invariants_volume(nl * n, vol->stress[MC_SXX] + at, vol->stress[MC_SYY] + at,
+                                    vol->stress[MC_SZZ] + at, vol->stress[MC_SXY] + at,
+                                    vol->stress[MC_SYZ] + at, vol->stress[MC_SXZ] + at,
+                                    vol->von_mises + at, vol->hydrostatic + at, vol->tresca + at,
+                                    err);
+    memset(vol->von_mises + at, 0, sizeof(double) * nl * n);
+    memset(vol->hydrostatic + at, 0, sizeof(double) * nl * n);
+    memset(vol->tresca + at, 0, sizeof(double) * nl * n);
     const int rows = (int)nl * (w->j1 - w->j0 + 1), wy = w->j1 - w->j0 + 1;
 #pragma omp parallel for schedule(static) \
     if ((size_t)rows * (size_t)(w->i1 - w->i0 + 1) > MC_THREADS_MIN_CELLS)
@@ -393,22 +361,22 @@ static int group_invariants(const mc_grid *g, const mc_stress_window *w, stage_a
             const size_t q = row + (size_t)i;
             double t[MC_NSTRESS];
             for (int c = 0; c < MC_NSTRESS; c++)
-                t[c] = a->stress[c][q];
-            a->vm[q] = mc_von_mises(t);
-            a->hydro[q] = mc_hydrostatic(t);
-            a->tresca[q] = mc_tresca(t);
+                t[c] = vol->stress[c][q];
+            vol->von_mises[q] = mc_von_mises(t);
+            vol->hydrostatic[q] = mc_hydrostatic(t);
+            vol->tresca[q] = mc_tresca(t);
         }
     }
     return MC_OK;
 }
 
 static int stage_compute(const mc_scene *sc, const mc_results *res, const mc_stress_tuning *tune,
-                         const double *depths, int nd, mc_stress_layout *lay, stage_arrays *a,
-                         mc_error *err)
+                         const double *depths, int nd, mc_results *vol, mc_error *err)
 {
     const mc_grid *g = &res->grid;
     const size_t n = mc_grid_cells(g);
     const double mu = sc->stress.friction;
+    mc_stress_layout *lay = &vol->stress_layout;
     size_t nv;
     if (!mc_size_mul(n, (size_t)nd, &nv))
         return mc_fail(err, MC_ERR_NOMEM, "stress stage: %d layers of %d x %d cells overflow",
@@ -417,10 +385,10 @@ static int stage_compute(const mc_scene *sc, const mc_results *res, const mc_str
                                                         : tune->window == MC_STRESS_ON;
     plan_windows(g, res->pressure, depths, nd, windowed, lay);
     stage_work wk = {0};
-    double **vols[MC_NSTRESS + 3] = {&a->vm, &a->hydro, &a->tresca};
+    double **vols[MC_NSTRESS + 3] = {&vol->von_mises, &vol->hydrostatic, &vol->tresca};
     for (int c = 0; c < MC_NSTRESS; c++)
-        vols[3 + c] = &a->stress[c];
-    int ok = (a->depths = mc_malloc(sizeof *a->depths * (size_t)nd)) != NULL;
+        vols[3 + c] = &vol->stress[c];
+    int ok = (vol->depths = mc_malloc(sizeof *vol->depths * (size_t)nd)) != NULL;
     for (int v = 0; v < MC_NSTRESS + 3 && ok; v++)
         ok = (*vols[v] = mc_malloc(sizeof(double) * nv)) != NULL;
     if (ok && mu != 0.0)
@@ -438,7 +406,8 @@ static int stage_compute(const mc_scene *sc, const mc_results *res, const mc_str
                        "stress stage: out of memory for %d layers of %d x %d cells (%.2g GB)", nd,
                        g->nx, g->ny, 9.0 * 8.0 * (double)nv / 1e9);
     }
-    memcpy(a->depths, depths, sizeof *depths * (size_t)nd);
+    vol->nlayers = nd;
+    memcpy(vol->depths, depths, sizeof *depths * (size_t)nd);
     long loaded = 0;
     for (size_t i = 0; i < n; i++)
         loaded += res->pressure[i] != 0.0;
@@ -448,10 +417,10 @@ static int stage_compute(const mc_scene *sc, const mc_results *res, const mc_str
             wk.qx[i] = mu * res->pressure[i];
     int rc = MC_OK;
     for (int w = 0; w < lay->nwindows && rc == MC_OK; w++)
-        rc = stage_group(sc, res, tune, depths, &lay->window[w], &wk, a, err);
+        rc = stage_group(sc, res, tune, depths, &lay->window[w], &wk, vol, err);
     stage_work_free(&wk);
     for (int w = 0; w < lay->nwindows && rc == MC_OK; w++)
-        rc = group_invariants(g, &lay->window[w], a, err);
+        rc = group_invariants(vol, &lay->window[w], err);
     return rc;
 }
 
@@ -465,36 +434,18 @@ int mc_stress_stage_tuned(const mc_scene *sc, mc_results *res, const mc_stress_t
         return mc_fail(err, MC_ERR_INPUT, "stress stage: the results hold no pressure field");
     double depths[MC_MAX_DEPTHS];
     int nd = 0;
-    mc_stress_layout lay;
-    memset(&lay, 0, sizeof lay);
-    int rc = stage_depths(sc, res, depths, &nd, &lay, err);
-    if (rc)
-        return rc;
-    stage_arrays a = {0};
-    if ((rc = stage_compute(sc, res, tune, depths, nd, &lay, &a, err))) {
-        stage_arrays_free(&a);
-        return rc;
-    }
-    mc_stress_summary summary;
-    if ((rc = stage_summary(sc, &res->grid, &a, nd, &summary, err))) {
-        stage_arrays_free(&a);
-        return rc;
-    }
-    res->stress_summary = summary;
-    res->stress_layout = lay;
-    /* replace what an earlier run left */
-    stage_arrays old = {res->depths, {0}, res->von_mises, res->hydrostatic, res->tresca};
-    for (int c = 0; c < MC_NSTRESS; c++) {
-        old.stress[c] = res->stress[c];
-        res->stress[c] = a.stress[c];
-    }
-    stage_arrays_free(&old);
-    res->nlayers = nd;
-    res->depths = a.depths;
-    res->von_mises = a.vm;
-    res->hydrostatic = a.hydro;
-    res->tresca = a.tresca;
-    return MC_OK;
+    /* the stage fills a results struct of its own; its stress members replace those of res only
+     * when everything succeeded */
+    mc_results vol = {.grid = res->grid};
+    int rc = stage_depths(sc, res, depths, &nd, &vol.stress_layout, err);
+    if (rc == MC_OK)
+        rc = stage_compute(sc, res, tune, depths, nd, &vol, err);
+    if (rc == MC_OK)
+        rc = stage_summary(sc, &vol, err);
+    if (rc == MC_OK)
+        mc_results_move_stress(res, &vol);
+    mc_results_free(&vol);
+    return rc;
 }
 
 int mc_stress_stage(const mc_scene *sc, mc_results *res, mc_error *err)

@@ -16,7 +16,7 @@
  * computed only on B widened on every side by
  *     m(z) = max(MC_STRESS_WINDOW_MIN cells, MC_STRESS_WINDOW_CR R + MC_STRESS_WINDOW_CZ z),
  * R = half the longer side of B (m), rounded up to whole cells per axis and clipped to the grid:
- * a DC-FFT (or direct) problem on that sub-grid, exact inside it because the load lies in it.
+ * the stress plan (stress.h) of that sub-grid, exact inside it because the load lies in it.
  * The other cells of the layer hold 0. Why R and not only z: outside a load the in-plane surface
  * stress decays only like (1 - 2 nu) P / (2 pi r^2), so near the surface the margin must grow with
  * the load, and with depth the stress spreads over ~z. Measured on Hertz contacts (nu = 0.3,
@@ -62,7 +62,7 @@ int mc_stress_find_patches(const mc_grid *g, const double *p, double threshold,
  * does not exceed depth_min); loads p = res->pressure and, when friction > 0, the traction
  * q_x = friction * p on the lower body (body 1, z >= 0) in +x: the counter body slides in +x
  * relative to it (elastic.md 0); Poisson ratio of body 1 (the stresses are body 1's; for body 2
- * mirror the problem); kernel from the scene; backend scene->solver.op; the grid of res (that of
+ * mirror the problem); kernel from the scene; backend scene->solver.backend; the grid of res (that of
  * the pressure); window from [stress] window (MC_STRESS_WINDOW_CR: cells outside a layer's window
  * hold 0). Fills res->nlayers, depths, stress[6], von_mises, hydrostatic, tresca (invariants.h),
  * stress_layout (windows, depth rule) and stress_summary: the maxima of von Mises and Tresca with

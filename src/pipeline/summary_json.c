@@ -265,7 +265,7 @@ static void stress_layout(jbuild *b, json_t *o, const mc_scene *s, const mc_resu
         static const char *keys[5] = {"layers", "cells_x", "cells_y", "x", "y"};
         for (int q = 0; q < 5; q++)
             jset(b, e, keys[q], v[q]);
-        jset(b, e, "method", jstr(w->direct ? "direct" : "fft"));
+        jset(b, e, "method", jstr(w->sparse ? "direct" : "fft"));
         if (!e || json_array_append_new(arr, e) != 0)
             b->bad = 1;
     }
@@ -288,7 +288,7 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
          jstr(!cs->solved ? "prescribed" : cs->converged ? "converged" : "not_converged"));
     jset(b, o, "converged", cs->solved ? json_boolean(cs->converged) : json_null());
     jset(b, o, "solver", jstr(cs->solver));
-    jset(b, o, "operator", jstr(mc_backend_name(cs->op)));
+    jset(b, o, "operator", jstr(mc_backend_name(cs->backend)));
     jset(b, o, "capped_cells", json_integer(cs->capped_cells));
     jset(b, o, "solved", json_boolean(cs->solved));
     if (cs->solved) {
@@ -310,6 +310,35 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
         jset(b, o, "kernel", jstr(ss->kernel));
         jset(b, o, "friction", jnum(ss->friction));
         stress_layout(b, o, s, r);
+    }
+
+    if (r->plastic.enabled) {
+        const mc_plastic_summary *q = &r->plastic;
+        o = jchild(b, root, "plastic", json_object());
+        jset(b, o, "converged", json_boolean(q->converged));
+        jset(b, o, "criterion", jstr(q->criterion));
+        if (q->hardening[0])
+            jset(b, o, "hardening", jstr(q->hardening));
+        jset(b, o, "yield_initial", jnum(q->yield_initial));
+        jset(b, o, "vm_elastic_max", jnum(q->vm_elastic_max));
+        jset(b, o, "elastic_shortcut", json_boolean(q->elastic_shortcut));
+        jset(b, o, "load_steps", json_integer(q->load_steps));
+        jset(b, o, "steps_done", json_integer(q->steps_done));
+        jset(b, o, "outer_iterations", json_integer(q->outer_iterations));
+        jset(b, o, "peq_max", jnum(q->peq_max));
+        jset(b, o, "peq_max_at", jxyz(q->peq_max_at));
+        jset(b, o, "plastic_volume", jnum(q->plastic_volume));
+        jset(b, o, "residual_max", jnum(q->residual_max));
+        jset(b, o, "depth", jnum(q->depth));
+        jset(b, o, "depth_auto", json_boolean(q->depth_auto));
+        jset(b, o, "dz", jnum(q->dz));
+        jset(b, o, "nz", json_integer(q->nz));
+        json_t *w = jchild(b, o, "columns", json_object());
+        jset(b, w, "i0", json_integer(q->i0));
+        jset(b, w, "j0", json_integer(q->j0));
+        jset(b, w, "nx", json_integer(q->wnx));
+        jset(b, w, "ny", json_integer(q->wny));
+        jset(b, o, "volume_cells", json_integer(q->volume_cells));
     }
 
     if (r->lube.enabled) {

@@ -1,12 +1,14 @@
-/* stress.c - the subsurface stress operator over depth layers (see stress.h). Kernel tables come
- * from stress_table.c; the transforms from the engine of operator.h (any grid, either backend) or
- * from the symmetric engine of stress_sym.c (fft backend, free axes); the direct sums over the
- * loaded cells from stress_sym.c. The pipeline stage is in stress_stage.c. */
+/* stress.c - the subsurface stress over depth layers, planned once (mc_stress_plan, see stress.h).
+ * Kernel tables come from stress_table.c; the transforms from the engine of operator.h (any grid,
+ * either backend) or from the symmetric engine of stress_sym.c (fft backend, free axes); the
+ * sparse sums over the loaded cells from stress_sym.c. The pipeline stage is
+ * pipeline/stage_stress.c. */
 #include "stress/stress.h"
 
 #include <limits.h>
 #include <math.h>
 #include <omp.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "core/alloc.h"
@@ -25,7 +27,7 @@
  *                so dearer per point than the r2c, on a quarter of the points): 0.56 ... 0.93 ns;
  *   COST_PRODUCT per complex multiply-add of a kernel and a load spectrum (memory bound, read
  *                from the quadrant): 2.2 ... 2.4 ns at 512^2 and 1024^2;
- *   COST_MADD    per multiply-add of the direct sum over the loaded cells (vectorised rows):
+ *   COST_MADD    per multiply-add of the sparse sum over the loaded cells (vectorised rows):
  *                0.47 ... 0.57 ns.
  * Only the ratio of the two paths matters; a factor 2 off moves the switch-over by 2x in the
  * number of loaded cells, where both paths cost the same. The engine of operator.h transforms the
@@ -36,7 +38,7 @@
 #define COST_MADD 0.5e-9
 #define COST_FULL_KERNEL 1.5
 
-struct mc_stress_op {
+struct mc_stress_plan {
     mc_grid g;
     mc_stress_kernel kernel;
     int nlayers;
@@ -52,7 +54,7 @@ struct mc_stress_op {
     /* symmetric engine (both axes free, fft backend) */
     mc_stress_sym *sym;
     int qx, qy;
-    /* per announced load: 6 kernel arrays (general: spectra, or raw tables for the direct sum;
+    /* per announced load: 6 kernel arrays (general: spectra, or raw tables for the sparse sum;
      * symmetric: quadrant tables, turned into their spectra in place) and the load's spectrum */
     double *spectra;
     double *kspec[NLOADS][MC_NSTRESS];
@@ -62,24 +64,24 @@ struct mc_stress_op {
     int li[NLOADS], ng;
     int *cells; /* loaded cells (indices into nx*ny) */
     long ncells;
-    int direct; /* 1: direct summation over the loaded cells */
+    int sparse; /* 1: the sparse sum over the loaded cells */
     mc_stress_timing timing;
 };
 
-void mc_stress_destroy(mc_stress_op **opp)
+void mc_stress_destroy(mc_stress_plan **planp)
 {
-    if (!opp || !*opp)
+    if (!planp || !*planp)
         return;
-    mc_stress_op *op = *opp;
-    mc_stress_tables_destroy(&op->tb);
-    mc_conv_destroy(&op->conv);
-    mc_stress_sym_destroy(&op->sym);
-    mc_free(op->tables);
-    mc_free(op->spectra);
-    mc_free(op->cells);
-    mc_free(op->depths);
-    mc_free(op);
-    *opp = NULL;
+    mc_stress_plan *plan = *planp;
+    mc_stress_tables_destroy(&plan->tb);
+    mc_conv_destroy(&plan->conv);
+    mc_stress_sym_destroy(&plan->sym);
+    mc_free(plan->tables);
+    mc_free(plan->spectra);
+    mc_free(plan->cells);
+    mc_free(plan->depths);
+    mc_free(plan);
+    *planp = NULL;
 }
 
 static int check_options(const mc_stress_options *opt, const mc_stress_tuning *tune,
@@ -103,58 +105,53 @@ static int check_options(const mc_stress_options *opt, const mc_stress_tuning *t
         if (sw[k] != MC_STRESS_AUTO && sw[k] != MC_STRESS_OFF && sw[k] != MC_STRESS_ON)
             return mc_fail(err, MC_ERR_INPUT, "stress: tuning switch %d is %d (AUTO, OFF or ON)",
                            k, (int)sw[k]);
-    for (int k = 0; k < opt->nlayers; k++) {
-        const double z = opt->depths[k];
-        if (!(isfinite(z) && z >= 0.0))
-            return mc_fail(err, MC_ERR_INPUT, "stress: depth %d is %g m; depths must be >= 0", k,
-                           z);
-        if (opt->kernel == MC_STRESS_POINT && z == 0.0)
-            return mc_fail(err, MC_ERR_INPUT,
-                           "stress: depth %d is 0, where the point kernel is singular (use the "
-                           "patch kernel, or depths > 0)",
-                           k);
+    int rc = MC_OK;
+    for (int k = 0; k < opt->nlayers && rc == MC_OK; k++) {
+        char what[40];
+        snprintf(what, sizeof what, "stress, layer %d", k);
+        rc = mc_stress_check_depth(opt->kernel, opt->depths[k], what, err);
     }
-    return MC_OK;
+    return rc;
 }
 
-/* Takes the transform engine of the op's path and the table builder; sets the kernel array and
+/* Takes the transform engine of the plan's path and the table builder; sets the kernel array and
  * load spectrum lengths. */
-static int create_engine(mc_stress_op *op, mc_backend backend, const mc_stress_options *opt,
+static int create_engine(mc_stress_plan *plan, mc_backend backend, const mc_stress_options *opt,
                          size_t *klen, size_t *llen, mc_error *err)
 {
-    const mc_grid *g = &op->g;
+    const mc_grid *g = &plan->g;
     int rc, tx, ty;
     const int sym = backend == MC_BACKEND_FFT && !g->periodic_x && !g->periodic_y &&
-                    op->tune.symmetric != MC_STRESS_OFF;
+                    plan->tune.symmetric != MC_STRESS_OFF;
     if (sym) {
-        if ((rc = mc_stress_sym_create(g, &op->sym, err)))
+        if ((rc = mc_stress_sym_create(g, &plan->sym, err)))
             return rc;
-        mc_stress_sym_dims(op->sym, &op->qx, &op->qy);
-        tx = 2 * (op->qx - 1);
-        ty = 2 * (op->qy - 1);
-        *klen = mc_stress_sym_quad_len(op->sym);
-        *llen = mc_stress_sym_spec_len(op->sym);
+        mc_stress_sym_dims(plan->sym, &plan->qx, &plan->qy);
+        tx = 2 * (plan->qx - 1);
+        ty = 2 * (plan->qy - 1);
+        *klen = mc_stress_sym_quad_len(plan->sym);
+        *llen = mc_stress_sym_spec_len(plan->sym);
     } else {
-        if ((rc = mc_conv_create(g, backend, &op->conv, err)))
+        if ((rc = mc_conv_create(g, backend, &plan->conv, err)))
             return rc;
-        mc_conv_table_dims(op->conv, &tx, &ty);
-        *klen = *llen = mc_conv_spectrum_len(op->conv);
+        mc_conv_table_dims(plan->conv, &tx, &ty);
+        *klen = *llen = mc_conv_spectrum_len(plan->conv);
         size_t ntab;
         if (!mc_size_mul((size_t)tx * ty, MC_NSTRESS, &ntab) ||
-            !(op->tables = mc_malloc(sizeof *op->tables * ntab)))
+            !(plan->tables = mc_malloc(sizeof *plan->tables * ntab)))
             return mc_fail(err, MC_ERR_NOMEM, "stress: out of memory for the tables of a %d x %d "
                                               "grid", g->nx, g->ny);
         for (int c = 0; c < MC_NSTRESS; c++)
-            op->tab[c] = (mc_kernel_table){*g, tx, ty, op->tables + (size_t)c * tx * ty};
+            plan->tab[c] = (mc_kernel_table){*g, tx, ty, plan->tables + (size_t)c * tx * ty};
     }
-    op->tx = tx;
-    op->ty = ty;
-    op->timing.symmetric = sym;
-    return mc_stress_tables_create(g, tx, ty, opt->kernel, opt->nu, 0, &op->tb, err);
+    plan->tx = tx;
+    plan->ty = ty;
+    plan->timing.symmetric = sym;
+    return mc_stress_tables_create(g, tx, ty, opt->kernel, opt->nu, 0, &plan->tb, err);
 }
 
 int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
-                           const mc_stress_tuning *tune, mc_stress_op **out, mc_error *err)
+                           const mc_stress_tuning *tune, mc_stress_plan **out, mc_error *err)
 {
     *out = NULL;
     const mc_stress_tuning automatic = {MC_STRESS_AUTO, MC_STRESS_AUTO, MC_STRESS_AUTO};
@@ -164,25 +161,25 @@ int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
     if (rc || (rc = check_options(opt, tune, err)))
         return rc;
     if (mc_grid_cells(g) > (size_t)INT_MAX) /* the loaded cells are listed as int */
-        return mc_fail(err, MC_ERR_LIMIT, "stress: %d x %d cells exceed the %d the op handles",
+        return mc_fail(err, MC_ERR_LIMIT, "stress: %d x %d cells exceed the %d the plan handles",
                        g->nx, g->ny, INT_MAX);
-    mc_stress_op *op = mc_calloc(1, sizeof *op);
-    if (!op)
+    mc_stress_plan *plan = mc_calloc(1, sizeof *plan);
+    if (!plan)
         return mc_fail(err, MC_ERR_NOMEM, "stress: out of memory");
-    op->g = *g;
-    op->kernel = opt->kernel;
-    op->nlayers = opt->nlayers;
-    op->loads = opt->loads;
-    op->tune = *tune;
-    if (!(op->depths = mc_malloc(sizeof *op->depths * (size_t)opt->nlayers)) ||
-        !(op->cells = mc_malloc(sizeof *op->cells * mc_grid_cells(g)))) {
-        mc_stress_destroy(&op);
+    plan->g = *g;
+    plan->kernel = opt->kernel;
+    plan->nlayers = opt->nlayers;
+    plan->loads = opt->loads;
+    plan->tune = *tune;
+    if (!(plan->depths = mc_malloc(sizeof *plan->depths * (size_t)opt->nlayers)) ||
+        !(plan->cells = mc_malloc(sizeof *plan->cells * mc_grid_cells(g)))) {
+        mc_stress_destroy(&plan);
         return mc_fail(err, MC_ERR_NOMEM, "stress: out of memory");
     }
-    memcpy(op->depths, opt->depths, sizeof *op->depths * (size_t)opt->nlayers);
+    memcpy(plan->depths, opt->depths, sizeof *plan->depths * (size_t)opt->nlayers);
     size_t klen, llen;
-    if ((rc = create_engine(op, opt->backend, opt, &klen, &llen, err))) {
-        mc_stress_destroy(&op);
+    if ((rc = create_engine(plan, opt->backend, opt, &klen, &llen, err))) {
+        mc_stress_destroy(&plan);
         return rc;
     }
     int nl = 0;
@@ -191,140 +188,140 @@ int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
     size_t per, nspec;
     if (!mc_size_mul(klen, MC_NSTRESS, &per) || (per += llen) < llen ||
         !mc_size_mul(per, (size_t)nl, &nspec) ||
-        !(op->spectra = mc_malloc(sizeof *op->spectra * nspec))) {
-        mc_stress_destroy(&op);
+        !(plan->spectra = mc_malloc(sizeof *plan->spectra * nspec))) {
+        mc_stress_destroy(&plan);
         return mc_fail(err, MC_ERR_NOMEM,
                        "stress: out of memory for the spectra of a %d x %d grid (%d loads)",
                        g->nx, g->ny, nl);
     }
-    double *sp = op->spectra;
+    double *sp = plan->spectra;
     for (int li = 0; li < NLOADS; li++) {
         if (!((opt->loads >> li) & 1))
             continue;
         for (int c = 0; c < MC_NSTRESS; c++, sp += klen)
-            op->kspec[li][c] = sp;
-        op->lspec[li] = sp;
+            plan->kspec[li][c] = sp;
+        plan->lspec[li] = sp;
         sp += llen;
     }
-    *out = op;
+    *out = plan;
     return MC_OK;
 }
 
-int mc_stress_create(const mc_grid *g, const mc_stress_options *opt, mc_stress_op **out,
+int mc_stress_create(const mc_grid *g, const mc_stress_options *opt, mc_stress_plan **out,
                      mc_error *err)
 {
     return mc_stress_create_tuned(g, opt, NULL, out, err);
 }
 
-void mc_stress_cost(const mc_stress_op *op, long nloaded, int nterms, double *fft_s,
-                    double *direct_s)
+void mc_stress_cost(const mc_stress_plan *plan, long nloaded, int nterms, double *full_s,
+                    double *sparse_s)
 {
-    const double n = (double)mc_grid_cells(&op->g), pad = (double)op->tx * (double)op->ty;
-    const double half = (double)op->ty * (double)(op->tx / 2 + 1);
-    *direct_s = COST_MADD * MC_NSTRESS * (double)nterms * (double)nloaded * n;
-    if (op->conv && mc_conv_backend(op->conv) == MC_BACKEND_DIRECT) {
-        *fft_s = COST_MADD * MC_NSTRESS * (double)nterms * n * n; /* the dense sum */
+    const double n = (double)mc_grid_cells(&plan->g), pad = (double)plan->tx * (double)plan->ty;
+    const double half = (double)plan->ty * (double)(plan->tx / 2 + 1);
+    *sparse_s = COST_MADD * MC_NSTRESS * (double)nterms * (double)nloaded * n;
+    if (plan->conv && mc_conv_backend(plan->conv) == MC_BACKEND_DIRECT) {
+        *full_s = COST_MADD * MC_NSTRESS * (double)nterms * n * n; /* the dense sum */
         return;
     }
     /* pruned transforms: columns in full, rows only where the field lives (half the rows) */
     const double inv = COST_FFT * 0.75 * pad * log2(pad);
     double kern;
-    if (op->sym) {
-        const double q = (double)op->qx * (double)op->qy;
+    if (plan->sym) {
+        const double q = (double)plan->qx * (double)plan->qy;
         kern = COST_R2R * q * log2(q);
     } else {
         kern = COST_FULL_KERNEL * COST_FFT * pad * log2(pad);
     }
-    *fft_s = MC_NSTRESS * (nterms * kern + inv + COST_PRODUCT * nterms * half) +
-             nterms * inv / op->nlayers;
+    *full_s = MC_NSTRESS * (nterms * kern + inv + COST_PRODUCT * nterms * half) +
+             nterms * inv / plan->nlayers;
 }
 
 /* The given loads: fills li[] with the indices of the non-NULL loads; checks they are announced. */
-static int given_loads(const mc_stress_op *op, const double *const loads[NLOADS], int li[NLOADS],
-                       int *ng, mc_error *err)
+static int given_loads(const mc_stress_plan *plan, const double *const loads[NLOADS],
+                       int li[NLOADS], int *ng, mc_error *err)
 {
     static const char *names[NLOADS] = {"p", "q_x", "q_y"};
     *ng = 0;
     for (int l = 0; l < NLOADS; l++) {
         if (!loads[l])
             continue;
-        if (!((op->loads >> l) & 1))
+        if (!((plan->loads >> l) & 1))
             return mc_fail(err, MC_ERR_INPUT,
                            "stress: load %s given but not announced in the options (loads = %d)",
-                           names[l], op->loads);
+                           names[l], plan->loads);
         li[(*ng)++] = l;
     }
     return MC_OK;
 }
 
-/* Once per call: the loaded cells, the choice of the direct sum, and (if not) the load spectra. */
-static void prepare_loads(mc_stress_op *op, const double *const loads[NLOADS], const int li[],
+/* Once per call: the loaded cells, the choice of the sparse sum, and (if not) the load spectra. */
+static void prepare_loads(mc_stress_plan *plan, const double *const loads[NLOADS], const int li[],
                           int ng)
 {
     const double t0 = omp_get_wtime();
-    const size_t n = mc_grid_cells(&op->g);
+    const size_t n = mc_grid_cells(&plan->g);
     long nc = 0;
     for (size_t i = 0; i < n; i++) {
         int any = 0;
         for (int t = 0; t < ng; t++)
             any |= loads[li[t]][i] != 0.0;
         if (any)
-            op->cells[nc++] = (int)i;
+            plan->cells[nc++] = (int)i;
     }
-    op->ncells = nc;
-    if (op->tune.sparse == MC_STRESS_AUTO) {
-        double fft_s, direct_s;
-        mc_stress_cost(op, nc, ng, &fft_s, &direct_s);
-        op->direct = direct_s < fft_s;
+    plan->ncells = nc;
+    if (plan->tune.sparse == MC_STRESS_AUTO) {
+        double full_s, sparse_s;
+        mc_stress_cost(plan, nc, ng, &full_s, &sparse_s);
+        plan->sparse = sparse_s < full_s;
     } else {
-        op->direct = op->tune.sparse == MC_STRESS_ON;
+        plan->sparse = plan->tune.sparse == MC_STRESS_ON;
     }
-    if (!op->direct)
+    if (!plan->sparse)
         for (int i = 0; i < ng; i++) {
-            if (op->sym)
-                mc_stress_sym_load(op->sym, loads[li[i]], op->lspec[li[i]]);
+            if (plan->sym)
+                mc_stress_sym_load(plan->sym, loads[li[i]], plan->lspec[li[i]]);
             else
-                mc_conv_load(op->conv, loads[li[i]], op->lspec[li[i]]);
+                mc_conv_load(plan->conv, loads[li[i]], plan->lspec[li[i]]);
         }
-    op->timing.loads += omp_get_wtime() - t0;
+    plan->timing.loads += omp_get_wtime() - t0;
 }
 
 static const int load_bit[NLOADS] = {MC_TRACTION_P, MC_TRACTION_QX, MC_TRACTION_QY};
 
-/* The six tables of load li at depth z into the op's kernel arrays of that load (quadrants on the
+/* The six tables of load li at depth z into the plan's kernel arrays of that load (quadrants on the
  * symmetric path, full tables otherwise; for the transform path of the general engine into the
  * shared table arrays, transformed after). */
-static int build_tables(mc_stress_op *op, int li, double z, mc_error *err)
+static int build_tables(mc_stress_plan *plan, int li, double z, mc_error *err)
 {
-    double *const *dst = op->sym || op->direct ? op->kspec[li] : NULL;
-    double *const full[MC_NSTRESS] = {op->tab[0].k, op->tab[1].k, op->tab[2].k,
-                                      op->tab[3].k, op->tab[4].k, op->tab[5].k};
-    if (op->sym)
-        return mc_stress_tables_quadrant(op->tb, load_bit[li], z, op->qx, op->qy, dst, err);
-    return mc_stress_tables_build(op->tb, load_bit[li], z, dst ? dst : full, err);
+    double *const *dst = plan->sym || plan->sparse ? plan->kspec[li] : NULL;
+    double *const full[MC_NSTRESS] = {plan->tab[0].k, plan->tab[1].k, plan->tab[2].k,
+                                      plan->tab[3].k, plan->tab[4].k, plan->tab[5].k};
+    if (plan->sym)
+        return mc_stress_tables_quadrant(plan->tb, load_bit[li], z, plan->qx, plan->qy, dst, err);
+    return mc_stress_tables_build(plan->tb, load_bit[li], z, dst ? dst : full, err);
 }
 
 /* Layer k from the prepared loads li[0..ng-1] into out[c] (ny*nx each). */
-static int compute_layer(mc_stress_op *op, int k, const double *const loads[NLOADS],
+static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[NLOADS],
                          const int li[], int ng, double *const out[6], mc_error *err)
 {
     for (int i = 0; i < ng; i++) {
         const double t0 = omp_get_wtime();
-        int rc = build_tables(op, li[i], op->depths[k], err);
+        int rc = build_tables(plan, li[i], plan->depths[k], err);
         const double t1 = omp_get_wtime();
-        op->timing.tables += t1 - t0;
+        plan->timing.tables += t1 - t0;
         if (rc)
             return rc;
-        if (op->direct)
+        if (plan->sparse)
             continue;
         for (int c = 0; c < MC_NSTRESS && rc == MC_OK; c++) {
-            if (op->sym)
-                mc_stress_sym_kernel(op->sym, mc_stress_parity(load_bit[li[i]], c),
-                                     op->kspec[li[i]][c]);
+            if (plan->sym)
+                mc_stress_sym_kernel(plan->sym, mc_stress_parity(load_bit[li[i]], c),
+                                     plan->kspec[li[i]][c]);
             else
-                rc = mc_conv_kernel(op->conv, &op->tab[c], op->kspec[li[i]][c], err);
+                rc = mc_conv_kernel(plan->conv, &plan->tab[c], plan->kspec[li[i]][c], err);
         }
-        op->timing.kernels += omp_get_wtime() - t1;
+        plan->timing.kernels += omp_get_wtime() - t1;
         if (rc)
             return rc;
     }
@@ -334,22 +331,22 @@ static int compute_layer(mc_stress_op *op, int k, const double *const loads[NLOA
         int par[NLOADS];
         mc_stress_term terms[NLOADS];
         for (int i = 0; i < ng; i++) {
-            ks[i] = op->kspec[li[i]][c];
-            ls[i] = op->lspec[li[i]];
+            ks[i] = plan->kspec[li[i]][c];
+            ls[i] = plan->lspec[li[i]];
             par[i] = mc_stress_parity(load_bit[li[i]], c);
-            terms[i] = (mc_stress_term){loads[li[i]], op->sym ? ks[i] : NULL, op->qx, par[i],
-                                        op->sym ? NULL : ks[i], op->tx, op->ty};
+            terms[i] = (mc_stress_term){loads[li[i]], plan->sym ? ks[i] : NULL, plan->qx, par[i],
+                                        plan->sym ? NULL : ks[i], plan->tx, plan->ty};
         }
-        if (op->direct)
-            mc_stress_sparse_sum(&op->g, (int)op->ncells, op->cells, ng, terms, out[c]);
-        else if (op->sym)
-            mc_stress_sym_apply(op->sym, ng, ks, par, ls, out[c]);
+        if (plan->sparse)
+            mc_stress_sparse_sum(&plan->g, (int)plan->ncells, plan->cells, ng, terms, out[c]);
+        else if (plan->sym)
+            mc_stress_sym_apply(plan->sym, ng, ks, par, ls, out[c]);
         else
-            mc_conv_apply(op->conv, ng, ks, ls, out[c]);
+            mc_conv_apply(plan->conv, ng, ks, ls, out[c]);
     }
-    op->timing.apply += omp_get_wtime() - t0;
-    op->timing.layers++;
-    op->timing.sparse_layers += op->direct;
+    plan->timing.apply += omp_get_wtime() - t0;
+    plan->timing.layers++;
+    plan->timing.sparse_layers += plan->sparse;
     return MC_OK;
 }
 
@@ -362,84 +359,84 @@ static int check_outputs(double *const s[6], mc_error *err)
     return MC_OK;
 }
 
-int mc_stress_field(mc_stress_op *op, const double *p, const double *qx, const double *qy,
+int mc_stress_field(mc_stress_plan *plan, const double *p, const double *qx, const double *qy,
                     double *const s[6], mc_error *err)
 {
     const double *const loads[NLOADS] = {p, qx, qy};
     int li[NLOADS], ng;
     int rc = check_outputs(s, err);
-    if (rc || (rc = given_loads(op, loads, li, &ng, err)))
+    if (rc || (rc = given_loads(plan, loads, li, &ng, err)))
         return rc;
-    const size_t n = mc_grid_cells(&op->g);
+    const size_t n = mc_grid_cells(&plan->g);
     if (ng == 0) { /* no load, no stress */
         for (int c = 0; c < MC_NSTRESS; c++)
-            memset(s[c], 0, sizeof(double) * n * (size_t)op->nlayers);
+            memset(s[c], 0, sizeof(double) * n * (size_t)plan->nlayers);
         return MC_OK;
     }
-    prepare_loads(op, loads, li, ng);
-    for (int k = 0; k < op->nlayers; k++) {
+    prepare_loads(plan, loads, li, ng);
+    for (int k = 0; k < plan->nlayers; k++) {
         double *const out[MC_NSTRESS] = {s[0] + k * n, s[1] + k * n, s[2] + k * n,
                                          s[3] + k * n, s[4] + k * n, s[5] + k * n};
-        if ((rc = compute_layer(op, k, loads, li, ng, out, err)))
+        if ((rc = compute_layer(plan, k, loads, li, ng, out, err)))
             return rc;
     }
     return MC_OK;
 }
 
-int mc_stress_layer(mc_stress_op *op, int k, const double *p, const double *qx, const double *qy,
-                    double *const s[6], mc_error *err)
+int mc_stress_layer(mc_stress_plan *plan, int k, const double *p, const double *qx,
+                    const double *qy, double *const s[6], mc_error *err)
 {
-    if (k < 0 || k >= op->nlayers)
+    if (k < 0 || k >= plan->nlayers)
         return mc_fail(err, MC_ERR_INPUT, "stress: layer %d out of range 0..%d", k,
-                       op->nlayers - 1);
+                       plan->nlayers - 1);
     const double *const loads[NLOADS] = {p, qx, qy};
     int li[NLOADS], ng;
     int rc = check_outputs(s, err);
-    if (rc || (rc = given_loads(op, loads, li, &ng, err)))
+    if (rc || (rc = given_loads(plan, loads, li, &ng, err)))
         return rc;
     if (ng == 0) {
         for (int c = 0; c < MC_NSTRESS; c++)
-            memset(s[c], 0, sizeof(double) * mc_grid_cells(&op->g));
+            memset(s[c], 0, sizeof(double) * mc_grid_cells(&plan->g));
         return MC_OK;
     }
-    prepare_loads(op, loads, li, ng);
-    return compute_layer(op, k, loads, li, ng, s, err);
+    prepare_loads(plan, loads, li, ng);
+    return compute_layer(plan, k, loads, li, ng, s, err);
 }
 
-void mc_stress_timing_get(const mc_stress_op *op, mc_stress_timing *t) { *t = op->timing; }
+void mc_stress_timing_get(const mc_stress_plan *plan, mc_stress_timing *t) { *t = plan->timing; }
 
-int mc_stress_prepare(mc_stress_op *op, const double *p, const double *qx, const double *qy,
+int mc_stress_prepare(mc_stress_plan *plan, const double *p, const double *qx, const double *qy,
                       mc_error *err)
 {
     const double *const loads[NLOADS] = {p, qx, qy};
-    int rc = given_loads(op, loads, op->li, &op->ng, err);
+    int rc = given_loads(plan, loads, plan->li, &plan->ng, err);
     if (rc) {
-        op->ng = 0;
+        plan->ng = 0;
         return rc;
     }
     for (int l = 0; l < NLOADS; l++)
-        op->cur[l] = loads[l];
-    op->direct = 1;
-    op->ncells = 0;
-    if (op->ng > 0)
-        prepare_loads(op, loads, op->li, op->ng);
+        plan->cur[l] = loads[l];
+    plan->sparse = 1;
+    plan->ncells = 0;
+    if (plan->ng > 0)
+        prepare_loads(plan, loads, plan->li, plan->ng);
     return MC_OK;
 }
 
-int mc_stress_compute(mc_stress_op *op, int k, double *const s[6], mc_error *err)
+int mc_stress_compute(mc_stress_plan *plan, int k, double *const s[6], mc_error *err)
 {
-    if (k < 0 || k >= op->nlayers)
+    if (k < 0 || k >= plan->nlayers)
         return mc_fail(err, MC_ERR_INPUT, "stress: layer %d out of range 0..%d", k,
-                       op->nlayers - 1);
+                       plan->nlayers - 1);
     int rc = check_outputs(s, err);
     if (rc)
         return rc;
-    if (op->ng == 0) {
+    if (plan->ng == 0) {
         for (int c = 0; c < MC_NSTRESS; c++)
-            memset(s[c], 0, sizeof(double) * mc_grid_cells(&op->g));
+            memset(s[c], 0, sizeof(double) * mc_grid_cells(&plan->g));
         return MC_OK;
     }
-    return compute_layer(op, k, op->cur, op->li, op->ng, s, err);
+    return compute_layer(plan, k, plan->cur, plan->li, plan->ng, s, err);
 }
 
-int mc_stress_is_direct(const mc_stress_op *op) { return op->direct; }
+int mc_stress_is_sparse(const mc_stress_plan *plan) { return plan->sparse; }

@@ -11,14 +11,15 @@
  *           (elastic.md 3.5);
  *   point - a concentrated force p dx dy at the cell centre (Boussinesq / Cerruti, 3.1, 3.2):
  *           the "minimum evaluation depth" artefact of 3.6, kept for that comparison; z > 0 only.
- * Backends as in operator.h (direct summation or DC-FFT over the same tables, so they agree to
- * round-off); one forward transform per load field is shared by all components and layers.
+ * Backends as in operator.h (the direct backend's O(N^2) sums or DC-FFT over the same tables, so
+ * they agree to round-off); one forward transform per load field is shared by all components and
+ * layers.
  * Three speed-ups give the same results to round-off and can be switched off (mc_stress_tuning):
  * on free axes the fft backend builds one quadrant of each table and transforms it by DCT-I /
- * DST-I (the kernels' parities, stress_internal.h); loads on few cells are summed directly over
- * those cells when a cost model says it is cheaper; and the pipeline stage computes a compact
- * load's layers only on windows around it (zeros elsewhere, MC_STRESS_WINDOW_CR) and takes the
- * depth range from the contact when asked (MC_STRESS_DEPTH_RADII).
+ * DST-I (the kernels' parities, stress_internal.h); loads on few cells are summed over those
+ * cells only (the sparse sum) when a cost model says it is cheaper; and the pipeline stage
+ * (pipeline/stage_stress.h) computes a compact load's layers only on windows around it (zeros
+ * elsewhere) and takes the depth range from the contact when asked.
  * Stresses are those of the body below the surface (z >= 0) with its own Poisson ratio.
  *
  * Periodic axes (period L = n d) hold the periodic Green's function, the sum over all images:
@@ -69,14 +70,14 @@ int mc_stress_tables_create(const mc_grid *g, int tx, int ty, mc_stress_kernel k
                             int images, mc_stress_tables **out, mc_error *err);
 
 /* The six tables k[c] (c in kernel.h order, each ty*tx, caller-owned, wrap-around layout of
- * operator.h with padding slots 0) of load (one of MC_TRACTION_P, MC_TRACTION_QX, MC_TRACTION_QY) at depth z
- * (m): stress per unit load on one cell. Never allocates; OpenMP over table rows. MC_OK, or
+ * operator.h with padding slots 0) of load (one of MC_TRACTION_P, MC_TRACTION_QX, MC_TRACTION_QY)
+ * at depth z (m): stress per unit load on one cell. Never allocates; OpenMP over table rows. MC_OK, or
  * MC_ERR_INPUT for a bad load, z < 0 or not finite, or z = 0 with the point kernel. */
 int mc_stress_tables_build(mc_stress_tables *tb, int load, double z, double *const k[6],
                            mc_error *err);
 
-/* Parity of table c (kernel.h order) of load (MC_TRACTION_P, _QX or _QY): bit 0 set when the kernel is
- * odd in the x offset, bit 1 when odd in the y offset (kernel.h, elastic.md 3.3, 3.4); -1 for a
+/* Parity of table c (kernel.h order) of load (MC_TRACTION_P, _QX or _QY): bit 0 set when the
+ * kernel is odd in the x offset, bit 1 when odd in the y offset (kernel.h, elastic.md 3.3, 3.4); -1 for a
  * bad load or component. */
 int mc_stress_parity(int load, int c);
 
@@ -96,7 +97,7 @@ int mc_stress_tables_images(const mc_stress_tables *tb, int axis, double z);
 
 void mc_stress_tables_destroy(mc_stress_tables **tb); /* frees, sets *tb = NULL; NULL-safe */
 
-/* ---- the stress operator ------------------------------------------------------------------- */
+/* ---- the stress operator, planned once for a grid and a set of layers: mc_stress_plan -------- */
 
 typedef struct {
     mc_stress_kernel kernel; /* MC_STRESS_PATCH (default) or MC_STRESS_POINT */
@@ -104,10 +105,10 @@ typedef struct {
     int nlayers;             /* >= 1 */
     const double *depths;    /* nlayers finite depths z >= 0, m (copied); point kernel: z > 0 */
     mc_backend backend;
-    int loads;               /* which load fields will be given: MC_TRACTION_P | MC_TRACTION_QX | ... */
+    int loads;               /* the load fields that will be given: MC_TRACTION_P | _QX | _QY */
 } mc_stress_options;
 
-typedef struct mc_stress_op mc_stress_op;
+typedef struct mc_stress_plan mc_stress_plan;
 
 /* A speed-up that can be switched off (to measure what it saves, or to compare against). */
 typedef enum { MC_STRESS_AUTO = 0, MC_STRESS_OFF = 1, MC_STRESS_ON = 2 } mc_stress_switch;
@@ -120,7 +121,7 @@ typedef enum { MC_STRESS_AUTO = 0, MC_STRESS_OFF = 1, MC_STRESS_ON = 2 } mc_stre
  *               quarter of the size (stress_internal.h), products straight from those; padded
  *               length 2m per axis, m the smallest 7-smooth >= max(n, 2). AUTO = ON where it
  *               applies; OFF: full tables and r2c (the engine of operator.h).
- *   sparse    - direct summation over the loaded cells only: 6 n_L N multiply-adds per load and
+ *   sparse    - the sparse sum over the loaded cells only: 6 n_L N multiply-adds per load and
  *               layer from the real-space tables (no kernel transforms). AUTO: the cost model of
  *               mc_stress_cost picks it when it is cheaper than the transforms; ON: always (any
  *               backend); OFF: never.
@@ -134,13 +135,14 @@ typedef struct {
 
 /* Cost model of the automatic choice, seconds per layer on one thread of this machine (a 2-core
  * x86-64; the constants are in stress.c with their measurements):
- *   *fft_s    the transform path: 6 nterms kernel transforms (r2r of the quadrant, or r2c of the
- *             full table), 6 pruned inverse transforms, 6 nterms spectrum products, and the load
- *             transforms spread over the op's layers; on the direct backend the dense O(N^2) sum;
- *   *direct_s the direct sum over nloaded cells: 6 nterms nloaded nx ny multiply-adds.
+ *   *full_s   the convolution over the whole grid: on the fft backend 6 nterms kernel transforms
+ *             (r2r of the quadrant, or r2c of the full table), 6 pruned inverse transforms,
+ *             6 nterms spectrum products, and the load transforms spread over the plan's layers;
+ *             on the direct backend the dense O(N^2) sum;
+ *   *sparse_s the sparse sum over nloaded cells: 6 nterms nloaded nx ny multiply-adds.
  * Table builds are common to both and left out. */
-void mc_stress_cost(const mc_stress_op *op, long nloaded, int nterms, double *fft_s,
-                    double *direct_s);
+void mc_stress_cost(const mc_stress_plan *plan, long nloaded, int nterms, double *full_s,
+                    double *sparse_s);
 
 /* Plan the transforms and workspaces for grid g: the transform engine (the symmetric one of
  * stress_internal.h for the fft backend on free axes, else operator.h's), the table builder, the
@@ -149,12 +151,12 @@ void mc_stress_cost(const mc_stress_op *op, long nloaded, int nterms, double *ff
  * MC_ERR_INPUT for bad options (no load announced, nlayers < 1, bad depth, nu or kernel, a bad
  * tuning switch), MC_ERR_LIMIT (more than INT_MAX cells), MC_ERR_NOMEM, or what mc_conv_create
  * returns. */
-int mc_stress_create(const mc_grid *g, const mc_stress_options *opt, mc_stress_op **out,
+int mc_stress_create(const mc_grid *g, const mc_stress_options *opt, mc_stress_plan **out,
                      mc_error *err);
 
 /* mc_stress_create with the speed-ups of tune (NULL: all automatic, as mc_stress_create). */
 int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
-                           const mc_stress_tuning *tune, mc_stress_op **out, mc_error *err);
+                           const mc_stress_tuning *tune, mc_stress_plan **out, mc_error *err);
 
 /* All layers: s[c] (c < 6) are caller arrays of nlayers*ny*nx values (volume layout
  * f[(k*ny + j)*nx + i]), in the unit of the loads (Pa). Loads (ny*nx, Pa) that are NULL count as
@@ -162,29 +164,30 @@ int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
  * load is non-zero are found once, and the path chosen once (mc_stress_tuning.sparse): either each
  * given load is transformed once and per layer the tables of the given loads are built and
  * transformed, then each component is one product-and-inverse-transform with one term per given
- * load; or per layer the tables are built and summed directly over the loaded cells. Never
- * allocates beyond the plan's workspaces. Not reentrant per op. */
-int mc_stress_field(mc_stress_op *op, const double *p, const double *qx, const double *qy,
+ * load; or per layer the tables are built and summed over the loaded cells (the sparse sum).
+ * Never allocates beyond the plan's workspaces. Not reentrant per plan. */
+int mc_stress_field(mc_stress_plan *plan, const double *p, const double *qx, const double *qy,
                     double *const s[6], mc_error *err);
 
 /* One layer k (0 <= k < nlayers): s[c] are ny*nx arrays; loads as in mc_stress_field (transformed
  * on every call). */
-int mc_stress_layer(mc_stress_op *op, int k, const double *p, const double *qx, const double *qy,
-                    double *const s[6], mc_error *err);
+int mc_stress_layer(mc_stress_plan *plan, int k, const double *p, const double *qx,
+                    const double *qy, double *const s[6], mc_error *err);
 
-/* Cumulative wall-clock seconds spent by mc_stress_field / mc_stress_layer of op since create. */
+/* Cumulative wall-clock seconds spent by mc_stress_field / mc_stress_layer of a plan since its
+ * creation. */
 typedef struct {
     double loads;   /* forward transforms of the loads (and the scan for loaded cells) */
     double tables;  /* kernel table builds (full, or quadrants on the symmetric path) */
     double kernels; /* kernel transforms (fft: r2c, symmetric: r2r; direct: copies) */
-    double apply;   /* products and inverse transforms (fft), or the direct sums */
+    double apply;   /* products and inverse transforms (fft), or the sparse sums */
     long layers;    /* layers computed */
-    long sparse_layers; /* of which by direct summation over the loaded cells */
-    int symmetric;  /* 1: the op runs the symmetric engine */
+    long sparse_layers; /* of which by the sparse sum over the loaded cells */
+    int symmetric;  /* 1: the plan runs the symmetric engine */
 } mc_stress_timing;
 
-void mc_stress_timing_get(const mc_stress_op *op, mc_stress_timing *t);
+void mc_stress_timing_get(const mc_stress_plan *plan, mc_stress_timing *t);
 
-void mc_stress_destroy(mc_stress_op **op); /* frees, sets *op = NULL; NULL-safe */
+void mc_stress_destroy(mc_stress_plan **plan); /* frees, sets *plan = NULL; NULL-safe */
 
 #endif

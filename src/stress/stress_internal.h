@@ -21,6 +21,7 @@
 
 #include "core/error.h"
 #include "core/grid.h"
+#include "stress/stress.h"
 
 typedef struct mc_stress_sym mc_stress_sym;
 
@@ -49,20 +50,22 @@ void mc_stress_sym_load(mc_stress_sym *s, const double *field, double *lspec);
 void mc_stress_sym_apply(mc_stress_sym *s, int nterms, const double *const *kq, const int *par,
                          const double *const *ls, double *out);
 
-/* ---- the operator, layer by layer (for the stage) --------------------------------------------- */
+/* MC_OK for a depth z (m) the tables of kernel can be built at: finite, >= 0, and > 0 for the
+ * point kernel (singular at the surface); else MC_ERR_INPUT with a message prefixed by what. */
+int mc_stress_check_depth(mc_stress_kernel kernel, double z, const char *what, mc_error *err);
 
-typedef struct mc_stress_op mc_stress_op;
+/* ---- the plan, layer by layer (for the stage) ------------------------------------------------ */
 
 /* Take the loads (as mc_stress_field; they must stay alive until the last mc_stress_compute):
  * find the loaded cells, choose the path, transform the loads if the path needs it. */
-int mc_stress_prepare(mc_stress_op *op, const double *p, const double *qx, const double *qy,
+int mc_stress_prepare(mc_stress_plan *plan, const double *p, const double *qx, const double *qy,
                       mc_error *err);
 /* Layer k of the prepared loads into s[c] (ny*nx each). */
-int mc_stress_compute(mc_stress_op *op, int k, double *const s[6], mc_error *err);
-/* 1 when the prepared loads take the direct sum over the loaded cells. */
-int mc_stress_is_direct(const mc_stress_op *op);
+int mc_stress_compute(mc_stress_plan *plan, int k, double *const s[6], mc_error *err);
+/* 1 when the prepared loads take the sparse sum over the loaded cells. */
+int mc_stress_is_sparse(const mc_stress_plan *plan);
 
-/* ---- direct summation over the loaded cells ------------------------------------------------- */
+/* ---- the sparse sum over the loaded cells --------------------------------------------------- */
 
 /* One term of a sparse sum: the load f (nx*ny) and the table of one component, either a quadrant
  * (q != NULL: entry (|di|, |dj|) at q[|dj| qx + |di|], odd axes of par flip the sign of negative

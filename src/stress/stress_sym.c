@@ -1,11 +1,9 @@
-/* stress_sym.c - the symmetric DC-FFT engine of the stress operator (free axes) and the direct
- * sums over the loaded cells (see stress_internal.h).
+/* stress_sym.c - the symmetric DC-FFT engine of the stress plan (free axes) and the sparse sums
+ * over the loaded cells (see stress_internal.h).
  *
- * Transforms of size 2my x 2mx (the padded grid), pruned as in conv.c: a load has data in its
- * first ny rows only, so the forward transform runs the ny rows, zeroes the other rows of the
- * half spectrum and runs the columns; an output needs only its first ny rows, so the inverse runs
- * the columns and then those ny rows. The kernel spectra come from the quadrant by real-to-real
- * transforms of a quarter of the size (the whole point of the engine).
+ * Transforms of size 2my x 2mx (the padded grid), pruned of the padding rows by operator/padfft.h
+ * as in conv.c. The kernel spectra come from the quadrant by real-to-real transforms of a quarter
+ * of the size (the whole point of the engine).
  */
 #include <fftw3.h>
 #include <string.h>
@@ -13,6 +11,7 @@
 #include "core/alloc.h"
 #include "core/fftsize.h"
 #include "operator/operator.h"
+#include "operator/padfft.h"
 #include "stress/stress_internal.h"
 
 /* Below this many values a loop or transform runs on one thread (operator.h). */
@@ -20,13 +19,11 @@
 
 struct mc_stress_sym {
     mc_grid g;
-    int mx, my;    /* half periods: the transform is 2my x 2mx */
-    int qx, qy;    /* quadrant: mx + 1, my + 1 */
-    size_t qlen;   /* doubles per quadrant array */
-    double *rbuf;  /* ny x 2mx real rows */
-    fftw_complex *cbuf; /* 2my x (mx + 1) half spectrum */
-    double *qscratch;   /* the quadrant the r2r plans were made on */
-    fftw_plan row_r2c, col_fwd, col_bwd, row_c2r;
+    int mx, my;       /* half periods: the transform is 2my x 2mx */
+    int qx, qy;       /* quadrant: mx + 1, my + 1 */
+    size_t qlen;      /* doubles per quadrant array */
+    mc_padfft fft;    /* the pruned padded transforms of the loads and products */
+    double *qscratch; /* the quadrant the r2r plans were made on */
     fftw_plan r2r[4]; /* by parity: bit 0 odd in x, bit 1 odd in y */
     int off[4];       /* first entry of the r2r's input in the quadrant, by parity */
 };
@@ -36,13 +33,10 @@ void mc_stress_sym_destroy(mc_stress_sym **sp)
     if (!sp || !*sp)
         return;
     mc_stress_sym *s = *sp;
-    fftw_plan plans[] = {s->row_r2c, s->col_fwd, s->col_bwd, s->row_c2r,
-                         s->r2r[0],   s->r2r[1], s->r2r[2],  s->r2r[3]};
-    for (size_t k = 0; k < sizeof plans / sizeof plans[0]; k++)
-        if (plans[k])
-            fftw_destroy_plan(plans[k]);
-    mc_free(s->rbuf);
-    mc_free(s->cbuf);
+    for (int k = 0; k < 4; k++)
+        if (s->r2r[k])
+            fftw_destroy_plan(s->r2r[k]);
+    mc_padfft_destroy(&s->fft);
     mc_free(s->qscratch);
     mc_free(s);
     *sp = NULL;
@@ -60,8 +54,6 @@ int mc_stress_sym_create(const mc_grid *g, mc_stress_sym **out, mc_error *err)
         return rc;
     if (g->periodic_x || g->periodic_y)
         return mc_fail(err, MC_ERR_INPUT, "stress: the symmetric engine needs free axes");
-    if ((rc = mc_fftw_prepare(err)))
-        return rc;
     mc_stress_sym *s = mc_calloc(1, sizeof *s);
     if (!s)
         return mc_fail(err, MC_ERR_NOMEM, "stress: out of memory");
@@ -70,29 +62,17 @@ int mc_stress_sym_create(const mc_grid *g, mc_stress_sym **out, mc_error *err)
     s->my = half_period(g->ny);
     s->qx = s->mx + 1;
     s->qy = s->my + 1;
-    const int tx = 2 * s->mx, ty = 2 * s->my, hx = s->qx;
     s->qlen = ((size_t)s->qx * (size_t)s->qy + 7) / 8 * 8;
-    const size_t nr = (size_t)g->ny * (size_t)tx, nc = (size_t)ty * (size_t)hx;
-    if (!(s->rbuf = mc_malloc(nr * sizeof *s->rbuf)) ||
-        !(s->cbuf = mc_malloc(nc * sizeof *s->cbuf)) ||
-        !(s->qscratch = mc_malloc(s->qlen * sizeof *s->qscratch))) {
+    if ((rc = mc_padfft_create(&s->fft, g->nx, g->ny, 2 * s->mx, 2 * s->my, 0, err))) {
         mc_stress_sym_destroy(&s);
-        return mc_fail(err, MC_ERR_NOMEM, "stress: out of memory for the %d x %d transforms", tx,
-                       ty);
+        return rc;
     }
-    if ((size_t)tx * (size_t)ty < PAR_MIN)
-        fftw_plan_with_nthreads(1);
-    int nrow[1] = {tx}, ncol[1] = {ty};
-    /* ESTIMATE: no trial runs, the same plan every time (results reproducible) */
-    s->row_r2c = fftw_plan_many_dft_r2c(1, nrow, g->ny, s->rbuf, NULL, 1, tx, s->cbuf, NULL, 1,
-                                        hx, FFTW_ESTIMATE);
-    s->row_c2r = fftw_plan_many_dft_c2r(1, nrow, g->ny, s->cbuf, NULL, 1, hx, s->rbuf, NULL, 1,
-                                        tx, FFTW_ESTIMATE);
-    s->col_fwd = fftw_plan_many_dft(1, ncol, hx, s->cbuf, NULL, hx, 1, s->cbuf, NULL, hx, 1,
-                                    FFTW_FORWARD, FFTW_ESTIMATE);
-    s->col_bwd = fftw_plan_many_dft(1, ncol, hx, s->cbuf, NULL, hx, 1, s->cbuf, NULL, hx, 1,
-                                    FFTW_BACKWARD, FFTW_ESTIMATE);
-    int ok = s->row_r2c && s->row_c2r && s->col_fwd && s->col_bwd;
+    const int qx = s->qx, qy = s->qy;
+    if (!(s->qscratch = mc_malloc(s->qlen * sizeof *s->qscratch))) {
+        mc_stress_sym_destroy(&s);
+        return mc_fail(err, MC_ERR_NOMEM, "stress: out of memory for a %d x %d quadrant", qx, qy);
+    }
+    int ok = 1;
     if ((size_t)s->qx * (size_t)s->qy < PAR_MIN)
         fftw_plan_with_nthreads(1);
     for (int par = 0; par < 4 && ok; par++) {
@@ -103,6 +83,7 @@ int mc_stress_sym_create(const mc_grid *g, mc_stress_sym **out, mc_error *err)
                                  ox ? FFTW_RODFT00 : FFTW_REDFT00};
         s->off[par] = (oy ? s->qx : 0) + ox;
         double *q = s->qscratch + s->off[par];
+        /* ESTIMATE: no trial runs, the same plan every time (results reproducible) */
         s->r2r[par] = fftw_plan_many_r2r(2, n, 1, q, embed, 1, 0, q, embed, 1, 0, kind,
                                          FFTW_ESTIMATE);
         ok = s->r2r[par] != NULL;
@@ -110,8 +91,8 @@ int mc_stress_sym_create(const mc_grid *g, mc_stress_sym **out, mc_error *err)
     mc_fftw_prepare(NULL); /* the default thread count again */
     if (!ok) {
         mc_stress_sym_destroy(&s);
-        return mc_fail(err, MC_ERR_NOMEM, "stress: FFTW could not plan the %d x %d transforms",
-                       tx, ty);
+        return mc_fail(err, MC_ERR_NOMEM, "stress: FFTW could not plan the %d x %d quadrant", qx,
+                       qy);
     }
     *out = s;
     return MC_OK;
@@ -140,26 +121,16 @@ void mc_stress_sym_kernel(mc_stress_sym *s, int par, double *quad)
 
 void mc_stress_sym_load(mc_stress_sym *s, const double *field, double *lspec)
 {
-    const int nx = s->g.nx, ny = s->g.ny, tx = 2 * s->mx, ty = 2 * s->my, hx = s->qx;
-#pragma omp parallel for schedule(static) if ((size_t)tx * ny > PAR_MIN)
-    for (int j = 0; j < ny; j++) {
-        double *row = s->rbuf + (size_t)j * tx;
-        memcpy(row, field + (size_t)j * nx, (size_t)nx * sizeof *row);
-        memset(row + nx, 0, (size_t)(tx - nx) * sizeof *row);
-    }
-    fftw_complex *c = (fftw_complex *)lspec; /* mc_malloc'ed: FFTW's alignment */
-    fftw_execute_dft_r2c(s->row_r2c, s->rbuf, c);
-    memset(c + (size_t)ny * hx, 0, (size_t)(ty - ny) * (size_t)hx * sizeof *c);
-    fftw_execute_dft(s->col_fwd, c, c);
+    mc_padfft_forward(&s->fft, field, (fftw_complex *)lspec); /* mc_malloc'ed: FFTW's alignment */
 }
 
 void mc_stress_sym_apply(mc_stress_sym *s, int nterms, const double *const *kq, const int *par,
                          const double *const *ls, double *out)
 {
-    const int nx = s->g.nx, ny = s->g.ny, tx = 2 * s->mx, ty = 2 * s->my, hx = s->qx;
+    const int tx = 2 * s->mx, ty = 2 * s->my, hx = s->qx;
     const int my = s->my;
     const double scale = 1.0 / ((double)tx * (double)ty); /* FFTW does not normalise */
-    double *cb = (double *)s->cbuf;
+    double *cb = (double *)s->fft.cbuf;
 #pragma omp parallel for schedule(static) if ((size_t)ty * hx > PAR_MIN)
     for (int ky = 0; ky < ty; ky++) {
         const int kq_row = ky <= my ? ky : ty - ky; /* K^(2m - k) from K^(k) */
@@ -203,14 +174,10 @@ void mc_stress_sym_apply(mc_stress_sym *s, int nterms, const double *const *kq, 
             }
         }
     }
-    fftw_execute(s->col_bwd);
-    fftw_execute(s->row_c2r); /* destroys cbuf: it is ours */
-#pragma omp parallel for schedule(static) if ((size_t)nx * ny > PAR_MIN)
-    for (int j = 0; j < ny; j++)
-        memcpy(out + (size_t)j * nx, s->rbuf + (size_t)j * tx, (size_t)nx * sizeof *out);
+    mc_padfft_inverse(&s->fft, out); /* destroys cbuf: it is ours */
 }
 
-/* ---- direct sums over the loaded cells -------------------------------------------------------- */
+/* ---- sparse sums over the loaded cells -------------------------------------------------------- */
 
 /* o[i] += v K(i - il, dj) for one term and one loaded cell at column il, row offset dj. */
 static void sparse_row(const mc_stress_term *t, int nx, int il, int dj, double v, double *o)

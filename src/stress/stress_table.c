@@ -29,17 +29,18 @@
  * changes the strips by O((d/H)^2) of their small contribution).
  */
 #include <math.h>
-
-/* Table entries below which a layer's table is built on one thread: the corner functions cost
- * ~30 ns each, so a few thousand entries do not pay for waking the thread team (the memory-bound
- * loops elsewhere use the larger MC_THREADS_MIN_CELLS). */
-#define TABLE_PAR_MIN 16384
 #include <omp.h>
 #include <string.h>
 
 #include "core/alloc.h"
 #include "kernels/kernel.h"
 #include "stress/stress.h"
+#include "stress/stress_internal.h"
+
+/* Table entries below which a layer's table is built on one thread: the corner functions cost
+ * ~30 ns each, so a few thousand entries do not pay for waking the thread team (the memory-bound
+ * loops elsewhere use the larger MC_THREADS_MIN_CELLS). */
+#define TABLE_PAR_MIN 16384
 
 /* Step of the difference stencils of the strip corrections, cells: max(1, n/DIFF_STEP_DIV). At one
  * cell the fourth difference times e4 ~ n^4/800 would amplify the round-off of the corner
@@ -348,22 +349,41 @@ static void set_means(const mc_stress_tables *tb, int li, double *const k[6])
 
 static int load_index(int load)
 {
-    return load == MC_TRACTION_P ? 0 : load == MC_TRACTION_QX ? 1 : load == MC_TRACTION_QY ? 2 : -1;
+    return load == MC_TRACTION_P    ? 0
+           : load == MC_TRACTION_QX ? 1
+           : load == MC_TRACTION_QY ? 2
+                                    : -1;
+}
+
+int mc_stress_check_depth(mc_stress_kernel kernel, double z, const char *what, mc_error *err)
+{
+    if (!(isfinite(z) && z >= 0.0))
+        return mc_fail(err, MC_ERR_INPUT, "%s: depth z = %g m must be finite and >= 0", what, z);
+    if (kernel == MC_STRESS_POINT && z == 0.0)
+        return mc_fail(err, MC_ERR_INPUT,
+                       "%s: the point kernel is singular at z = 0 (use the patch kernel, or a "
+                       "depth > 0)",
+                       what);
+    return MC_OK;
+}
+
+/* The index of load (p, q_x, q_y: 0, 1, 2) after checking it and the depth z for the tables of
+ * tb; MC_ERR_INPUT (messages prefixed by what) for a bad load or depth. */
+static int check_layer(const mc_stress_tables *tb, int load, double z, const char *what, int *li,
+                       mc_error *err)
+{
+    *li = load_index(load);
+    if (*li < 0)
+        return mc_fail(err, MC_ERR_INPUT, "%s: load %d is not one of p, qx, qy", what, load);
+    return mc_stress_check_depth(tb->kernel, z, what, err);
 }
 
 int mc_stress_tables_build(mc_stress_tables *tb, int load, double z, double *const k[6],
                            mc_error *err)
 {
-    const int li = load_index(load);
-    if (li < 0)
-        return mc_fail(err, MC_ERR_INPUT, "stress tables: load %d is not one of p, qx, qy", load);
-    if (!(isfinite(z) && z >= 0.0))
-        return mc_fail(err, MC_ERR_INPUT, "stress tables: depth z = %g m must be finite and >= 0",
-                       z);
-    if (tb->kernel == MC_STRESS_POINT && z == 0.0)
-        return mc_fail(err, MC_ERR_INPUT,
-                       "stress tables: the point kernel is singular at z = 0 (use the patch "
-                       "kernel, or a depth > 0)");
+    int li, rc = check_layer(tb, load, z, "stress tables", &li, err);
+    if (rc)
+        return rc;
     const axis *ax = &tb->ax[0], *ay = &tb->ax[1];
     const rule rx = axis_rule(ax, z), ry = axis_rule(ay, z);
     const xpoints px = x_layout(ax, &rx);
@@ -414,7 +434,7 @@ static const int parities[3][MC_NSTRESS] = {
 
 int mc_stress_parity(int load, int c)
 {
-    const int li = load == MC_TRACTION_P ? 0 : load == MC_TRACTION_QX ? 1 : load == MC_TRACTION_QY ? 2 : -1;
+    const int li = load_index(load);
     return li < 0 || c < 0 || c >= MC_NSTRESS ? -1 : parities[li][c];
 }
 
@@ -449,22 +469,14 @@ static void quadrant_block(const mc_stress_tables *tb, stress_fn fn, double z, i
 int mc_stress_tables_quadrant(mc_stress_tables *tb, int load, double z, int qx, int qy,
                               double *const q[6], mc_error *err)
 {
-    const int li = load_index(load);
-    if (li < 0)
-        return mc_fail(err, MC_ERR_INPUT, "stress quadrant: load %d is not one of p, qx, qy",
-                       load);
+    int li, rc = check_layer(tb, load, z, "stress quadrant", &li, err);
+    if (rc)
+        return rc;
     if (tb->ax[0].periodic || tb->ax[1].periodic || qx < 1 || qy < 1)
         return mc_fail(err, MC_ERR_INPUT,
                        "stress quadrant %d x %d: needs free axes and sizes >= 1 (periodic x %d, "
                        "y %d)",
                        qx, qy, tb->ax[0].periodic, tb->ax[1].periodic);
-    if (!(isfinite(z) && z >= 0.0))
-        return mc_fail(err, MC_ERR_INPUT, "stress quadrant: depth z = %g m must be finite and >= 0",
-                       z);
-    if (tb->kernel == MC_STRESS_POINT && z == 0.0)
-        return mc_fail(err, MC_ERR_INPUT,
-                       "stress quadrant: the point kernel is singular at z = 0 (use the patch "
-                       "kernel, or a depth > 0)");
     const int nxq = qx < tb->g.nx ? qx : tb->g.nx, nyq = qy < tb->g.ny ? qy : tb->g.ny;
     /* the slots beyond the grid's offsets are never reached by an output: 0 */
     for (int c = 0; c < MC_NSTRESS; c++)
@@ -550,15 +562,9 @@ int mc_stress_tables_create(const mc_grid *g, int tx, int ty, mc_stress_kernel k
                             int images, mc_stress_tables **out, mc_error *err)
 {
     *out = NULL;
-    int rc = mc_grid_check(g, err);
+    int rc = mc_kernel_table_check(g, tx, ty, err);
     if (rc)
         return rc;
-    const int okx = g->periodic_x ? tx == g->nx : tx >= 2 * g->nx - 1;
-    const int oky = g->periodic_y ? ty == g->ny : ty >= 2 * g->ny - 1;
-    if (!okx || !oky)
-        return mc_fail(err, MC_ERR_INPUT,
-                       "stress tables %d x %d do not fit grid %d x %d (periodic x %d, y %d)", tx,
-                       ty, g->nx, g->ny, g->periodic_x, g->periodic_y);
     if (kernel != MC_STRESS_PATCH && kernel != MC_STRESS_POINT)
         return mc_fail(err, MC_ERR_INPUT, "stress tables: unknown kernel %d", (int)kernel);
     if (!(nu > -1.0 && nu <= 0.5))

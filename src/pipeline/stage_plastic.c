@@ -1,0 +1,296 @@
+/* stage_plastic.c - the elastic-plastic stage of the pipeline (stage_plastic.h). */
+#include "pipeline/stage_plastic.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "kernels/invariants.h"
+#include "plastic/loop.h"
+#include "stress/stress.h"
+
+static const char *const hardening_names[] = {"perfect", "linear", "swift", "table"};
+
+/* The hardening law of the scene. */
+static int make_law(const mc_scene *sc, mc_hardening *law, mc_error *err)
+{
+    const double unit[] = {1.0, 1e6, 1e9};
+    switch (sc->plasticity.hardening) {
+    case MC_HARDENING_PERFECT: return mc_hardening_perfect(sc->plasticity.yield_stress, law, err);
+    case MC_HARDENING_LINEAR: {
+        double H;
+        int rc = mc_hardening_linear_from_tangent(sc->body1.E, sc->plasticity.tangent_modulus, &H,
+                                                  err);
+        return rc ? rc : mc_hardening_linear(sc->plasticity.yield_stress, H, law, err);
+    }
+    case MC_HARDENING_SWIFT:
+        return mc_hardening_swift(sc->plasticity.swift_B, sc->plasticity.swift_C,
+                                  sc->plasticity.swift_n, law, err);
+    case MC_HARDENING_TABLE:
+        return mc_hardening_table_read(sc->plasticity.table, unit[sc->plasticity.table_unit], law,
+                                       err);
+    }
+    return mc_fail(err, MC_ERR_INPUT, "[plasticity] hardening: unknown law");
+}
+
+/* Largest von Mises stress per layer of the pressure p at the depths z (body 1, with the
+ * friction traction); vm_layer[k]. */
+static int layer_maxima(const mc_scene *sc, const mc_grid *g, const double *p, double p_lub,
+                        const double *z, int nz, double *vm_layer, mc_error *err)
+{
+    const size_t n = mc_grid_cells(g);
+    const double f = sc->plasticity.friction;
+    mc_stress_options so = {.kernel = MC_STRESS_PATCH,
+                            .nu = sc->body1.nu,
+                            .nlayers = nz,
+                            .depths = z,
+                            .backend = sc->solver.backend,
+                            .loads = MC_TRACTION_P | (f > 0 ? MC_TRACTION_QX : 0)};
+    mc_stress_plan *plan = NULL;
+    double *s[6] = {0}, *qx = f > 0 ? mc_zeros(n) : NULL;
+    int rc = mc_stress_create(g, &so, &plan, err);
+    for (int c = 0; rc == MC_OK && c < 6; c++)
+        if (!(s[c] = mc_zeros(n * (size_t)nz)))
+            rc = mc_fail(err, MC_ERR_NOMEM, "plastic stage: out of memory for the depth probe");
+    if (rc == MC_OK && f > 0 && !qx)
+        rc = mc_fail(err, MC_ERR_NOMEM, "plastic stage: out of memory for the traction");
+    if (rc == MC_OK && qx)
+        for (size_t i = 0; i < n; i++)
+            qx[i] = p[i] > p_lub ? f * (p[i] - p_lub) : 0.0;
+    if (rc == MC_OK)
+        rc = mc_stress_field(plan, p, qx, NULL, s, err);
+    for (int k = 0; rc == MC_OK && k < nz; k++) {
+        double m = 0;
+        for (size_t i = 0; i < n; i++) {
+            double t[6];
+            for (int c = 0; c < 6; c++)
+                t[c] = s[c][(size_t)k * n + i];
+            m = fmax(m, mc_von_mises(t));
+        }
+        vm_layer[k] = m;
+    }
+    for (int c = 0; c < 6; c++)
+        mc_free(s[c]);
+    mc_free(qx);
+    mc_stress_destroy(&plan);
+    return rc;
+}
+
+/* Depth and columns of the plastic volume from the elastic solution at the full load. */
+static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, mc_eigen_volume *v,
+                       mc_error *err)
+{
+    const mc_grid *g = &res->grid;
+    mc_plastic_summary *ps = &res->plastic;
+    const double dz = sc->plasticity.dz > 0 ? sc->plasticity.dz : fmin(g->dx, g->dy);
+    const double p_lub = fmax(sc->load.lubricant_pressure, 0.0);
+    /* the contact's bounding box */
+    int i0 = g->nx, i1 = -1, j0 = g->ny, j1 = -1;
+    for (int j = 0; j < g->ny; j++)
+        for (int i = 0; i < g->nx; i++)
+            if (res->pressure[(size_t)j * g->nx + i] > p_lub) {
+                i0 = i < i0 ? i : i0;
+                i1 = i > i1 ? i : i1;
+                j0 = j < j0 ? j : j0;
+                j1 = j > j1 ? j : j1;
+            }
+    if (i1 < 0) /* no solid contact: nothing can yield */
+        i0 = i1 = g->nx / 2, j0 = j1 = g->ny / 2;
+    double half = 0.5 * fmax((i1 - i0 + 1) * g->dx, (j1 - j0 + 1) * g->dy);
+    /* depth: probe down to 3 contact half-widths (the von Mises maximum of a Hertz contact is at
+     * 0.48a), keep the layers above half the initial yield stress, plus 25 % */
+    double depth = sc->plasticity.depth;
+    ps->depth_auto = !(depth > 0);
+    ps->vm_elastic_max = 0;
+    {
+        int nprobe = (int)ceil(3.0 * fmax(half, dz) / dz);
+        nprobe = nprobe < 2 ? 2 : nprobe > 256 ? 256 : nprobe;
+        double *z = mc_zeros((size_t)nprobe), *vm = mc_zeros((size_t)nprobe);
+        int rc = z && vm ? MC_OK
+                         : mc_fail(err, MC_ERR_NOMEM, "plastic stage: out of memory for the probe");
+        double step = 3.0 * fmax(half, dz) / nprobe;
+        for (int k = 0; rc == MC_OK && k < nprobe; k++)
+            z[k] = (k + 0.5) * step;
+        if (rc == MC_OK)
+            rc = layer_maxima(sc, g, res->pressure, p_lub, z, nprobe, vm, err);
+        double deepest = 0;
+        for (int k = 0; rc == MC_OK && k < nprobe; k++) {
+            ps->vm_elastic_max = fmax(ps->vm_elastic_max, vm[k]);
+            if (vm[k] > 0.5 * yield0)
+                deepest = z[k] + 0.5 * step;
+        }
+        mc_free(z);
+        mc_free(vm);
+        if (rc != MC_OK)
+            return rc;
+        if (ps->depth_auto)
+            depth = fmax(1.25 * deepest, 2 * dz);
+    }
+    int nz = (int)ceil(depth / dz - 1e-9);
+    nz = nz < 1 ? 1 : nz;
+    double margin = sc->plasticity.margin > 0 ? sc->plasticity.margin : nz * dz;
+    int mx = (int)ceil(margin / g->dx - 1e-9), my = (int)ceil(margin / g->dy - 1e-9);
+    i0 = i0 - mx < 0 ? 0 : i0 - mx;
+    j0 = j0 - my < 0 ? 0 : j0 - my;
+    i1 = i1 + mx >= g->nx ? g->nx - 1 : i1 + mx;
+    j1 = j1 + my >= g->ny ? g->ny - 1 : j1 + my;
+    *v = (mc_eigen_volume){i0, j0, i1 - i0 + 1, j1 - j0 + 1, nz, dz};
+    ps->depth = nz * dz;
+    ps->dz = dz;
+    ps->nz = nz;
+    ps->i0 = i0;
+    ps->j0 = j0;
+    ps->wnx = v->nx;
+    ps->wny = v->ny;
+    ps->volume_cells = (long)nz * v->nx * v->ny;
+    return MC_OK;
+}
+
+/* The window's volume fields placed on the whole grid (zeros outside the window). */
+static void place(const mc_results *res, const mc_eigen_volume *v, const double *src, double *dst)
+{
+    const mc_grid *g = &res->grid;
+    for (int k = 0; k < v->nz; k++)
+        for (int j = 0; j < v->ny; j++)
+            for (int i = 0; i < v->nx; i++)
+                dst[((size_t)k * g->ny + (size_t)(j + v->j0)) * g->nx + (size_t)(i + v->i0)] =
+                    src[((size_t)k * v->ny + j) * v->nx + i];
+}
+
+static int alloc_fields(mc_results *res, int nz, mc_error *err)
+{
+    const size_t n = mc_grid_cells(&res->grid);
+    if (!(res->residual_displacement = mc_zeros(n)) || !(res->topography_final = mc_zeros(n)) ||
+        !(res->plastic_strain = mc_zeros(n * (size_t)nz)) ||
+        !(res->residual_von_mises = mc_zeros(n * (size_t)nz)))
+        return mc_fail(err, MC_ERR_NOMEM, "plastic stage: out of memory for the outputs");
+    return MC_OK;
+}
+
+/* criterion = pressure_cap: the capped elastic contact; where the pressure sits at the cap the
+ * surface has penetrated the counter body, and that penetration is the permanent deformation. */
+static int run_cap(const mc_scene *sc, mc_contact_solver *solver, mc_results *res, mc_error *err)
+{
+    mc_plastic_summary *ps = &res->plastic;
+    ps->criterion = "pressure_cap";
+    ps->hardening = "";
+    mc_contact_problem prob = {.h = res->topography,
+                               .p_lub = fmax(sc->load.lubricant_pressure, 0.0),
+                               .p_cap = sc->plasticity.hardness,
+                               .control = MC_CONTROL_FORCE,
+                               .load = sc->load.value};
+    int rc = mc_contact_solve(solver, &prob, res->pressure, res->displacement, res->gap,
+                              &res->contact, err);
+    if (rc != MC_OK && rc != MC_NOT_CONVERGED)
+        return rc;
+    int arc = alloc_fields(res, 1, err);
+    if (arc != MC_OK)
+        return arc;
+    const size_t n = mc_grid_cells(&res->grid);
+    ps->residual_max = 0;
+    for (size_t i = 0; i < n; i++) {
+        double dent = res->pressure[i] >= sc->plasticity.hardness * (1 - 1e-12) && res->gap[i] < 0
+                          ? -res->gap[i]
+                          : 0.0;
+        res->residual_displacement[i] = dent;
+        res->topography_final[i] = res->topography[i] + dent;
+        ps->residual_max = fmax(ps->residual_max, dent);
+    }
+    ps->nz = 1;
+    ps->converged = rc == MC_OK;
+    return rc;
+}
+
+int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solver,
+                     mc_results *res, mc_error *err)
+{
+    mc_plastic_summary *ps = &res->plastic;
+    memset(ps, 0, sizeof *ps);
+    ps->enabled = 1;
+    if (sc->plasticity.criterion == MC_CRITERION_PRESSURE_CAP)
+        return run_cap(sc, solver, res, err);
+    ps->criterion = "von_mises";
+    ps->hardening = hardening_names[sc->plasticity.hardening];
+    ps->load_steps = sc->plasticity.load_steps;
+    mc_hardening law;
+    memset(&law, 0, sizeof law);
+    int rc = make_law(sc, &law, err);
+    if (rc != MC_OK) {
+        mc_error_prefix(err, "[plasticity] ");
+        return rc;
+    }
+    ps->yield_initial = mc_hardening_initial(&law);
+    const double p_lub = fmax(sc->load.lubricant_pressure, 0.0);
+    /* the elastic solve at the full load: the volume's depth and columns, and the shortcut */
+    mc_contact_problem prob = {.h = res->topography,
+                               .p_lub = p_lub,
+                               .p_cap = INFINITY,
+                               .control = MC_CONTROL_FORCE,
+                               .load = sc->load.value};
+    rc = mc_contact_solve(solver, &prob, res->pressure, res->displacement, res->gap,
+                          &res->contact, err);
+    mc_eigen_volume v;
+    if (rc == MC_OK)
+        rc = plan_volume(sc, res, ps->yield_initial, &v, err);
+    if (rc == MC_OK)
+        rc = alloc_fields(res, ps->nz, err);
+    if (rc != MC_OK) {
+        mc_hardening_free(&law);
+        return rc;
+    }
+    const size_t n = mc_grid_cells(&res->grid);
+    if (ps->vm_elastic_max < ps->yield_initial) { /* nothing yields: the elastic result stands */
+        ps->elastic_shortcut = 1;
+        ps->converged = 1;
+        memcpy(res->topography_final, res->topography, n * sizeof *res->topography);
+        mc_hardening_free(&law);
+        return MC_OK;
+    }
+    mc_plastic_problem pb = {.h = res->topography,
+                             .load = sc->load.value,
+                             .p_lub = p_lub,
+                             .friction = sc->plasticity.friction,
+                             .load_steps = sc->plasticity.load_steps,
+                             .E = sc->body1.E,
+                             .nu = sc->body1.nu,
+                             .law = &law,
+                             .both = sc->plasticity.both,
+                             .volume = v,
+                             .backend = sc->solver.backend,
+                             .relaxation = sc->plasticity.relaxation,
+                             .tol_outer = sc->plasticity.tolerance,
+                             .max_outer = sc->plasticity.max_outer,
+                             .tol_plastic = sc->plasticity.plastic_tolerance,
+                             .max_plastic = sc->plasticity.max_plastic};
+    mc_plastic_result pr;
+    (void)K;
+    rc = mc_plastic_run(&res->grid, K, solver, &pb, res->pressure, res->displacement, res->gap,
+                        &res->contact, &pr, err);
+    if (rc == MC_OK || rc == MC_NOT_CONVERGED) {
+        const double factor = sc->plasticity.both ? 2.0 : 1.0;
+        for (size_t i = 0; i < n; i++) {
+            res->residual_displacement[i] = pr.u_r[i];
+            res->topography_final[i] = res->topography[i] + factor * pr.u_r[i];
+        }
+        place(res, &v, pr.peq, res->plastic_strain);
+        place(res, &v, pr.residual_vm, res->residual_von_mises);
+        ps->converged = pr.converged;
+        ps->steps_done = pr.steps_done;
+        ps->steps = pr.steps;
+        pr.steps = NULL;
+        for (int s = 0; s < ps->steps_done; s++)
+            ps->outer_iterations += ps->steps[s].outer_iterations;
+        if (ps->steps_done > 0) {
+            const mc_plastic_step *last = &ps->steps[ps->steps_done - 1];
+            ps->peq_max = last->peq_max;
+            memcpy(ps->peq_max_at, last->peq_at, sizeof ps->peq_max_at);
+            ps->plastic_volume = last->plastic_volume;
+        }
+        ps->residual_max = 0;
+        for (size_t i = 0; i < n; i++)
+            ps->residual_max = fmax(ps->residual_max, pr.u_r[i]);
+    }
+    mc_plastic_result_free(&pr);
+    mc_hardening_free(&law);
+    return rc;
+}

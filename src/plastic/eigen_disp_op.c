@@ -1,0 +1,275 @@
+/* eigen_disp_op.c - eigenstrain -> surface normal residual displacement, direct and fft backends
+ * over the same quadrant tables (see eigen_op.h; Jacq et al. 2002; dossier plastic-lubrication
+ * §2.2).
+ *
+ *   u_z(f) = sum over source layers k, columns c and window cells s of T_kc(f - s) eps_c(k, s),
+ *   T_kc(d) = mc_eigen_surface_uz of the cuboid of layer k centred at -d (source minus field),
+ * d in cells, field f on the whole surface grid, source s in the window. T_kc is even or odd in
+ * each offset like the column c (xx, yy, zz even; xy odd in x and y; xz odd in x; yz odd in y).
+ */
+#include <omp.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/fftsize.h"
+#include "kernels/eigen.h"
+#include "plastic/eigen_internal.h"
+
+typedef struct disp_ops disp_ops;
+
+struct mc_eigen_disp {
+    mc_grid g;
+    mc_eigen_volume v;
+    double nu;
+    const disp_ops *ops;
+    int ux, uy;      /* used offsets: |d_x| < ux, |d_y| < uy */
+    int qx, qy;      /* quadrant of the tables */
+    size_t qlen;     /* doubles per quadrant (qx * qy, rounded up to a cache line) */
+    double *tab;     /* 6 nz quadrants [k * 6 + c]: tables (direct) or quadrant spectra (fft) */
+    /* fft */
+    mc_eig_fft fft;  /* 2 mx x 2 my, forward rows j0 .. j0 + wy - 1, inverse rows 0 .. ny - 1 */
+    int nthr;        /* workspaces */
+    double *rows;    /* nthr x (ny * tx) */
+    fftw_complex *spec; /* nthr x 2 spectra: the transformed layer and the thread's sum */
+    size_t bytes;
+};
+
+struct disp_ops {
+    const char *name;
+    mc_backend id;
+    int (*create)(mc_eigen_disp *op, mc_error *err); /* sizes the quadrant, takes workspaces */
+    void (*apply)(mc_eigen_disp *op, const double *const eps[6], double *uz);
+};
+
+/* ---- kernel tables --------------------------------------------------------------------------- */
+
+typedef struct {
+    double dx, dy, dz, nu;
+    int k;
+} disp_ctx;
+
+static void disp_kernel(int di, int dj, const void *ctx, double *out)
+{
+    const disp_ctx *c = ctx;
+    const double cx = -di * c->dx, cy = -dj * c->dy; /* cuboid centre relative to the field */
+    mc_eigen_surface_uz(cx - 0.5 * c->dx, cx + 0.5 * c->dx, cy - 0.5 * c->dy, cy + 0.5 * c->dy,
+                        c->k * c->dz, (c->k + 1) * c->dz, c->nu, out);
+}
+
+static void build_tables(mc_eigen_disp *op)
+{
+    int par[6];
+    for (int c = 0; c < 6; c++)
+        par[c] = mc_eig_par(c);
+    for (int k = 0; k < op->v.nz; k++) {
+        const disp_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k};
+        double *q[6];
+        for (int c = 0; c < 6; c++)
+            q[c] = op->tab + (size_t)(k * 6 + c) * op->qlen;
+        mc_eig_fill(op->qx, op->qy, op->ux, op->uy, 6, par, disp_kernel, &ctx, q);
+    }
+}
+
+/* ---- direct: the O(N^2) reference ------------------------------------------------------------ */
+
+static int direct_create(mc_eigen_disp *op, mc_error *err)
+{
+    (void)err;
+    op->qx = op->ux;
+    op->qy = op->uy;
+    return MC_OK;
+}
+
+static void direct_apply(mc_eigen_disp *op, const double *const eps[6], double *uz)
+{
+    const int nx = op->g.nx, ny = op->g.ny, wx = op->v.nx, wy = op->v.ny, nz = op->v.nz;
+    const int i0 = op->v.i0, j0 = op->v.j0, qx = op->qx;
+    const size_t wcells = (size_t)wx * wy;
+#pragma omp parallel for schedule(static)
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) {
+            double u = 0.0;
+            for (int k = 0; k < nz; k++)
+                for (int c = 0; c < 6; c++) {
+                    const double *t = op->tab + (size_t)(k * 6 + c) * op->qlen;
+                    const double *e = eps[c] + k * wcells;
+                    const int ox = mc_eig_odd_x(c), oy = mc_eig_odd_y(c);
+                    for (int js = 0; js < wy; js++) {
+                        const int dj = j - (j0 + js);
+                        const double sy = (oy && dj < 0) ? -1.0 : 1.0;
+                        const double *trow = t + (size_t)(dj < 0 ? -dj : dj) * qx;
+                        for (int is = 0; is < wx; is++) {
+                            const int di = i - (i0 + is);
+                            const double s = (ox && di < 0) ? -sy : sy;
+                            u += s * trow[di < 0 ? -di : di] * e[(size_t)js * wx + is];
+                        }
+                    }
+                }
+            uz[(size_t)j * nx + i] = u;
+        }
+}
+
+/* ---- fft: DC-FFT over quadrant spectra ------------------------------------------------------- */
+
+static int fft_create(mc_eigen_disp *op, mc_error *err)
+{
+    /* half periods: offsets |d| < u stay below m, and the window (at i0) and the field (at 0)
+     * both fit in the cyclic length 2m */
+    const int mx = mc_fft_good_size(op->ux < 2 ? 2 : op->ux);
+    const int my = mc_fft_good_size(op->uy < 2 ? 2 : op->uy);
+    op->qx = mx + 1;
+    op->qy = my + 1;
+    int rc = mc_eig_fft_create(&op->fft, 2 * mx, 2 * my, op->v.j0, op->v.ny, op->g.ny, err);
+    if (rc)
+        return rc;
+    op->nthr = mc_eig_threads();
+    const size_t rlen = (size_t)op->g.ny * op->fft.tx;
+    if (!(op->rows = mc_malloc((size_t)op->nthr * rlen * sizeof *op->rows)) ||
+        !(op->spec = mc_malloc((size_t)op->nthr * 2 * op->fft.speclen * sizeof *op->spec)))
+        return mc_fail(err, MC_ERR_NOMEM, "eigen displacement: out of memory for workspaces");
+    op->bytes += (size_t)op->nthr * (rlen * sizeof *op->rows +
+                                     2 * op->fft.speclen * sizeof *op->spec);
+    return MC_OK;
+}
+
+/* the tables, built by build_tables, into quadrant spectra */
+static int fft_transform_tables(mc_eigen_disp *op, mc_error *err)
+{
+    mc_eig_quad quad;
+    int rc = mc_eig_quad_create(&quad, op->qx - 1, op->qy - 1, err);
+    if (rc)
+        return rc;
+    const int n = 6 * op->v.nz;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int t = 0; t < n; t++)
+        mc_eig_quad_transform(&quad, mc_eig_par(t % 6), op->tab + (size_t)t * op->qlen);
+    mc_eig_quad_destroy(&quad);
+    return MC_OK;
+}
+
+/* acc += K_kc E for the layer spectrum E of column c: K = (-i)^(ox + oy) s R (eigen_internal.h) */
+static void fft_accumulate(const mc_eigen_disp *op, const double *R, int c,
+                           const fftw_complex *E, fftw_complex *acc)
+{
+    const int ty = op->fft.ty, hx = op->fft.hx, my = op->qy - 1, qx = op->qx;
+    const int rot = mc_eig_odd_x(c) + mc_eig_odd_y(c), oy = mc_eig_odd_y(c);
+    for (int ky = 0; ky < ty; ky++) {
+        const int mirror = ky > my;
+        const double s = (mirror && oy) ? -1.0 : 1.0;
+        const double *r = R + (size_t)(mirror ? ty - ky : ky) * qx;
+        const fftw_complex *e = E + (size_t)ky * hx;
+        fftw_complex *a = acc + (size_t)ky * hx;
+        for (int kx = 0; kx < hx; kx++) {
+            double re = s * r[kx] * e[kx][0], im = s * r[kx] * e[kx][1];
+            mc_eig_rot(&re, &im, rot);
+            a[kx][0] += re;
+            a[kx][1] += im;
+        }
+    }
+}
+
+static void fft_apply(mc_eigen_disp *op, const double *const eps[6], double *uz)
+{
+    const int nz = op->v.nz, tx = op->fft.tx, ty = op->fft.ty, nx = op->g.nx, ny = op->g.ny;
+    const size_t sl = op->fft.speclen, rlen = (size_t)ny * tx;
+    const size_t wcells = (size_t)op->v.nx * op->v.ny;
+    int team = 1;
+#pragma omp parallel num_threads(op->nthr)
+    {
+        const int me = omp_get_thread_num();
+        double *rows = op->rows + (size_t)me * rlen;
+        fftw_complex *E = op->spec + (size_t)me * 2 * sl, *acc = E + sl;
+        memset(acc, 0, sl * sizeof *acc);
+#pragma omp single
+        team = omp_get_num_threads();
+#pragma omp for schedule(dynamic, 1)
+        for (int t = 0; t < 6 * nz; t++) {
+            const int k = t / 6, c = t % 6;
+            mc_eig_fill_rows(rows, tx, eps[c] + k * wcells, op->v.nx, op->v.ny, op->v.i0);
+            mc_eig_fft_forward(&op->fft, rows, E);
+            fft_accumulate(op, op->tab + (size_t)t * op->qlen, c, E, acc);
+        }
+    }
+    /* the threads' sums into thread 0's, in a fixed order */
+    fftw_complex *acc0 = op->spec + sl;
+    const long n = (long)((size_t)ty * op->fft.hx);
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+    for (long q = 0; q < n; q++)
+        for (int t = 1; t < team; t++) {
+            acc0[q][0] += op->spec[(size_t)t * 2 * sl + sl + q][0];
+            acc0[q][1] += op->spec[(size_t)t * 2 * sl + sl + q][1];
+        }
+    mc_eig_fft_inverse(&op->fft, acc0, op->rows);
+    const double scale = 1.0 / ((double)tx * ty); /* FFTW does not normalise */
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            uz[(size_t)j * nx + i] = scale * op->rows[(size_t)j * tx + i];
+}
+
+/* ---- the backend table and the object -------------------------------------------------------- */
+
+static const disp_ops backends[] = {
+    {"fft", MC_BACKEND_FFT, fft_create, fft_apply},
+    {"direct", MC_BACKEND_DIRECT, direct_create, direct_apply},
+};
+
+void mc_eigen_disp_destroy(mc_eigen_disp **op)
+{
+    if (!op || !*op)
+        return;
+    mc_eig_fft_destroy(&(*op)->fft);
+    mc_free((*op)->tab);
+    mc_free((*op)->rows);
+    mc_free((*op)->spec);
+    mc_free(*op);
+    *op = NULL;
+}
+
+int mc_eigen_disp_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                         mc_eigen_disp **out, mc_error *err)
+{
+    *out = NULL;
+    int rc = mc_eig_check(g, v, nu, b, "eigen displacement", err);
+    if (rc)
+        return rc;
+    mc_eigen_disp *op = mc_calloc(1, sizeof *op);
+    if (!op)
+        return mc_fail(err, MC_ERR_NOMEM, "eigen displacement: out of memory");
+    op->g = *g;
+    op->v = *v;
+    op->nu = nu;
+    for (size_t r = 0; r < sizeof backends / sizeof backends[0]; r++)
+        if (backends[r].id == b)
+            op->ops = &backends[r];
+    /* field minus source along x: from -(i0 + wx - 1) to nx - 1 - i0 */
+    op->ux = v->i0 + v->nx > g->nx - v->i0 ? v->i0 + v->nx : g->nx - v->i0;
+    op->uy = v->j0 + v->ny > g->ny - v->j0 ? v->j0 + v->ny : g->ny - v->j0;
+    op->bytes = sizeof *op;
+    if ((rc = op->ops->create(op, err)) == MC_OK) {
+        op->qlen = ((size_t)op->qx * op->qy + 7) / 8 * 8;
+        const size_t n = 6 * (size_t)v->nz * op->qlen;
+        if (!(op->tab = mc_malloc(n * sizeof *op->tab)))
+            rc = mc_fail(err, MC_ERR_NOMEM, "eigen displacement: out of memory for %zu tables",
+                         6 * (size_t)v->nz);
+        else
+            op->bytes += n * sizeof *op->tab;
+    }
+    if (rc == MC_OK) {
+        build_tables(op);
+        if (b == MC_BACKEND_FFT)
+            rc = fft_transform_tables(op, err);
+    }
+    if (rc) {
+        mc_eigen_disp_destroy(&op);
+        return rc;
+    }
+    *out = op;
+    return MC_OK;
+}
+
+void mc_eigen_disp_apply(mc_eigen_disp *op, const double *const eps[6], double *uz)
+{
+    op->ops->apply(op, eps, uz);
+}
+
+size_t mc_eigen_disp_bytes(const mc_eigen_disp *op) { return op->bytes; }

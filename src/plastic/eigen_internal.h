@@ -1,0 +1,174 @@
+/* eigen_internal.h - what the eigenstrain operators (eigen_disp_op.c, eigen_stress_op.c,
+ * eigen_stress_fft.c) share; not a public header.
+ *
+ * Kernel tables. Every kernel here is even or odd in each lateral offset (field minus source), so
+ * a table is stored as one QUADRANT of offsets: q[dj * qx + di] holds the kernel at offset
+ * (di, dj) cells, 0 <= di < qx, 0 <= dj < qy; the kernel at (-di, dj) is (-1)^(odd in x) times it,
+ * likewise in y. Offsets beyond those used (>= the used extent) are 0, and along an odd axis the
+ * entry at offset 0 is exactly 0 (the kernel's value there by symmetry).
+ *
+ * Quadrant spectra (fft backend). A table of half period m along an axis (cyclic length 2m,
+ * m >= the used extent, so slots m .. 2m - m_used are never reached by an output cell) is the
+ * even or odd extension of its quadrant, and its DFT is a real-to-real transform of the quadrant
+ * (FFTW REDFT00 = DCT-I of length m + 1 on an even axis, RODFT00 = DST-I of length m - 1 on an
+ * odd one, both unnormalised, i.e. exactly the DFT sums of the extended sequence):
+ *   even axis: K^(k) = R(k), K^(2m - k) = R(k);   odd axis: K^(k) = -i R(k), K^(2m - k) = +i R(k).
+ * So the 2-D spectrum of a kernel of parity (ox, oy) at frequency (kx, ky) of a half spectrum
+ * (kx <= mx) is (-i)^(ox + oy) s R(kx, ky'), ky' = min(ky, 2my - ky), s = (-1)^oy when ky > my.
+ * For a stress kernel (row i, eigenstrain column c) the parity along an axis is odd(i) XOR odd(c)
+ * and (-i)^(a XOR b) = (-i)^a (-i)^b (-1)^(a b): the factors (-i)^a s_a of the row and of the
+ * column are applied to the output and to the input spectra, the sign (-1)^(a b) is folded into
+ * the stored table, leaving a real matrix per frequency.
+ */
+#ifndef MC_EIGEN_INTERNAL_H
+#define MC_EIGEN_INTERNAL_H
+
+#include <fftw3.h>
+#include <stddef.h>
+
+#include "core/error.h"
+#include "core/grid.h"
+#include "plastic/eigen_op.h"
+
+/* ---- components ------------------------------------------------------------------------------ */
+
+/* Oddness of a component (stress row or eigenstrain column, xx..xz) under x -> -x, y -> -y,
+ * z -> -z: the parity of the number of x (y, z) indices: xy and xz are odd in x, xy and yz in y,
+ * yz and xz in z. */
+static inline int mc_eig_odd_x(int c) { return c == 3 || c == 5; }
+static inline int mc_eig_odd_y(int c) { return c == 3 || c == 4; }
+static inline int mc_eig_odd_z(int c) { return c == 4 || c == 5; }
+/* Lateral parity bits of a component: bit 0 odd in x, bit 1 odd in y. */
+static inline int mc_eig_par(int c) { return mc_eig_odd_x(c) | mc_eig_odd_y(c) << 1; }
+/* Weight of a component in sigma : eps (shear entries occur twice). */
+static inline double mc_eig_weight(int c) { return c < 3 ? 1.0 : 2.0; }
+
+/* The 21 stored (row, column) pairs of the symmetric 6 x 6 stress kernel: i <= c, by rows. */
+#define MC_EIG_NSYM 21
+static inline int mc_eig_sym(int i, int c)
+{
+    if (i > c) {
+        const int t = i;
+        i = c;
+        c = t;
+    }
+    return i * 6 - i * (i - 1) / 2 + (c - i);
+}
+/* Kernel (row i, column c) = mc_eig_sym_factor(i, c) * stored (min, max): the major symmetry of
+ * the Eshelby-Chiu kernel with the shear columns carrying both tensor entries,
+ * S[c][i] = (w_i / w_c) S[i][c]. */
+static inline double mc_eig_sym_factor(int i, int c)
+{
+    return i <= c ? 1.0 : mc_eig_weight(c) / mc_eig_weight(i);
+}
+
+/* ---- validation ------------------------------------------------------------------------------ */
+
+/* MC_OK, or MC_ERR_INPUT (bad grid, volume, nu) / MC_ERR_LIMIT (a periodic axis, more cells or
+ * transform sizes than int) with a message naming what (prefix `who`). */
+int mc_eig_check(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                 const char *who, mc_error *err);
+
+/* Threads the apply loops may use (set at create: workspaces are per thread). */
+int mc_eig_threads(void);
+
+/* ---- quadrant tables ------------------------------------------------------------------------- */
+
+/* A kernel with ncomp components at the lateral offset (di, dj) cells (di, dj >= 0): out[ncomp]. */
+typedef void (*mc_eig_kfn)(int di, int dj, const void *ctx, double *out);
+
+/* Fill q[n] (n < ncomp, each qy * qx, row stride qx): entry (di, dj) = fn's component n for
+ * di < ux, dj < uy, 0 elsewhere; 0 at di = 0 (dj = 0) when par[n] is odd in x (y). OpenMP over
+ * rows. ux <= qx, uy <= qy. */
+void mc_eig_fill(int qx, int qy, int ux, int uy, int ncomp, const int *par, mc_eig_kfn fn,
+                 const void *ctx, double *const *q);
+
+/* In-place real-to-real transforms of quadrants of half periods mx, my (>= 2). */
+typedef struct {
+    int mx, my, qx, qy;
+    fftw_plan plan[4]; /* by parity (bit 0 odd in x, bit 1 odd in y) */
+} mc_eig_quad;
+
+int mc_eig_quad_create(mc_eig_quad *t, int mx, int my, mc_error *err);
+/* quad (qy * qx) -> R of the header comment, in place. */
+void mc_eig_quad_transform(const mc_eig_quad *t, int par, double *quad);
+void mc_eig_quad_destroy(mc_eig_quad *t); /* NULL-safe on a zeroed struct */
+
+/* ---- the zero-padded real 2-D FFT, pruned of all-zero rows ----------------------------------- */
+
+/* Transform size tx x ty (half spectrum ty rows of hx = tx/2 + 1 complex values). Forward: the
+ * data occupy rows row0 .. row0 + nin - 1 (the rest is zero and not transformed along x);
+ * inverse: rows 0 .. nout - 1 are produced. Spectra passed to execute must be allocated with
+ * mc_malloc and hold speclen complex values (a multiple of 4, so that arrays carved one after the
+ * other keep FFTW's alignment); real row buffers likewise, rows * tx doubles. Plans are
+ * single-threaded (callers run many transforms in parallel) and never allocate. */
+typedef struct {
+    int tx, ty, hx, row0, nin, nout;
+    size_t speclen;
+    fftw_plan row_r2c, col_fwd, col_bwd, row_c2r;
+} mc_eig_fft;
+
+int mc_eig_fft_create(mc_eig_fft *t, int tx, int ty, int row0, int nin, int nout, mc_error *err);
+/* rows (nin x tx, the data with zero padding to tx) -> spec; rows are not changed. */
+void mc_eig_fft_forward(const mc_eig_fft *t, double *rows, fftw_complex *spec);
+/* spec -> rows (nout x tx); destroys spec. */
+void mc_eig_fft_inverse(const mc_eig_fft *t, fftw_complex *spec, double *rows);
+void mc_eig_fft_destroy(mc_eig_fft *t); /* NULL-safe on a zeroed struct */
+
+/* rows (nrows x tx) = field (nrows x nx, row stride nx) at column col0, zeros elsewhere. */
+void mc_eig_fill_rows(double *rows, int tx, const double *field, int nx, int nrows, int col0);
+
+/* Multiply z by (-i)^n (n = 0..3). */
+static inline void mc_eig_rot(double *re, double *im, int n)
+{
+    const double r = *re, i = *im;
+    switch (n & 3) {
+    case 1: *re = i; *im = -r; break;
+    case 2: *re = -r; *im = -i; break;
+    case 3: *re = -i; *im = r; break;
+    default: break;
+    }
+}
+
+/* ---- the stress operator (eigen_stress_op.c: object, tables, direct; eigen_stress_fft.c) ----- */
+
+struct mc_eigen_stress {
+    mc_grid g;
+    mc_eigen_volume v;
+    double nu;
+    const struct mc_eig_stress_ops *ops; /* the backend's row (eigen_stress_op.c) */
+    int qx, qy;        /* quadrant of the tables (direct: the window; fft: half periods + 1) */
+    size_t qlen;       /* doubles per quadrant (rounded up to a cache line) */
+    double *love;      /* nz x 6 quadrants [k * 6 + i]: Love's stresses at depth (k + 1/2) dz per
+                        * unit pressure on one cell (mc_rect_stress_p), or their spectra (fft) */
+    double *s1;        /* direct: 2 nz x 21 quadrants [m * 21 + sym(i, c)], the infinite-space
+                        * kernel at depth offset m dz */
+    double *p3k;       /* direct: nz x 6 quadrants [k * 6 + c], sigma_zz^(1+2)(z = 0) / 2G of
+                        * source layer k (mc_eigen_surface_szz12) */
+    double *p3;        /* window: p3 of the last apply, Pa */
+    double *work;      /* window p3 / 2G */
+    void *fft;         /* fft: spectra, transforms and workspaces (eigen_stress_fft.c) */
+    size_t bytes;
+};
+
+/* Lateral parity bits of the kernel pair (row i, column c): odd(i) XOR odd(c) per axis. */
+int mc_eig_pair_par(int i, int c);
+
+/* Quadrants (op->qx x op->qy, stride qx, used extent the window) of the kernels, divided by 2G:
+ *   s1:   the 21 stored pairs of the infinite-space kernel at depth offset m dz (pairs odd in z
+ *         exactly 0 at m = 0, their value by symmetry);
+ *   p3:   sigma_zz^(1+2)(z = 0) of source layer k, per column;
+ *   love: Love's stresses at depth (k + 1/2) dz per unit pressure on one cell, per row. */
+void mc_eig_s1_fill(const mc_eigen_stress *op, int m, double *const q[MC_EIG_NSYM]);
+void mc_eig_p3_fill(const mc_eigen_stress *op, int k, double *const q[6]);
+void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6]);
+
+/* fft backend (eigen_stress_fft.c): sizes (qx, qy); spectra, plans and workspaces; apply; free
+ * what prepare took (NULL-safe). */
+void mc_eig_stress_fft_size(mc_eigen_stress *op);
+int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err);
+void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
+                             double *const sig[6]);
+void mc_eig_stress_fft_free(mc_eigen_stress *op);
+
+#endif

@@ -1,0 +1,125 @@
+/* eigen_op.h - the two eigenstrain operators of the semi-analytical elastic-plastic method
+ * (Jacq et al. 2002; dossier plastic-lubrication §2.1-§2.3), each with two backends behind one
+ * interface, chosen by the mc_backend of operator/operator.h:
+ *   direct - plain O(N^2) summation over the kernel tables, written for clarity: the reference;
+ *   fft    - DC-FFT (zero padding along both lateral axes, Liu, Wang & Liu 2000) over the SAME
+ *            tables, so the two agree to round-off.
+ *
+ * The volume. Under a window of the surface grid (columns i0 <= i < i0 + nx, j0 <= j < j0 + ny;
+ * the plastic zone is local, so only the columns under the contact plus a margin need cells) sit
+ * nz layers of cuboids dx x dy x dz; layer k spans depths [k dz, (k+1) dz], its cell centres are
+ * at z = (k + 1/2) dz. Each cuboid carries a uniform eigenstrain (plastic strain).
+ * Volume fields are six arrays f[c] (c in xx, yy, zz, xy, yz, xz: MC_SXX..MC_SXZ of
+ * kernels/kernel.h), each nz * ny * nx values in the volume layout f[c][(k * ny + j) * nx + i],
+ * (i, j) window-local. Eigenstrains are tensor components (eps_xy = gamma_xy / 2),
+ * dimensionless; the six arrays may be slices of one component-major block.
+ *
+ * Lateral axes must be free: a periodic axis is refused with MC_ERR_LIMIT (the residual fields of
+ * a local plastic zone are not periodic; a periodic variant would have to treat the k = 0 mode
+ * explicitly, dossier §2.2 "pitfall").
+ *
+ * Objects are planned once and applied many times; apply never allocates and cannot fail; one
+ * thread at a time per object (it owns its workspace); create from one thread (FFTW's planner).
+ *
+ * Cost and memory (measured on the project's 2-core machine with one thread and window = grid;
+ * mc_eigen_*_bytes gives the exact figure of an object):
+ *   displacement, fft: 6 nz forward transforms and one inverse at (grid + window) padding;
+ *     ~50-60 bytes per volume cell (6 nz real quadrant spectra; times ~(grid/window)^2 for a
+ *     window smaller than the grid); 1.1-1.5 x that transform bound;
+ *   stress, fft: 6 nz forward and 6 nz inverse transforms at 2x padding plus the depth step;
+ *     ~640 bytes per volume cell: kernel spectra 21 (2 nz + 1) reals per lateral frequency of a
+ *     quadrant (~350), the 6 nz layer spectra (~190), p3 and Love spectra (~100); ~4 x the bound
+ *     of 6 nz r2c + c2r pairs at 128^2 x 16 and 256^2 x 32;
+ *   direct: O((window cells)^2 nz^2) (stress) and O(grid cells x window cells x nz) operations,
+ *     ~430 (stress) and ~50 (displacement) bytes per volume cell of tables in space.
+ */
+#ifndef MC_EIGEN_OP_H
+#define MC_EIGEN_OP_H
+
+#include <stddef.h>
+
+#include "core/error.h"
+#include "core/grid.h"
+#include "operator/operator.h"
+
+/* The volume grid under a window of the surface grid. */
+typedef struct {
+    int i0, j0; /* first column of the window along x and y (surface grid indices, >= 0) */
+    int nx, ny; /* columns of the window along x and y (>= 1, i0 + nx <= grid nx, ...) */
+    int nz;     /* layers (>= 1) */
+    double dz;  /* layer thickness, m (finite, > 0) */
+} mc_eigen_volume;
+
+/* The volume of nz layers of thickness dz under the whole surface grid g. */
+static inline mc_eigen_volume mc_eigen_volume_full(const mc_grid *g, int nz, double dz)
+{
+    mc_eigen_volume v = {0, 0, g->nx, g->ny, nz, dz};
+    return v;
+}
+
+/* ---- eigenstrain -> surface normal residual displacement (dossier §2.2) --------------------- */
+
+typedef struct mc_eigen_disp mc_eigen_disp;
+
+/* Plan u_z = D * eps for surface grid g, volume v and Poisson ratio nu in (-1, 0.5), backend b.
+ * Betti reciprocity with the Boussinesq point force (Jacq et al. 2002):
+ *   u_z(X) = sum over cuboids s and columns c of D_c(s - X) eps_c(s),
+ * D_c = mc_eigen_surface_uz of kernels/eigen.h (a length: u_z is independent of E). The tables
+ * hold D at every offset (field minus source) in cells, for each source layer and column.
+ * *out is NULL on failure. MC_OK, MC_ERR_INPUT (bad grid, volume, nu or backend), MC_ERR_LIMIT (a
+ * periodic axis, or sizes beyond int), MC_ERR_NOMEM (an allocation, or FFTW could not plan),
+ * MC_ERR_INTERNAL (FFTW threads). */
+int mc_eigen_disp_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                         mc_eigen_disp **out, mc_error *err);
+
+/* uz (grid ny * nx, m, positive INTO the body: a dent is > 0) on the WHOLE surface grid, from the
+ * eigenstrain eps (layout above; dimensionless). The residual displacement of a finite plastic
+ * zone reaches beyond its window, so every surface cell gets its value. */
+void mc_eigen_disp_apply(mc_eigen_disp *op, const double *const eps[6], double *uz);
+
+/* Bytes held by the object (tables, spectra, workspaces). */
+size_t mc_eigen_disp_bytes(const mc_eigen_disp *op);
+
+void mc_eigen_disp_destroy(mc_eigen_disp **op); /* frees and sets *op = NULL; NULL-safe */
+
+/* ---- eigenstrain -> residual stress at the cuboid centres (dossier §2.3) -------------------- */
+
+typedef struct mc_eigen_stress mc_eigen_stress;
+
+/* Plan sigma_r = S * eps at every cuboid centre of volume v (grid g, nu in (-1, 0.5), backend b):
+ *   sigma_r = S1 + S2 + S3   (Chiu 1977, 1978; Jacq et al. 2002)
+ *   S1: each cuboid in an infinite space (kernels/eigen.h mc_eigen_stress1);
+ *   S2: its mirror cuboid z -> -z carrying R eps R, R = diag(1, 1, -1) (columns yz, xz change
+ *       sign); S1 + S2 has zero shear traction and zero u_z on z = 0;
+ *   S3: the half-space stress (Love's rectangles, mc_rect_stress_p) of the surface pressure
+ *       p3 = sigma_zz^(1+2)(x, y, 0) (mc_eigen_surface_szz12), which cancels the normal traction.
+ * S1 depends on the depth offset z_obs - z_src, S2 is S1 seen from the mirror layer: both are
+ * the infinite-space kernel at depth offsets (k - k') dz and (k + k' + 1) dz, so one family of
+ * tables at offsets m dz, m = 0 .. 2 nz - 1, serves every (observation, source) layer pair
+ * (negative offsets by the kernel's parity in z). The 6 x 6 kernel is symmetric up to the shear
+ * weights (sigma_c per eps_i = (w_i / w_c) sigma_i per eps_c, w = 1, 1, 1, 2, 2, 2: the major
+ * symmetry of C:Gamma:C), so 21 of the 36 tables are kept.
+ * p3 is formed on the window's columns only (the volume's surface footprint): outside the window
+ * the surface is left with the small traction of S1 + S2 there, which decays like the cube of
+ * the inverse distance from the plastic cells; give the volume a margin around the plastic zone.
+ * Returns as mc_eigen_disp_create. */
+int mc_eigen_stress_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                           mc_eigen_stress **out, mc_error *err);
+
+/* sig[c] (c in xx .. xz, each nz * ny * nx, volume layout above, Pa, tension positive): the
+ * residual stress at the cuboid centres from the eigenstrain eps, for shear modulus G > 0 (Pa).
+ * Inside a cuboid the stress includes -C:eps* of the cuboid itself. */
+void mc_eigen_stress_apply(mc_eigen_stress *op, const double *const eps[6], double G,
+                           double *const sig[6]);
+
+/* p3 (Pa, window ny * nx) of the last mc_eigen_stress_apply: the surface normal traction of
+ * S1 + S2 that S3 cancels (a tensile sigma_zz is a positive pushing pressure); zeros before the
+ * first apply. Exposed for checks (the Boussinesq displacement of p3 is the residual u_z). */
+void mc_eigen_stress_p3(const mc_eigen_stress *op, double *p3);
+
+/* Bytes held by the object (tables, spectra, workspaces). */
+size_t mc_eigen_stress_bytes(const mc_eigen_stress *op);
+
+void mc_eigen_stress_destroy(mc_eigen_stress **op); /* frees and sets *op = NULL; NULL-safe */
+
+#endif

@@ -1,0 +1,434 @@
+/* eigen_stress_fft.c - the fft backend of the residual stress operator (see eigen_op.h,
+ * eigen_stress_op.c for the sums it evaluates, eigen_internal.h for the quadrant spectra).
+ *
+ * Laterally: DC-FFT, each layer and column zero-padded to 2mx x 2my (m >= the window) and
+ * transformed once; the kernels are kept as real quadrant spectra.
+ * In depth: per lateral frequency the S1 + S2 sum over source layers is a convolution along z of
+ * the infinite-space kernel with the source extended by its mirror (layer -(k'+1) carries
+ * r_c eps(k'), r_c = -1 for yz, xz). With period L = 2 Nz, Nz >= 2 nz (depth offsets run from
+ * -(nz - 1) to 2 nz - 1 and must not meet their images), the kernel table is filled symmetrically
+ * (offsets |m| <= Nz, by its parity in z), so its DFT is real (even pairs) or -i times real (odd
+ * pairs): DCT-I of planes 0..Nz or DST-I of planes 1..Nz-1 (FFTW REDFT00 / RODFT00), kept for
+ * kz = 0..Nz. The source is a complex DFT of length L of the mirrored sequence (FFTW's complex
+ * transforms are ~2x faster here than its DCT-II/III); the extended source and the output are
+ * half-sample symmetric, y(-q-1) = s y(q), so Y(L - kz) = s w^kz Y(kz), w = e^(-2 pi i / L):
+ * the 6 x 6 products are formed for kz = 0..Nz only and the rest follows by that twiddle. This
+ * replaces the O(nz^2) pair sum by O(nz log nz) per frequency, with 21 x (Nz + 1) real kernel
+ * values per lateral frequency of the quadrant (the signs of eigen_internal.h folded in, and
+ * (-i)^(a XOR b) = (-i)^a (-i)^b (-1)^(a b) again for the parities a, b in z; times w_i of the
+ * row, which makes the stored matrix symmetric). They are stored in blocks of ch kx values of
+ * one quadrant row holding every depth frequency and pair, so the depth step of a block reads
+ * one contiguous run (and a spectrum row and its mirror, which share the kernel, run together).
+ * S3: p3 = sum of P_k'c E_c is formed per frequency, inverted, cut to the window (p3 lives on the
+ * window), transformed again and added with Love's spectra before the layers' inverse transforms.
+ */
+#include <math.h>
+#include <omp.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/fftsize.h"
+#include "core/threads.h"
+#include "plastic/eigen_internal.h"
+
+/* kx values per block at most */
+#define CHUNK_TARGET 32
+
+typedef struct {
+    mc_eig_fft fft;       /* 2mx x 2my; forward and inverse on the window's rows */
+    int Nz, L;            /* depth half period and period */
+    int ch, nch;          /* kx per block, blocks per quadrant row (nch ch >= qx) */
+    int cs;               /* buffer stride: ch rounded up to whole cache lines, off powers of 2 */
+    int nthr;             /* workspaces */
+    double *V;            /* S1 + S2 spectra, blocked: [(b (Nz + 1) + kz) 21 + n] ch + x */
+    double *P3;           /* p3 kernel spectra, blocked: [(b nz + k) 6 + c] ch + x */
+    fftw_complex *E;      /* 6 nz spectra [c * nz + k]: eps, then the stresses / 2G */
+    fftw_complex *P;      /* p3 spectrum */
+    double *rows;         /* nthr x (wy x tx) */
+    fftw_complex *zb;     /* nthr x zlen: source and output (6 x L x cs each), planar scratch */
+    size_t zlen;
+    fftw_complex *tw;     /* w^kz, kz = 0..Nz, w = e^(-2 pi i / L) */
+    fftw_plan zf, zi;     /* depth DFTs of length L, cs sequences at a time */
+} sfft;
+
+void mc_eig_stress_fft_size(mc_eigen_stress *op)
+{
+    const int mx = mc_fft_good_size(op->v.nx < 2 ? 2 : op->v.nx);
+    const int my = mc_fft_good_size(op->v.ny < 2 ? 2 : op->v.ny);
+    op->qx = mx + 1;
+    op->qy = my + 1;
+}
+
+/* the sign (-1)^(a b) of the parities in z of the pair (i, c) */
+static double zsign(int i, int c)
+{
+    return (mc_eig_odd_z(i) && mc_eig_odd_z(c)) ? -1.0 : 1.0;
+}
+
+/* the lateral sign (-1)^(a b) of eigen_internal.h for the pair (i, c) */
+static double xysign(int i, int c)
+{
+    const int n = (mc_eig_odd_x(i) & mc_eig_odd_x(c)) + (mc_eig_odd_y(i) & mc_eig_odd_y(c));
+    return (n & 1) ? -1.0 : 1.0;
+}
+
+/* Quadrants q[0..n) (lateral spectra) into planes plane0 .. plane0 + n - 1 of the blocked array
+ * dst of nplanes planes per block. */
+static void scatter_blocks(const mc_eigen_stress *op, const sfft *f, double *const *q, int n,
+                           int plane0, int nplanes, double *dst)
+{
+    const int qx = op->qx, ch = f->ch;
+#pragma omp parallel for schedule(static)
+    for (int ky = 0; ky < op->qy; ky++)
+        for (int kx = 0; kx < qx; kx++) {
+            const size_t b = (size_t)ky * f->nch + kx / ch;
+            for (int p = 0; p < n; p++)
+                dst[(b * nplanes + plane0 + p) * ch + kx % ch] = q[p][(size_t)ky * qx + kx];
+        }
+}
+
+/* The kernel spectra: lateral r2r of each table (quadrant by quadrant through a scratch of 21),
+ * scattered into blocks; then, block by block, the depth r2r of the S1 family and the folded
+ * signs; Love's tables are transformed in place. */
+static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
+{
+    const int nz = op->v.nz, Nz = f->Nz, ch = f->ch, np = (Nz + 1) * MC_EIG_NSYM;
+    const size_t ql = op->qlen, nblk = (size_t)op->qy * f->nch;
+    mc_eig_quad quad;
+    int rc = mc_eig_quad_create(&quad, op->qx - 1, op->qy - 1, err);
+    if (rc)
+        return rc;
+    double *scr = mc_malloc((size_t)MC_EIG_NSYM * ql * sizeof *scr);
+    if (!scr) {
+        mc_eig_quad_destroy(&quad);
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for table scratch");
+    }
+    double *q[MC_EIG_NSYM];
+    for (int n = 0; n < MC_EIG_NSYM; n++)
+        q[n] = scr + (size_t)n * ql;
+    int par[MC_EIG_NSYM], oddz[MC_EIG_NSYM];
+    double sign[MC_EIG_NSYM];
+    for (int i = 0; i < 6; i++)
+        for (int c = i; c < 6; c++) {
+            const int n = mc_eig_sym(i, c);
+            par[n] = mc_eig_pair_par(i, c);
+            oddz[n] = mc_eig_odd_z(i) ^ mc_eig_odd_z(c);
+            /* times w_min(i,c): the stored matrix is then symmetric, S_ic = V_ic / w_i */
+            sign[n] = xysign(i, c) * zsign(i, c) * mc_eig_weight(i);
+        }
+    /* planes m >= 2 nz stay zero (calloc) */
+    for (int m = 0; m < 2 * nz; m++) {
+        mc_eig_s1_fill(op, m, q);
+#pragma omp parallel for schedule(dynamic, 1)
+        for (int n = 0; n < MC_EIG_NSYM; n++)
+            mc_eig_quad_transform(&quad, par[n], q[n]);
+        scatter_blocks(op, f, q, MC_EIG_NSYM, m * MC_EIG_NSYM, np, f->V);
+    }
+    for (int k = 0; k < nz; k++) {
+        mc_eig_p3_fill(op, k, q);
+#pragma omp parallel for schedule(dynamic, 1)
+        for (int c = 0; c < 6; c++)
+            mc_eig_quad_transform(&quad, mc_eig_par(c), q[c]);
+        scatter_blocks(op, f, q, 6, 6 * k, 6 * nz, f->P3);
+    }
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int t = 0; t < 6 * nz; t++)
+        mc_eig_quad_transform(&quad, mc_eig_par(t % 6), op->love + (size_t)t * ql);
+    mc_eig_quad_destroy(&quad);
+    mc_free(scr);
+
+    /* depth: within a block, planes kz of pair n are MC_EIG_NSYM ch apart */
+    int n0[1] = {Nz + 1}, n1[1] = {Nz - 1};
+    fftw_r2r_kind k0[1] = {FFTW_REDFT00}, k1[1] = {FFTW_RODFT00};
+    const int stride = MC_EIG_NSYM * ch;
+    fftw_plan zp[2];
+    fftw_plan_with_nthreads(1);
+    zp[0] = fftw_plan_many_r2r(1, n0, ch, f->V, NULL, stride, 1, f->V, NULL, stride, 1, k0,
+                               FFTW_ESTIMATE | FFTW_UNALIGNED);
+    zp[1] = fftw_plan_many_r2r(1, n1, ch, f->V + stride, NULL, stride, 1, f->V + stride, NULL,
+                               stride, 1, k1, FFTW_ESTIMATE | FFTW_UNALIGNED);
+    if (!zp[0] || !zp[1]) {
+        for (int p = 0; p < 2; p++)
+            if (zp[p])
+                fftw_destroy_plan(zp[p]);
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: FFTW could not plan the depth kernels");
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t b = 0; b < nblk; b++)
+        for (int n = 0; n < MC_EIG_NSYM; n++) {
+            double *base = f->V + b * (size_t)np * ch + (size_t)n * ch;
+            if (oddz[n]) {
+                fftw_execute_r2r(zp[1], base + stride, base + stride);
+                /* DST-I: kz = 0 and kz = Nz vanish */
+                memset(base, 0, (size_t)ch * sizeof *base);
+                memset(base + (size_t)Nz * stride, 0, (size_t)ch * sizeof *base);
+            } else {
+                fftw_execute_r2r(zp[0], base, base);
+            }
+            for (int kz = 0; kz <= Nz; kz++)
+                for (int x = 0; x < ch; x++)
+                    base[(size_t)kz * stride + x] *= sign[n];
+        }
+    for (int p = 0; p < 2; p++)
+        fftw_destroy_plan(zp[p]);
+    return MC_OK;
+}
+
+int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
+{
+    sfft *f = mc_calloc(1, sizeof *f);
+    if (!f)
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory");
+    op->fft = f;
+    const int nz = op->v.nz, wy = op->v.ny, mx = op->qx - 1, my = op->qy - 1;
+    /* depth half period: offsets up to 2 nz - 1 must not meet their images (file comment) */
+    f->Nz = mc_fft_good_size(2 * nz);
+    f->L = 2 * f->Nz;
+    int rc = mc_eig_fft_create(&f->fft, 2 * mx, 2 * my, 0, wy, wy, err);
+    if (rc)
+        return rc;
+    const int hx = f->fft.hx; /* = qx */
+    f->nch = (hx + CHUNK_TARGET - 1) / CHUNK_TARGET;
+    f->ch = (hx + f->nch - 1) / f->nch;
+    f->cs = (f->ch + 3) / 4 * 4;
+    if (f->cs % 16 == 0) /* a power-of-2 stride between depth planes thrashes the cache */
+        f->cs += 4;
+    f->nthr = mc_eig_threads();
+    f->zlen = (size_t)(12 * f->L + 12) * f->cs;
+    const size_t sl = f->fft.speclen, rl = (size_t)wy * f->fft.tx;
+    const size_t blk = (size_t)op->qy * f->nch * f->ch; /* doubles per blocked plane */
+    const size_t nv = (size_t)(f->Nz + 1) * MC_EIG_NSYM * blk, np3 = 6 * (size_t)nz * blk;
+    f->V = mc_calloc(nv, sizeof *f->V);
+    f->P3 = mc_calloc(np3, sizeof *f->P3);
+    f->E = mc_malloc(6 * (size_t)nz * sl * sizeof *f->E);
+    f->P = mc_malloc(sl * sizeof *f->P);
+    f->rows = mc_malloc((size_t)f->nthr * rl * sizeof *f->rows);
+    f->zb = mc_calloc((size_t)f->nthr * f->zlen, sizeof *f->zb);
+    f->tw = mc_malloc((size_t)(f->Nz + 1) * sizeof *f->tw);
+    if (!f->V || !f->P3 || !f->E || !f->P || !f->rows || !f->zb || !f->tw)
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for %zu spectra",
+                       (size_t)(f->Nz + 1) * MC_EIG_NSYM + 12 * (size_t)nz);
+    op->bytes += sizeof *f + (nv + np3) * sizeof(double) +
+                 ((6 * (size_t)nz + 1) * sl + (size_t)f->nthr * f->zlen + f->Nz + 1) *
+                     sizeof(fftw_complex) + (size_t)f->nthr * rl * sizeof(double);
+    /* touch the spectra now: the first apply should not pay the page faults */
+    memset(f->E, 0, 6 * (size_t)nz * sl * sizeof *f->E);
+    memset(f->P, 0, sl * sizeof *f->P);
+    if ((rc = build_spectra(op, f, err)))
+        return rc;
+    for (int kz = 0; kz <= f->Nz; kz++) {
+        f->tw[kz][0] = cos(2.0 * M_PI * kz / f->L);
+        f->tw[kz][1] = -sin(2.0 * M_PI * kz / f->L);
+    }
+    /* depth DFTs: length L with stride cs, over cs interleaved sequences (one kx each) */
+    fftw_iodim dim = {f->L, f->cs, f->cs}, vec = {f->cs, 1, 1};
+    fftw_plan_with_nthreads(1);
+    f->zf = fftw_plan_guru_dft(1, &dim, 1, &vec, f->zb, f->zb, FFTW_FORWARD, FFTW_ESTIMATE);
+    f->zi = fftw_plan_guru_dft(1, &dim, 1, &vec, f->zb, f->zb, FFTW_BACKWARD, FFTW_ESTIMATE);
+    if (!f->zf || !f->zi)
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: FFTW could not plan depth transforms");
+    return MC_OK;
+}
+
+void mc_eig_stress_fft_free(mc_eigen_stress *op)
+{
+    sfft *f = op->fft;
+    if (!f)
+        return;
+    mc_eig_fft_destroy(&f->fft);
+    if (f->zf)
+        fftw_destroy_plan(f->zf);
+    if (f->zi)
+        fftw_destroy_plan(f->zi);
+    mc_free(f->V);
+    mc_free(f->P3);
+    mc_free(f->E);
+    mc_free(f->P);
+    mc_free(f->rows);
+    mc_free(f->zb);
+    mc_free(f->tw);
+    mc_free(f);
+    op->fft = NULL;
+}
+
+/* The depth step for spectrum row ky, block chunk (kx0 = chunk ch, len values): gather with the
+ * column factors (-i)^(ox + oy) s_y and the mirror layers, p3, depth DFTs, the 6 x 6 products for
+ * kz = 0..Nz (on planar copies, so the loops run over contiguous kx) and the twiddle for the rest,
+ * inverse DFTs, scatter with the row factors and 1 / L back into E. */
+static void depth_step(const mc_eigen_stress *op, const sfft *f, int ky, int chunk,
+                       fftw_complex *zb)
+{
+    const int nz = op->v.nz, Nz = f->Nz, L = f->L, ch = f->ch, cs = f->cs;
+    const int hx = f->fft.hx, ty = f->fft.ty, my = op->qy - 1, mirror = ky > my, kx0 = chunk * ch;
+    const int len = hx - kx0 < ch ? hx - kx0 : ch;
+    const size_t sl = f->fft.speclen, at = (size_t)ky * hx + kx0; /* spectrum index */
+    const size_t b = (size_t)(mirror ? ty - ky : ky) * f->nch + chunk; /* kernel block */
+    const double *Vb = f->V + b * (size_t)(Nz + 1) * MC_EIG_NSYM * ch;
+    const double *Pb = f->P3 + b * (size_t)nz * 6 * ch;
+    const size_t cstride = (size_t)L * cs; /* complex values per component */
+    fftw_complex *A = zb, *B = zb + 6 * cstride;
+    double *pl = (double *)(zb + 12 * cstride); /* planar: 6 x (re, im) x cs */
+
+    int rot[6];
+    double sy[6];
+    for (int c = 0; c < 6; c++) {
+        rot[c] = mc_eig_odd_x(c) + mc_eig_odd_y(c);
+        sy[c] = (mirror && mc_eig_odd_y(c)) ? -1.0 : 1.0;
+    }
+    /* gather: layers q < nz and their mirrors at L - 1 - q (r_c = -1 for yz, xz); p3 / 2G */
+    double pr[CHUNK_TARGET] = {0.0}, pi[CHUNK_TARGET] = {0.0};
+    for (int c = 0; c < 6; c++) {
+        fftw_complex *a = A + c * cstride;
+        const double r = mc_eig_odd_z(c) ? -1.0 : 1.0;
+        memset(a + (size_t)nz * cs, 0, (size_t)(L - 2 * nz) * cs * sizeof *a);
+        for (int q = 0; q < nz; q++) {
+            fftw_complex *g = a + (size_t)q * cs, *gm = a + (size_t)(L - 1 - q) * cs;
+            const fftw_complex *e = f->E + (size_t)(c * nz + q) * sl + at;
+            const double *P = Pb + (size_t)(q * 6 + c) * ch;
+            for (int x = 0; x < len; x++) {
+                double re = sy[c] * e[x][0], im = sy[c] * e[x][1];
+                mc_eig_rot(&re, &im, rot[c]);
+                g[x][0] = re;
+                g[x][1] = im;
+                gm[x][0] = r * re;
+                gm[x][1] = r * im;
+                pr[x] += P[x] * re;
+                pi[x] += P[x] * im;
+            }
+            for (int x = len; x < cs; x++)
+                g[x][0] = g[x][1] = gm[x][0] = gm[x][1] = 0.0;
+        }
+        fftw_execute_dft(f->zf, a, a);
+    }
+    for (int x = 0; x < len; x++) {
+        f->P[at + x][0] = pr[x];
+        f->P[at + x][1] = pi[x];
+    }
+    /* products at kz = 0..Nz; the upper half by Y(L - kz) = s_i w^kz Y(kz) */
+    for (int kz = 0; kz <= Nz; kz++) {
+        for (int c = 0; c < 6; c++) {
+            const fftw_complex *a = A + c * cstride + (size_t)kz * cs;
+            double *ar = pl + (size_t)c * 2 * cs, *ai = ar + cs;
+            const int odd = mc_eig_odd_z(c); /* (-i)^oz(c) */
+            for (int x = 0; x < len; x++) {
+                ar[x] = odd ? a[x][1] : a[x][0];
+                ai[x] = odd ? -a[x][0] : a[x][1];
+            }
+        }
+        const double *V = Vb + (size_t)kz * MC_EIG_NSYM * ch;
+        const double twr = f->tw[kz][0], twi = f->tw[kz][1];
+        for (int i = 0; i < 6; i++) {
+            double yr[CHUNK_TARGET] = {0.0}, yi[CHUNK_TARGET] = {0.0};
+            for (int c = 0; c < 6; c++) {
+                const double *v = V + (size_t)mc_eig_sym(i, c) * ch;
+                const double *ar = pl + (size_t)c * 2 * cs, *ai = ar + cs;
+#pragma omp simd
+                for (int x = 0; x < len; x++) {
+                    yr[x] += v[x] * ar[x];
+                    yi[x] += v[x] * ai[x];
+                }
+            }
+            fftw_complex *y = B + i * cstride + (size_t)kz * cs;
+            fftw_complex *ym = B + i * cstride + (size_t)(L - kz) * cs;
+            const int odd = mc_eig_odd_z(i);
+            const double s = odd ? -1.0 : 1.0;
+            for (int x = 0; x < len; x++) {
+                /* (-i)^oz(i) */
+                const double re = odd ? yi[x] : yr[x], im = odd ? -yr[x] : yi[x];
+                y[x][0] = re;
+                y[x][1] = im;
+                if (kz > 0 && kz < Nz) {
+                    ym[x][0] = s * (twr * re - twi * im);
+                    ym[x][1] = s * (twr * im + twi * re);
+                }
+            }
+        }
+    }
+    for (int i = 0; i < 6; i++) {
+        fftw_complex *g = B + i * cstride;
+        const double scale = 1.0 / (L * mc_eig_weight(i)); /* the DFT pair; V's weight */
+        fftw_execute_dft(f->zi, g, g);
+        for (int k = 0; k < nz; k++) {
+            fftw_complex *e = f->E + (size_t)(i * nz + k) * sl + at;
+            const fftw_complex *y = g + (size_t)k * cs;
+            for (int x = 0; x < len; x++) {
+                double re = scale * sy[i] * y[x][0], im = scale * sy[i] * y[x][1];
+                mc_eig_rot(&re, &im, rot[i]);
+                e[x][0] = re;
+                e[x][1] = im;
+            }
+        }
+    }
+}
+
+void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
+                             double *const sig[6])
+{
+    sfft *f = op->fft;
+    const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, tx = f->fft.tx, ty = f->fft.ty;
+    const int hx = f->fft.hx, my = op->qy - 1;
+    const size_t sl = f->fft.speclen, wc = (size_t)wx * wy, rl = (size_t)wy * tx, ql = op->qlen;
+    const double scale = 1.0 / ((double)tx * ty); /* FFTW does not normalise */
+    const int ntask = op->qy * f->nch; /* quadrant rows: a row and its mirror share kernels */
+#pragma omp parallel num_threads(f->nthr)
+    {
+        const int me = omp_get_thread_num();
+        double *rows = f->rows + (size_t)me * rl;
+        /* every layer and column forward */
+#pragma omp for schedule(dynamic, 1)
+        for (int t = 0; t < 6 * nz; t++) {
+            const int c = t / nz, k = t % nz;
+            mc_eig_fill_rows(rows, tx, eps[c] + k * wc, wx, wy, 0);
+            mc_eig_fft_forward(&f->fft, rows, f->E + (size_t)t * sl);
+        }
+        /* depth coupling, frequency by frequency */
+#pragma omp for schedule(dynamic, 1)
+        for (int t = 0; t < ntask; t++) {
+            const int ky = t / f->nch, chunk = t % f->nch;
+            if (chunk * f->ch >= hx)
+                continue;
+            fftw_complex *zb = f->zb + (size_t)me * f->zlen;
+            depth_step(op, f, ky, chunk, zb);
+            if (ky > 0 && ky < my)
+                depth_step(op, f, ty - ky, chunk, zb);
+        }
+#pragma omp single
+        {
+            /* p3 on the window only: back to space, cut, forward again */
+            mc_eig_fft_inverse(&f->fft, f->P, rows);
+            for (int j = 0; j < wy; j++)
+                for (int i = 0; i < wx; i++) {
+                    const double p = scale * rows[(size_t)j * tx + i];
+                    op->work[(size_t)j * wx + i] = p;
+                    op->p3[(size_t)j * wx + i] = 2.0 * G * p;
+                }
+            mc_eig_fill_rows(rows, tx, op->work, wx, wy, 0);
+            mc_eig_fft_forward(&f->fft, rows, f->P);
+        }
+        /* S3 in, and every stress layer back */
+#pragma omp for schedule(dynamic, 1)
+        for (int t = 0; t < 6 * nz; t++) {
+            const int i = t / nz, k = t % nz;
+            const int rot = mc_eig_odd_x(i) + mc_eig_odd_y(i), oy = mc_eig_odd_y(i);
+            const double *L = op->love + (size_t)(k * 6 + i) * ql;
+            fftw_complex *e = f->E + (size_t)t * sl;
+            for (int ky = 0; ky < ty; ky++) {
+                const int mirror = ky > my;
+                const double s = (mirror && oy) ? -1.0 : 1.0;
+                const double *l = L + (size_t)(mirror ? ty - ky : ky) * op->qx;
+                for (int kx = 0; kx < hx; kx++) {
+                    const size_t q = (size_t)ky * hx + kx;
+                    double re = s * l[kx] * f->P[q][0], im = s * l[kx] * f->P[q][1];
+                    mc_eig_rot(&re, &im, rot);
+                    e[q][0] += re;
+                    e[q][1] += im;
+                }
+            }
+            mc_eig_fft_inverse(&f->fft, e, rows);
+            double *out = sig[i] + k * wc;
+            for (int j = 0; j < wy; j++)
+                for (int x = 0; x < wx; x++)
+                    out[(size_t)j * wx + x] = 2.0 * G * scale * rows[(size_t)j * tx + x];
+        }
+    }
+}

@@ -1,0 +1,302 @@
+/* eigen_stress_op.c - eigenstrain -> residual stress at the cuboid centres: the object, its
+ * kernel tables and the direct backend (see eigen_op.h; Chiu 1977, 1978; Jacq et al. 2002;
+ * dossier plastic-lubrication §2.3). The fft backend is eigen_stress_fft.c.
+ *
+ * With M_ic(d, m) the infinite-space kernel (row i, column c, divided by 2G) of a cuboid seen at
+ * the lateral offset d (cells, field minus source) and depth offset m dz, the stress of layer k
+ * is, per unit 2G,
+ *   sigma_i(k, x) = sum_{k',c,s} [M_ic(x - s, k - k') + r_c M_ic(x - s, k + k' + 1)] eps_c(k', s)
+ *                 + sum_s L_ki(x - s) p3(s) / 2G,
+ *   p3(s) / 2G   = sum_{k', c, s'} P_k'c(s - s') eps_c(k', s'),
+ * r_c = -1 for the columns yz, xz (the mirror carries R eps R), M at negative m by its parity in
+ * z, P = sigma_zz^(1+2)(z = 0) of source layer k', L = Love's rectangle stresses at the depth of
+ * layer k. The sums over s run over the window only (p3 lives on the window).
+ */
+#include <math.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "kernels/eigen.h"
+#include "kernels/kernel.h"
+#include "plastic/eigen_internal.h"
+
+/* ---- kernel tables --------------------------------------------------------------------------- */
+
+typedef struct {
+    double dx, dy, dz, nu;
+    int k; /* depth offset m (S1) or layer (P, L) */
+} table_ctx;
+
+/* the 21 stored pairs of the infinite-space kernel at depth offset m dz */
+static void s1_kernel(int di, int dj, const void *ctx, double *out)
+{
+    const table_ctx *t = ctx;
+    double S[6][6];
+    mc_eigen_stress1(di * t->dx, dj * t->dy, (t->k + 0.5) * t->dz, 0.5 * t->dx, 0.5 * t->dy, 0.0,
+                     t->dz, t->nu, S);
+    for (int i = 0; i < 6; i++)
+        for (int c = i; c < 6; c++)
+            out[mc_eig_sym(i, c)] = S[i][c];
+}
+
+static void p3_kernel(int di, int dj, const void *ctx, double *out)
+{
+    const table_ctx *t = ctx;
+    mc_eigen_surface_szz12(di * t->dx, dj * t->dy, 0.5 * t->dx, 0.5 * t->dy, t->k * t->dz,
+                           (t->k + 1) * t->dz, t->nu, out);
+}
+
+static void love_kernel(int di, int dj, const void *ctx, double *out)
+{
+    const table_ctx *t = ctx;
+    mc_rect_stress_p(di * t->dx, dj * t->dy, (t->k + 0.5) * t->dz, 0.5 * t->dx, 0.5 * t->dy,
+                     t->nu, out);
+}
+
+int mc_eig_pair_par(int i, int c)
+{
+    return (mc_eig_odd_x(i) ^ mc_eig_odd_x(c)) | (mc_eig_odd_y(i) ^ mc_eig_odd_y(c)) << 1;
+}
+
+void mc_eig_s1_fill(const mc_eigen_stress *op, int m, double *const q[MC_EIG_NSYM])
+{
+    int par[MC_EIG_NSYM];
+    for (int i = 0; i < 6; i++)
+        for (int c = i; c < 6; c++)
+            par[mc_eig_sym(i, c)] = mc_eig_pair_par(i, c);
+    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, m};
+    mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, MC_EIG_NSYM, par, s1_kernel, &ctx, q);
+    /* pairs odd in z vanish at depth offset 0 (the fft backend's DST-I ignores that plane) */
+    for (int i = 0; m == 0 && i < 6; i++)
+        for (int c = i; c < 6; c++)
+            if (mc_eig_odd_z(i) ^ mc_eig_odd_z(c))
+                memset(q[mc_eig_sym(i, c)], 0, op->qlen * sizeof(double));
+}
+
+void mc_eig_p3_fill(const mc_eigen_stress *op, int k, double *const q[6])
+{
+    int par[6];
+    for (int c = 0; c < 6; c++)
+        par[c] = mc_eig_par(c);
+    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k};
+    mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, 6, par, p3_kernel, &ctx, q);
+}
+
+void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6])
+{
+    int par[6];
+    for (int c = 0; c < 6; c++)
+        par[c] = mc_eig_par(c);
+    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k};
+    mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, 6, par, love_kernel, &ctx, q);
+}
+
+/* ---- direct: the O(N^2) reference ------------------------------------------------------------ */
+
+/* Sign of a kernel of parity par (bit 0 odd in x, bit 1 odd in y) at offset (di, dj). */
+static inline double par_sign(int par, int di, int dj)
+{
+    return (((par & 1) && di < 0) != ((par & 2) && dj < 0)) ? -1.0 : 1.0;
+}
+
+/* p3 / 2G on the window: sum over source layers and columns of P_k'c convolved with eps */
+static void direct_p3(const mc_eigen_stress *op, const double *const eps[6], double *p3)
+{
+    const int wx = op->v.nx, wy = op->v.ny, nz = op->v.nz, qx = op->qx;
+    const size_t wc = (size_t)wx * wy, ql = op->qlen;
+#pragma omp parallel for schedule(static)
+    for (int j = 0; j < wy; j++)
+        for (int i = 0; i < wx; i++) {
+            double s = 0.0;
+            for (int k = 0; k < nz; k++)
+                for (int c = 0; c < 6; c++) {
+                    const double *P = op->p3k + (size_t)(k * 6 + c) * ql;
+                    for (int js = 0; js < wy; js++)
+                        for (int is = 0; is < wx; is++) {
+                            const int di = i - is, dj = j - js;
+                            s += par_sign(mc_eig_par(c), di, dj) *
+                                 P[(size_t)(dj < 0 ? -dj : dj) * qx + (di < 0 ? -di : di)] *
+                                 eps[c][k * wc + (size_t)js * wx + is];
+                        }
+                }
+            p3[(size_t)j * wx + i] = s;
+        }
+}
+
+static void direct_apply(mc_eigen_stress *op, const double *const eps[6], double G,
+                         double *const sig[6])
+{
+    const int wx = op->v.nx, wy = op->v.ny, nz = op->v.nz, qx = op->qx;
+    const size_t wc = (size_t)wx * wy, ql = op->qlen;
+    direct_p3(op, eps, op->work);
+    for (size_t s = 0; s < wc; s++)
+        op->p3[s] = 2.0 * G * op->work[s];
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int row = 0; row < nz * wy; row++) {
+        const int k = row / wy, j = row % wy;
+        for (int i = 0; i < wx; i++) {
+            double acc[6] = {0.0};
+            for (int kp = 0; kp < nz; kp++) {
+                const int m1 = k >= kp ? k - kp : kp - k, m2 = k + kp + 1;
+                for (int js = 0; js < wy; js++)
+                    for (int is = 0; is < wx; is++) {
+                        const int di = i - is, dj = j - js;
+                        const size_t at = (size_t)(dj < 0 ? -dj : dj) * qx + (di < 0 ? -di : di);
+                        for (int c = 0; c < 6; c++) {
+                            const double e = eps[c][kp * wc + (size_t)js * wx + is];
+                            if (e == 0.0)
+                                continue;
+                            const double rc = mc_eig_odd_z(c) ? -1.0 : 1.0;
+                            for (int o = 0; o < 6; o++) {
+                                const int n = mc_eig_sym(o, c);
+                                const int par = mc_eig_pair_par(o, c);
+                                /* S1 below the source (k < k') by the parity in z */
+                                const double z1 = (k < kp && (mc_eig_odd_z(o) ^ mc_eig_odd_z(c)))
+                                                      ? -1.0 : 1.0;
+                                const double t1 = op->s1[(size_t)(m1 * MC_EIG_NSYM + n) * ql + at];
+                                const double t2 = op->s1[(size_t)(m2 * MC_EIG_NSYM + n) * ql + at];
+                                acc[o] += mc_eig_sym_factor(o, c) * par_sign(par, di, dj) *
+                                          (z1 * t1 + rc * t2) * e;
+                            }
+                        }
+                    }
+            }
+            /* S3: Love's stresses of the window p3 at this depth */
+            for (int o = 0; o < 6; o++) {
+                const double *L = op->love + (size_t)(k * 6 + o) * ql;
+                const int par = mc_eig_par(o);
+                double s3 = 0.0;
+                for (int js = 0; js < wy; js++)
+                    for (int is = 0; is < wx; is++) {
+                        const int di = i - is, dj = j - js;
+                        s3 += par_sign(par, di, dj) *
+                              L[(size_t)(dj < 0 ? -dj : dj) * qx + (di < 0 ? -di : di)] *
+                              op->work[(size_t)js * wx + is];
+                    }
+                sig[o][(size_t)k * wc + (size_t)j * wx + i] = 2.0 * G * (acc[o] + s3);
+            }
+        }
+    }
+}
+
+/* ---- the backend table and the object ------------------------------------------------------- */
+
+struct mc_eig_stress_ops {
+    const char *name;
+    mc_backend id;
+    void (*size)(mc_eigen_stress *op);                 /* qx, qy */
+    int (*prepare)(mc_eigen_stress *op, mc_error *err); /* tables and workspaces */
+    void (*apply)(mc_eigen_stress *op, const double *const eps[6], double G,
+                  double *const sig[6]);
+    void (*release)(mc_eigen_stress *op);              /* what prepare took; NULL-safe */
+};
+
+static void direct_size(mc_eigen_stress *op)
+{
+    op->qx = op->v.nx;
+    op->qy = op->v.ny;
+}
+
+/* the tables in space: S1 at depth offsets 0 .. 2 nz - 1 and p3 per source layer */
+static int direct_prepare(mc_eigen_stress *op, mc_error *err)
+{
+    const int nz = op->v.nz;
+    const size_t ql = op->qlen, n1 = 2 * (size_t)nz * MC_EIG_NSYM * ql, n2 = 6 * (size_t)nz * ql;
+    if (!(op->s1 = mc_malloc(n1 * sizeof *op->s1)) || !(op->p3k = mc_malloc(n2 * sizeof *op->p3k)))
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for %zu tables",
+                       (n1 + n2) / ql);
+    op->bytes += (n1 + n2) * sizeof(double);
+    for (int m = 0; m < 2 * nz; m++) {
+        double *q[MC_EIG_NSYM];
+        for (int n = 0; n < MC_EIG_NSYM; n++)
+            q[n] = op->s1 + (size_t)(m * MC_EIG_NSYM + n) * ql;
+        mc_eig_s1_fill(op, m, q);
+    }
+    for (int k = 0; k < nz; k++) {
+        double *q[6];
+        for (int c = 0; c < 6; c++)
+            q[c] = op->p3k + (size_t)(k * 6 + c) * ql;
+        mc_eig_p3_fill(op, k, q);
+    }
+    return MC_OK;
+}
+
+static void direct_release(mc_eigen_stress *op)
+{
+    mc_free(op->s1);
+    mc_free(op->p3k);
+    op->s1 = op->p3k = NULL;
+}
+
+static const struct mc_eig_stress_ops backends[] = {
+    {"fft", MC_BACKEND_FFT, mc_eig_stress_fft_size, mc_eig_stress_fft_prepare,
+     mc_eig_stress_fft_apply, mc_eig_stress_fft_free},
+    {"direct", MC_BACKEND_DIRECT, direct_size, direct_prepare, direct_apply, direct_release},
+};
+
+void mc_eigen_stress_destroy(mc_eigen_stress **op)
+{
+    if (!op || !*op)
+        return;
+    if ((*op)->ops)
+        (*op)->ops->release(*op);
+    mc_free((*op)->love);
+    mc_free((*op)->p3);
+    mc_free((*op)->work);
+    mc_free(*op);
+    *op = NULL;
+}
+
+int mc_eigen_stress_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                           mc_eigen_stress **out, mc_error *err)
+{
+    *out = NULL;
+    int rc = mc_eig_check(g, v, nu, b, "eigen stress", err);
+    if (rc)
+        return rc;
+    mc_eigen_stress *op = mc_calloc(1, sizeof *op);
+    if (!op)
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory");
+    op->g = *g;
+    op->v = *v;
+    op->nu = nu;
+    for (size_t r = 0; r < sizeof backends / sizeof backends[0]; r++)
+        if (backends[r].id == b)
+            op->ops = &backends[r];
+    op->ops->size(op);
+    op->qlen = ((size_t)op->qx * op->qy + 7) / 8 * 8;
+    const size_t wc = (size_t)v->nx * v->ny, nl = 6 * (size_t)v->nz * op->qlen;
+    op->love = mc_malloc(nl * sizeof *op->love);
+    op->p3 = mc_zeros(wc);
+    op->work = mc_zeros(wc);
+    if (!op->love || !op->p3 || !op->work) {
+        mc_eigen_stress_destroy(&op);
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for its tables");
+    }
+    op->bytes = sizeof *op + (nl + 2 * wc) * sizeof(double);
+    for (int k = 0; k < v->nz; k++) {
+        double *q[6];
+        for (int i = 0; i < 6; i++)
+            q[i] = op->love + (size_t)(k * 6 + i) * op->qlen;
+        mc_eig_love_fill(op, k, q);
+    }
+    if ((rc = op->ops->prepare(op, err))) {
+        mc_eigen_stress_destroy(&op);
+        return rc;
+    }
+    *out = op;
+    return MC_OK;
+}
+
+void mc_eigen_stress_apply(mc_eigen_stress *op, const double *const eps[6], double G,
+                           double *const sig[6])
+{
+    op->ops->apply(op, eps, G, sig);
+}
+
+void mc_eigen_stress_p3(const mc_eigen_stress *op, double *p3)
+{
+    memcpy(p3, op->p3, (size_t)op->v.nx * op->v.ny * sizeof *p3);
+}
+
+size_t mc_eigen_stress_bytes(const mc_eigen_stress *op) { return op->bytes; }

@@ -1,0 +1,363 @@
+/* loop.c - the semi-analytical elastic-plastic contact loop (loop.h; docs/theory.md §9). */
+#include "plastic/loop.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "kernels/invariants.h"
+#include "kernels/kernel.h"
+#include "plastic/return_map.h"
+#include "stress/stress.h"
+
+/* Everything one run needs, freed in one place. */
+typedef struct {
+    const mc_grid *g;
+    const mc_plastic_problem *pb;
+    long nvol, nwx, nwy;
+    size_t ncell;
+    double G;
+    mc_stress_plan *elastic;       /* Love-rectangle stresses at the cuboid centres */
+    mc_eigen_disp *disp;      /* eigenstrain -> surface residual displacement */
+    mc_eigen_stress *resid;   /* eigenstrain -> residual stress at the cuboid centres */
+    double *depths;              /* nz cuboid-centre depths */
+    double *s_full[6];           /* elastic stresses on the whole grid, nz*ny*nx each */
+    double *qx;                  /* friction traction, ny*nx */
+    double *sig_e, *sig_r;       /* 6*nvol, window: elastic and residual stresses */
+    double *d_eps, *d_new, *tot; /* 6*nvol: the step's increment, its update, eps_p + d_eps */
+    double *dp;                  /* nvol */
+    double *u_r, *u_new, *h_extra; /* ny*nx */
+} loop_ctx;
+
+static void ctx_free(loop_ctx *c)
+{
+    mc_stress_destroy(&c->elastic);
+    mc_eigen_disp_destroy(&c->disp);
+    mc_eigen_stress_destroy(&c->resid);
+    for (int k = 0; k < 6; k++)
+        mc_free(c->s_full[k]);
+    double *arrays[] = {c->depths, c->qx, c->sig_e, c->sig_r, c->d_eps, c->d_new,
+                        c->tot, c->dp, c->u_r, c->u_new, c->h_extra};
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
+        mc_free(arrays[k]);
+}
+
+static int check_problem(const mc_grid *g, const mc_plastic_problem *pb, mc_error *err)
+{
+    const mc_eigen_volume *w = &pb->volume;
+    if (!pb->h || !pb->law)
+        return mc_fail(err, MC_ERR_INPUT, "plastic loop: no initial gap or no material law");
+    if (!(pb->load > 0 && isfinite(pb->load)) || pb->load_steps < 1)
+        return mc_fail(err, MC_ERR_INPUT, "plastic loop: load %g N in %d steps", pb->load,
+                       pb->load_steps);
+    if (!(pb->E > 0) || !(pb->nu >= 0 && pb->nu < 0.5))
+        return mc_fail(err, MC_ERR_INPUT, "plastic loop: E = %g Pa, nu = %g (0 <= nu < 0.5)",
+                       pb->E, pb->nu);
+    if (w->nz < 1 || !(w->dz > 0))
+        return mc_fail(err, MC_ERR_INPUT, "plastic loop: nz = %d, dz = %g m", w->nz, w->dz);
+    if (w->i0 < 0 || w->j0 < 0 || w->nx < 1 || w->ny < 1 || w->i0 + w->nx > g->nx ||
+        w->j0 + w->ny > g->ny)
+        return mc_fail(err, MC_ERR_INPUT,
+                       "plastic loop: window of %d x %d columns from (%d, %d) outside %d x %d",
+                       w->nx, w->ny, w->i0, w->j0, g->nx, g->ny);
+    if (!(pb->relaxation > 0 && pb->relaxation <= 1) || !(pb->tol_outer > 0) ||
+        pb->max_outer < 1 || !(pb->tol_plastic > 0) || pb->max_plastic < 1)
+        return mc_fail(err, MC_ERR_INPUT, "plastic loop: bad iteration control");
+    return MC_OK;
+}
+
+static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb, mc_error *err)
+{
+    memset(c, 0, sizeof *c);
+    c->g = g;
+    c->pb = pb;
+    c->nwx = pb->volume.nx;
+    c->nwy = pb->volume.ny;
+    c->nvol = (long)pb->volume.nz * c->nwx * c->nwy;
+    c->ncell = mc_grid_cells(g);
+    c->G = pb->E / (2.0 * (1.0 + pb->nu));
+    const size_t nv6 = 6 * (size_t)c->nvol, nfull = (size_t)pb->volume.nz * c->ncell;
+    int ok = (c->depths = mc_zeros((size_t)pb->volume.nz)) && (c->qx = mc_zeros(c->ncell)) &&
+             (c->sig_e = mc_zeros(nv6)) && (c->sig_r = mc_zeros(nv6)) &&
+             (c->d_eps = mc_zeros(nv6)) && (c->d_new = mc_zeros(nv6)) &&
+             (c->tot = mc_zeros(nv6)) && (c->dp = mc_zeros((size_t)c->nvol)) &&
+             (c->u_r = mc_zeros(c->ncell)) && (c->u_new = mc_zeros(c->ncell)) &&
+             (c->h_extra = mc_zeros(c->ncell));
+    for (int k = 0; ok && k < 6; k++)
+        ok = (c->s_full[k] = mc_zeros(nfull)) != NULL;
+    if (!ok)
+        return mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for %ld volume cells",
+                       c->nvol);
+    for (int k = 0; k < pb->volume.nz; k++)
+        c->depths[k] = (k + 0.5) * pb->volume.dz;
+    mc_stress_options so = {.kernel = MC_STRESS_PATCH,
+                            .nu = pb->nu,
+                            .nlayers = pb->volume.nz,
+                            .depths = c->depths,
+                            .backend = pb->backend,
+                            .loads = MC_TRACTION_P | (pb->friction > 0 ? MC_TRACTION_QX : 0)};
+    int rc = mc_stress_create(g, &so, &c->elastic, err);
+    if (rc == MC_OK)
+        rc = mc_eigen_disp_create(g, &pb->volume, pb->nu, pb->backend, &c->disp, err);
+    if (rc == MC_OK)
+        rc = mc_eigen_stress_create(g, &pb->volume, pb->nu, pb->backend, &c->resid, err);
+    return rc;
+}
+
+/* The six component arrays of a component-major block of 6 * nvol values. */
+static void split6(const loop_ctx *c, const double *block, const double *out[6])
+{
+    for (int q = 0; q < 6; q++)
+        out[q] = block + (size_t)q * (size_t)c->nvol;
+}
+
+static void residual_stress(loop_ctx *c, const double *eps)
+{
+    const double *e[6];
+    double *sg[6];
+    split6(c, eps, e);
+    for (int q = 0; q < 6; q++)
+        sg[q] = c->sig_r + (size_t)q * (size_t)c->nvol;
+    mc_eigen_stress_apply(c->resid, e, c->G, sg);
+}
+
+static void residual_displacement(loop_ctx *c, const double *eps, double *uz)
+{
+    const double *e[6];
+    split6(c, eps, e);
+    mc_eigen_disp_apply(c->disp, e, uz);
+}
+
+/* Volume index of window cell (i, j) (window-relative) in layer k. */
+static long vidx(const loop_ctx *c, int k, long j, long i) { return ((long)k * c->nwy + j) * c->nwx + i; }
+
+/* The elastic stresses of pressure p (and its friction traction) on the window's cuboids. */
+static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
+{
+    const mc_plastic_problem *pb = c->pb;
+    const double *qx = NULL;
+    if (pb->friction > 0) {
+        for (size_t i = 0; i < c->ncell; i++)
+            c->qx[i] = p[i] > pb->p_lub ? pb->friction * (p[i] - pb->p_lub) : 0.0;
+        qx = c->qx;
+    }
+    int rc = mc_stress_field(c->elastic, p, qx, NULL, c->s_full, err);
+    if (rc != MC_OK)
+        return rc;
+    const mc_grid *g = c->g;
+    for (int comp = 0; comp < 6; comp++)
+        for (int k = 0; k < pb->volume.nz; k++)
+            for (long j = 0; j < c->nwy; j++)
+                for (long i = 0; i < c->nwx; i++) {
+                    size_t src = ((size_t)k * g->ny + (size_t)(j + pb->volume.j0)) * g->nx +
+                                 (size_t)(i + pb->volume.i0);
+                    c->sig_e[comp * c->nvol + vidx(c, k, j, i)] = c->s_full[comp][src];
+                }
+    return MC_OK;
+}
+
+
+/* The plastic fixed point of dossier §1.4 at fixed elastic stresses: updates c->d_eps and c->dp
+ * from the committed eps_p, peq. *sweeps receives the sweeps done; *converged 0 when the cap was
+ * hit. Skips the residual operator while nothing has yielded (the elastic shortcut). */
+static int plastic_fixed_point(loop_ctx *c, const double *eps_p, const double *peq, int *sweeps,
+                               int *converged, int *yielded, mc_error *err)
+{
+    const mc_plastic_problem *pb = c->pb;
+    const size_t nv6 = 6 * (size_t)c->nvol;
+    *converged = 0;
+    *yielded = 0;
+    for (int m = 1; m <= pb->max_plastic; m++) {
+        *sweeps = m;
+        int any = 0;
+        for (size_t i = 0; i < nv6; i++) {
+            c->tot[i] = eps_p[i] + c->d_eps[i];
+            any |= c->tot[i] != 0.0;
+        }
+        if (any)
+            residual_stress(c, c->tot);
+        else
+            memset(c->sig_r, 0, nv6 * sizeof *c->sig_r);
+        int rc = MC_OK, plastic = 0;
+#pragma omp parallel for schedule(static) reduction(| : plastic) if (c->nvol > 4096)
+        for (long v = 0; v < c->nvol; v++) {
+            double trial[6], out[6], de[6], dpv;
+            for (int q = 0; q < 6; q++)
+                trial[q] = c->sig_e[q * c->nvol + v] + c->sig_r[q * c->nvol + v] +
+                           2.0 * c->G * c->d_eps[q * c->nvol + v];
+            mc_error e1;
+            if (mc_return_map(trial, peq[v], pb->law, c->G, out, de, &dpv, &e1) != MC_OK) {
+#pragma omp critical
+                rc = MC_ERR_NUMERIC;
+                continue;
+            }
+            for (int q = 0; q < 6; q++)
+                c->d_new[q * c->nvol + v] = de[q];
+            c->dp[v] = dpv;
+            plastic |= dpv > 0;
+        }
+        if (rc != MC_OK)
+            return mc_fail(err, MC_ERR_NUMERIC,
+                           "plastic loop: the radial return failed (non-finite stress)");
+        *yielded |= plastic;
+        double change = 0, size = 0;
+        for (size_t i = 0; i < nv6; i++) {
+            change = fmax(change, fabs(c->d_new[i] - c->d_eps[i]));
+            size = fmax(size, fabs(c->d_new[i]));
+        }
+        memcpy(c->d_eps, c->d_new, nv6 * sizeof *c->d_eps);
+        if (!plastic && !any) { /* nothing yields and nothing has: the step is elastic */
+            *converged = 1;
+            return MC_OK;
+        }
+        if (change <= pb->tol_plastic * fmax(size, 1e-3)) {
+            *converged = 1;
+            return MC_OK;
+        }
+    }
+    return MC_OK;
+}
+
+static void step_record(const loop_ctx *c, const mc_contact_summary *cs, const double *peq,
+                        const double *u_r, mc_plastic_step *st)
+{
+    const mc_plastic_problem *pb = c->pb;
+    const mc_grid *g = c->g;
+    st->approach = cs->approach;
+    st->p_max = cs->p_max;
+    st->area = cs->area;
+    st->plastic_volume = 0;
+    st->peq_max = 0;
+    long at = -1;
+    for (long v = 0; v < c->nvol; v++) {
+        if (peq[v] > 0)
+            st->plastic_volume += g->dx * g->dy * pb->volume.dz;
+        if (peq[v] > st->peq_max) {
+            st->peq_max = peq[v];
+            at = v;
+        }
+    }
+    st->peq_at[0] = st->peq_at[1] = st->peq_at[2] = 0;
+    if (at >= 0) {
+        long i = at % c->nwx, j = (at / c->nwx) % c->nwy, k = at / (c->nwx * c->nwy);
+        st->peq_at[0] = mc_grid_x(g, (int)(i + pb->volume.i0));
+        st->peq_at[1] = mc_grid_y(g, (int)(j + pb->volume.j0));
+        st->peq_at[2] = (k + 0.5) * pb->volume.dz;
+    }
+    st->residual_max = 0;
+    for (size_t i = 0; i < c->ncell; i++)
+        st->residual_max = fmax(st->residual_max, u_r[i]);
+}
+
+int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
+                   const mc_plastic_problem *pb, double *p, double *u, double *gap,
+                   mc_contact_summary *sum, mc_plastic_result *res, mc_error *err)
+{
+    memset(res, 0, sizeof *res);
+    (void)K;
+    int rc = check_problem(g, pb, err);
+    if (rc != MC_OK)
+        return rc;
+    loop_ctx c;
+    rc = ctx_init(&c, g, pb, err);
+    const size_t nv6 = 6 * (size_t)c.nvol;
+    if (rc == MC_OK) {
+        res->nvol = c.nvol;
+        if (!(res->steps = mc_calloc((size_t)pb->load_steps, sizeof *res->steps)) ||
+            !(res->eps_p = mc_zeros(nv6)) || !(res->peq = mc_zeros((size_t)c.nvol)) ||
+            !(res->u_r = mc_zeros(c.ncell)) || !(res->residual_vm = mc_zeros((size_t)c.nvol)))
+            rc = mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the results");
+    }
+    const double gap_factor = pb->both ? 2.0 : 1.0;
+    res->converged = 1;
+    for (int n = 1; rc == MC_OK && n <= pb->load_steps; n++) {
+        mc_plastic_step *st = &res->steps[n - 1];
+        st->load = pb->load * n / pb->load_steps;
+        memset(c.d_eps, 0, nv6 * sizeof *c.d_eps);
+        memcpy(c.u_r, res->u_r, c.ncell * sizeof *c.u_r);
+        for (int k = 1; k <= pb->max_outer; k++) {
+            st->outer_iterations = k;
+            for (size_t i = 0; i < c.ncell; i++)
+                c.h_extra[i] = gap_factor * c.u_r[i];
+            mc_contact_problem cp = {.h = pb->h,
+                                     .h_extra = c.h_extra,
+                                     .p_lub = pb->p_lub,
+                                     .p_cap = INFINITY,
+                                     .control = MC_CONTROL_FORCE,
+                                     .load = st->load,
+                                     .p_start = n > 1 || k > 1 ? p : NULL};
+            rc = mc_contact_solve(solver, &cp, p, u, gap, sum, err);
+            if (rc != MC_OK)
+                break; /* a contact that did not converge ends the run: reported as such */
+            if ((rc = elastic_stresses(&c, p, err)) != MC_OK)
+                break;
+            int sweeps = 0, fp_ok = 0, yielded = 0;
+            rc = plastic_fixed_point(&c, res->eps_p, res->peq, &sweeps, &fp_ok, &yielded, err);
+            if (rc != MC_OK)
+                break;
+            st->plastic_iterations += sweeps;
+            int any = 0;
+            for (size_t i = 0; i < nv6; i++) {
+                c.tot[i] = res->eps_p[i] + c.d_eps[i];
+                any |= c.tot[i] != 0.0;
+            }
+            if (!any) { /* the elastic shortcut: no plastic strain, no residual displacement */
+                res->yield_skips++;
+                memset(c.u_new, 0, c.ncell * sizeof *c.u_new);
+            } else
+                residual_displacement(&c, c.tot, c.u_new);
+            double change = 0, size = 0;
+            for (size_t i = 0; i < c.ncell; i++) {
+                change = fmax(change, fabs(c.u_new[i] - c.u_r[i]));
+                size = fmax(size, fabs(c.u_new[i]));
+            }
+            if (fp_ok && change <= pb->tol_outer * size) {
+                memcpy(c.u_r, c.u_new, c.ncell * sizeof *c.u_r);
+                st->converged = 1;
+                break;
+            }
+            for (size_t i = 0; i < c.ncell; i++)
+                c.u_r[i] += pb->relaxation * (c.u_new[i] - c.u_r[i]);
+        }
+        if (rc != MC_OK) {
+            if (rc == MC_NOT_CONVERGED)
+                res->converged = 0;
+            break;
+        }
+        /* commit the step */
+        for (size_t i = 0; i < nv6; i++)
+            res->eps_p[i] += c.d_eps[i];
+        for (long v = 0; v < c.nvol; v++)
+            res->peq[v] += c.dp[v];
+        memcpy(res->u_r, c.u_r, c.ncell * sizeof *c.u_r);
+        res->converged &= st->converged;
+        step_record(&c, sum, res->peq, res->u_r, st);
+        res->steps_done = n;
+    }
+    if (rc == MC_OK) { /* unloading: the residual field of the plastic strain alone */
+        residual_displacement(&c, res->eps_p, res->u_r);
+        residual_stress(&c, res->eps_p);
+        for (long v = 0; v < c.nvol; v++) {
+            double s[6];
+            for (int q = 0; q < 6; q++)
+                s[q] = c.sig_r[q * c.nvol + v];
+            res->residual_vm[v] = mc_von_mises(s);
+        }
+        if (!res->converged)
+            rc = mc_fail(err, MC_NOT_CONVERGED,
+                         "plastic loop: a load step did not converge in %d outer iterations",
+                         pb->max_outer);
+    }
+    ctx_free(&c);
+    return rc;
+}
+
+void mc_plastic_result_free(mc_plastic_result *res)
+{
+    mc_free(res->steps);
+    mc_free(res->eps_p);
+    mc_free(res->peq);
+    mc_free(res->u_r);
+    mc_free(res->residual_vm);
+    memset(res, 0, sizeof *res);
+}

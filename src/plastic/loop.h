@@ -1,0 +1,80 @@
+/* loop.h - the semi-analytical elastic-plastic contact loop (Jacq, Nelias, Lormand, Girodin 2002;
+ * docs/theory.md §9): load steps, each an under-relaxed outer iteration of
+ *   (a) the contact with the residual displacement added to the gap (lubricant bound kept),
+ *   (b) the elastic stress of the pressure (and friction traction) at the cuboid centres,
+ *   (c) the plastic fixed point: trial stress sigma_e + sigma_r(eps_p + d eps_p) + 2G d eps_p,
+ *       radial return from the accumulated plastic strain (return_map.h),
+ *   (d) the residual surface displacement of the plastic strain (eigen_op.h),
+ * then unloading: the residual topography and the residual stress of the plastic strain alone.
+ *
+ * The plastic body is body 1 (the stresses are body 1's: nu1, G1). With `both` the counter body
+ * is of the same material and sees the same contact stresses mirrored, so it deforms alike: the
+ * gap opens by twice the residual displacement of body 1 (an assumption stated in the docs).
+ * The volume grid is nz layers of cuboids of thickness dz under a window of surface columns;
+ * the rest of the half-space stays elastic. Pure numerics: no scene, no printing.
+ */
+#ifndef MC_PLASTIC_LOOP_H
+#define MC_PLASTIC_LOOP_H
+
+#include "contact/contact.h"
+#include "core/error.h"
+#include "operator/operator.h"
+#include "plastic/eigen_op.h"
+#include "plastic/hardening.h"
+
+typedef struct {
+    /* the contact (force control, the load rises linearly over the steps) */
+    const double *h;   /* initial gap at zero approach (ny*nx), m */
+    double load;       /* the maximum load, N */
+    double p_lub;      /* uniform lubricant pressure (lower bound), Pa, >= 0 */
+    double friction;   /* q_x = friction (p - p_lub) where in solid contact; 0 = none */
+    int load_steps;    /* >= 1 */
+    /* body 1 */
+    double E, nu;              /* Pa; 0 <= nu < 0.5 */
+    const mc_hardening *law;   /* yield stress and hardening */
+    int both;                  /* 1: body 2 is the same material and deforms alike */
+    /* the volume grid: nz layers of dz under a window of columns (eigen_op.h) */
+    mc_eigen_volume volume;
+    mc_backend backend;
+    /* iteration control */
+    double relaxation;         /* omega in (0, 1]: u_r += omega (u_r,new - u_r) */
+    double tol_outer;          /* relative change of u_r that ends the outer iteration */
+    int max_outer;             /* outer iterations per step */
+    double tol_plastic;        /* relative change of d eps_p that ends the fixed point */
+    int max_plastic;           /* fixed-point iterations per outer iteration */
+} mc_plastic_problem;
+
+/* One load step's record (plastic.csv). */
+typedef struct {
+    double load, approach, p_max, area;
+    double plastic_volume;      /* m^3 of cuboids with p > 0 */
+    double peq_max, peq_at[3];  /* largest accumulated plastic strain and its cell centre, m */
+    double residual_max;        /* largest residual displacement (into the body), m */
+    int outer_iterations;
+    int plastic_iterations;     /* fixed-point sweeps, summed over the outer iterations */
+    int converged;
+} mc_plastic_step;
+
+typedef struct {
+    int converged;              /* every step converged */
+    int steps_done;
+    mc_plastic_step *steps;     /* load_steps records (owned) */
+    double *eps_p;              /* 6 * nvol plastic strain, component-major (owned) */
+    double *peq;                /* nvol accumulated equivalent plastic strain (owned) */
+    double *u_r;                /* ny*nx residual displacement of body 1, m (owned) */
+    double *residual_vm;        /* nvol von Mises of the residual stress after unloading (owned) */
+    long nvol;
+    long yield_skips;           /* outer iterations where nothing yielded (shortcut taken) */
+} mc_plastic_result;
+
+/* Run the loop. solver is planned over K (the two-body Love operator of the surface grid);
+ * p, u, gap (ny*nx, caller-owned) receive the state at the maximum load, sum its contact
+ * summary. Returns MC_OK, MC_NOT_CONVERGED (a step did not converge: everything is still filled
+ * and res->converged = 0, the step records say which), or an error. */
+int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
+                   const mc_plastic_problem *prob, double *p, double *u, double *gap,
+                   mc_contact_summary *sum, mc_plastic_result *res, mc_error *err);
+
+void mc_plastic_result_free(mc_plastic_result *res);
+
+#endif

@@ -1,0 +1,438 @@
+#!/bin/sh
+# robustness.sh PROGRAM - results are never lost or mixed, end to end through the command line.
+#
+# One row per defect class of issue 15 (the classes that belong to the output directory and the
+# front end); the rows that catch a defect only sometimes (concurrent runs, signals) are repeated:
+#   lock_*        one run per output directory: a second run refuses at once (exit 3) naming the
+#                 directory and the holder's pid; concurrent pairs leave exactly one run's set
+#   signal_*      SIGINT/SIGTERM at many moments: exit 128 + signal, no staging directory left, the
+#                 directory holds nothing new or one complete set, the log of a killed writer is
+#                 not empty; stale staging areas of a killed run are swept, user files are not
+#   nodir_*       errors found after parsing create no output directory (nor its parents) and
+#                 name the case file
+#   exit_*        exit codes: 0 success, 1 solver failure, 2 bad input, 3 the environment
+#   cli_*         front end: --help of every command, keys SECTION, extra arguments, verify from
+#                 any directory, a dangling symlink as --out, --set key= removes a key, a file
+#                 that is not .npy
+# Every row prints one PASS or FAIL line; the last line is "robustness: N passed, M failed".
+# ROBUST_PAIRS (default 50) and ROBUST_SIGNAL_REPS (default 2) set the repetitions.
+# shellcheck disable=SC2010,SC2012,SC2045 # ls over directories that hold only names this script
+# or the program chose (no blanks, no newlines)
+set -u
+
+if [ $# -ne 1 ] || [ ! -x "$1" ]; then
+    echo "usage: $0 PROGRAM (the microcontact executable)" >&2
+    exit 2
+fi
+PROG=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+REPO=$(cd "$(dirname "$0")/../.." && pwd)
+PAIRS=${ROBUST_PAIRS:-50}
+SIGREPS=${ROBUST_SIGNAL_REPS:-2}
+T=$(mktemp -d "${TMPDIR:-/tmp}/mc_robust.XXXXXX") || exit 2
+BG=""
+cleanup() {
+    for p in $BG; do kill -9 "$p" 2> /dev/null; done
+    rm -rf "$T"
+}
+trap cleanup EXIT
+trap 'exit 2' INT TERM
+cd "$T" || exit 2
+
+# Background jobs of a non-interactive shell ignore SIGINT; env restores the default so that the
+# program sees the signal a terminal would send.
+if env --default-signal=INT true 2> /dev/null; then
+    SIGENV="env --default-signal=INT,TERM"
+else
+    SIGENV=""
+fi
+
+pass=0 fail=0
+row() { # row NAME WHY: WHY empty = pass
+    if [ -z "$2" ]; then
+        pass=$((pass + 1))
+        echo "PASS $1"
+    else
+        fail=$((fail + 1))
+        echo "FAIL $1:$2"
+    fi
+}
+
+# ---- fixtures --------------------------------------------------------------------------------
+mesh() { printf '[mesh]\nnx = %s\nny = %s\ndx = 4 um\n[geometry]\nshape = sphere\nradius = 10 mm\n' "$1" "$1"; }
+# small: a 16 x 16 Hertzian solve (milliseconds)
+{ mesh 16; printf '[load]\nforce = 1 N\n[solver]\nthreads = 1\n'; } > small.ini
+# pair: a few milliseconds of solve and 5 MB of results (stress volumes and VTK)
+{ mesh 48; printf '[load]\nforce = 1 N\n[solver]\nthreads = 1\n[stress]\ndepth_max = 40 um\nlayers = 16\n[output]\nvtk = yes\n'; } > pair.ini
+# heavy: about 1 s, of which a large part writes 140 MB of results
+{ mesh 128; printf '[load]\nforce = 20 N\n[solver]\nthreads = 1\n[stress]\ndepth_max = 100 um\nlayers = 64\n[output]\nvtk = yes\n'; } > heavy.ini
+# a prescribed pressure from a .npy file that is not one
+{ mesh 16; printf '[load]\npressure_file = empty.npy\n'; } > p_empty.ini
+{ mesh 16; printf '[load]\npressure_file = foreign.npy\n'; } > p_foreign.ini
+: > empty.npy
+printf 'PK\003\004 not an array\n' > foreign.npy
+# a .npy whose data is truncated (header says 16 x 16, 100 values follow)
+npy_header() { printf '\223NUMPY\001\000\166\000'; printf '%-117s\n' "$1"; }
+{ npy_header "{'descr': '<f8', 'fortran_order': False, 'shape': (16, 16), }"; head -c 800 /dev/zero; } > truncated.npy
+{ mesh 16; printf '[load]\npressure_file = truncated.npy\n'; } > p_truncated.ini
+
+# Complete result sets of solo runs: the references every multi-run row is compared with.
+"$PROG" run pair.ini --out refA > /dev/null 2>&1 || { echo "robustness: reference run failed"; exit 2; }
+"$PROG" run pair.ini --out refB --set load.force=2N > /dev/null 2>&1 || { echo "robustness: reference run failed"; exit 2; }
+# summary.json without its timing block (the only part that differs between equal runs)
+untimed() { sed '/"timing": {/,/}/d' "$1"; }
+# same_set DIR REF: DIR holds exactly REF's files with REF's contents ("" when so)
+same_set() {
+    w=""
+    [ "$(ls -A "$1" 2> /dev/null)" = "$(ls -A "$2")" ] || { w=" files $(ls -A "$1" 2> /dev/null | tr '\n' ' ')"; echo "$w"; return; }
+    for f in $(ls -A "$2"); do
+        if [ "$f" = summary.json ]; then
+            untimed "$1/$f" > s1; untimed "$2/$f" > s2
+            cmp -s s1 s2 || w="$w $f"
+        else
+            cmp -s "$1/$f" "$2/$f" || w="$w $f"
+        fi
+    done
+    [ -n "$w" ] && echo " differs from $2 in:$w"
+}
+# one_set DIR: DIR holds exactly refA's or refB's set
+one_set() {
+    a=$(same_set "$1" refA)
+    [ -z "$a" ] && return
+    b=$(same_set "$1" refB)
+    [ -z "$b" ] && return
+    echo " neither one run's set:$a /$b"
+}
+# fingerprint DIR: names, sizes and checksums of everything in DIR (hidden files too)
+fingerprint() { (cd "$1" 2> /dev/null && ls -A | while read -r f; do echo "$f $(cksum < "$f" 2> /dev/null)"; done); }
+staging_left() { ls -A "$1" 2> /dev/null | grep '^\.staging-' | tr '\n' ' '; }
+
+# ---- 1. one run per output directory --------------------------------------------------------
+# A lock held by another process (flock(1) on the directory, as a run holds it): refused at once.
+mkdir held
+flock -x held sleep 5 &
+HOLDER=$!
+BG="$BG $HOLDER"
+sleep 0.3
+t0=$(date +%s%N)
+"$PROG" run small.ini --out held > out 2> err
+st=$? t1=$(date +%s%N)
+why=""
+[ "$st" -eq 3 ] || why="$why exit $st, not 3;"
+grep -q "held" err || why="$why message does not name the directory;"
+grep -q "$HOLDER" err || why="$why message does not name the holder pid $HOLDER;"
+[ $(((t1 - t0) / 1000000)) -lt 2000 ] || why="$why took $(((t1 - t0) / 1000000)) ms, not at once;"
+[ -z "$(ls -A held)" ] || why="$why held/ was written: $(ls -A held | tr '\n' ' ');"
+row lock_held_refuses "$why"
+kill "$HOLDER" 2> /dev/null; wait "$HOLDER" 2> /dev/null
+
+# A second run into the directory of a run that is still computing refuses at once; the first
+# one finishes and its set is complete.
+mkdir busy
+$SIGENV "$PROG" run heavy.ini --out busy > outA 2> errA &
+A=$!
+# wait until the first run holds its lock (/proc/locks lists the directory's inode)
+ino=$(stat -c %i busy)
+n=0
+while [ $n -lt 500 ] && ! grep -q ":$ino " /proc/locks 2> /dev/null; do sleep 0.01; n=$((n + 1)); done
+"$PROG" run pair.ini --out busy > outB 2> errB
+sB=$?
+wait "$A"
+sA=$?
+why=""
+[ "$sA" -eq 0 ] || why="$why first run exit $sA;"
+[ "$sB" -eq 3 ] || why="$why second run exit $sB, not 3;"
+grep -q "busy" errB || why="$why message does not name the directory;"
+grep -q "$A" errB || why="$why message does not name the holder pid $A;"
+[ -f busy/summary.json ] && grep -q '"value": 20' busy/summary.json || why="$why busy/ lacks the first run's summary;"
+[ -z "$(staging_left busy)" ] || why="$why staging left: $(staging_left busy);"
+row lock_second_run_refused "$why"
+rm -rf busy
+
+# Pairs started together into one directory (fresh for even k, holding a set for odd k): each
+# exits 0 or 3 (refused, naming the lock), one at least succeeds, and the directory holds exactly
+# one run's complete set.
+k=0 refused=0
+while [ $k -lt "$PAIRS" ]; do
+    rm -rf pd
+    [ $((k % 2)) -eq 1 ] && cp -r refA pd
+    "$PROG" run pair.ini --out pd > oa 2> ea &
+    pa=$!
+    "$PROG" run pair.ini --out pd --set load.force=2N > ob 2> eb &
+    pb=$!
+    wait $pa; sa=$?
+    wait $pb; sb=$?
+    why=""
+    for s in "a $sa" "b $sb"; do
+        # shellcheck disable=SC2086 # "a 0" splits into the run's letter and its status
+        set -- $s
+        case $2 in
+            0) ;;
+            3) grep -q "in use by another run" "e$1" || why="$why run $1 exit 3 without naming the lock: $(cat "e$1");" ;;
+            *) why="$why run $1 exit $2: $(cat "e$1");" ;;
+        esac
+    done
+    [ "$sa" -eq 0 ] || [ "$sb" -eq 0 ] || why="$why neither run succeeded;"
+    [ "$sa" -eq 3 ] || [ "$sb" -eq 3 ] && refused=$((refused + 1))
+    why="$why$(one_set pd)"
+    row "lock_pair_$k" "$why"
+    k=$((k + 1))
+done
+echo "     ($refused of $PAIRS pairs met the lock: one run refused)"
+rm -rf pd
+
+# ---- 2. signals and leftovers ---------------------------------------------------------------
+# signal_row NAME SIG WHEN PRE [retry]: start heavy.ini into sd (PRE = old: sd holds refA's set
+# first), send SIG after WHEN seconds (WHEN = writing: as soon as the log says results are being
+# written), then check the directory and the exit status. With "retry", a run that finished
+# before the signal prints no row and sets retry=1.
+signal_row() {
+    name=$1 sig=$2 when=$3 pre=$4 may_retry=${5:-}
+    rm -rf sd
+    [ "$pre" = old ] && cp -r refA sd
+    before=$(fingerprint sd)
+    $SIGENV "$PROG" run heavy.ini --out sd > log 2> err &
+    pid=$!
+    BG="$BG $pid"
+    if [ "$when" = writing ]; then
+        n=0
+        while [ $n -lt 1000 ] && ! grep -q "writing results" log && kill -0 $pid 2> /dev/null; do
+            sleep 0.01; n=$((n + 1))
+        done
+    else
+        sleep "$when"
+    fi
+    kill -s "$sig" $pid 2> /dev/null
+    wait $pid
+    st=$?
+    why=""
+    case $sig in INT) want=130 ;; TERM) want=143 ;; esac
+    retry=0
+    if [ "$st" -eq 0 ]; then
+        n_done=$((n_done + 1))
+        if [ "$when" = writing ] && [ "$may_retry" = retry ]; then
+            retry=1
+            return
+        fi
+        [ "$when" = writing ] && why="$why finished before the signal while writing (3 times);"
+        [ -f sd/summary.json ] && grep -q '"value": 20' sd/summary.json || why="$why exit 0 without its summary;"
+        ! ls -A sd | grep -q '^\.' || why="$why hidden files left: $(ls -A sd | grep '^\.' | tr '\n' ' ');"
+    else
+        if grep -q "writing results" log; then n_writing=$((n_writing + 1)); else n_solving=$((n_solving + 1)); fi
+        [ "$st" -eq "$want" ] || why="$why exit $st, not $want (128 + SIG$sig);"
+        # only a signal after the final renames began may find the new set committed
+        if [ -e sd ] && [ "$(ls -A sd)" = "$(ls -A refA)" ] && grep -q '"value": 20' sd/summary.json; then
+            n_late=$((n_late + 1))
+        elif [ "$pre" = new ] && [ -e sd ]; then
+            why="$why sd/ was created: $(ls -A sd | tr '\n' ' ');"
+        elif [ "$(fingerprint sd)" != "$before" ]; then
+            why="$why sd/ changed: $(ls -A sd 2> /dev/null | tr '\n' ' ');"
+        fi
+        [ "$when" = writing ] && [ ! -s log ] && why="$why the log of the killed run is empty;"
+    fi
+    row "$name" "$why"
+}
+r=0 n_done=0 n_writing=0 n_solving=0 n_late=0
+while [ $r -lt "$SIGREPS" ]; do
+    for when in 0.05 0.1 0.2 0.35 0.5 0.7 0.9 1.2; do
+        if [ $r -eq 0 ]; then s=TERM p=new; else s=INT p=old; fi
+        [ "$s" = INT ] && [ -z "$SIGENV" ] && s=TERM
+        signal_row "signal_${s}_after_${when}s_$p" $s $when $p
+    done
+    r=$((r + 1))
+done
+# The write phase of heavy.ini takes a few tenths of a second; on a busy machine the signal may
+# still come after it, so such a row tries up to 3 runs until one is signalled while writing.
+k=0
+while [ $k -lt 6 ]; do
+    if [ $((k % 2)) -eq 0 ]; then s=TERM p=new; else s=INT p=old; fi
+    [ "$s" = INT ] && [ -z "$SIGENV" ] && s=TERM
+    try=1
+    while :; do
+        may=""
+        [ $try -lt 3 ] && may=retry
+        signal_row "signal_${s}_while_writing_${k}_$p" $s writing $p "$may"
+        if [ "$retry" != 1 ] || [ $try -ge 3 ]; then break; fi
+        try=$((try + 1))
+    done
+    k=$((k + 1))
+done
+echo "     (signalled runs: $n_solving stopped while solving, $n_writing while writing" \
+    "(of which $n_late after their commit), $n_done had finished)"
+
+# Stale staging areas of a killed run (SIGKILL leaves them) are swept by the next run; files
+# and directories of the user that merely look alike are not.
+mkdir -p st/.staging-Ab3xY9 st/.staging-user st/.staging-Q1w2E3
+: > st/.staging-Ab3xY9/pressure.npy
+: > st/.staging-Ab3xY9/von_mises.npy.tmp
+: > st/.staging-Q1w2E3/notes.txt     # not a file of ours: this directory stays
+: > st/.staging-Zz9Zz9               # a regular file: stays
+"$PROG" run small.ini --out st > out 2> err
+st_=$?
+why=""
+[ "$st_" -eq 0 ] || why="$why exit $st_;"
+[ -e st/.staging-Ab3xY9 ] && why="$why stale .staging-Ab3xY9 left;"
+[ -d st/.staging-user ] || why="$why user directory .staging-user removed;"
+[ -f st/.staging-Q1w2E3/notes.txt ] || why="$why user file .staging-Q1w2E3/notes.txt removed;"
+[ -f st/.staging-Zz9Zz9 ] || why="$why user file .staging-Zz9Zz9 removed;"
+row signal_stale_staging_swept "$why"
+rm -rf st
+
+# A run killed by SIGKILL while writing leaves a staging area; the next run removes it.
+rm -rf sk
+"$PROG" run heavy.ini --out sk > log 2> err &
+pid=$!
+BG="$BG $pid"
+n=0
+while [ $n -lt 1000 ] && [ -z "$(staging_left sk)" ] && kill -0 $pid 2> /dev/null; do sleep 0.01; n=$((n + 1)); done
+kill -9 $pid 2> /dev/null; wait $pid 2> /dev/null
+left=$(staging_left sk)
+"$PROG" run small.ini --out sk > out 2> err
+st_=$?
+why=""
+[ -n "$left" ] || why="$why (setup) the killed run left no staging area to sweep;"
+[ "$st_" -eq 0 ] || why="$why exit $st_;"
+[ -z "$(staging_left sk)" ] || why="$why staging left: $(staging_left sk);"
+row signal_sigkill_leftover_swept "$why"
+rm -rf sk
+
+# ---- 3. nothing created on failure -----------------------------------------------------------
+# nodir NAME STATUS FRAGMENT ARGS...: the run fails with STATUS, names the case file (FRAGMENT)
+# and creates neither nd/ nor nd/a/.
+nodir() {
+    name=$1 want=$2 frag=$3
+    shift 3
+    rm -rf nd
+    "$PROG" run "$@" --out nd/a/b > out 2> err
+    st=$?
+    why=""
+    [ "$st" -eq "$want" ] || why="$why exit $st, not $want;"
+    [ -e nd ] && why="$why nd/ was created: $(find nd | tr '\n' ' ');"
+    grep -q "$frag" err || why="$why message does not name $frag: $(cat err);"
+    row "$name" "$why"
+    rm -rf nd
+}
+nodir nodir_bad_data_file 2 p_truncated.ini p_truncated.ini
+nodir nodir_memory_guard 3 small.ini small.ini --set mesh.nx=60000 --set mesh.ny=60000
+nodir nodir_infeasible_cap 2 small.ini small.ini --set load.pressure_cap=1MPa --set load.force=100N
+nodir nodir_point_kernel_zero_depth 2 small.ini small.ini --set stress.kernel=point --set stress.depth_max=20um
+# a write that fails (file size limit: EFBIG, as a full disk gives ENOSPC) removes what it created
+rm -rf nd
+(trap '' XFSZ; ulimit -f 64; exec "$PROG" run pair.ini --out nd/a/b > out 2> err)
+st=$?
+why=""
+[ "$st" -eq 3 ] || why="$why exit $st, not 3;"
+[ -e nd ] && why="$why nd/ left behind: $(find nd | tr '\n' ' ');"
+grep -q "File too large" err || why="$why message lacks the reason: $(cat err);"
+row nodir_write_fails "$why"
+rm -rf nd
+
+# ---- 7. exit codes ---------------------------------------------------------------------------
+# exitrow NAME STATUS ARGS...
+exitrow() {
+    name=$1 want=$2
+    shift 2
+    rm -rf eo
+    "$PROG" "$@" > out 2> err
+    st=$?
+    if [ "$st" -eq "$want" ]; then row "$name" ""; else row "$name" " exit $st, not $want: $(head -c 300 err)"; fi
+    rm -rf eo
+}
+exitrow exit0_success 0 run small.ini --out eo
+exitrow exit1_not_converged 1 run small.ini --out eo --set solver.max_iterations=1 --set solver.method=pk
+exitrow exit2_bad_input 2 run small.ini --out eo --set mesh.nx=0
+exitrow exit2_missing_case 2 run does_not_exist.ini --out eo
+exitrow exit3_memory_guard 3 run small.ini --out eo --set mesh.nx=60000 --set mesh.ny=60000
+: > a_file
+exitrow exit3_out_below_file 3 run small.ini --out a_file/out
+exitrow exit3_out_is_file 3 run small.ini --out a_file
+"$PROG" --help > out 2>&1
+why=""
+for f in "0 success" "1 solver" "2 bad input" "3 the environment"; do
+    grep -q "$f" out || why="$why --help lacks '$f';"
+done
+row exit_codes_documented "$why"
+
+# ---- 8. front end ----------------------------------------------------------------------------
+for c in run verify bench keys; do
+    "$PROG" $c --help > out 2> err
+    st=$?
+    why=""
+    [ "$st" -eq 0 ] || why="$why exit $st;"
+    grep -q "usage: microcontact $c" out || why="$why no usage on stdout;"
+    [ -s err ] && why="$why stderr: $(cat err);"
+    row "cli_${c}_help" "$why"
+done
+"$PROG" keys mesh > out 2> err
+st=$?
+why=""
+[ "$st" -eq 0 ] || why="$why exit $st;"
+grep -q "nx" out || why="$why lacks nx;"
+grep -q "<!--" out && why="$why holds an HTML comment;"
+grep -q "|---" out && why="$why holds a Markdown table;"
+grep -qi "geometry\|radius" out && why="$why shows other sections;"
+row cli_keys_section "$why"
+"$PROG" keys nosuch > out 2> err
+st=$?
+why=""
+[ "$st" -eq 2 ] || why="$why exit $st, not 2;"
+grep -q "mesh" err || why="$why does not list the sections;"
+row cli_keys_unknown_section "$why"
+for args in "keys mesh load" "help extra" "--version extra" "bench --quick extra" "run small.ini --out eo extra"; do
+    rm -rf eo
+    # shellcheck disable=SC2086 # split on purpose
+    "$PROG" $args > out 2> err
+    st=$?
+    why=""
+    [ "$st" -eq 2 ] || why="$why exit $st, not 2;"
+    grep -q "usage" err || why="$why no usage on stderr;"
+    [ -e eo ] && why="$why eo/ created;"
+    row "cli_extra_args_$(echo "$args" | tr ' -' '_')" "$why"
+done
+rm -rf eo
+# verify from a directory that is not the repository: an executable inside the repository finds
+# the reference tables above itself; one elsewhere says where it looked (exit 3, no suite run)
+mkdir elsewhere
+(cd elsewhere && env -u MC_PHYSICS_DIR "$PROG" verify hertz_line --fast --reports rep > out 2> err)
+st=$?
+why=""
+case $PROG in
+    "$REPO"/*)
+        [ "$st" -eq 0 ] || why="$why exit $st: $(grep -h 'cannot\|FAIL' elsewhere/err elsewhere/out elsewhere/rep/*/report.md 2> /dev/null | head -3);" ;;
+    *)
+        [ "$st" -eq 3 ] || why="$why exit $st, not 3 (the executable is outside the repository);"
+        grep -q "looked in" elsewhere/err || why="$why message does not say where it looked: $(cat elsewhere/err);" ;;
+esac
+row cli_verify_any_directory "$why"
+rm -rf elsewhere
+# a dangling symlink as --out is named as such
+ln -s does/not/exist lnk
+"$PROG" run small.ini --out lnk > out 2> err
+st=$?
+why=""
+[ "$st" -eq 3 ] || why="$why exit $st, not 3;"
+grep -q "dangling" err || why="$why message does not say dangling: $(cat err);"
+[ -e does ] && why="$why the link target was created;"
+row cli_out_dangling_symlink "$why"
+rm -f lnk
+# --set section.key= removes the key: switch from force to approach without editing the file
+"$PROG" run small.ini --out eo --set load.force= --set load.approach=0.1um > out 2> err
+st=$?
+why=""
+[ "$st" -eq 0 ] || why="$why exit $st: $(cat err);"
+grep -q '"kind": "approach"' eo/summary.json 2> /dev/null || why="$why summary lacks the approach load;"
+row cli_set_empty_removes_key "$why"
+rm -rf eo
+# a 0-byte or foreign file given as .npy: "not a .npy file"
+for f in empty foreign; do
+    "$PROG" run p_$f.ini --out eo > out 2> err
+    st=$?
+    why=""
+    [ "$st" -eq 2 ] || why="$why exit $st, not 2;"
+    grep -q "not a .npy file" err || why="$why message: $(cat err);"
+    [ -e eo ] && why="$why eo/ created;"
+    row "cli_npy_$f" "$why"
+    rm -rf eo
+done
+
+echo "robustness: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
