@@ -106,6 +106,23 @@ static void print_solve(const mc_results *r)
         printf("  stress: %d layers, max von Mises %.6g MPa at z = %.4g um, max shear %.6g MPa\n",
                r->nlayers, s->vm_max * 1e-6, s->vm_max_at[2] * 1e6, s->tresca_max * 1e-6);
     }
+    if (r->lube.enabled)
+        printf("  lubrication: h_EHD %.4g um, p_lub %.6g MPa (%s), psi_load %.4g, psi_area %.4g, "
+               "mu %.4g\n",
+               r->lube.h_ehd * 1e6, r->lube.p_lub * 1e-6, r->lube.regime, r->lube.psi_load,
+               r->lube.psi_area, r->lube.mu);
+    if (r->plastic.enabled) {
+        const mc_plastic_summary *q = &r->plastic;
+        if (q->elastic_shortcut)
+            printf("  plasticity: nothing yields (max von Mises %.6g MPa < yield %.6g MPa)\n",
+                   q->vm_elastic_max * 1e-6, q->yield_initial * 1e-6);
+        else
+            printf("  plasticity (%s): %s, %d of %d steps, %d outer iterations; max plastic "
+                   "strain %.4g at z = %.4g um, residual dent %.4g um\n",
+                   q->criterion, q->converged ? "converged" : "NOT CONVERGED", q->steps_done,
+                   q->load_steps, q->outer_iterations, q->peq_max, q->peq_max_at[2] * 1e6,
+                   q->residual_max * 1e6);
+    }
     printf("  time %.3f s (setup %.3f, contact %.3f, stress %.3f), peak memory %.0f MiB\n",
            r->timing.total_s, r->timing.setup_s, r->timing.contact_s, r->timing.stress_s,
            peak_memory_mib());
@@ -208,8 +225,11 @@ int mc_cli_run(int argc, char **argv)
         return fail(&werr);
     }
     printf("  results in %s/ (summary.json, pressure.npy, gap.npy, displacement.npy, "
-           "topography.npy, profile_x.csv%s)\n",
-           dir, res.nlayers > 0 ? ", von_mises.npy, stress_*.npy, axis.csv, depths.csv" : "");
+           "topography.npy, profile_x.csv%s%s)\n",
+           dir, res.nlayers > 0 ? ", von_mises.npy, stress_*.npy, axis.csv, depths.csv" : "",
+           res.plastic.enabled ? ", residual_displacement.npy, topography_final.npy, "
+                                 "plastic_strain.npy, residual_von_mises.npy, plastic.csv"
+                               : "");
     mc_results_free(&res);
     mc_output_close(&od);
     int sig = mc_cli_signal_caught();

@@ -38,7 +38,9 @@ static const char *const contract_files[] = {
     "summary.json",  "pressure.npy",  "gap.npy",       "displacement.npy", "topography.npy",
     "profile_x.csv", "von_mises.npy", "hydrostatic.npy", "stress_xx.npy", "stress_yy.npy",
     "stress_zz.npy", "stress_xy.npy", "stress_yz.npy", "stress_xz.npy",    "depths.csv",
-    "axis.csv",      "field.vti",     "stress.vtr"};
+    "axis.csv",      "field.vti",     "stress.vtr",
+    "residual_displacement.npy", "topography_final.npy", "plastic_strain.npy",
+    "residual_von_mises.npy", "plastic.csv"};
 #define N_CONTRACT ((int)(sizeof contract_files / sizeof contract_files[0]))
 
 typedef struct {
@@ -163,6 +165,38 @@ static int write_surface_fields(out_ctx *c, mc_error *err)
     if (st == MC_OK)
         st = write_npy(c, "topography.npy", r->topography, 2, shape, err);
     return st;
+}
+
+/* The elastic-plastic stage: residual and final surfaces, the plastic volume, one row per step. */
+static int write_plastic(out_ctx *c, mc_error *err)
+{
+    const mc_results *r = c->res;
+    const mc_plastic_summary *ps = &r->plastic;
+    size_t shape[2] = {(size_t)r->grid.ny, (size_t)r->grid.nx};
+    size_t vshape[3] = {(size_t)(ps->nz > 0 ? ps->nz : 1), shape[0], shape[1]};
+    int st = write_npy(c, "residual_displacement.npy", r->residual_displacement, 2, shape, err);
+    if (st == MC_OK)
+        st = write_npy(c, "topography_final.npy", r->topography_final, 2, shape, err);
+    if (st == MC_OK && r->plastic_strain)
+        st = write_npy(c, "plastic_strain.npy", r->plastic_strain, 3, vshape, err);
+    if (st == MC_OK && r->residual_von_mises)
+        st = write_npy(c, "residual_von_mises.npy", r->residual_von_mises, 3, vshape, err);
+    if (st != MC_OK)
+        return st;
+    FILE *f;
+    st = open_staged(c, "plastic.csv", &f, err);
+    if (st != MC_OK)
+        return st;
+    fprintf(f, "step,load,approach,p_max,contact_area,plastic_volume,peq_max,peq_max_x,peq_max_y,"
+               "peq_max_depth,residual_max,outer_iterations,plastic_iterations,converged\n");
+    for (int k = 0; k < ps->steps_done; k++) {
+        const mc_plastic_step *s = &ps->steps[k];
+        fprintf(f, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%d,%d\n",
+                k + 1, s->load, s->approach, s->p_max, s->area, s->plastic_volume, s->peq_max,
+                s->peq_at[0], s->peq_at[1], s->peq_at[2], s->residual_max, s->outer_iterations,
+                s->plastic_iterations, s->converged);
+    }
+    return close_staged(c, "plastic.csv", f, err);
 }
 
 static int write_profile(out_ctx *c, mc_error *err)
@@ -508,6 +542,8 @@ static int stage_and_commit(out_ctx *c, mc_error *err)
         st = write_profile(c, err);
     if (st == MC_OK && res->nlayers > 0)
         st = write_stress_fields(c, err);
+    if (st == MC_OK && res->plastic.enabled && res->residual_displacement)
+        st = write_plastic(c, err);
     if (st == MC_OK && c->scene->output.vtk)
         st = write_vti(c, err);
     if (st == MC_OK && c->scene->output.vtk && res->nlayers > 0)

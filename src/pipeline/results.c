@@ -55,5 +55,10 @@ void mc_results_free(mc_results *r)
     mc_free(r->gap);
     mc_free(r->displacement);
     mc_results_free_stress(r);
+    mc_free(r->residual_displacement);
+    mc_free(r->topography_final);
+    mc_free(r->plastic_strain);
+    mc_free(r->residual_von_mises);
+    mc_free(r->plastic.steps);
     memset(r, 0, sizeof *r);
 }
