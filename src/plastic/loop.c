@@ -25,8 +25,10 @@ typedef struct {
     double *qx;                  /* friction traction, ny*nx */
     double *sig_e, *sig_r;       /* 6*nvol, window: elastic and residual stresses */
     double *d_eps, *d_new, *tot; /* 6*nvol: the step's increment, its update, eps_p + d_eps */
-    double *dp;                  /* nvol */
+    double *dp, *dp_new;         /* nvol: the step's plastic strain increment, its update */
     double *u_r, *u_new, *h_extra; /* ny*nx */
+    double p_lub;                /* lubricant pressure of the last contact solve, Pa */
+    int solves;                  /* contact solves (step a) */
 } loop_ctx;
 
 static void ctx_free(loop_ctx *c)
@@ -36,8 +38,8 @@ static void ctx_free(loop_ctx *c)
     mc_eigen_stress_destroy(&c->resid);
     for (int k = 0; k < 6; k++)
         mc_free(c->s_full[k]);
-    double *arrays[] = {c->depths, c->qx, c->sig_e, c->sig_r, c->d_eps, c->d_new,
-                        c->tot, c->dp, c->u_r, c->u_new, c->h_extra};
+    double *arrays[] = {c->depths, c->qx,  c->sig_e, c->sig_r, c->d_eps,  c->d_new,
+                        c->tot,    c->dp,  c->dp_new, c->u_r, c->u_new, c->h_extra};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         mc_free(arrays[k]);
 }
@@ -81,6 +83,7 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
              (c->sig_e = mc_zeros(nv6)) && (c->sig_r = mc_zeros(nv6)) &&
              (c->d_eps = mc_zeros(nv6)) && (c->d_new = mc_zeros(nv6)) &&
              (c->tot = mc_zeros(nv6)) && (c->dp = mc_zeros((size_t)c->nvol)) &&
+             (c->dp_new = mc_zeros((size_t)c->nvol)) &&
              (c->u_r = mc_zeros(c->ncell)) && (c->u_new = mc_zeros(c->ncell)) &&
              (c->h_extra = mc_zeros(c->ncell));
     for (int k = 0; ok && k < 6; k++)
@@ -138,7 +141,7 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
     const double *qx = NULL;
     if (pb->friction > 0) {
         for (size_t i = 0; i < c->ncell; i++)
-            c->qx[i] = p[i] > pb->p_lub ? pb->friction * (p[i] - pb->p_lub) : 0.0;
+            c->qx[i] = p[i] > c->p_lub ? pb->friction * (p[i] - c->p_lub) : 0.0;
         qx = c->qx;
     }
     int rc = mc_stress_field(c->elastic, p, qx, NULL, c->s_full, err);
@@ -157,16 +160,25 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
 }
 
 
+/* Plastic strain increments beyond this are taken as divergence (the step is split). */
+#define DIVERGED_STRAIN 0.5
+
 /* The plastic fixed point of dossier §1.4 at fixed elastic stresses: updates c->d_eps and c->dp
  * from the committed eps_p, peq. *sweeps receives the sweeps done; *converged 0 when the cap was
- * hit. Skips the residual operator while nothing has yielded (the elastic shortcut). */
+ * hit; *diverged 1 when the increments blew up (non-finite trial stresses, or an increment beyond
+ * DIVERGED_STRAIN): the caller splits the load step. The update is under-relaxed adaptively
+ * (omega halves whenever the change grows, dossier §1.4), and the residual operator is skipped
+ * while nothing has yielded (the elastic shortcut). */
 static int plastic_fixed_point(loop_ctx *c, const double *eps_p, const double *peq, int *sweeps,
-                               int *converged, int *yielded, mc_error *err)
+                               int *converged, int *yielded, int *diverged, mc_error *err)
 {
     const mc_plastic_problem *pb = c->pb;
     const size_t nv6 = 6 * (size_t)c->nvol;
+    double omega = 1.0, prev_change = INFINITY;
     *converged = 0;
     *yielded = 0;
+    *diverged = 0;
+    (void)err;
     for (int m = 1; m <= pb->max_plastic; m++) {
         *sweeps = m;
         int any = 0;
@@ -178,8 +190,8 @@ static int plastic_fixed_point(loop_ctx *c, const double *eps_p, const double *p
             residual_stress(c, c->tot);
         else
             memset(c->sig_r, 0, nv6 * sizeof *c->sig_r);
-        int rc = MC_OK, plastic = 0;
-#pragma omp parallel for schedule(static) reduction(| : plastic) if (c->nvol > 4096)
+        int bad = 0, plastic = 0;
+#pragma omp parallel for schedule(static) reduction(| : plastic, bad) if (c->nvol > 4096)
         for (long v = 0; v < c->nvol; v++) {
             double trial[6], out[6], de[6], dpv;
             for (int q = 0; q < 6; q++)
@@ -187,25 +199,35 @@ static int plastic_fixed_point(loop_ctx *c, const double *eps_p, const double *p
                            2.0 * c->G * c->d_eps[q * c->nvol + v];
             mc_error e1;
             if (mc_return_map(trial, peq[v], pb->law, c->G, out, de, &dpv, &e1) != MC_OK) {
-#pragma omp critical
-                rc = MC_ERR_NUMERIC;
+                bad = 1;
                 continue;
             }
             for (int q = 0; q < 6; q++)
                 c->d_new[q * c->nvol + v] = de[q];
-            c->dp[v] = dpv;
+            c->dp_new[v] = dpv;
             plastic |= dpv > 0;
         }
-        if (rc != MC_OK)
-            return mc_fail(err, MC_ERR_NUMERIC,
-                           "plastic loop: the radial return failed (non-finite stress)");
+        if (bad) {
+            *diverged = 1;
+            return MC_OK;
+        }
         *yielded |= plastic;
         double change = 0, size = 0;
         for (size_t i = 0; i < nv6; i++) {
             change = fmax(change, fabs(c->d_new[i] - c->d_eps[i]));
             size = fmax(size, fabs(c->d_new[i]));
         }
-        memcpy(c->d_eps, c->d_new, nv6 * sizeof *c->d_eps);
+        if (!(size <= DIVERGED_STRAIN)) {
+            *diverged = 1;
+            return MC_OK;
+        }
+        if (change > prev_change && omega > 0.125)
+            omega *= 0.5;
+        prev_change = change;
+        for (size_t i = 0; i < nv6; i++)
+            c->d_eps[i] += omega * (c->d_new[i] - c->d_eps[i]);
+        for (long v = 0; v < c->nvol; v++)
+            c->dp[v] += omega * (c->dp_new[v] - c->dp[v]);
         if (!plastic && !any) { /* nothing yields and nothing has: the step is elastic */
             *converged = 1;
             return MC_OK;
@@ -249,6 +271,86 @@ static void step_record(const loop_ctx *c, const mc_contact_summary *cs, const d
         st->residual_max = fmax(st->residual_max, u_r[i]);
 }
 
+/* One load increment to `load` from the committed state (res->eps_p, res->peq, res->u_r): the
+ * outer iteration of dossier §2.1; commits on success. Returns MC_OK with *diverged set when the
+ * plastic fixed point blew up (nothing committed), or the contact's status. st accumulates the
+ * iteration counts; *conv receives whether the outer iteration met its tolerance. */
+static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int warm, double *p,
+                     double *u, double *gap, mc_contact_summary *sum, mc_plastic_result *res,
+                     mc_plastic_step *st, int *conv, int *diverged, mc_error *err)
+{
+    const mc_plastic_problem *pb = c->pb;
+    const size_t nv6 = 6 * (size_t)c->nvol;
+    const double gap_factor = pb->both ? 2.0 : 1.0;
+    *conv = 0;
+    *diverged = 0;
+    memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
+    memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
+    memcpy(c->u_r, res->u_r, c->ncell * sizeof *c->u_r);
+    int rc = MC_OK;
+    for (int k = 1; k <= pb->max_outer; k++) {
+        if (pb->stop && pb->stop(pb->stop_ctx))
+            return mc_fail(err, MC_ERR_INTERRUPTED, "plastic loop: stopped on request");
+        st->outer_iterations++;
+        for (size_t i = 0; i < c->ncell; i++)
+            c->h_extra[i] = gap_factor * c->u_r[i];
+        mc_contact_problem cp = {.h = pb->h,
+                                 .h_extra = c->h_extra,
+                                 .p_lub = pb->p_lub,
+                                 .p_cap = INFINITY,
+                                 .control = MC_CONTROL_FORCE,
+                                 .load = load,
+                                 .p_start = warm || k > 1 ? p : NULL};
+        c->solves++;
+        if (pb->contact)
+            rc = pb->contact(pb->contact_ctx, &cp, p, u, gap, sum, &c->p_lub, err);
+        else
+            rc = mc_contact_solve(solver, &cp, p, u, gap, sum, err);
+        if (rc != MC_OK)
+            return rc; /* a contact that did not converge ends the run: reported as such */
+        if ((rc = elastic_stresses(c, p, err)) != MC_OK)
+            return rc;
+        int sweeps = 0, fp_ok = 0, yielded = 0;
+        rc = plastic_fixed_point(c, res->eps_p, res->peq, &sweeps, &fp_ok, &yielded, diverged,
+                                 err);
+        st->plastic_iterations += sweeps;
+        if (rc != MC_OK || *diverged)
+            return rc;
+        int any = 0;
+        for (size_t i = 0; i < nv6; i++) {
+            c->tot[i] = res->eps_p[i] + c->d_eps[i];
+            any |= c->tot[i] != 0.0;
+        }
+        if (!any) { /* the elastic shortcut: no plastic strain, no residual displacement */
+            res->yield_skips++;
+            memset(c->u_new, 0, c->ncell * sizeof *c->u_new);
+        } else
+            residual_displacement(c, c->tot, c->u_new);
+        double change = 0, size = 0;
+        for (size_t i = 0; i < c->ncell; i++) {
+            change = fmax(change, fabs(c->u_new[i] - c->u_r[i]));
+            size = fmax(size, fabs(c->u_new[i]));
+        }
+        if (fp_ok && change <= pb->tol_outer * size) {
+            memcpy(c->u_r, c->u_new, c->ncell * sizeof *c->u_r);
+            *conv = 1;
+            break;
+        }
+        for (size_t i = 0; i < c->ncell; i++)
+            c->u_r[i] += pb->relaxation * (c->u_new[i] - c->u_r[i]);
+    }
+    /* commit (also an increment that used up its outer iterations: reported, not hidden) */
+    for (size_t i = 0; i < nv6; i++)
+        res->eps_p[i] += c->d_eps[i];
+    for (long v = 0; v < c->nvol; v++)
+        res->peq[v] += c->dp[v];
+    memcpy(res->u_r, c->u_r, c->ncell * sizeof *c->u_r);
+    return MC_OK;
+}
+
+/* Splits of a diverging load step: up to 2^MAX_SPLIT sub-increments. */
+#define MAX_SPLIT 5
+
 int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
                    const mc_plastic_problem *pb, double *p, double *u, double *gap,
                    mc_contact_summary *sum, mc_plastic_result *res, mc_error *err)
@@ -261,75 +363,66 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
     loop_ctx c;
     rc = ctx_init(&c, g, pb, err);
     const size_t nv6 = 6 * (size_t)c.nvol;
+    double *save_eps = NULL, *save_peq = NULL, *save_ur = NULL;
     if (rc == MC_OK) {
         res->nvol = c.nvol;
         if (!(res->steps = mc_calloc((size_t)pb->load_steps, sizeof *res->steps)) ||
             !(res->eps_p = mc_zeros(nv6)) || !(res->peq = mc_zeros((size_t)c.nvol)) ||
-            !(res->u_r = mc_zeros(c.ncell)) || !(res->residual_vm = mc_zeros((size_t)c.nvol)))
+            !(res->u_r = mc_zeros(c.ncell)) || !(res->residual_vm = mc_zeros((size_t)c.nvol)) ||
+            !(save_eps = mc_zeros(nv6)) || !(save_peq = mc_zeros((size_t)c.nvol)) ||
+            !(save_ur = mc_zeros(c.ncell)))
             rc = mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the results");
     }
-    const double gap_factor = pb->both ? 2.0 : 1.0;
+    c.p_lub = pb->p_lub;
+    if (rc == MC_OK && (pb->eps_p0 || pb->peq0)) { /* the state the steps before left */
+        int any = 0;
+        if (pb->eps_p0) {
+            memcpy(res->eps_p, pb->eps_p0, nv6 * sizeof *res->eps_p);
+            for (size_t i = 0; i < nv6 && !any; i++)
+                any = res->eps_p[i] != 0.0;
+        }
+        if (pb->peq0)
+            memcpy(res->peq, pb->peq0, (size_t)c.nvol * sizeof *res->peq);
+        if (any)
+            residual_displacement(&c, res->eps_p, res->u_r);
+    }
     res->converged = 1;
     for (int n = 1; rc == MC_OK && n <= pb->load_steps; n++) {
         mc_plastic_step *st = &res->steps[n - 1];
+        const double l0 = pb->load * (n - 1) / pb->load_steps;
         st->load = pb->load * n / pb->load_steps;
-        memset(c.d_eps, 0, nv6 * sizeof *c.d_eps);
-        memcpy(c.u_r, res->u_r, c.ncell * sizeof *c.u_r);
-        for (int k = 1; k <= pb->max_outer; k++) {
-            st->outer_iterations = k;
-            for (size_t i = 0; i < c.ncell; i++)
-                c.h_extra[i] = gap_factor * c.u_r[i];
-            mc_contact_problem cp = {.h = pb->h,
-                                     .h_extra = c.h_extra,
-                                     .p_lub = pb->p_lub,
-                                     .p_cap = INFINITY,
-                                     .control = MC_CONTROL_FORCE,
-                                     .load = st->load,
-                                     .p_start = n > 1 || k > 1 ? p : NULL};
-            rc = mc_contact_solve(solver, &cp, p, u, gap, sum, err);
-            if (rc != MC_OK)
-                break; /* a contact that did not converge ends the run: reported as such */
-            if ((rc = elastic_stresses(&c, p, err)) != MC_OK)
-                break;
-            int sweeps = 0, fp_ok = 0, yielded = 0;
-            rc = plastic_fixed_point(&c, res->eps_p, res->peq, &sweeps, &fp_ok, &yielded, err);
-            if (rc != MC_OK)
-                break;
-            st->plastic_iterations += sweeps;
-            int any = 0;
-            for (size_t i = 0; i < nv6; i++) {
-                c.tot[i] = res->eps_p[i] + c.d_eps[i];
-                any |= c.tot[i] != 0.0;
+        memcpy(save_eps, res->eps_p, nv6 * sizeof *save_eps);
+        memcpy(save_peq, res->peq, (size_t)c.nvol * sizeof *save_peq);
+        memcpy(save_ur, res->u_r, c.ncell * sizeof *save_ur);
+        int all_conv = 0, diverged = 1;
+        for (int split = 0; rc == MC_OK && diverged && split <= MAX_SPLIT; split++) {
+            if (split > 0) { /* back to the state before the step, in 2^split increments */
+                memcpy(res->eps_p, save_eps, nv6 * sizeof *save_eps);
+                memcpy(res->peq, save_peq, (size_t)c.nvol * sizeof *save_peq);
+                memcpy(res->u_r, save_ur, c.ncell * sizeof *save_ur);
+                st->splits = split;
             }
-            if (!any) { /* the elastic shortcut: no plastic strain, no residual displacement */
-                res->yield_skips++;
-                memset(c.u_new, 0, c.ncell * sizeof *c.u_new);
-            } else
-                residual_displacement(&c, c.tot, c.u_new);
-            double change = 0, size = 0;
-            for (size_t i = 0; i < c.ncell; i++) {
-                change = fmax(change, fabs(c.u_new[i] - c.u_r[i]));
-                size = fmax(size, fabs(c.u_new[i]));
+            const int parts = 1 << split;
+            all_conv = 1;
+            diverged = 0;
+            for (int q = 1; rc == MC_OK && !diverged && q <= parts; q++) {
+                int conv;
+                rc = increment(&c, solver, l0 + (st->load - l0) * q / parts, n > 1 || q > 1, p,
+                               u, gap, sum, res, st, &conv, &diverged, err);
+                all_conv &= conv;
             }
-            if (fp_ok && change <= pb->tol_outer * size) {
-                memcpy(c.u_r, c.u_new, c.ncell * sizeof *c.u_r);
-                st->converged = 1;
-                break;
-            }
-            for (size_t i = 0; i < c.ncell; i++)
-                c.u_r[i] += pb->relaxation * (c.u_new[i] - c.u_r[i]);
         }
+        if (rc == MC_OK && diverged)
+            rc = mc_fail(err, MC_ERR_NUMERIC,
+                         "plastic loop: load step %d of %d (%g N) diverges even in %d "
+                         "increments: use more load_steps, a smaller relaxation or hardening",
+                         n, pb->load_steps, st->load, 1 << MAX_SPLIT);
         if (rc != MC_OK) {
             if (rc == MC_NOT_CONVERGED)
                 res->converged = 0;
             break;
         }
-        /* commit the step */
-        for (size_t i = 0; i < nv6; i++)
-            res->eps_p[i] += c.d_eps[i];
-        for (long v = 0; v < c.nvol; v++)
-            res->peq[v] += c.dp[v];
-        memcpy(res->u_r, c.u_r, c.ncell * sizeof *c.u_r);
+        st->converged = all_conv;
         res->converged &= st->converged;
         step_record(&c, sum, res->peq, res->u_r, st);
         res->steps_done = n;
@@ -338,16 +431,21 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
         residual_displacement(&c, res->eps_p, res->u_r);
         residual_stress(&c, res->eps_p);
         for (long v = 0; v < c.nvol; v++) {
-            double s[6];
+            double s3[6];
             for (int q = 0; q < 6; q++)
-                s[q] = c.sig_r[q * c.nvol + v];
-            res->residual_vm[v] = mc_von_mises(s);
+                s3[q] = c.sig_r[q * c.nvol + v];
+            res->residual_vm[v] = mc_von_mises(s3);
         }
         if (!res->converged)
             rc = mc_fail(err, MC_NOT_CONVERGED,
                          "plastic loop: a load step did not converge in %d outer iterations",
                          pb->max_outer);
     }
+    res->p_lub = c.p_lub;
+    res->contact_solves = c.solves;
+    mc_free(save_eps);
+    mc_free(save_peq);
+    mc_free(save_ur);
     ctx_free(&c);
     return rc;
 }

@@ -22,6 +22,14 @@
 #include "plastic/eigen_op.h"
 #include "plastic/hardening.h"
 
+/* Step (a) supplied by the caller: solve the contact problem cp (h, h_extra, load and warm start
+ * as the loop sets them) into p, u, gap and sum as mc_contact_solve does, choosing the lubricant
+ * pressure itself - e.g. by the lubricant volume equilibrium (lube/volume.h, which the plastic
+ * layer does not see) - and return it in *p_lub (Pa, >= 0). Return codes as mc_contact_solve. */
+typedef int (*mc_plastic_contact_fn)(void *ctx, const mc_contact_problem *cp, double *p,
+                                     double *u, double *gap, mc_contact_summary *sum,
+                                     double *p_lub, mc_error *err);
+
 typedef struct {
     /* the contact (force control, the load rises linearly over the steps) */
     const double *h;   /* initial gap at zero approach (ny*nx), m */
@@ -42,6 +50,19 @@ typedef struct {
     int max_outer;             /* outer iterations per step */
     double tol_plastic;        /* relative change of d eps_p that ends the fixed point */
     int max_plastic;           /* fixed-point iterations per outer iteration */
+    /* the material state before the first step (running-in: what the steps before left), in
+     * the volume layout of the result; NULL = virgin (zero). The residual displacement and the
+     * residual stress of eps_p0 are taken into account from the first contact on. */
+    const double *eps_p0;      /* 6 * nvol plastic strain, component-major */
+    const double *peq0;        /* nvol accumulated equivalent plastic strain (hardening) */
+    /* step (a) by the caller (NULL: mc_contact_solve with the uniform p_lub above); the friction
+     * traction then acts where p exceeds the p_lub the caller returned */
+    mc_plastic_contact_fn contact;
+    void *contact_ctx;
+    /* polled before every outer iteration (NULL: never); non-zero abandons the run with
+     * MC_ERR_INTERRUPTED (the result is then incomplete and only to be freed) */
+    int (*stop)(void *ctx);
+    void *stop_ctx;
 } mc_plastic_problem;
 
 /* One load step's record (plastic.csv). */
@@ -52,6 +73,7 @@ typedef struct {
     double residual_max;        /* largest residual displacement (into the body), m */
     int outer_iterations;
     int plastic_iterations;     /* fixed-point sweeps, summed over the outer iterations */
+    int splits;                 /* the step diverged and was done in 2^splits increments */
     int converged;
 } mc_plastic_step;
 
@@ -65,12 +87,16 @@ typedef struct {
     double *residual_vm;        /* nvol von Mises of the residual stress after unloading (owned) */
     long nvol;
     long yield_skips;           /* outer iterations where nothing yielded (shortcut taken) */
+    double p_lub;               /* lubricant pressure of the last contact solve, Pa */
+    int contact_solves;         /* step (a) calls */
 } mc_plastic_result;
 
 /* Run the loop. solver is planned over K (the two-body Love operator of the surface grid);
  * p, u, gap (ny*nx, caller-owned) receive the state at the maximum load, sum its contact
- * summary. Returns MC_OK, MC_NOT_CONVERGED (a step did not converge: everything is still filled
- * and res->converged = 0, the step records say which), or an error. */
+ * summary. With eps_p0, peq0 the result's eps_p, peq are the totals (initial plus this run's)
+ * and u_r the residual displacement of the total. Returns MC_OK, MC_NOT_CONVERGED (a step did
+ * not converge: everything is still filled and res->converged = 0, the step records say
+ * which), MC_ERR_INTERRUPTED (prob->stop asked), or an error. */
 int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
                    const mc_plastic_problem *prob, double *p, double *u, double *gap,
                    mc_contact_summary *sum, mc_plastic_result *res, mc_error *err);

@@ -1,0 +1,223 @@
+/* test_plastic_stage.c - the elastic-plastic stage through the pipeline: the elastic shortcut
+ * below yield onset, first yield at the depth of the von Mises maximum, the two backends of the
+ * eigenstrain operators giving the same run, the pressure-cap criterion, and the [plasticity]
+ * input rules. The Kogut-Etsion and Swift benchmarks are verification suites (verify/). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "case/case.h"
+#include "pipeline/pipeline.h"
+#include "reference/hertz.h"
+#include "test_util.h"
+
+/* A rigid sphere R = 15 mm on an elastic-perfectly plastic half-space (E = 210 GPa, nu = 0.3,
+ * Y = 1 GPa): the Kogut-Etsion benchmark geometry (docs/theory.md §9.3), P_c = 91.96 N. */
+static const char *SPHERE = "[mesh]\nnx = 20\nny = 20\ndx = 40 um\n[geometry]\nshape = sphere\n"
+                            "radius = 15 mm\n[body2]\nrigid = yes\n[load]\nforce = %g N\n"
+                            "[plasticity]\nyield_stress = 1 GPa\nload_steps = %d\n%s";
+
+static void sphere(mc_scene *s, double force, int steps, const char *extra)
+{
+    char text[1024];
+    snprintf(text, sizeof text, SPHERE, force, steps, extra);
+    mc_error err = {0};
+    ck_assert_msg(mc_case_parse_text(text, "p.ini", "", 0, NULL, s, &err) == MC_OK, "%s",
+                  err.msg);
+}
+
+/* Below the onset (p0 = 1.613 Y) nothing yields: the stage takes the elastic shortcut, and the
+ * final topography is the initial one. 0.7 P_c gives p0 = 0.7^(1/3) 1.615 Y = 1.43 Y. */
+START_TEST(elastic_below_onset)
+{
+    mc_scene s;
+    sphere(&s, 0.7 * 91.96, 4, "");
+    mc_results r;
+    mc_error err = {0};
+    ck_assert_msg(mc_pipeline_run(&s, &r, &err) == MC_OK, "%s", err.msg);
+    ck_assert(r.plastic.enabled && r.plastic.elastic_shortcut && r.plastic.converged);
+    ck_assert(r.plastic.vm_elastic_max < 1e9);
+    ck_assert_double_eq(r.plastic.peq_max, 0.0);
+    for (size_t i = 0; i < mc_grid_cells(&r.grid); i++)
+        ck_assert_double_eq(r.topography_final[i], r.topography[i]);
+    mc_results_free(&r);
+}
+END_TEST
+
+/* Just above onset (2 P_c): plastic strain appears below the surface, at the depth of the
+ * elastic von Mises maximum, 0.48 a (Johnson 1985), within one layer; the surface sinks (a dent,
+ * residual displacement > 0 into the body) and every load step converged. The load is carried. */
+START_TEST(first_yield_below_the_surface)
+{
+    mc_scene s;
+    sphere(&s, 2 * 91.96, 4, "");
+    mc_results r;
+    mc_error err = {0};
+    ck_assert_msg(mc_pipeline_run(&s, &r, &err) == MC_OK, "%s", err.msg);
+    const mc_plastic_summary *q = &r.plastic;
+    ck_assert(!q->elastic_shortcut && q->converged && q->steps_done == 4);
+    ck_assert(q->peq_max > 0);
+    mc_hertz_point hz;
+    ck_assert_int_eq(mc_hertz_point_from_load(15e-3, 210e9 / (1 - 0.09), 2 * 91.96, &hz, &err),
+                     MC_OK);
+    double zref = 0.481 * hz.a;
+    ck_assert_msg(fabs(q->peq_max_at[2] - zref) <= q->dz, "peq max at z = %g, 0.481 a = %g",
+                  q->peq_max_at[2], zref);
+    ck_assert(q->residual_max > 0);
+    /* the dent is at the centre of the contact */
+    double umax = 0;
+    size_t imax = 0;
+    for (size_t i = 0; i < mc_grid_cells(&r.grid); i++)
+        if (r.residual_displacement[i] > umax) {
+            umax = r.residual_displacement[i];
+            imax = i;
+        }
+    int ic = (int)(imax % (size_t)r.grid.nx), jc = (int)(imax / (size_t)r.grid.nx);
+    ck_assert_msg(abs(ic - 10) <= 1 && abs(jc - 10) <= 1, "dent at (%d, %d)", ic, jc);
+    double load = 0;
+    for (size_t i = 0; i < mc_grid_cells(&r.grid); i++)
+        load += r.pressure[i] * mc_grid_cell_area(&r.grid);
+    ck_assert(fabs(load - 2 * 91.96) <= 1e-6 * 2 * 91.96);
+    mc_results_free(&r);
+}
+END_TEST
+
+/* The same run on the direct backend (O(N^2) sums of every operator, the eigenstrain ones
+ * included) and on the fft backend: the same plastic strain and residual displacement to the
+ * iteration tolerances (outer 1e-3 relative of the residual displacement, set tighter here). */
+START_TEST(backends_agree)
+{
+    const char *tight = "tolerance = 1e-7\nmax_outer = 200\nplastic_tolerance = 1e-10\n"
+                        "max_plastic = 400\n";
+    mc_scene a, b;
+    sphere(&a, 2 * 91.96, 2, tight);
+    a.grid.nx = a.grid.ny = 12;
+    a.grid.dx = a.grid.dy = 60e-6;
+    b = a;
+    b.solver.backend = MC_BACKEND_DIRECT;
+    mc_results ra, rb;
+    mc_error err = {0};
+    ck_assert_msg(mc_pipeline_run(&a, &ra, &err) == MC_OK, "%s", err.msg);
+    ck_assert_msg(mc_pipeline_run(&b, &rb, &err) == MC_OK, "%s", err.msg);
+    ck_assert(ra.plastic.peq_max > 0);
+    ck_assert_int_eq(ra.plastic.nz, rb.plastic.nz);
+    size_t n = mc_grid_cells(&ra.grid), nv = n * (size_t)ra.plastic.nz;
+    double du = test_rel_maxdiff(rb.residual_displacement, ra.residual_displacement, n);
+    double dp = test_rel_maxdiff(rb.plastic_strain, ra.plastic_strain, nv);
+    ck_assert_msg(du < 1e-5 && dp < 1e-5, "residual displacement %g, plastic strain %g", du, dp);
+    mc_results_free(&ra);
+    mc_results_free(&rb);
+}
+END_TEST
+
+/* criterion = pressure_cap: no pressure above the hardness, the penetration at capped cells is
+ * the permanent deformation, and nothing else deforms. */
+START_TEST(pressure_cap_criterion)
+{
+    mc_scene s;
+    char extra[] = "";
+    char text[1024];
+    snprintf(text, sizeof text,
+             "[mesh]\nnx = 20\nny = 20\ndx = 40 um\n[geometry]\nshape = sphere\nradius = 15 mm\n"
+             "[body2]\nrigid = yes\n[load]\nforce = 183.92 N\n[plasticity]\n"
+             "criterion = pressure_cap\nhardness = 1.6 GPa\n%s",
+             extra);
+    mc_error err = {0};
+    ck_assert_msg(mc_case_parse_text(text, "c.ini", "", 0, NULL, &s, &err) == MC_OK, "%s",
+                  err.msg);
+    mc_results r;
+    ck_assert_msg(mc_pipeline_run(&s, &r, &err) == MC_OK, "%s", err.msg);
+    ck_assert_str_eq(r.plastic.criterion, "pressure_cap");
+    int capped = 0;
+    for (size_t i = 0; i < mc_grid_cells(&r.grid); i++) {
+        ck_assert(r.pressure[i] <= 1.6e9 * (1 + 1e-12));
+        if (r.residual_displacement[i] > 0) {
+            capped++;
+            ck_assert(r.pressure[i] >= 1.6e9 * (1 - 1e-9));
+            ck_assert_double_eq_tol(r.residual_displacement[i], -r.gap[i], 1e-18);
+        }
+    }
+    ck_assert(capped > 0 && r.plastic.residual_max > 0);
+    mc_results_free(&r);
+}
+END_TEST
+
+/* Bad [plasticity] input: exit-2 class errors naming the key. */
+typedef struct {
+    const char *extra; /* appended to a valid [plasticity] section */
+    const char *want;
+} bad_row;
+
+static const bad_row bad_rows[] = {
+    {"yield_stress = -1 GPa\n", "[plasticity] yield_stress = -1 GPa"},
+    {"depth = 0 um\n", "[plasticity] depth = 0 um"},
+    {"hardening = linear\nyield_stress = 1 GPa\ntangent_modulus = 300 GPa\n", "tangent_modulus"},
+    {"relaxation = 0\n", "[plasticity] relaxation = 0"},
+    {"hardening = swift\nswift_B = 1280 MPa\nswift_C = 4\nswift_n = 1.5\n", "swift_n = 1.5"},
+    {"criterion = pressure_cap\n", "[plasticity] hardness is required"},
+    {"bodies = both\n", "bodies = both needs body 2 of the same material"},
+};
+
+START_TEST(bad_input)
+{
+    const bad_row *b = &bad_rows[_i];
+    char text[1024];
+    int yield = strstr(b->extra, "yield_stress") == NULL && strstr(b->extra, "hardening") == NULL &&
+                strstr(b->extra, "criterion") == NULL;
+    snprintf(text, sizeof text,
+             "[mesh]\nnx = 8\nny = 8\ndx = 1 um\n[geometry]\nshape = sphere\nradius = 1 mm\n"
+             "[body2]\n%s[load]\nforce = 1 N\n[plasticity]\n%s%s",
+             strstr(b->extra, "both") ? "E = 200 GPa\n" : "rigid = yes\n",
+             yield ? "yield_stress = 1 GPa\n" : "", b->extra);
+    mc_scene s;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_case_parse_text(text, "b.ini", "", 0, NULL, &s, &err), MC_ERR_INPUT);
+    ck_assert_msg(strstr(err.msg, b->want) && strstr(err.msg, "b.ini"), "row %d: %s", _i,
+                  err.msg);
+}
+END_TEST
+
+/* nu = 0.5 with plasticity; a table that is not increasing (naming its file and row). */
+START_TEST(bad_material)
+{
+    mc_scene s;
+    mc_error err = {0};
+    const char *t = "[mesh]\nnx = 8\nny = 8\ndx = 1 um\n[body1]\nnu = 0.5\n[load]\nforce = 1 N\n"
+                    "[plasticity]\nyield_stress = 1 GPa\n";
+    ck_assert_int_eq(mc_case_parse_text(t, "n.ini", "", 0, NULL, &s, &err), MC_ERR_INPUT);
+    ck_assert_msg(strstr(err.msg, "[body1] nu = 0.5 with [plasticity]"), "%s", err.msg);
+    char path[600], text[1200];
+    snprintf(path, sizeof path, "%s/law.csv", test_tmpdir());
+    FILE *f = fopen(path, "w");
+    fprintf(f, "eps_p,sigma_y\n0,1000\n0.01,1200\n0.02,1100\n");
+    fclose(f);
+    snprintf(text, sizeof text,
+             "[mesh]\nnx = 8\nny = 8\ndx = 1 um\n[geometry]\nshape = sphere\nradius = 1 mm\n"
+             "[load]\nforce = 1 N\n[plasticity]\nhardening = table\ntable = %s\n",
+             path);
+    ck_assert_int_eq(mc_case_parse_text(text, "t.ini", "", 0, NULL, &s, &err), MC_OK);
+    mc_results r;
+    ck_assert_int_eq(mc_pipeline_run(&s, &r, &err), MC_ERR_INPUT);
+    ck_assert_msg(strstr(err.msg, "law.csv") && strstr(err.msg, "[plasticity]"), "%s", err.msg);
+    mc_results_free(&r);
+}
+END_TEST
+
+Suite *suite_plastic_stage(void);
+Suite *suite_plastic_stage(void)
+{
+    Suite *s = suite_create("plastic_stage");
+    TCase *t = tcase_create("stage");
+    tcase_set_timeout(t, 600);
+    tcase_add_test(t, elastic_below_onset);
+    tcase_add_test(t, first_yield_below_the_surface);
+    tcase_add_test(t, backends_agree);
+    tcase_add_test(t, pressure_cap_criterion);
+    suite_add_tcase(s, t);
+    TCase *b = tcase_create("input");
+    tcase_add_loop_test(b, bad_input, 0, (int)(sizeof bad_rows / sizeof bad_rows[0]));
+    tcase_add_test(b, bad_material);
+    suite_add_tcase(s, b);
+    return s;
+}
