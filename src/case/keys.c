@@ -401,10 +401,11 @@ const case_key mc_keys[] = {
      .off = AT(plasticity.max_outer),
      .doc = "Outer iterations per load step; reaching it is reported as not converged."},
     {.section = "plasticity", .name = "plastic_tolerance", .kind = K_REAL, .unit = MC_UNIT_NONE,
-     .lo = 1e-15, .hi = 0.1, .def = "1e-7", .use = USE_WHEN, .use_key = "criterion",
+     .lo = 1e-15, .hi = 0.1, .def = "1e-4", .use = USE_WHEN, .use_key = "criterion",
      .use_values = "von_mises", .off = AT(plasticity.plastic_tolerance),
      .doc = "Fixed point of the plastic strain increment: change relative to max(increment, "
-            "1e-3)."},
+            "1e-3). (1e-4 against 1e-7 changed the residual displacement of a rough yielding "
+            "contact by 1e-5 relative, with half the sweeps.)"},
     {.section = "plasticity", .name = "max_plastic", .kind = K_INT, .lo = 1, .hi = 100000,
      .def = "100", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
      .off = AT(plasticity.max_plastic), .doc = "Fixed-point sweeps per outer iteration."},
