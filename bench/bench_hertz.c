@@ -17,7 +17,7 @@
 #define NU 0.3
 #define LOAD 100.0
 #define BENCH_TOL 1e-6 /* CONTACT's accuracy in the published timings */
-#define VM_MAX_P0 0.62004 /* elastic.md 4.1, nu = 0.3 */
+#define VM_MAX_P0 0.62004 /* theory.md §6.1, nu = 0.3 */
 #define VM_DEPTH_A 0.48086
 
 typedef struct {

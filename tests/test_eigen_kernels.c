@@ -1,5 +1,5 @@
 /* test_eigen_kernels.c - influence functions of a cuboid of uniform eigenstrain (src/kernels/
- * eigen.h) against the dossier's compact value and layer limits (plastic-lubrication §2.2),
+ * eigen.h) against the dossier's compact value and layer limits (theory.md §8.1),
  * brute-force quadrature of the Boussinesq stresses (D) and of the Kelvin Green's function (S1),
  * the defining properties of the mirror solution (traction-free shear, equilibrium, jump
  * conditions, interior dilatation; §2.3), and the reciprocity between the two: the surface u_z
@@ -141,7 +141,7 @@ static void brute_D(const double lo[3], const double hi[3], double D[6])
         D[c] *= 2.0;
 }
 
-/* ---- D: surface displacement (dossier §2.2) -------------------------------------------------- */
+/* ---- D: surface displacement (theory.md §8.1) -------------------------------------------------- */
 
 START_TEST(test_D_compact_value)
 {
@@ -518,7 +518,7 @@ START_TEST(test_S12_parity)
 }
 END_TEST
 
-/* ---- reciprocity: image-method u_z (dossier §2.3, term S3) equals D (§2.2) ------------------ */
+/* ---- reciprocity: image-method u_z (theory.md §8.2, term S3) equals D (§2.2) ------------------ */
 
 /* u_z(X) = (1 - nu^2)/(pi E) integral p3 / r dA with p3 = 2G s . eps*, E = 2G (1 + nu):
  * u_z = (1 - nu)/pi integral s dr dtheta in polar coordinates about X (the 1/r cancels).

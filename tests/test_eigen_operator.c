@@ -2,7 +2,7 @@
  * odd and even windows, dx != dy and several nz; the impulse response against the kernel
  * functions of kernels/eigen.h summed by hand (S1 + S2 from mc_eigen_stress12, S3 from
  * mc_rect_stress_p over p3); the finite-patch limits of a uniform layer (dossier
- * plastic-lubrication §2.2) and the laterally constrained layer's stress; the vanishing surface
+ * theory.md §8.1) and the laterally constrained layer's stress; the vanishing surface
  * traction (S3 cancels p3, §2.3); the reciprocity cross-check u_z = Boussinesq displacement of p3
  * (§2.3), converging at second order in the mesh; bad input and allocation failures. */
 #include <check.h>
@@ -287,7 +287,7 @@ START_TEST(test_kernel_symmetry)
 }
 END_TEST
 
-/* ---- uniform layers: the finite-patch limits (dossier §2.2) and the constrained layer ------- */
+/* ---- uniform layers: the finite-patch limits (theory.md §8.1) and the constrained layer ------- */
 
 /* Wide thin surface layer (thickness t, half-width W): at the centre u_z / t tends to the finite
  * patch limits -eps_zz, -(1+2nu) for (1,1,0), +(1-2nu) for (1,1,-2), -2(1+nu) for eps I, 0 for
@@ -361,7 +361,7 @@ START_TEST(test_stress_uniform_layer)
 }
 END_TEST
 
-/* ---- S3 cancels the surface traction (dossier §2.3) ---------------------------------------- */
+/* ---- S3 cancels the surface traction (theory.md §8.2) ---------------------------------------- */
 
 /* A block of eigenstrain at depth [2, 3] cells under a 12 x 12 window, seen from the top layer of
  * two volumes (dz = 1/2 and 1/4 cell: the same block): with zero shear traction, equilibrium
@@ -414,7 +414,7 @@ START_TEST(test_surface_traction)
 }
 END_TEST
 
-/* ---- reciprocity: u_z = Boussinesq displacement of p3 (dossier §2.3) ----------------------- */
+/* ---- reciprocity: u_z = Boussinesq displacement of p3 (theory.md §8.2) ----------------------- */
 
 /* A smooth blob of plastic (trace-free) eigenstrain (Gaussian, width 1.5 cells of h = 1, centred
  * 8 deep) under a 128 x 128 surface; the Love operator of operator.h with the one-body modulus

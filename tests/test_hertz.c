@@ -1,6 +1,6 @@
 /* test_hertz.c - analytic reference solutions (hertz.c) against the dossier's reference tables,
  * quadrature of the elementary solutions, equilibrium, boundary conditions and known maxima.
- * Physics: shared/physics/elastic.md sections 4.1-4.4; tables: tests/data/physics/hertz_*.csv. */
+ * Physics: theory.md §6.1-§6.4; tables: tests/data/physics/hertz_*.csv. */
 #include <check.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -189,7 +189,7 @@ START_TEST(test_point_relations)
     mc_hertz_point h;
     mc_error err;
     ck_assert_int_eq(mc_hertz_point_from_load(R, E, P, &h, &err), MC_OK);
-    /* the cube-root forms of elastic.md 4.1, evaluated independently */
+    /* the cube-root forms of theory.md §6.1, evaluated independently */
     ck_assert(fabs(h.p0 / cbrt(6.0 * P * E * E / (M_PI * M_PI * M_PI * R * R)) - 1.0) <= TOL_TIGHT);
     ck_assert(fabs(h.delta / cbrt(9.0 * P * P / (16.0 * R * E * E)) - 1.0) <= TOL_TIGHT);
     ck_assert(fabs(h.delta / (h.a * h.a / R) - 1.0) <= TOL_TIGHT);
@@ -519,7 +519,7 @@ START_TEST(test_point_surface_tractions)
 }
 END_TEST
 
-/* Surface formulas (elastic.md 4.1) against the full fields at z = 0 on the x axis (sr = sxx,
+/* Surface formulas (theory.md §6.1) against the full fields at z = 0 on the x axis (sr = sxx,
  * stheta = syy there), and the edge values. */
 START_TEST(test_point_surface)
 {
@@ -701,7 +701,7 @@ static double line_p(double x, void *par) { return mc_hertz_line_pressure(par, x
 
 static const double pv_x[] = {-0.9, -0.5, 0.1, 0.3, 0.7, 0.95};
 
-/* du_z/dx = -(2/(pi E*)) PV int p(s)/(x - s) ds = -x/R inside the contact (elastic.md 4.3):
+/* du_z/dx = -(2/(pi E*)) PV int p(s)/(x - s) ds = -x/R inside the contact (theory.md §6.3):
  * the condition that fixes b and p0. gsl_integration_qawc gives PV int f(s)/(s - c) ds. */
 START_TEST(test_line_relations)
 {

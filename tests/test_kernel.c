@@ -1,7 +1,7 @@
 /* test_kernel.c - influence functions (src/kernel.c) against the dossier's reference table
  * (tests/data/physics/rect_kernels_ref.csv), adaptive 2-D quadrature of the point-force solutions,
  * closed-form limits, and the defining properties of the point forms (equilibrium, traction-free
- * surface, force resultants). Sections and equations refer to shared/physics/elastic.md. */
+ * surface, force resultants). Sections and equations refer to docs/theory.md. */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 #include <stdio.h>
@@ -15,7 +15,7 @@
 /* ---- tolerances ------------------------------------------------------------------------------ */
 
 /* Round-off tier: the corner sums obtain far-field values as differences of O(1) corner terms, so
- * the relative error grows like eps (r/a)^2 (elastic.md 1.2, 3.5); 64 eps covers the few dozen
+ * the relative error grows like eps (r/a)^2 (theory.md §2.2, §5.5); 64 eps covers the few dozen
  * operations per corner and the 16-digit table. */
 #define TOL_FAR_EPS (64.0 * DBL_EPSILON)
 /* Adaptive quadrature tier: QUAD_EPSREL is the relative accuracy asked of GSL's qags (the nested
@@ -23,18 +23,18 @@
  * not a bound and the inner integrals feed round-off noise into the outer integrand. */
 #define QUAD_EPSREL 1e-12
 #define TOL_QUAD (100.0 * QUAD_EPSREL)
-/* Discretisation tier: the far-field point-load approximation of elastic.md 1.2 at r = 20 dx;
+/* Discretisation tier: the far-field point-load approximation of theory.md §2.2 at r = 20 dx;
  * beyond the quadrupole term the next one is O((a/r)^4) with a coefficient below 1. */
 #define FAR_FIELD_R_OVER_DX 20.0
 #define TOL_FAR_FIELD 1.6e-4
-/* Surface limit (elastic.md 3.5): kernels at z = 1e-9 a differ from z = 0 by < 3e-9. */
+/* Surface limit (theory.md §5.5): kernels at z = 1e-9 a differ from z = 0 by < 3e-9. */
 #define CONT_Z_OVER_A 1e-9
 #define TOL_CONTINUITY 3e-9
 /* Finite differences: 4th-order central stencil at h = 1e-3 rho: truncation ~ (h/rho)^4 times
  * O(10) derivative ratios, round-off ~ eps rho/h; both far below this. */
 #define FD_H_OVER_RHO 1e-3
 #define TOL_FD 1e-9
-/* Near-surface traction of the point forms: sigma_iz is O(z/r) relative (elastic.md 3.1, 3.2). */
+/* Near-surface traction of the point forms: sigma_iz is O(z/r) relative (theory.md §5.1, §5.2). */
 #define NEAR_SURFACE_Z_OVER_R 1e-6
 #define TOL_NEAR_SURFACE (10.0 * NEAR_SURFACE_Z_OVER_R)
 
@@ -259,7 +259,7 @@ START_TEST(test_love_even)
 }
 END_TEST
 
-/* At r = 20 dx the point-load approximation A/(pi r) holds to 1.6e-4 (elastic.md 1.2), and the
+/* At r = 20 dx the point-load approximation A/(pi r) holds to 1.6e-4 (theory.md §2.2), and the
  * error is the quadrupole term (1/2)[(a^2/3) d_xx + (b^2/3) d_yy](1/r) / (1/r) up to O((a/r)^4). */
 START_TEST(test_love_far_field)
 {
@@ -341,7 +341,7 @@ static double stress_integrand(double xi, double eta, void *p)
 
 /* (x/a, y/b, z/a): inside, shallow inside, on an edge, beyond a corner, outside, far, deep; then
  * far along -y and -x within the patch's strip, on and just below the surface, where ln(Y + rho)
- * and ln(X + rho) need their cancellation-free forms (elastic.md 3.5) */
+ * and ln(X + rho) need their cancellation-free forms (theory.md §5.5) */
 static const double quad_pts[][3] = {
     {0.3, 0.2, 0.1}, {-0.4, 0.5, 0.02}, {1.0, 0.3, 0.2}, {1.05, -1.1, 0.3},
     {-3.0, 2.0, 0.7}, {10.0, -6.0, 2.0}, {0.0, 0.0, 3.0},
@@ -392,7 +392,7 @@ START_TEST(test_surface_limits)
     ck_assert(fabs(qy[MC_SYZ] + 1.0) <= TOL_TIGHT);
     ck_assert(fabs(qy[MC_SZZ]) <= TOL_TIGHT && fabs(qy[MC_SXZ]) <= TOL_TIGHT);
     /* at z = 0, S[T(X,Y) + T(Y,X)] = S[theta] = 2 pi inside, so sxx + syy = -(1 + 2 nu) anywhere
-     * inside (elastic.md 3.5, own-cell values) */
+     * inside (theory.md §5.5, own-cell values) */
     ck_assert_msg(fabs(p[MC_SXX] + p[MC_SYY] + (1.0 + 2.0 * NU)) <= TOL_TIGHT, "sxx+syy = %.16e",
                   p[MC_SXX] + p[MC_SYY]);
 }
@@ -593,7 +593,7 @@ START_TEST(test_point_resultant)
 }
 END_TEST
 
-/* The robust forms in kernel.c against elastic.md 3.1 and 3.2 as printed (off the axis). */
+/* The robust forms in kernel.c against theory.md §5.1 and §5.2 as printed (off the axis). */
 START_TEST(test_point_literal)
 {
     const double x = pt_pts[_i][0], y = pt_pts[_i][1], z = pt_pts[_i][2], nu = NU;
@@ -635,7 +635,7 @@ START_TEST(test_point_literal)
 END_TEST
 
 /* Boussinesq on the axis, where the printed Cartesian brackets are 0/0: the cylindrical form of
- * elastic.md 3.1 with (1 - z/rho)/r^2 -> 1/(2 z^2) gives
+ * theory.md §5.1 with (1 - z/rho)/r^2 -> 1/(2 z^2) gives
  * sigma_r = sigma_theta = (1-2nu)/(4 pi z^2), and szz = -3/(2 pi z^2). */
 START_TEST(test_point_axis)
 {
@@ -677,7 +677,7 @@ static const double sym_pts[][3] = {
 #define N_SYM_PTS ((int)(sizeof sym_pts / sizeof sym_pts[0]))
 
 /* Rotating the frame by 90 degrees (x' = y, y' = -x) maps a +y traction on a 2a x 2b rectangle to
- * a +x' traction on a 2b x 2a rectangle; rotate the stresses back (elastic.md 3.2). The swap rule
+ * a +x' traction on a 2b x 2a rectangle; rotate the stresses back (theory.md §5.2). The swap rule
  * used by mc_rect_stress_qy is a reflection, so this is an independent check. */
 START_TEST(test_qy_rotation)
 {
@@ -715,7 +715,7 @@ START_TEST(test_corner_sum)
 }
 END_TEST
 
-/* parity[load][component] = (sign under x -> -x, sign under y -> -y), elastic.md 3.3, 3.4 */
+/* parity[load][component] = (sign under x -> -x, sign under y -> -y), theory.md §5.3, §5.4 */
 static const int parity[3][MC_NSTRESS][2] = {
     /* p */ {[MC_SXX] = {1, 1}, [MC_SYY] = {1, 1}, [MC_SZZ] = {1, 1}, [MC_SXY] = {-1, -1},
              [MC_SYZ] = {1, -1}, [MC_SXZ] = {-1, 1}},

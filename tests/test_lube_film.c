@@ -1,5 +1,5 @@
 /* test_lube_film.c - EHL film formulas, disc kinematics and the macro Hertz line contact
- * (lube/film.h) against the dossier's disc case (plastic-lubrication §4.4,
+ * (lube/film.h) against the dossier's disc case (theory.md §10.4,
  * pl_ehl_film_disc_case.csv) and hand values. */
 #include <math.h>
 #include <stdlib.h>
@@ -9,7 +9,7 @@
 #include "reference/hertz.h"
 #include "test_util.h"
 
-/* The disc case of dossier §4.4: two steel discs R1 = R2 = 40 mm, width 10 mm, F_N = 1086 N,
+/* The disc case of theory.md §10.4: two steel discs R1 = R2 = 40 mm, width 10 mm, F_N = 1086 N,
  * pure rolling, alpha = 2e-8 1/Pa. */
 static const double E_STEEL = 210e9, NU_STEEL = 0.3, R_DISC = 0.040, WIDTH = 0.010,
                     FORCE = 1086.0, ALPHA = 2e-8;
@@ -118,7 +118,7 @@ START_TEST(named_functions_match_dispatcher)
 END_TEST
 
 /* Point-contact formulas against hand values: H evaluated independently (Python, math.pow) from
- * dossier §4.2, printed to 17 digits; the two libm evaluations agree to a few ulp. */
+ * theory.md §10.2, printed to 17 digits; the two libm evaluations agree to a few ulp. */
 #define TOL_HAND 1e-13
 START_TEST(point_formulas_hand_values)
 {
@@ -158,7 +158,7 @@ START_TEST(kinematics_and_geometry)
     /* one surface at rest: SRR = 2 (pure sliding), u = half the speed */
     ck_assert_int_eq(mc_film_kinematics_speeds(2.0, 0.0, &k, &err), MC_OK);
     ck_assert(k.u == 1.0 && k.srr == 2.0 && k.v_sum == 2.0);
-    /* E' = 2 E* = E / (1 - nu^2) for two equal bodies: 230.8 GPa for steel (dossier §4.1) */
+    /* E' = 2 E* = E / (1 - nu^2) for two equal bodies: 230.8 GPa for steel (theory.md §10.1) */
     double ep, rx;
     ck_assert_int_eq(mc_film_eprime(E_STEEL, NU_STEEL, E_STEEL, NU_STEEL, &ep, &err), MC_OK);
     ck_assert(fabs(ep - E_STEEL / (1 - NU_STEEL * NU_STEEL)) <= TOL_TIGHT * ep);
@@ -182,7 +182,7 @@ START_TEST(hertz_line_disc_case)
     ck_assert_int_eq(mc_film_eprime(E_STEEL, NU_STEEL, E_STEEL, NU_STEEL, &ep, &err), MC_OK);
     ck_assert_int_eq(mc_film_reduced_radius(R_DISC, R_DISC, &rx, &err), MC_OK);
     ck_assert_int_eq(mc_film_hertz_line(FORCE / WIDTH, rx, ep / 2, &b, &ph, &err), MC_OK);
-    /* dossier §4.4: b = 154.8 um (4 digits), p_H = 447 MPa (3 digits) */
+    /* theory.md §10.4: b = 154.8 um (4 digits), p_H = 447 MPa (3 digits) */
     ck_assert_msg(fabs(b - 154.8e-6) <= 0.05e-6, "b = %.4f um", b * 1e6);
     ck_assert_msg(fabs(ph - 447e6) <= 0.5e6, "p_H = %.2f MPa", ph / 1e6);
     /* Hamrock's form against Johnson's (reference/hertz.h): the same closed form two ways */

@@ -1,5 +1,5 @@
 /* test_lube_volume.c - the lubricant volume equilibrium (lube/volume.h) checked against
- * independent contact solves and the checks of dossier plastic-lubrication §5, and the friction
+ * independent contact solves and the checks of theory.md §11, and the friction
  * split (lube/friction.h) against hand values. */
 #include <math.h>
 #include <stdlib.h>
@@ -11,7 +11,7 @@
 #include "lube/volume.h"
 #include "test_util.h"
 
-/* A rough flat of Sq = 0.3 um under p_nominal = 1 GPa (dossier §5.2 checks), two steels. */
+/* A rough flat of Sq = 0.3 um under p_nominal = 1 GPa (theory.md §11.3 checks), two steels. */
 static const double E_STAR = 115.4e9, SQ = 0.3e-6, P_NOM = 1e9, DX = 0.8e-6;
 
 /* Contact solves stop at residual CT (gap scale, contact.h): the gap of each cell is then exact
@@ -114,7 +114,7 @@ static double direct_volume(patch *pt, double plub, double *p, double *gap)
 }
 
 /* Load split, complementarity and bounds of a returned state, computed from the fields alone:
- * F_solid + p_lub A_free = F_N (dossier §5.2) to the solver's load tolerance. */
+ * F_solid + p_lub A_free = F_N (theory.md §11.3) to the solver's load tolerance. */
 static void check_state(const patch *pt, const double *p, const double *gap, double plub)
 {
     double fs = 0, afree = 0, sg = gap_scale(pt);
@@ -134,7 +134,7 @@ static void check_state(const patch *pt, const double *p, const double *gap, dou
                   "F_solid + p_lub A_free = %.15g vs F_N %.15g", split, pt->load);
 }
 
-/* V(p_lub) strictly increasing over a sweep up to 0.99 p_nominal (dossier §5.1), towards the
+/* V(p_lub) strictly increasing over a sweep up to 0.99 p_nominal (theory.md §11.1), towards the
  * onset volume, which on a doubly periodic grid is A_nom (max z - mean z) (K 1 = 0). */
 START_TEST(volume_monotone)
 {
@@ -202,7 +202,7 @@ START_TEST(mixed_root)
         /* u is K p of the returned pressure */
         mc_operator_apply(pt.K, p, p2);
         ck_assert(test_rel_maxdiff(u, p2, pt.n) <= TOL_ROUNDOFF);
-        /* pocket height = h_EHD / (1 - psi_A) (dossier §5.2) */
+        /* pocket height = h_EHD / (1 - psi_A) (theory.md §11.3) */
         mc_lube_split sp;
         ck_assert_int_eq(mc_lube_split_of(p, gap, pt.n, DX * DX, res.p_lub, pt.load, &sp, &err),
                          MC_OK);

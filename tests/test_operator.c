@@ -26,7 +26,7 @@
  * pre-asymptotic range. */
 #define RATE_TWO_AXES 16.0
 #define RATE_ONE_AXIS 32.0
-/* A mis-oriented odd kernel gives an O(1) error (elastic.md 5.1: exactly 2 relative for a
+/* A mis-oriented odd kernel gives an O(1) error (theory.md §3.1: exactly 2 relative for a
  * symmetric load); anything above this shows the test can tell the orientations apart. */
 #define ORIENTATION_GAP 0.5
 

@@ -1,6 +1,6 @@
 /* test_plastic_material.c - hardening laws and the J2 radial return against closed-form material
  * paths (uniaxial stress, pure shear), return-mapping identities, refinement and input checks.
- * Physics: shared/physics/plastic-lubrication.md §1.1-1.3; table pl_material_laws.csv. */
+ * Physics: theory.md §7.1-§7.3; table pl_material_laws.csv. */
 #include <check.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
@@ -27,12 +27,12 @@
 /* Central differences of sigma_y with step 1e-4 (p + eps0): truncation (h/(p+eps0))^2 ~ 1e-8 of
  * H times an O(1) factor, round-off eps sigma/(h H) ~ 1e-10; 1e-6 leaves room for both. */
 #define TOL_FD 1e-6
-#define E_MOD 210e9 /* AISI 52100-like steel (dossier §1.2) */
+#define E_MOD 210e9 /* AISI 52100-like steel (theory.md §7.2) */
 #define NU 0.3
 #define MPA 1e6
 
 enum { LAW_PERFECT, LAW_LINEAR, LAW_SWIFT, LAW_TABLE, N_LAWS };
-static const double TAB_E[4] = {0, 1e-4, 1e-3, 1e-2}; /* Swift values as a table (dossier §1.2) */
+static const double TAB_E[4] = {0, 1e-4, 1e-3, 1e-2}; /* Swift values as a table (theory.md §7.2) */
 static const double TAB_S[4] = {1460 * MPA, 1990 * MPA, 2468 * MPA, 3071 * MPA};
 
 static void make_law(int which, mc_hardening *h)
@@ -104,7 +104,7 @@ static void uniaxial_step(uni_step *u)
 }
 
 /* Run n steps to axial strain eps_max; check sigma = sigma_y(p), eps = sigma/E + p, the lateral
- * strain -nu sigma/E - p/2 and eps_p = diag(p, -p/2, -p/2) (dossier §1.3 validation). Returns
+ * strain -nu sigma/E - p/2 and eps_p = diag(p, -p/2, -p/2) (theory.md §7.3 validation). Returns
  * the number of plastic steps. */
 static int uniaxial_path(const mc_hardening *h, double E, double nu, double eps_max, int n)
 {
@@ -190,7 +190,7 @@ START_TEST(test_pure_shear)
 }
 END_TEST
 
-/* Identities every plastic return must satisfy, whatever the law (dossier §1.1, §1.3). */
+/* Identities every plastic return must satisfy, whatever the law (theory.md §7.1, §7.3). */
 static void check_return(const mc_hardening *h, double G, const double st[6], double pn,
                          const double so[6], const double dep[6], double dp)
 {
@@ -337,7 +337,7 @@ START_TEST(test_substeps)
 }
 END_TEST
 
-/* Swift law of dossier §1.2 (B = 1280 MPa, C = 4, n = 0.095), values printed there. */
+/* Swift law of theory.md §7.2 (B = 1280 MPa, C = 4, n = 0.095), values printed there. */
 START_TEST(test_swift_values)
 {
     mc_hardening h;

@@ -1,5 +1,5 @@
 /* test_roughness.c - Gaussian profile filter, ISO 4288 choice, profile, Rk and areal
- * parameters against analytic surfaces (roughness*.c; dossier plastic-lubrication §6). */
+ * parameters against analytic surfaces (roughness*.c; theory.md §13). */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>

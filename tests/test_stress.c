@@ -4,7 +4,7 @@
  * impulse response, linearity, Hertz point and line contact against the closed forms of hertz.h,
  * the speed-ups against the plain paths (quadrant tables, symmetric transforms, sparse sums over
  * the loaded cells and their cost model, windows, depths from the contact), and the pipeline
- * stage. Sections refer to shared/physics/elastic.md. */
+ * stage. Sections refer to docs/theory.md. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,7 +23,7 @@
 
 /* Tables vs the plain evaluation: the same sums in another order. Entries are differences of O(10)
  * corner values, so the round-off relative to the largest entry grows like eps (z/d)^2 once the
- * depth spreads the kernel (elastic.md 3.5): TOL_TABLE up to TABLE_Z0 cells deep, then scaled
+ * depth spreads the kernel (theory.md §5.5): TOL_TABLE up to TABLE_Z0 cells deep, then scaled
  * by (z/(TABLE_Z0 d))^2 (measured 3.6e-12 at 12 cells). */
 #define TOL_TABLE 1e-12
 #define TABLE_Z0 4.0
@@ -39,7 +39,7 @@
  * O(dx^2) pixelation of the cell-centre sampled pressure; C from the measured 3.8e-4 p0 at
  * a/dx = 20 (sigma_zz, z = a) with 30% margin. */
 #define HERTZ_AXIS_C 0.2
-/* Hertz point von Mises, max over the plane z = 0.48 a on even grids (as in elastic.md 7, whose
+/* Hertz point von Mises, max over the plane z = 0.48 a on even grids (as in theory.md §5.7, whose
  * table gives 1.6e-3, 3.7e-4, 1.1e-4 p0 for a/dx = 10, 20, 40, mu = 0.3; measured here 1.64e-3,
  * 3.65e-4, 1.05e-4): the dossier's two-digit values + 25%. */
 #define HERTZ_VM_MARGIN 1.25
@@ -52,7 +52,7 @@
  * (measured ratio 2.9 per halving): accept >= 2.5. */
 #define RATIO_DX15 2.5
 /* Point vs patch kernel at depth: they differ by the pixel's second moments, O((d/z)^2)
- * (elastic.md 3.6): relative table difference <= POINT_PATCH_C (d/z)^2, d = max(dx, dy), and ~4x
+ * (theory.md §5.6): relative table difference <= POINT_PATCH_C (d/z)^2, d = max(dx, dy), and ~4x
  * per doubling of z; measured constant 0.35 (p) ... 0.50 (q_y) at dx/dy = 0.83. */
 #define POINT_PATCH_C 0.6
 /* Uniform load on the whole grid: sigma_zz under the centre within this of the rectangle's closed
@@ -262,7 +262,7 @@ START_TEST(test_tables_point) { check_tables(&table_grids[_i], MC_STRESS_POINT);
 END_TEST
 
 /* The free-axis patch table is the rectangle function itself at every offset, and zero in the
- * padding; odd kernels keep their sign at field minus source (elastic.md 5.1). */
+ * padding; odd kernels keep their sign at field minus source (theory.md §3.1). */
 START_TEST(test_table_free_is_rectangle)
 {
     const mc_grid g = {6, 5, 1.0, 1.4, 0, 0};
@@ -501,7 +501,7 @@ START_TEST(test_direct_vs_fft)
 }
 END_TEST
 
-/* Patch kernel at z = 0: the traction of every cell is its own load (elastic.md 0, 3.5):
+/* Patch kernel at z = 0: the traction of every cell is its own load (theory.md §1, §5.5):
  * sigma_zz = -p, sigma_xz = -q_x, sigma_yz = -q_y, for random loads. */
 START_TEST(test_surface_traction)
 {
@@ -527,7 +527,7 @@ START_TEST(test_surface_traction)
 END_TEST
 
 /* A unit load on one cell returns the rectangle functions at the offsets field minus source: the
- * orientation of the odd kernels (elastic.md 5.1). */
+ * orientation of the odd kernels (theory.md §3.1). */
 START_TEST(test_impulse_response)
 {
     const int li = _i;
@@ -654,7 +654,7 @@ START_TEST(test_uniform_patch)
 }
 END_TEST
 
-/* ---- Hertz point contact (elastic.md 4.1, 4.2, 7) ------------------------------------------- */
+/* ---- Hertz point contact (theory.md §6.1, §6.2, §5.7) ------------------------------------------- */
 
 /* Grid of cells dx = a/r around the contact (a = 1), |x|, |y| <= ~1.5 a; odd n puts a cell
  * centre on the axis, even n puts a corner there (the dossier's grids). */
@@ -712,7 +712,7 @@ START_TEST(test_hertz_point_axis)
 END_TEST
 
 /* von Mises over the plane z = 0.48 a with sliding friction mu = 0.3 (and without) against
- * Hamilton (mc_hertz_point_sliding), even grids a/dx = 10, 20, 40 as elastic.md 7. */
+ * Hamilton (mc_hertz_point_sliding), even grids a/dx = 10, 20, 40 as theory.md §5.7. */
 static double hertz_vm_error(int r, double mu)
 {
     const mc_grid g = hertz_grid(r, 0);
@@ -740,7 +740,7 @@ static double hertz_vm_error(int r, double mu)
 
 START_TEST(test_hertz_point_vm)
 {
-    const double dossier[3] = {1.6e-3, 3.7e-4, 1.1e-4}; /* elastic.md 7, mu = 0.3, z = 0.48 a */
+    const double dossier[3] = {1.6e-3, 3.7e-4, 1.1e-4}; /* theory.md §5.7, mu = 0.3, z = 0.48 a */
     double e[3], e0[3];
     for (int gi = 0; gi < 3; gi++) {
         e[gi] = hertz_vm_error(10 << gi, 0.3);
@@ -758,7 +758,7 @@ START_TEST(test_hertz_point_vm)
 }
 END_TEST
 
-/* ---- Hertz line contact: ny = 1, periodic in y (elastic.md 4.3) ----------------------------- */
+/* ---- Hertz line contact: ny = 1, periodic in y (theory.md §6.3) ----------------------------- */
 
 /* cell average of sqrt(1 - x^2) over [x - h, x + h] */
 static double sqrt_avg(double x, double h)
@@ -957,7 +957,7 @@ static size_t first_max(const double *v, size_t n)
 }
 
 /* The stage reproduces the operator's field, the invariants and a summary at the Hertz maximum
- * (elastic.md 4.1: 0.62004 p0 at z = 0.48 a on the axis, mu = 0; 4.2 table: 0.6598 p0 at
+ * (theory.md §6.1: 0.62004 p0 at z = 0.48 a on the axis, mu = 0; 4.2 table: 0.6598 p0 at
  * x = 0.32 a, z = 0.43 a, mu = 0.3, here sampled on the layers given). */
 START_TEST(test_stage)
 {
@@ -1012,7 +1012,7 @@ START_TEST(test_stage)
     if (mu == 0.0)
         ck_assert_double_le(hypot(ss->vm_max_at[0], ss->vm_max_at[1]), sc.grid.dx);
     else
-        ck_assert(ss->vm_max_at[0] > 0.0); /* the maximum moves ahead (elastic.md 4.2) */
+        ck_assert(ss->vm_max_at[0] > 0.0); /* the maximum moves ahead (theory.md §6.2) */
     ck_assert_int_eq(ss->layers, 3);
     ck_assert_double_eq(ss->depth_min, 0.0);
     ck_assert_double_eq(ss->depth_max, 1.0);
@@ -1135,7 +1135,7 @@ static double **stress_run_tuned(const mc_grid *g, mc_stress_kernel kernel, cons
     return s;
 }
 
-/* The parities of mc_stress_parity are those kernel.h states (elastic.md 3.3, 3.4), checked on
+/* The parities of mc_stress_parity are those kernel.h states (theory.md §5.3, §5.4), checked on
  * the rectangle functions themselves at a generic point. */
 START_TEST(test_parity_table)
 {
@@ -1519,7 +1519,7 @@ START_TEST(test_window_not_applied)
 END_TEST
 
 /* depth_max = auto on a Hertz contact: one patch of radius a (to the pixelation), depth_max = 3 R
- * and the von Mises maximum (0.48 a, elastic.md 4.1) inside the range, at the layer nearest to
+ * and the von Mises maximum (0.48 a, theory.md §6.1) inside the range, at the layer nearest to
  * it. Solved contact (patches above the lubricant pressure) and prescribed pressure alike. */
 START_TEST(test_depth_auto_hertz)
 {

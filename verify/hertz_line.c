@@ -1,7 +1,7 @@
 /* hertz_line.c - suite `hertz_line`: a cylinder on a flat, contact uniform along y (periodic in
  * y: plane strain), load per unit length, against Hertz line contact (Johnson 1985 ch. 4;
- * elastic.md 4.3). The approach of a line contact depends on the whole cylinder, not on the
- * half-space (elastic.md 4.4), so pressure and half-width are compared, not the approach. */
+ * theory.md §6.3). The approach of a line contact depends on the whole cylinder, not on the
+ * half-space (theory.md §6.4), so pressure and half-width are compared, not the approach. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

@@ -1,5 +1,5 @@
 /* hertz_point.c - suite `hertz_point`: sphere on a flat of another material, frictionless, load
- * control, against Hertz (Johnson 1985 ch. 4; elastic.md 4.1), over a mesh sequence from 10 to
+ * control, against Hertz (Johnson 1985 ch. 4; theory.md §6.1), over a mesh sequence from 10 to
  * 120 elements per contact radius. */
 #include <math.h>
 #include <stdio.h>
@@ -21,7 +21,7 @@
 #define LOAD 100.0
 #define SOLVER_TOL 1e-10
 
-/* Discretisation tier. The pressure of a cell-centred grid converges as (dx/a)^2 (elastic.md 6.2:
+/* Discretisation tier. The pressure of a cell-centred grid converges as (dx/a)^2 (theory.md §4.5:
  * +2.5e-5 at a/dx = 43); the approach likewise. With the apex on a cell centre (odd grids) the
  * measured errors are C (dx/a)^2 with C = 0.05-0.065 (p_max), 0.02-0.04 (approach) and 0.10-0.15
  * (fitted radius, p^2 linear in r^2 over r < 0.8 a) from a/dx = 10 to 120; the tolerances allow

@@ -3,7 +3,7 @@
  * stage: patch kernel, fft backend, an explicit depth list), then
  *   - sigma_xx, sigma_yy, sigma_zz on the axis against hertz_point_axis.csv / hertz_line_axis.csv
  *     (Huber 1904 / McEwen 1949 on the axis; plane strain sigma_yy = nu (sigma_xx + sigma_zz));
- *   - the maximum von Mises and maximum shear (Tresca) stresses and their depths (elastic.md 4.1,
+ *   - the maximum von Mises and maximum shear (Tresca) stresses and their depths (theory.md §6.1,
  *     4.3), located by the quadratic through the neighbourhood of the discrete maximum (layers
  *     0.01 a (b) apart around it);
  *   - with sliding friction q_x = mu p the maximum von Mises stress and its location against
@@ -36,7 +36,7 @@
 #define LOAD_LINE 1e5
 #define SOLVER_TOL 1e-10
 
-/* Analytic maxima on the axis, nu = 0.3, as printed in elastic.md 4.1 and 4.3 (5 digits); the
+/* Analytic maxima on the axis, nu = 0.3, as printed in theory.md §6.1 and §6.3 (5 digits); the
  * checks use the closed forms maximised here to ~1e-12 (axis_max), these only for the report. */
 #define PT_VM 0.62004
 #define PT_TR 0.31002
@@ -48,7 +48,7 @@
 
 /* Tolerances (discretisation tier; h = dx/a or dx/b).
  * C_AXIS: axis stresses of the solved contact against the closed forms: the solved pressure and
- *   the stresses of its sampled (piecewise-constant) field both converge as h^2 (elastic.md 7);
+ *   the stresses of its sampled (piecewise-constant) field both converge as h^2 (theory.md §5.7);
  *   the largest error is sigma_zz = -p at the surface, i.e. the p_max error of the solve
  *   (hertz_point.c: 0.05-0.065 h^2); measured <= 0.064 h^2 (point), 0.037 h^2 (line); allowed
  *   0.25 h^2 p0 (a factor 4 as in the suites' pressure checks).
@@ -63,7 +63,7 @@
  *   next to the jump of the maximum to the surface) against the closed form.
  * C_SURF, C_SURF_X: a maximum on the surface (line contact, mu >= 0.3): there the stress of a
  *   piecewise-constant traction is first-order accurate (the own cell's linear variation of q
- *   contributes q' dx to sigma_xx at its centre; elastic.md 7: "~O(dx) very close to the
+ *   contributes q' dx to sigma_xx at its centre; theory.md §5.7: "~O(dx) very close to the
  *   surface"): measured 0.012 h p0 and 0.26 h in position at mu = 0.3 (h = 1/20 ... 1/320),
  *   growing with the traction gradient to 0.046 h p0 and 0.83 h at mu = 0.5; allowed 0.1 h and
  *   1.5 h.
@@ -424,7 +424,7 @@ static int run_part(vf_ctx *ctx, int fast, int line)
     double ref_vz, ref_tz;
     const double ref_vm = axis_max(line, 0, &ref_vz), ref_tr = axis_max(line, 1, &ref_tz);
     const char *axis_ref =
-        line ? "McEwen, maximised (elastic.md 4.3)" : "Huber, maximised (elastic.md 4.1)";
+        line ? "McEwen, maximised (theory.md §6.3)" : "Huber, maximised (theory.md §6.1)";
     mesh_row rows[8];
     mc_results keep;
     memset(&keep, 0, sizeof keep);
@@ -439,12 +439,12 @@ static int run_part(vf_ctx *ctx, int fast, int line)
         "%s around the maxima). The stresses are body 1's (steel, nu = %.2f), normalised by the "
         "Hertz p0 = %.6g MPa; %s = %.6g um. On the axis (a cell centre: odd grids) "
         "sigma_xx, sigma_yy, sigma_zz are compared with the table (%s); the maxima of von "
-        "Mises and Tresca (max shear) with elastic.md %s, located by the quadratic through "
+        "Mises and Tresca (max shear) with theory.md §%s, located by the quadratic through "
         "the 3 x 3 (x 3) neighbourhood of the discrete maximum (gradient and Hessian by "
         "differences, cross terms included: with friction the maximum sits on a ridge "
         "tilted in (x, z)).\n\n"
         "Tolerances (discretisation tier, h = dx/%s; the solved pressure and the stress of its "
-        "piecewise-constant field both converge as h^2, elastic.md 7): axis stresses within "
+        "piecewise-constant field both converge as h^2, theory.md §5.7): axis stresses within "
         "%.2f h^2 p0; the maxima within %.2f h^2 p0; their depths within %.2f h^2 %s + "
         "%.0e %s (the quadratic through layers %.2f %s apart is off by ~1e-5-1e-4; the "
         "O(h^2) stress error moves a maximum of curvature ~1 p0/%s^2 by O(h^2)); the axis "
@@ -458,7 +458,7 @@ static int run_part(vf_ctx *ctx, int fast, int line)
         "from the closed-form optimum by up to 0.0024). A maximum on the surface (line "
         "contact, mu >= 0.3) is first-order: the stress of a piecewise-constant traction at "
         "a cell centre of the surface carries the own cell's linear variation of q, q' dx "
-        "(elastic.md 7: O(dx) near the surface; measured 0.012 h p0 and 0.26 h in position "
+        "(theory.md §5.7: O(dx) near the surface; measured 0.012 h p0 and 0.26 h in position "
         "at mu = 0.3 from h = 1/20 to 1/320, 0.046 h p0 and 0.83 h at mu = 0.5); allowed "
         "%.2f h p0 and %.1f h.\n\n",
         nd, csv_axis, DZ, L, line ? 0.60 : 0.40, line ? 0.85 : 0.56, L, NU_STEEL, p0 * 1e-6, L,
@@ -466,7 +466,7 @@ static int run_part(vf_ctx *ctx, int fast, int line)
         line ? "McEwen 1949 on the axis; plane strain sigma_yy = "
                "nu (sigma_xx + sigma_zz)"
              : "Huber 1904 on the axis, sigma_xx = sigma_yy = sigma_r",
-        line ? "4.3" : "4.1", L, C_AXIS, C_MAX, C_ZMAX, L, DZ * DZ, L, DZ, L, L, ORDER_MIN, C_MU,
+        line ? "6.3" : "6.1", L, C_AXIS, C_MAX, C_ZMAX, L, DZ * DZ, L, DZ, L, L, ORDER_MIN, C_MU,
         MU_TABLE_VM, C_MU_X, L, MU_TABLE_POS, L, C_SURF, C_SURF_X);
 
     /* ---- frictionless: mesh sequence ---- */
@@ -639,8 +639,8 @@ static int run_part(vf_ctx *ctx, int fast, int line)
     }
     vf_text(ctx,
             "(The exact maxima are the closed forms on the axis maximised by golden-section "
-            "search; elastic.md %s prints %.5f at %.5f %s and %.5f at %.5f %s.)\n\n",
-            line ? "4.3" : "4.1", line ? LN_VM : PT_VM, line ? LN_VM_Z : PT_Z, L,
+            "search; theory.md §%s prints %.5f at %.5f %s and %.5f at %.5f %s.)\n\n",
+            line ? "6.3" : "6.1", line ? LN_VM : PT_VM, line ? LN_VM_Z : PT_Z, L,
             line ? LN_TR : PT_TR, line ? LN_TR_Z : PT_Z, L);
 
     /* ---- friction: one mesh, identical bodies ---- */

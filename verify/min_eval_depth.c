@@ -1,5 +1,5 @@
 /* min_eval_depth.c - suite `min_eval_depth`: the "minimum evaluation depth" of concentrated-force
- * stress evaluation (the paper's Fig. 2-3; elastic.md 3.6) and its absence with patch kernels.
+ * stress evaluation (the paper's Fig. 2-3; theory.md §5.6) and its absence with patch kernels.
  *
  * A Hertz pressure p0 sqrt(1 - r^2/a^2), sampled at cell centres of an even grid (the contact
  * centre is a cell corner), is turned into sigma_zz versus depth on three columns: under a force
@@ -35,7 +35,7 @@
 #define UM 1e-6
 
 /* Tolerances, in units of dx unless stated.
- * Z_POISSON: the Poisson sum (elastic.md 3.6; |m|,|n| <= 4, the omitted terms are < e^-5t) is for
+ * Z_POISSON: the Poisson sum (theory.md §5.6; |m|,|n| <= 4, the omitted terms are < e^-5t) is for
  *   a uniform load; under the Hertz pressure the artefact is modulated by the local pressure and
  *   the closed form is smoothed at depth, relative changes O((z/a)^2, (dx/a)^2) <= 1 % of the error
  *   at a/dx >= 25, which moves the crossing of an error of logarithmic slope
@@ -102,7 +102,7 @@ typedef struct {
     double time;
 } run_t;
 
-/* ---- Poisson summation (elastic.md 3.6) ------------------------------------------------------ */
+/* ---- Poisson summation (theory.md §5.6) ------------------------------------------------------ */
 
 /* Relative error of point forces on a uniform square lattice at depth t = 2 pi z/dx on the
  * column (sx, sy) dx from a force: sum over (m,n) != 0, |m|,|n| <= 4 of
@@ -405,7 +405,7 @@ int vf_suite_min_eval_depth(vf_ctx *ctx, int fast)
         "cell, Love 1929: `kernel = patch`). The reference is the closed form of Hamilton "
         "(1983) at that column. The minimum evaluation depth z_min(eps) is the depth below "
         "which the point-kernel sigma_zz stays within the relative tolerance eps of the closed "
-        "form (elastic.md 3.6); it is interpolated log-linearly between layers "
+        "form (theory.md §5.6); it is interpolated log-linearly between layers "
         "(13 layers from 0.02 to 0.5 dx, then every 0.05 dx to 3 dx; nu = %.2f).\n\n"
         "The node column is a cell centre: it comes from the stress operator (fft backend). "
         "The corner and edge columns are no cell centres, so they are direct sums of the "
@@ -561,7 +561,7 @@ int vf_suite_min_eval_depth(vf_ctx *ctx, int fast)
                  "not %s (of %d, all meshes)",
                  col_name[c], c == COL_NODE ? "overshoot (|sigma_zz| too large)" : "undershoot",
                  layers);
-        vf_check(ctx, id, q, "elastic.md 3.6", 0, wrong, 0.0, VF_MAX);
+        vf_check(ctx, id, q, "theory.md §5.6", 0, wrong, 0.0, VF_MAX);
     }
 
     /* ---- linear fit of z_min against the mesh size, node column ---- */
@@ -695,7 +695,7 @@ int vf_suite_min_eval_depth(vf_ctx *ctx, int fast)
             "the 0.8 um mesh gives z_min = %.3f um. The paper's two-digit 1.3 um (1.25-1.35 "
             "um, z_min/dx = 1.56-1.69) corresponds to eps = %.2f-%.2f %% by the leading "
             "term. (Were the paper's 1.3 meant in mesh units, 1.3 dx, it would be the 1 %% depth; "
-            "elastic.md 3.6.)\n\n",
+            "theory.md §5.6.)\n\n",
             PAPER_RATIO, 100 * eps_p, 100 * eps_lo, 100 * eps_hi, 100 * eps_lead, 100 * eps_pois,
             z08, 100 * leading_term(2 * M_PI * 1.35 / 0.8, 0, 0),
             100 * leading_term(2 * M_PI * 1.25 / 0.8, 0, 0));

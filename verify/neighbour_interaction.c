@@ -1,6 +1,6 @@
 /* neighbour_interaction.c - suite `neighbour_interaction`: how neighbouring Hertzian pressure
- * cells lower the von Mises stress under a central one (the paper's Fig. 2-2; plastic-lubrication
- * .md 2.5: "von Mises reduced by up to about 16 % by neighbouring asperities", p_H = 3139 MPa, the
+ * cells lower the von Mises stress under a central one (the paper's Fig. 2-2; docs/theory.md
+ * §6.5: "von Mises reduced by up to about 16 % by neighbouring asperities", p_H = 3139 MPa, the
  * geometry of the study is not known).
  *
  * Each cell carries the prescribed Hertz pressure p_H sqrt(1 - r^2/a^2) (no contact solve); cells
@@ -30,7 +30,7 @@
 
 #define NU 0.30
 #define P_H 3139e6     /* the paper's Hertzian pressure, Pa (stresses scale with it) */
-#define VM_ISO 0.62004 /* max von Mises / p0 of one Hertz cell, nu = 0.3 (elastic.md 4.1) */
+#define VM_ISO 0.62004 /* max von Mises / p0 of one Hertz cell, nu = 0.3 (theory.md §6.1) */
 #define Z_ISO 0.48086  /* its depth / a */
 #define PAPER_REDUCTION 0.16
 
@@ -475,7 +475,7 @@ static double run_direct(const study_t *st, int pat, int q, mc_error *err, int *
  * with the Hertz cell on cell (D/2, D/2). The periodic operator sets the mean in-plane stresses to
  * 0 (stress.h); for a large pattern of side L the uniformly smeared load pbar gives, on the axis of
  * the centre at depth z << L, sigma_xx = sigma_yy = -(1 + 2 nu) pbar / 2 (the surface-centre value
- * of a uniformly loaded square, elastic.md 3.3) with O(z/L) corrections; it is added here. */
+ * of a uniformly loaded square, theory.md §5.3) with O(z/L) corrections; it is added here. */
 static peak_t run_periodic(const study_t *st, int q, mc_error *err, int *rc)
 {
     const int A = st->A, D = (int)lround(d_list[q] * A), c = D / 2;
@@ -705,9 +705,9 @@ int vf_suite_neighbour_interaction(vf_ctx *ctx, int fast)
     vf_check(ctx, "cell_load", "load of one Hertz cell (cell averages) / (2 pi a^2 p0 / 3)",
              "Hertz", 1.0, load / (2 * M_PI / 3), LOAD_TOL, VF_REL);
     const peak_t *iso = &st.peak[NCASE];
-    vf_check(ctx, "iso_vm", "isolated cell: max von Mises / p0", "Hamilton, elastic.md 4.1", VM_ISO,
+    vf_check(ctx, "iso_vm", "isolated cell: max von Mises / p0", "Hamilton, theory.md §6.1", VM_ISO,
              iso->vm, C_VM * h2, VF_ABS);
-    vf_check(ctx, "iso_depth", "isolated cell: depth of the maximum / a", "elastic.md 4.1", Z_ISO,
+    vf_check(ctx, "iso_depth", "isolated cell: depth of the maximum / a", "theory.md §6.1", Z_ISO,
              iso->z, C_DEPTH * h2 + st.h * st.h * st.h, VF_ABS);
     vf_check(ctx, "iso_hydro", "isolated cell: hydrostatic stress at the maximum / p0",
              "Hamilton (sum of one cell)", st.ref[NCASE].hydro, iso->hydro, C_VM * h2, VF_ABS);
@@ -905,7 +905,7 @@ int vf_suite_neighbour_interaction(vf_ctx *ctx, int fast)
             100 * (ratio[3][0] - ratio[4][0]), 100 * (ratio[3][2] - ratio[4][2]),
             100 * (ratio[3][4] - ratio[4][4]));
     vf_text(ctx, "**The paper's \"up to about 16 %%\".** The geometry of the paper's study is not "
-                 "known (plastic-lubrication.md 2.5). A 16 %% reduction (exact Hamilton ratios, "
+                 "known (theory.md §6.5). A 16 %% reduction (exact Hamilton ratios, "
                  "bisection in d) is reached by: ");
     double dp[NPAT];
     for (int pat = 0; pat < NPAT; pat++) {

@@ -6,7 +6,7 @@
  *      "constant part" of cells held at a bound moves to the right-hand side).
  *   3. Cells of C with q < 0 leave C (held at the lower bound); with q > cap they leave to the cap.
  *   4. Cells held at the lower bound that penetrate (g < 0), or held at the cap with g > 0,
- *      re-enter C: the rule the paper's description omits (plastic-lubrication.md 5, step 4).
+ *      re-enter C: the rule the paper's description omits (theory.md §11, step 4).
  *   5. Repeat until nothing changes.
  * K_CC is symmetric positive definite: Cholesky (GSL), with the load equation eliminated by
  * superposition, q_C = x1 + delta x2 (under force control on K + c 1 1' where K alone is singular

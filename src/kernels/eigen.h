@@ -1,7 +1,7 @@
 /* eigen.h - influence functions of a cuboid of uniform eigenstrain (plastic strain) in an
  * isotropic elastic half-space z >= 0: pure math, no state, no allocation.
  *
- * Conventions (dossier plastic-lubrication §0, as kernel.h): z is depth into the body; stresses
+ * Conventions (theory.md §1, as kernel.h): z is depth into the body; stresses
  * tension positive; u_z > 0 into the body; tensor (not engineering) strains; component order
  * xx, yy, zz, xy, yz, xz (MC_SXX..MC_SXZ of kernel.h) for stresses AND eigenstrains.
  *
@@ -34,7 +34,7 @@
 #define MC_EIGEN_H
 
 /* Surface normal displacement per unit eigenstrain (Betti reciprocity; Jacq et al. 2002;
- * dossier plastic-lubrication §2.2). Cuboid [x1,x2] x [y1,y2] x [z1,z2], coordinates relative to
+ * theory.md §8.1). Cuboid [x1,x2] x [y1,y2] x [z1,z2], coordinates relative to
  * the observation point X on the surface (SOURCE minus FIELD), 0 <= z1 < z2, x1 < x2, y1 < y2.
  * Output D[6] (length unit of the inputs) in the column convention above:
  *   u_z(X) = sum_c D[c] eps*_c,  D[diag] = D_ii,  D[xy] = D_xy + D_yx = 2 D_xy (etc.),
@@ -49,7 +49,7 @@ void mc_eigen_surface_uz(double x1, double x2, double y1, double y2, double z1, 
 
 /* Residual stress of the cuboid |x'| <= hx, |y'| <= hy, z1 <= z' <= z2 (0 <= z1 < z2) in the
  * half-space WITHOUT the surface-normal-traction correction S3, i.e. S1 + S2 (Chiu 1977, 1978;
- * Mura 1987; dossier plastic-lubrication §2.3):
+ * Mura 1987; theory.md §8.2):
  *   S1 = the cuboid in an infinite space (includes -C:eps* inside the cuboid),
  *   S2 = the mirror cuboid z' -> -z' carrying R eps* R, R = diag(1, 1, -1) (shear columns yz, xz
  *        change sign), which makes sigma_xz = sigma_yz = 0 and u_z = 0 on z = 0.
@@ -65,7 +65,7 @@ void mc_eigen_stress1(double x, double y, double z, double hx, double hy, double
                       double nu, double S[6][6]);
 
 /* sigma_zz of S1 + S2 on the surface z = 0 at (x, y) relative to the cuboid's lateral centre, per
- * unit eigenstrain component c, divided by 2G (the "p3" of dossier §2.3: a tensile value is a
+ * unit eigenstrain component c, divided by 2G (the "p3" of theory.md §8.2: a tensile value is a
  * positive pushing pressure p3 = 2G sum_c s[c] eps*_c that the S3 term must carry). By the mirror
  * symmetry it equals 2 sigma_zz^S1(x, y, 0). Equal to row MC_SZZ of mc_eigen_stress12 at z = 0. */
 void mc_eigen_surface_szz12(double x, double y, double hx, double hy, double z1, double z2,

@@ -1,6 +1,6 @@
 /* eigen_disp.c - surface normal displacement of a cuboid of uniform eigenstrain (see eigen.h).
  *
- * Betti reciprocity (Jacq et al. 2002; dossier plastic-lubrication §2.2): u_z(X) = integral of
+ * Betti reciprocity (Jacq et al. 2002; theory.md §8.1): u_z(X) = integral of
  * sigma^B : eps* over the cuboid, sigma^B the Boussinesq field of a unit normal force at X. The
  * volume integrals J_ij = integral du_i/dx_j dV of the Boussinesq displacements
  *   u_x = c0 [x z/r^3 - (1-2nu) x/(r (r+z))],  u_z = c0 [z^2/r^3 + 2 (1-nu)/r],  c0 = 1/(4 pi G)
@@ -44,7 +44,7 @@ static void corner_F(double x, double y, double z, double nu, double F[9])
     const double Ly = log_plus(y, x2 + z2, r);
     const double Lz = log(z + r);
     /* T(a,b) = atan(b/a) - atan(b z/(a r)) as one atan2 with a non-negative denominator and
-     * r - z = (x^2 + y^2)/(r + z); no singularity at a = 0 (dossier §2.2). */
+     * r - z = (x^2 + y^2)/(r + z); no singularity at a = 0 (theory.md §8.1). */
     const double rmz = (x2 + y2) / (r + z);
     const double Txy = atan2(x * y * rmz, x2 * r + y2 * z);
     const double Tyx = atan2(x * y * rmz, y2 * r + x2 * z);

@@ -1,7 +1,7 @@
 /* eigen_stress.c - stress of a cuboid of uniform eigenstrain: infinite space (S1) and the mirror
  * cuboid (S2) of the half-space solution (see eigen.h).
  *
- * Infinite space (Chiu 1977; Mura 1987; dossier plastic-lubrication §2.3):
+ * Infinite space (Chiu 1977; Mura 1987; theory.md §8.2):
  *   eps_ij = K [ psi_,klij eps*_kl - 2 nu eps*_mm phi_,ij
  *                - 2 (1-nu)(eps*_ik phi_,kj + eps*_jk phi_,ki) ],
  *   K = 1/(8 pi (1-nu)),  phi = integral 1/|x-x'| dx',  psi = integral |x-x'| dx'  over the cuboid,
@@ -27,7 +27,7 @@ enum { F11, F22, F33, F12, F23, F13, NF2 };
 
 /* atan(num/den), den = a_p r >= 0 up to the sign of a_p; a_p = 0 (of either sign) is taken as +0,
  * which puts a field point on a face plane on the side the chi rule of eigen.h assigns it to.
- * atan, not atan2: atan2 is off by pi for a_p < 0 (dossier §2.3 pitfall). */
+ * atan, not atan2: atan2 is off by pi for a_p < 0 (theory.md §8.2 pitfall). */
 static inline double atan_p(double num, double den)
 {
     if (den == 0.0)
@@ -43,7 +43,7 @@ static inline double ratio0(double num, double den)
 }
 
 /* Corner functions H at the corner offset a (not all zero): h[0..NP4) for psi, h[NP4..) for phi.
- * With (p, q, s) a permutation of the axes (dossier §2.3 table):
+ * With (p, q, s) a permutation of the axes (theory.md §8.2 table):
  *   phi_,pp  -atan(a_q a_s/(a_p r))         phi_,pq  ln(a_s + r)
  *   psi_,pppp -2 atan(a_q a_s/(a_p r)) + a_p a_q a_s (r^2 + a_p^2)/(r (a_p^2+a_q^2)(a_p^2+a_s^2))
  *   psi_,pppq ln(a_s + r) + a_p^2/(r (r + a_s))      psi_,ppqq a_p a_q/(r (r + a_s))

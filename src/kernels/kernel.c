@@ -18,7 +18,7 @@ double mc_combined_modulus(double E1, double nu1, double E2, double nu2, int rig
 }
 
 /* X asinh(Y/|X|) + Y asinh(X/|Y|): the asinh form stays accurate where the log form cancels
- * (elastic.md 1.2); each term is 0 when its prefactor is 0 (its limit). */
+ * (theory.md §2.2); each term is 0 when its prefactor is 0 (its limit). */
 double mc_love_corner(double X, double Y)
 {
     double f = 0.0;
@@ -38,7 +38,7 @@ double mc_love_uz(double x, double y, double a, double b)
 
 double mc_point_uz(double r) { return 1.0 / (M_PI * r); }
 
-/* ---- subsurface stress under uniform rectangular loads (elastic.md 3.3-3.5) --------------- */
+/* ---- subsurface stress under uniform rectangular loads (theory.md §5.3-§5.5) --------------- */
 
 #define INV_2PI (0.5 / M_PI)
 
@@ -132,7 +132,7 @@ static inline void corner_qx(double X, double Y, double z, double nu, double f[M
     f[MC_SXZ] = -INV_2PI * (th + tXz);
 }
 
-/* Swap rule (elastic.md 3.4): reflecting x <-> y turns a +x traction into a +y traction; the
+/* Swap rule (theory.md §5.4): reflecting x <-> y turns a +x traction into a +y traction; the
  * components follow the reflection (xx <-> yy, xz <-> yz, zz and xy unchanged). */
 static inline void swap_xy(const double g[MC_NSTRESS], double f[MC_NSTRESS])
 {
@@ -197,13 +197,13 @@ void mc_rect_stress_qy(double x, double y, double z, double a, double b, double 
     swap_xy(g, s);
 }
 
-/* ---- point forces (elastic.md 3.1, 3.2) --------------------------------------------------- */
+/* ---- point forces (theory.md §5.1, §5.2) --------------------------------------------------- */
 
 /* Boussinesq, per unit force. The (1 - 2nu) brackets are rewritten with 1 - z/rho =
  * r^2/(rho (rho + z)) so that they stay finite on the axis r = 0:
  *   (1 - z/rho)(x^2-y^2)/r^4 + z y^2/(rho^3 r^2) = (x^2-y^2+z^2 + z y^2/(rho+z))/(rho^3 (rho+z))
  *   2(1 - z/rho) x y/r^4 - x y z/(rho^3 r^2)    = x y (2 rho + z)/(rho^3 (rho+z)^2)
- * (the second keeps the factor 2 of elastic.md 3.1). */
+ * (the second keeps the factor 2 of theory.md §5.1). */
 void mc_point_stress_p(double x, double y, double z, double nu, double s[6])
 {
     const double x2 = x * x, y2 = y * y, z2 = z * z;
@@ -242,7 +242,7 @@ void mc_point_stress_qx(double x, double y, double z, double nu, double s[6])
     s[MC_SXZ] = -3.0 * INV_2PI * x2 * z * i5;
 }
 
-/* Rotation (elastic.md 3.2): in the frame x' = y, y' = -x the +y force points along +x'. */
+/* Rotation (theory.md §5.2): in the frame x' = y, y' = -x the +y force points along +x'. */
 void mc_point_stress_qy(double x, double y, double z, double nu, double s[6])
 {
     double g[MC_NSTRESS];

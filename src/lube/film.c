@@ -5,7 +5,7 @@
 #include <string.h>
 
 /* One row per formula: H = c U^eu G^eg W^ew (1 - ka exp(-kb k)); ka = 0 for line contact.
- * Coefficients: dossier plastic-lubrication §4.2 (Hamrock 1991, NASA RP-1255; Hamrock & Dowson,
+ * Coefficients: theory.md §10.2 (Hamrock 1991, NASA RP-1255; Hamrock & Dowson,
  * J. Lubr. Technol. 99(2) 264, 1977). */
 typedef struct {
     const char *name;

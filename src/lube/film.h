@@ -11,7 +11,7 @@
  *     W' = w' / (E' R_x)   (line contact, w' = F_N / L in N/m),
  *     W  = F_N / (E' R_x^2) (point contact, F_N in N)
  *
- * each formula gives H = h / R_x (dossier plastic-lubrication §4.1-4.2):
+ * each formula gives H = h / R_x (theory.md §10.1-§10.2):
  *     pan_hamrock_central     H_c   = 2.922 W'^-0.166 U^0.692 G^0.470   (Pan & Hamrock 1989; line)
  *     pan_hamrock_min         H_min = 1.714 W'^-0.128 U^0.694 G^0.568   (Pan & Hamrock 1989; line)
  *     dowson_toyoda           H_c   = 3.06  U^0.69 G^0.56 W'^-0.10      (Dowson & Toyoda 1979; line)
@@ -22,7 +22,7 @@
  * k = 1.03 (R_y/R_x)^0.64, mc_film_ellipticity).
  *
  * The default, pan_hamrock_central, stands for the paper's mean film thickness h_EHD: the central
- * film is the best proxy for the mean gap over the Hertz zone (dossier §4.2, an open choice there).
+ * film is the best proxy for the mean gap over the Hertz zone (theory.md §10.2, an open choice there).
  * The fits hold in the piezoviscous-elastic regime; at alpha = 0 every one of them degenerates to
  * h = 0 (G^x), which is not the isoviscous film, so alpha = 0 is refused.
  */

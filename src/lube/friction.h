@@ -1,6 +1,6 @@
 /* friction.h - the load and area split between solid contact and lubricant of a lubricated
  * rough contact, the mean pocket height, and the mixed-friction coefficient
- * (Mevissen, Lopenhaus & Bergs 2019; dossier plastic-lubrication §5.2).
+ * (Mevissen, Lopenhaus & Bergs 2019; theory.md §11.3).
  *
  * From the pressure p (Pa) and gap g (m) of a contact solve with lubricant pressure p_lub on n
  * cells of area dA (nominal area A_nom = n dA) under the nominal load F_N:
@@ -12,7 +12,7 @@
  *     V        = dA sum_i g_i                         (pocket volume; g = 0 in contact)
  *     h_pocket = V / (A_nom - A_C)                    (mean lubricant pocket height)
  *     mu       = psi mu_solid + (1 - psi) mu_fluid,   psi = psi_load (default) | psi_area
- * Which psi the paper mixes with is not confirmed (dossier §9, point 4): both are kept. The
+ * Which psi the paper mixes with is not confirmed (theory.md §15, point 4): both are kept. The
  * excess-pressure form dA sum_C (p_i - p_lub) / F_N is reported as an alternative.
  */
 #ifndef MC_LUBE_FRICTION_H

@@ -1,6 +1,6 @@
 /* volume.h - the lubricant volume equilibrium: the lubricant pressure p_lub at which the pocket
  * volume of the loaded rough gap equals the volume the hydrodynamics conveys into the contact
- * (Mevissen et al. 2025; dossier plastic-lubrication §5.1).
+ * (Mevissen et al. 2025; theory.md §11.1).
  *
  * On the grid (n cells of area dA, nominal area A_nom = n dA) under the nominal load F_N (force
  * control; p_nominal = F_N / A_nom), each p_lub defines a contact problem (contact.h) with the

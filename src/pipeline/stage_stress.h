@@ -41,7 +41,7 @@
  * a prescribed pressure. R = sqrt(A / pi) of a patch of area A; a patch closed around a periodic
  * axis (a band, as a line contact) has R = A / (2 L), its mean half-width across the period L
  * (closed around both: A / (2 max(Lx, Ly))). A Hertz contact gives R = a to the pixelation: 3a
- * holds the von Mises maximum (0.48a) and its decay to ~17 % of it (elastic.md 4.1). With no
+ * holds the von Mises maximum (0.48a) and its decay to ~17 % of it (theory.md §6.1). With no
  * contact cell the loaded cells count; with no load at all R is one cell. */
 #define MC_STRESS_DEPTH_RADII 3.0
 
@@ -61,7 +61,7 @@ int mc_stress_find_patches(const mc_grid *g, const double *p, double threshold,
  * or from the contact when depth_max is auto (MC_STRESS_DEPTH_RADII; MC_ERR_INPUT if that depth
  * does not exceed depth_min); loads p = res->pressure and, when friction > 0, the traction
  * q_x = friction * p on the lower body (body 1, z >= 0) in +x: the counter body slides in +x
- * relative to it (elastic.md 0); Poisson ratio of body 1 (the stresses are body 1's; for body 2
+ * relative to it (theory.md §1); Poisson ratio of body 1 (the stresses are body 1's; for body 2
  * mirror the problem); kernel from the scene; backend scene->solver.backend; the grid of res (that of
  * the pressure); window from [stress] window (MC_STRESS_WINDOW_CR: cells outside a layer's window
  * hold 0). Fills res->nlayers, depths, stress[6], von_mises, hydrostatic, tresca (invariants.h),

@@ -1,5 +1,5 @@
 /* eigen_op.h - the two eigenstrain operators of the semi-analytical elastic-plastic method
- * (Jacq et al. 2002; dossier plastic-lubrication §2.1-§2.3), each with two backends behind one
+ * (Jacq et al. 2002; theory.md §9.1-§8.2), each with two backends behind one
  * interface, chosen by the mc_backend of operator/operator.h:
  *   direct - plain O(N^2) summation over the kernel tables, written for clarity: the reference;
  *   fft    - DC-FFT (zero padding along both lateral axes, Liu, Wang & Liu 2000) over the SAME
@@ -16,7 +16,7 @@
  *
  * Lateral axes must be free: a periodic axis is refused with MC_ERR_LIMIT (the residual fields of
  * a local plastic zone are not periodic; a periodic variant would have to treat the k = 0 mode
- * explicitly, dossier §2.2 "pitfall").
+ * explicitly, theory.md §8.1 "pitfall").
  *
  * Objects are planned once and applied many times; apply never allocates and cannot fail; one
  * thread at a time per object (it owns its workspace); create from one thread (FFTW's planner).
@@ -57,7 +57,7 @@ static inline mc_eigen_volume mc_eigen_volume_full(const mc_grid *g, int nz, dou
     return v;
 }
 
-/* ---- eigenstrain -> surface normal residual displacement (dossier §2.2) --------------------- */
+/* ---- eigenstrain -> surface normal residual displacement (theory.md §8.1) --------------------- */
 
 typedef struct mc_eigen_disp mc_eigen_disp;
 
@@ -82,7 +82,7 @@ size_t mc_eigen_disp_bytes(const mc_eigen_disp *op);
 
 void mc_eigen_disp_destroy(mc_eigen_disp **op); /* frees and sets *op = NULL; NULL-safe */
 
-/* ---- eigenstrain -> residual stress at the cuboid centres (dossier §2.3) -------------------- */
+/* ---- eigenstrain -> residual stress at the cuboid centres (theory.md §8.2) -------------------- */
 
 typedef struct mc_eigen_stress mc_eigen_stress;
 

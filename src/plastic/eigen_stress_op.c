@@ -1,6 +1,6 @@
 /* eigen_stress_op.c - eigenstrain -> residual stress at the cuboid centres: the object, its
  * kernel tables and the direct backend (see eigen_op.h; Chiu 1977, 1978; Jacq et al. 2002;
- * dossier plastic-lubrication §2.3). The fft backend is eigen_stress_fft.c.
+ * theory.md §8.2). The fft backend is eigen_stress_fft.c.
  *
  * With M_ic(d, m) the infinite-space kernel (row i, column c, divided by 2G) of a cuboid seen at
  * the lateral offset d (cells, field minus source) and depth offset m dz, the stress of layer k

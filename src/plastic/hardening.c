@@ -9,7 +9,7 @@
 
 #include "core/alloc.h"
 
-#define SWIFT_MICRO 1e6     /* p in micro-strain in the Swift law (dossier §1.2) */
+#define SWIFT_MICRO 1e6     /* p in micro-strain in the Swift law (theory.md §7.2) */
 #define LINE_MAX_CHARS 1024 /* longest line of a table file */
 
 int mc_hardening_linear_from_tangent(double E, double Et, double *H, mc_error *err)

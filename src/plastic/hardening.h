@@ -1,7 +1,7 @@
 /* hardening.h - isotropic hardening laws sigma_y(p) of J2 plasticity: the yield stress as a
  * function of the accumulated equivalent plastic strain p = integral sqrt(2/3 deps_p : deps_p)
  * (dimensionless, >= 0), and its slope H(p) = d sigma_y / dp (the plastic modulus). Pure math on
- * a small value object; no scene knowledge. (Dossier plastic-lubrication §1.2.)
+ * a small value object; no scene knowledge. (Dossier theory.md §7.2.)
  *
  * Laws, all stresses in Pa:
  *   PERFECT  sigma_y = Y0                                   H = 0
@@ -50,7 +50,7 @@ typedef struct mc_hardening {
 
 /* Plastic modulus of a linear law from the uniaxial tangent modulus Et of the stress-strain
  * curve after yield: *H = E Et / (E - Et). (In uniaxial stress the elastic and plastic
- * compliances add, 1/Et = 1/E + 1/H; dossier §1.2.) Needs finite E > 0 and 0 <= Et < E
+ * compliances add, 1/Et = 1/E + 1/H; theory.md §7.2.) Needs finite E > 0 and 0 <= Et < E
  * (Et = 0 gives H = 0, perfect plasticity); otherwise MC_ERR_INPUT naming the quantity. */
 int mc_hardening_linear_from_tangent(double E, double Et, double *H, mc_error *err);
 

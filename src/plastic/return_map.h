@@ -1,6 +1,6 @@
 /* return_map.h - J2 (von Mises) plasticity with isotropic hardening at one material point: the
  * radial return of a trial stress (backward Euler, Simo & Hughes 1998 Box 3.2; dossier
- * plastic-lubrication §1.1, §1.3) and a strain-driven step built on it. Pure numerics, no
+ * theory.md §7.1, §7.3) and a strain-driven step built on it. Pure numerics, no
  * allocation, no scene knowledge; thread-safe (no state).
  *
  * Tensors are double[6] in the order xx, yy, zz, xy, yz, xz (MC_SXX... of kernels/kernel.h).
@@ -16,7 +16,7 @@
  *   sqrt(2/3 deps_p:deps_p) = dp.
  *
  * In the semi-analytical contact loop the trial stress is sigma_e,n+1 + sigma_r(eps_p,n +
- * deps_p) + 2 G deps_p (dossier §1.4); that fixed point belongs to the caller.
+ * deps_p) + 2 G deps_p (theory.md §7.5); that fixed point belongs to the caller.
  */
 #ifndef MC_RETURN_MAP_H
 #define MC_RETURN_MAP_H

@@ -1,4 +1,4 @@
-/* hertz.c - analytic reference solutions of half-space contact (see hertz.h, elastic.md 4). */
+/* hertz.c - analytic reference solutions of half-space contact (see hertz.h, theory.md §6). */
 #include "reference/hertz.h"
 
 #include <math.h>
@@ -106,7 +106,7 @@ void mc_hertz_point_surface(double rho, double nu, double *sr, double *st, doubl
     }
 }
 
-/* Hamilton's auxiliary quantities (elastic.md 4.2), lengths / a:
+/* Hamilton's auxiliary quantities (theory.md §6.2), lengths / a:
  * A = r^2 + z^2 - 1, S = sqrt(A^2 + 4 z^2), M = sqrt((S+A)/2), N = sqrt((S-A)/2).
  * M^2 is Huber's u, and M N = z. The smaller of M, N is taken as z / (the larger) so that neither
  * loses digits to the cancellation S - |A| (z -> 0 inside or outside the contact circle). */
@@ -145,7 +145,7 @@ void mc_hertz_huber(double r, double z, double nu, double *sr, double *st, doubl
     double w3S = w * w * w * h.invS;
     double m = 1.0 - 2.0 * nu;
     *sr = m / 3.0 * k + w3S + w * ((1.0 - nu) * u / (1.0 + u) + (1.0 + nu) * sqrtu_atan - 2.0);
-    /* the MINUS in front of the second term (elastic.md 4.2, box at the top) */
+    /* the MINUS in front of the second term (theory.md §6.2, box at the top) */
     *st = -m / 3.0 * k - w * (2.0 * nu + (1.0 - nu) * u / (1.0 + u) - (1.0 + nu) * sqrtu_atan);
     *sz = -w3S;
     /* r z^2/(u^2+z^2) sqrt(u)/(1+u) = r M N^2 / (S (1 + M^2)) */
@@ -328,7 +328,7 @@ void mc_hertz_hamilton_normal(double x, double y, double z, double nu, double s[
     s[MC_SYZ] = -z * y * (N * iS - zH);
 }
 
-/* The tangential field written as (elastic.md 4.2 with x^2 = c2 t, y^2 = s2 t):
+/* The tangential field written as (theory.md §6.2 with x^2 = c2 t, y^2 = s2 t):
  *   sxx = x(-(nu/4+1) phi + Kxx/t^2)     syy = x(-(3nu/4) phi + Kyy/t^2)    szz = x Kzz/t
  *   sxy = y((nu/2-1) phi/2 + Kxy/t^2)    sxz = (3/2) z phi + Kxz/t          syz = cx cy Kyz/t */
 typedef struct {
@@ -497,7 +497,7 @@ double mc_hertz_line_pressure(const mc_hertz_line *h, double x)
 
 /* ---- Hertz line contact, normalised fields -------------------------------------------------- */
 
-/* McEwen's m, n (elastic.md 4.3): m^2 = (Q + B)/2, n^2 = (Q - B)/2, Q = sqrt(B^2 + 4x^2z^2),
+/* McEwen's m, n (theory.md §6.3): m^2 = (Q + B)/2, n^2 = (Q - B)/2, Q = sqrt(B^2 + 4x^2z^2),
  * B = 1 - x^2 + z^2; m n = |x| z, so the smaller one is formed as |x| z / (the larger) to avoid
  * the cancellation Q - |B|. sign(n) = sign(x). */
 static void mcewen_mn(double x, double z, double *m, double *n)

@@ -3,7 +3,7 @@
  * uniform strip load and the Flamant line loads. Pure math: no state, no allocation, no output.
  * Used alike by the unit tests, the verification suites and the benchmarks.
  *
- * Conventions (shared/physics/elastic.md section 0): z >= 0 is the depth into the body; pressure
+ * Conventions (theory.md §1): z >= 0 is the depth into the body; pressure
  * is compressive positive; tractions act on the body in +x; stresses are tension positive; u_z > 0
  * is into the body. E* is the combined modulus, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2; R the reduced
  * radius, 1/R = 1/R1 + 1/R2.
@@ -23,7 +23,7 @@
 
 #include "core/error.h"
 
-/* ---- Hertz point contact (sphere on flat), SI; Johnson (1985) ch. 4; elastic.md 4.1 -------- */
+/* ---- Hertz point contact (sphere on flat), SI; Johnson (1985) ch. 4; theory.md §6.1 -------- */
 
 typedef struct {
     double R;     /* reduced radius, m */
@@ -46,8 +46,8 @@ int mc_hertz_point_from_approach(double R, double Estar, double delta, mc_hertz_
 double mc_hertz_point_pressure(const mc_hertz_point *h, double r);
 
 /* Combined normal surface displacement of both bodies (into the bodies), m, at radius r (m) under
- * the Hertz pressure (Johnson 1985 ch. 3, Hertz pressure on a circle; the outside branch is not in
- * elastic.md and is checked against quadrature of the Boussinesq solution in tests/test_hertz.c):
+ * the Hertz pressure (Johnson 1985 ch. 3, Hertz pressure on a circle; the outside branch, docs/theory.md
+ * §6.1, is checked against quadrature of the Boussinesq solution in tests/test_hertz.c):
  *   |r| <= a: u_z = pi p0 (2a^2 - r^2) / (4 a E*)      (so u_z(0) = delta, u_z(0)-u_z(r) = r^2/2R)
  *   |r| >  a: u_z = p0 / (2 a E*) [ (2a^2 - r^2) asin(a/r) + a sqrt(r^2 - a^2) ]
  * The two branches meet continuously (with continuous slope) at r = a. For r >= 2a the outside
@@ -57,25 +57,25 @@ double mc_hertz_point_uz(const mc_hertz_point *h, double r);
 
 /* ---- Hertz point contact: stress fields, NORMALISED (lengths / a, stresses / p0) ------------ */
 
-/* Stresses on the axis r = 0 at depth zeta = z/a >= 0 (elastic.md 4.1):
+/* Stresses on the axis r = 0 at depth zeta = z/a >= 0 (theory.md §6.1):
  *   sz = -1/(1+zeta^2),  sr = stheta = -(1+nu)[1 - zeta atan(1/zeta)] + 1/(2(1+zeta^2)). */
 void mc_hertz_point_axis(double zeta, double nu, double *sr, double *sz);
 
-/* Surface stresses (z = 0) at rho = r/a >= 0 (elastic.md 4.1): radial, hoop and normal.
+/* Surface stresses (z = 0) at rho = r/a >= 0 (theory.md §6.1): radial, hoop and normal.
  * rho < 1: sr = (1-2nu)/3 (1/rho^2)[1-(1-rho^2)^(3/2)] - sqrt(1-rho^2),
  *          st = -(1-2nu)/3 (1/rho^2)[1-(1-rho^2)^(3/2)] - 2 nu sqrt(1-rho^2), sz = -sqrt(1-rho^2);
  * rho >= 1: sr = -st = (1-2nu)/(3 rho^2), sz = 0. Evaluated without cancellation at rho -> 0. */
 void mc_hertz_point_surface(double rho, double nu, double *sr, double *st, double *sz);
 
 /* Huber (1904) full field in cylindrical coordinates at (r, z), r >= 0, z >= 0: sr, stheta, sz,
- * trz (elastic.md 4.2, with the MINUS sign in front of the second term of stheta). u is the root
+ * trz (theory.md §6.2, with the MINUS sign in front of the second term of stheta). u is the root
  * of r^2/(1+u) + z^2/u = 1; the (1/r^2)(1 - (z/sqrt u)^3) term is evaluated in a form exact at
  * r = 0 (limit 3/(2(1+z^2))), so the function is smooth across the axis and valid at z = 0.
  * At the contact edge z = 0, r = 1 the surface limit is returned. */
 void mc_hertz_huber(double r, double z, double nu, double *sr, double *st, double *sz, double *trz);
 
 /* Hamilton (1983) Cartesian field under the Hertz pressure p0 sqrt(1 - r^2) (stresses / p0) at
- * (x, y, z), z >= 0 (elastic.md 4.2). The axis r = 0 uses the stated limits. Hamilton's brackets
+ * (x, y, z), z >= 0 (theory.md §6.2). The axis r = 0 uses the stated limits. Hamilton's brackets
  * divided by r^2 (normal) and r^4 (tangential) cancel near the axis (as eps/r^2, eps/r^3); for
  * r^2 < (1 + z^2)/16 they are evaluated as power series in r^2 instead, so the field is smooth up
  * to the axis. Absolute accuracy (against 50-digit arithmetic): <= 2e-15 for z <= 10, growing as
@@ -84,7 +84,7 @@ void mc_hertz_huber(double r, double z, double nu, double *sr, double *st, doubl
 void mc_hertz_hamilton_normal(double x, double y, double z, double nu, double s[6]);
 
 /* Hamilton (1983) Cartesian field under the sliding traction q0 sqrt(1 - r^2) acting on the body
- * in +x (stresses / q0) at (x, y, z), z >= 0 (elastic.md 4.2); axis, accuracy and edge as above. */
+ * in +x (stresses / q0) at (x, y, z), z >= 0 (theory.md §6.2); axis, accuracy and edge as above. */
 void mc_hertz_hamilton_tangential(double x, double y, double z, double nu, double s[6]);
 
 /* Sliding Hertz contact: pressure p plus traction q = mu p in +x, stresses / p0:
@@ -110,19 +110,19 @@ double mc_hertz_line_pressure(const mc_hertz_line *h, double x);
 
 /* ---- Hertz line contact: stress fields, NORMALISED (lengths / b, stresses / p0 or q0) ------- */
 
-/* McEwen (1949) field under the pressure p0 sqrt(1 - x^2) at (x, z), z >= 0 (elastic.md 4.3),
+/* McEwen (1949) field under the pressure p0 sqrt(1 - x^2) at (x, z), z >= 0 (theory.md §6.3),
  * plane strain. At the contact edge (z = 0, |x| = 1) the (continuous) surface limit is returned. */
 void mc_mcewen_normal(double x, double z, double nu, double s[6]);
 
 /* Field under the traction q0 sqrt(1 - x^2) on the body in +x (Smith & Liu 1953 form of
- * McEwen's solution, elastic.md 4.3), plane strain; on the surface inside the contact
+ * McEwen's solution, theory.md §6.3), plane strain; on the surface inside the contact
  * sxx = -2x, sxz = -sqrt(1 - x^2). */
 void mc_mcewen_tangential(double x, double z, double nu, double s[6]);
 
 /* Sliding line contact: pressure p plus traction q = mu p in +x, stresses / p0. */
 void mc_hertz_line_sliding(double x, double z, double nu, double mu, double s[6]);
 
-/* ---- plane-strain line loads (Johnson 1985 ch. 2; elastic.md 4.4) --------------------------- */
+/* ---- plane-strain line loads (Johnson 1985 ch. 2; theory.md §6.4) --------------------------- */
 
 /* Uniform pressure p on the strip -a <= x <= a (plane strain), stresses / p at (x, z), z >= 0;
  * x, z, a in one length unit. With theta_pm = atan2(x +- a, z) (angles of the strip edges seen

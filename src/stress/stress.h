@@ -1,14 +1,14 @@
-/* stress.h - subsurface stress on depth layers from surface loads (elastic.md 3, 7).
+/* stress.h - subsurface stress on depth layers from surface loads (theory.md §5, §5.7).
  *
  * For each depth z_k the six stress components (tension positive, order of kernel.h: xx, yy, zz,
  * xy, yz, xz) at the cell centres (x_i, y_j, z_k) are convolutions of the surface loads with
  * influence kernels:
  *     sigma_c(z_k) = K_c^p(z_k) (*) p + K_c^qx(z_k) (*) q_x + K_c^qy(z_k) (*) q_y
- * Kernels (per unit load on one cell, offsets FIELD minus SOURCE, elastic.md 5.1):
- *   patch - uniform load on the dx x dy rectangle (Love 1929; elastic.md 3.3, 3.4): exact for
+ * Kernels (per unit load on one cell, offsets FIELD minus SOURCE, theory.md §3.1):
+ *   patch - uniform load on the dx x dy rectangle (Love 1929; theory.md §5.3, §5.4): exact for
  *           piecewise-constant loads at every depth, including z = 0. Tables come from the corner
  *           functions of kernel.h evaluated once per corner of the offset lattice and differenced
- *           (elastic.md 3.5);
+ *           (theory.md §5.5);
  *   point - a concentrated force p dx dy at the cell centre (Boussinesq / Cerruti, 3.1, 3.2):
  *           the "minimum evaluation depth" artefact of 3.6, kept for that comparison; z > 0 only.
  * Backends as in operator.h (the direct backend's O(N^2) sums or DC-FFT over the same tables, so
@@ -39,7 +39,7 @@
  *     sigma_yz keep the equilibrium values (mean sigma_zz = -mean p, mean sigma_xz = -mean q_x,
  *     mean sigma_yz = -mean q_y at every depth), while the in-plane xx, yy, xy have mean 0: their
  *     image sum converges only conditionally, and the in-plane mean stress of a periodic cell is
- *     set by the macro contact, not by the cell (elastic.md 5.3). Add it outside if needed.
+ *     set by the macro contact, not by the cell (theory.md §3.6). Add it outside if needed.
  */
 #ifndef MC_STRESS_H
 #define MC_STRESS_H
@@ -77,7 +77,7 @@ int mc_stress_tables_build(mc_stress_tables *tb, int load, double z, double *con
                            mc_error *err);
 
 /* Parity of table c (kernel.h order) of load (MC_TRACTION_P, _QX or _QY): bit 0 set when the
- * kernel is odd in the x offset, bit 1 when odd in the y offset (kernel.h, elastic.md 3.3, 3.4); -1 for a
+ * kernel is odd in the x offset, bit 1 when odd in the y offset (kernel.h, theory.md §5.3, §5.4); -1 for a
  * bad load or component. */
 int mc_stress_parity(int load, int c);
 

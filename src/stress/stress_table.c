@@ -19,7 +19,7 @@
  *
  * Evaluation streams over lines Y = const ("rows"): a row is the x stencil of every x entry
  * applied to the corner function on that line, evaluated once per distinct X (the corner lattice
- * of elastic.md 3.5 plus the strip points). Table rows are split into OpenMP blocks of consecutive
+ * of theory.md §5.5 plus the strip points). Table rows are split into OpenMP blocks of consecutive
  * y offsets; a block computes each distinct Y its stencils need once (the upper corner of o is the
  * lower corner of o + 1, strip points are shared by neighbours) and adds the row, weighted, to
  * every table row of the block whose stencil holds it.
@@ -100,7 +100,7 @@ struct mc_stress_tables {
  * effect near the surface, the other the smoothness of the far field); M is the smallest with
  * err <= TAIL_TARGET, and at least 2, so that the strip stencil stays clear of the singular lines
  * X = 0, Y = 0 at z = 0. Deep tables of large periods reach the round-off floor of the corner
- * differences first (eps (z/d)^2, elastic.md 3.5). */
+ * differences first (eps (z/d)^2, theory.md §5.5). */
 #define TAIL_ORDER 6.6
 #define TAIL_SURF 7e-7
 #define TAIL_DEPTH 4e-6

@@ -1,5 +1,5 @@
 /* roughness.c - all roughness parameters of a map: cut-off choice and clipping, warnings, the
- * name table (see roughness.h; dossier plastic-lubrication §6). */
+ * name table (see roughness.h; theory.md §13). */
 #include "surface/roughness.h"
 
 #include <math.h>

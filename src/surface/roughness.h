@@ -5,7 +5,7 @@
  * levelled height map (form removal is the caller's: level.h). Heights z are ny x nx, m,
  * row-major with x fastest; profiles are the rows (along x, the rolling direction); an optional
  * mask valid[] (1 = measured) excludes points from every sum (NULL: all valid). SI units in and
- * out; material ratios and Sdr in %. (Dossier plastic-lubrication §6.) */
+ * out; material ratios and Sdr in %. (Dossier theory.md §13.) */
 #ifndef MC_ROUGHNESS_H
 #define MC_ROUGHNESS_H
 
@@ -41,7 +41,7 @@ int mc_roughness_mean_line(const double *z, const unsigned char *valid, int nx, 
 /* ---- ISO 4288 cut-off choice ------------------------------------------------------------- */
 
 /* Cut-off lambda_c (m) for a non-periodic profile of the given Ra or Rz (m), from the table of
- * ISO 4288 (dossier §6.2, pl_iso4288_cutoffs.csv): Ra in (0.006, 0.02] um -> 0.08 mm,
+ * ISO 4288 (theory.md §13.2, pl_iso4288_cutoffs.csv): Ra in (0.006, 0.02] um -> 0.08 mm,
  * (0.02, 0.1] -> 0.25 mm, (0.1, 2] -> 0.8 mm, (2, 10] -> 2.5 mm, (10, 80] -> 8 mm; Rz in
  * (0.025, 0.1], (0.1, 0.5], (0.5, 10], (10, 50], (50, 200] um likewise. Upper bounds are
  * inclusive, compared with a relative slack of 1e-9 so that a value written as the table's
@@ -107,7 +107,7 @@ typedef struct {
     char warning[512];        /* "" or one line saying what deviates from the standard */
 } mc_roughness_params;
 
-/* Every parameter of a height map (contract above; dossier plastic-lubrication §6).
+/* Every parameter of a height map (contract above; theory.md §13).
  *
  * Profiles (rows along x, length L = nx dx): with the filter, the roughness profile is z - w
  * (mc_roughness_mean_line); non-periodic rows lose halfwidth samples at each end (about

@@ -1,5 +1,5 @@
 /* roughness_areal.c - ISO 25178-2 areal parameters (see roughness.h; dossier
- * plastic-lubrication §6.5). */
+ * theory.md §13.5). */
 #include <math.h>
 #include <string.h>
 

@@ -1,5 +1,5 @@
 /* roughness_filter.c - ISO 16610-21 Gaussian profile filter and ISO 4288 cut-off table
- * (see roughness.h; dossier plastic-lubrication §6.1-6.2). */
+ * (see roughness.h; theory.md §13.1-§13.2). */
 #include "surface/roughness.h"
 
 #include <fftw3.h>

@@ -1,5 +1,5 @@
 /* roughness_profile.c - ISO 4287 profile parameters and the ISO 13565-2 Rk family
- * (see roughness.h; dossier plastic-lubrication §6.3-6.4). */
+ * (see roughness.h; theory.md §13.3-§13.4). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -75,7 +75,7 @@ void mc_surface_shape(const mc_grid *g, const mc_shape_spec *s, double *h);
 
 /* Roughness heights (ny*nx), m, for the roughness spec (zeros for none).
  *
- * Synthetic surfaces use the spectral method (plastic-lubrication.md 7): standard normal white
+ * Synthetic surfaces use the spectral method (theory.md §14.1): standard normal white
  * noise drawn row by row from mc_rng(seed) -> FFTW r2c (FFTW_ESTIMATE) -> times sqrt(C(q)) ->
  * c2r, on the ny x nx grid (so they are periodic by construction, whatever the grid's
  * periodicity), then the mean is removed (the q = 0 mode is zeroed) and the field is scaled.
