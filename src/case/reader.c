@@ -20,6 +20,7 @@
 
 #include "case/keys.h"
 #include "core/alloc.h"
+#include "io/file.h"
 #include "surface/surface.h"
 
 #define MAX_FILE_BYTES (16L << 20) /* a case file is a few kB; refuse to slurp devices */
@@ -745,40 +746,11 @@ int mc_case_parse_text(const char *text, const char *name, const char *base_dir,
 int mc_case_load(const char *path, int noverrides, const char *const *overrides, mc_scene *scene,
                  mc_error *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return mc_fail(err, MC_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-    size_t cap = 4096, n = 0;
-    char *text = mc_malloc(cap);
-    int rc = text ? MC_OK : mc_fail(err, MC_ERR_NOMEM, "%s: out of memory", path);
-    while (rc == MC_OK) {
-        if (n + 1 == cap) {
-            if (cap >= (size_t)MAX_FILE_BYTES) {
-                rc = mc_fail(err, MC_ERR_INPUT, "%s: larger than %ld MiB; not a case file", path,
-                             MAX_FILE_BYTES >> 20);
-                break;
-            }
-            char *t = mc_malloc(2 * cap);
-            if (!t) {
-                rc = mc_fail(err, MC_ERR_NOMEM, "%s: out of memory", path);
-                break;
-            }
-            memcpy(t, text, n);
-            mc_free(text);
-            text = t;
-            cap *= 2;
-        }
-        size_t got = fread(text + n, 1, cap - 1 - n, f);
-        n += got;
-        if (got == 0) {
-            if (ferror(f))
-                rc = mc_fail(err, MC_ERR_IO, "%s: cannot read: %s", path, strerror(errno));
-            break;
-        }
-    }
-    fclose(f);
+    unsigned char *buf = NULL;
+    size_t n = 0;
+    int rc = mc_file_read_limited(path, (size_t)MAX_FILE_BYTES, "a case file", &buf, &n, err);
+    char *text = (char *)buf;
     if (rc == MC_OK) {
-        text[n] = '\0';
         const char *nul = memchr(text, '\0', n);
         if (nul) {
             int line = 1;

@@ -14,6 +14,7 @@
 #include <stddef.h>
 
 #include "core/error.h"
+#include "io/file.h" /* mc_file_read, which used to live here */
 
 /* Read a 2-D little-endian float64 C-order array ("<f8", fortran_order False). Fills *rows (ny),
  * *cols (nx) and *data (mc_malloc'ed; caller frees with mc_free). 1-D arrays are read as 1 x n.
@@ -42,9 +43,5 @@ int mc_npy_parse(const unsigned char *buf, size_t len, const char *what, double 
 int mc_npy_parse_any(const unsigned char *buf, size_t len, const char *what, double **data,
                      int *rows, int *cols, mc_error *err);
 
-/* Read a whole file into memory (also used by heightmap.c). *buf is mc_malloc'ed with len + 1
- * bytes, the last one a NUL not counted in *len. MC_ERR_IO naming path and strerror, or
- * MC_ERR_NOMEM. */
-int mc_file_read(const char *path, unsigned char **buf, size_t *len, mc_error *err);
 
 #endif

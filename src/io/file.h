@@ -1,0 +1,19 @@
+/* file.h - whole files into memory: the one file reader of the library (case files, height
+ * maps, .npy, measured surfaces). */
+#ifndef MC_FILE_H
+#define MC_FILE_H
+
+#include <stddef.h>
+
+#include "core/error.h"
+
+/* Read a whole file into memory. *buf is mc_malloc'ed with len + 1 bytes, the last one a NUL not
+ * counted in *len. MC_ERR_IO naming path and strerror, or MC_ERR_NOMEM. */
+int mc_file_read(const char *path, unsigned char **buf, size_t *len, mc_error *err);
+
+/* The same with a size limit (0 = none): a larger file, or a device that never ends, is
+ * MC_ERR_INPUT "PATH: larger than N MiB; not WHAT" (what, e.g. "a case file"). */
+int mc_file_read_limited(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
+                         size_t *len, mc_error *err);
+
+#endif
