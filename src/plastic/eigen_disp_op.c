@@ -1,6 +1,6 @@
 /* eigen_disp_op.c - eigenstrain -> surface normal residual displacement, direct and fft backends
- * over the same quadrant tables (see eigen_op.h; Jacq et al. 2002; dossier plastic-lubrication
- * §2.2).
+ * over the same quadrant tables (see eigen_op.h; Jacq et al. 2002;
+ * docs/theory.md §8.1).
  *
  *   u_z(f) = sum over source layers k, columns c and window cells s of T_kc(f - s) eps_c(k, s),
  *   T_kc(d) = mc_eigen_surface_uz of the cuboid of layer k centred at -d (source minus field),

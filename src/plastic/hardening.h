@@ -11,7 +11,7 @@
  *            micro-strain. B (Pa) is the stress scale, C (dimensionless, micro-strain) the
  *            pre-strain offset that sets the initial yield B C^n, and n the hardening exponent.
  *            It is the classical Swift law K (eps0 + p)^n with K = B 1e6^n, eps0 = 1e-6 C.
- *            AISI 52100 (dossier, tagged "remembered"): B = 1280 MPa, C = 4, n = 0.095, giving
+ *            AISI 52100 (remembered values, theory.md §7.2 [S]): B = 1280 MPa, C = 4, n = 0.095, giving
  *            sigma_y(0) = 1460 MPa. Dropping the 1e6 would make the law nearly perfect.
  *   TABLE    piecewise linear through rows (eps_p[i], sigma_y[i]); below the first row and
  *            beyond the last one sigma_y is constant (slope 0: perfectly plastic there).

@@ -1,5 +1,5 @@
 /* return_map.h - J2 (von Mises) plasticity with isotropic hardening at one material point: the
- * radial return of a trial stress (backward Euler, Simo & Hughes 1998 Box 3.2; dossier
+ * radial return of a trial stress (backward Euler, Simo & Hughes 1998 Box 3.2;
  * theory.md §7.1, §7.3) and a strain-driven step built on it. Pure numerics, no
  * allocation, no scene knowledge; thread-safe (no state).
  *

@@ -30,7 +30,7 @@ int mc_roughness_filter_halfwidth(double d, double lambda_c);
  *    mc_roughness_filter_halfwidth samples from both ends see the whole kernel; ISO discards the
  *    others (mc_roughness_compute does).
  *  - periodic = 1: the row is one period; each harmonic is multiplied by the exact transmission
- *    (the FFT form of the dossier, nothing truncated or discarded), with the same mask rule.
+ *    (the FFT form, theory.md §13.1, nothing truncated or discarded), with the same mask rule.
  * w at an invalid point with no valid point within reach is 0. Computed by FFTW (plans made
  * here, FFTW_ESTIMATE, one thread; FFTW's planner is not thread-safe, so call from one thread,
  * as mc_roughness_compute too). Errors: MC_ERR_INPUT (sizes, spacing, cut-off),

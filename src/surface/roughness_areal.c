@@ -1,4 +1,4 @@
-/* roughness_areal.c - ISO 25178-2 areal parameters (see roughness.h; dossier
+/* roughness_areal.c - ISO 25178-2 areal parameters (see roughness.h;
  * theory.md §13.5). */
 #include <math.h>
 #include <string.h>
