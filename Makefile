@@ -4,6 +4,8 @@
 #   make check   install missing packages, build, unit tests + fast verification suites
 #   make verify  all verification suites (writes reports/<suite>/)
 #   make bench   benchmark report (reports/bench/)
+#   make reports every verification report and the paper-figure gallery reports/index.md
+#   make bless   rewrite the regression baselines verify/baselines/ (SUITES="a b" for some)
 #   make check-sanitize   unit tests + fast suites under AddressSanitizer and UBSan
 #   make fuzz FUZZ_SECONDS=N   libFuzzer targets (clang)
 #
@@ -119,7 +121,15 @@ bench: deps
 	@$(MAKE) --no-print-directory all
 	./$(PROGRAM) bench --reports reports
 
-reports: verify bench
+reports: deps
+	@$(MAKE) --no-print-directory all
+	./$(PROGRAM) verify --all --reports reports
+
+SUITES ?= --all
+bless: deps
+	@$(MAKE) --no-print-directory all
+	./$(PROGRAM) verify --fast --bless $(SUITES) --reports $(BUILD)/reports-fast
+	./$(PROGRAM) verify --bless $(SUITES) --reports reports
 
 # the measured-surface example of cases/measured.ini (see tools/make_sample_x3p.c)
 sample-x3p: $(LIBRARY)

@@ -1,4 +1,6 @@
 /* suites.c - the registry of verification suites, in report order. */
+#include <string.h>
+
 #include "harness.h"
 #include "suites.h"
 
@@ -18,10 +20,31 @@ static const vf_suite all[] = {
     {.name = "stability",
      .title = "Numerical stability: extreme scenes x backends x solvers",
      .run = vf_suite_stability},
+    {.name = "lubricant_bc",
+     .title = "Lubricant boundary condition p >= p_lub on a wavy surface (paper Fig. 3-1)",
+     .run = vf_suite_lubricant_bc},
 };
 
 const vf_suite *vf_suites(int *count)
 {
     *count = (int)(sizeof all / sizeof all[0]);
     return all;
+}
+
+/* Regression tiers by check id (harness.h vf_suite_tiers), for suites whose rows do not declare
+ * them with vf_regress. */
+static const struct {
+    const char *suite, *tiers;
+} tiers[] = {
+    /* stopping residuals, round-off consistency and differences of two converged solves: the
+     * last digits of another FFT plan move them by up to 0.2 of their tolerance (baseline.c) */
+    {"stability", "*.kkt=noise *.consistent=noise *.similar=noise"},
+};
+
+const char *vf_suite_tiers(const char *suite)
+{
+    for (size_t k = 0; k < sizeof tiers / sizeof tiers[0]; k++)
+        if (!strcmp(tiers[k].suite, suite))
+            return tiers[k].tiers;
+    return NULL;
 }

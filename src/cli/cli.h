@@ -4,7 +4,7 @@
 #define MC_CLI_H
 
 #define MC_USAGE_RUN "usage: microcontact run CASE.ini [--out DIR] [--set section.key=value]..."
-#define MC_USAGE_VERIFY "usage: microcontact verify [SUITE...] [--fast] [--reports DIR] [--list]"
+#define MC_USAGE_VERIFY "usage: microcontact verify [SUITE... | --all] [--fast] [--bless] [--reports DIR] [--baselines DIR | --no-baselines] [--index] [--list]"
 #define MC_USAGE_BENCH "usage: microcontact bench [--quick] [--reports DIR]"
 #define MC_USAGE_KEYS "usage: microcontact keys [SECTION]"
 

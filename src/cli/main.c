@@ -1,7 +1,7 @@
 /* main.c - the microcontact command line: the only code that prints and chooses exit codes.
  *
  *   microcontact run CASE.ini [--out DIR] [--set section.key=value]...
- *   microcontact verify [SUITE...] [--fast] [--reports DIR] [--list]
+ *   microcontact verify [SUITE... | --all] [--fast] [--bless] [--reports DIR] [--list]
  *   microcontact bench [--quick] [--reports DIR]
  *   microcontact keys [SECTION]
  *   microcontact help | --help | --version
@@ -30,7 +30,7 @@ static void usage(FILE *f)
             "        solve the scene of CASE.ini; results (summary.json, *.npy, *.csv) go to DIR\n"
             "        (default: [output] dir of the case, else out/<case name>); one run per\n"
             "        output directory at a time\n"
-            "  microcontact verify [SUITE...] [--fast] [--reports DIR] [--list]\n"
+            "  microcontact verify [SUITE... | --all] [--fast] [--bless] [--reports DIR] [--list]\n"
             "        run verification suites (all by default); reports in DIR/<suite>/report.md\n"
             "  microcontact bench [--quick] [--reports DIR]\n"
             "        benchmark report in DIR/bench/report.md\n"
