@@ -416,7 +416,7 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
     mc_qresult res = {0};
     double *q = s->q;
     if (p->control == MC_CONTROL_FORCE && qp.W <= 0) {
-        /* the lubricant alone carries the load: no solid contact (elastic.md 6.3) */
+        /* the lubricant alone carries the load: no solid contact (theory.md §4.2) */
         memset(q, 0, n * sizeof *q);
         memset(s->u, 0, n * sizeof *s->u);
         qp.delta = 0; /* contact onset: the lowest point of h~ */

@@ -9,7 +9,7 @@
  *     g >= 0 where p = p_lower,  g = 0 where p_lower < p < p_cap,  g <= 0 where p = p_cap
  *     A * sum(p) = W  (force control)   or   delta given (approach control)
  *
- * The lubricant pressure acts outside solid contact and deforms the surface too (elastic.md 6.3):
+ * The lubricant pressure acts outside solid contact and deforms the surface too (theory.md §4.2):
  * the solvers work on the excess q = p - p_lower with h~ = h + h_extra + K p_lower.
  *
  * Methods (a row each in a table; all use the operator through mc_operator_apply only, so they
@@ -19,15 +19,15 @@
  *                free cells; after Vollebregt, J. Comput. Phys. 257 (2014) 333-351) and a load
  *                projection; bounds by gradient projection with restart. With a pressure cap
  *                it runs nested: bound-constrained inner solves at fixed delta, delta from the
- *                load by a safeguarded secant (elastic.md 6.4, "robust nested variant").
- *   pk         - plain Polonsky & Keer (1999) as in elastic.md 6.2, with the lower bound of 6.3
- *                and the free-set cap variant of 6.4 (falls back to nested when the free set
+ *                load by a safeguarded secant (theory.md §4.5, "robust nested variant").
+ *   pk         - plain Polonsky & Keer (1999) as in theory.md §4.5, with the lower bound of §4.2
+ *                and the free-set cap variant of §4.5 (falls back to nested when the free set
  *                empties).
  *   active-set - the paper's algorithm (Mevissen et al. 2025, Fig. 3-1): dense influence matrix,
  *                GSL Cholesky solve of the free cells with the load equation eliminated by
  *                superposition (K + c 11' on periodic grids, where K alone is singular or
  *                indefinite; the load fixes the sum, c leaves the pressure unchanged), cells
- *                with p < p_lower leave, penetrating cells re-enter (plastic-lubrication.md 5);
+ *                with p < p_lower leave, penetrating cells re-enter (theory.md §11);
  *                O(N^3): refused above MC_ACTIVE_SET_MAX_CELLS.
  *
  * Restriction (cg): when the contact found by the start (coarse solution or warm start) has a

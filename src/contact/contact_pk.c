@@ -1,6 +1,6 @@
 /* contact_pk.c - plain Polonsky & Keer (1999) constrained conjugate gradients, as written in
- * elastic.md 6.2, on the excess pressure (lower bound, 6.3) and with the free-set cap variant
- * (6.4), which falls back to the nested solver when its free set empties. Kept unpreconditioned
+ * theory.md §4.5, on the excess pressure (lower bound, §4.2) and with the free-set cap variant
+ * (§4.5), which falls back to the nested solver when its free set empties. Kept unpreconditioned
  * on purpose: it is the baseline the preconditioned method is measured against. Two operator
  * applications per iteration (K q and K d), as in the original. The paper's g (gap), t
  * (direction), I_c (free set) and tau (step) are here g, d, S and alpha, the names of
@@ -22,7 +22,7 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
     int restart = 1, it = 0;
 
     if (force && cap) {
-        /* elastic.md 6.4: start from the converged uncapped solution */
+        /* theory.md §4.5: start from the converged uncapped solution */
         mc_qproblem free_ = *qp;
         free_.cap = NULL;
         mc_qresult r0 = {0};

@@ -34,7 +34,7 @@ struct conv_ops {
     void (*destroy)(mc_conv *c); /* frees what create took; safe on a half-built engine */
 };
 
-/* ---- fft: DC-FFT (elastic.md 5.1) and cyclic FFT (5.2) ------------------------------------- */
+/* ---- fft: DC-FFT (theory.md §3.1) and cyclic FFT (§3.2) ---------------------------------- */
 
 static size_t half_len(const mc_conv *c) { return mc_padfft_spectrum_len(&c->fft) / 2; }
 

@@ -11,7 +11,7 @@
 #include "operator/operator.h"
 
 /* Far images in the multipole form beyond this many cell sizes: its error there is < 2e-14 of the
- * own-cell value, while the exact corner sum loses eps (r/d)^2 relative (elastic.md 1.2). */
+ * own-cell value, while the exact corner sum loses eps (r/d)^2 relative (theory.md §2.2). */
 #define FAR_CELLS 32.0
 
 /* Ewald splitting 1/r = erfc(alpha r)/r + erf(alpha r)/r with alpha = EWALD_ALPHA / max(dx, dy):
@@ -258,7 +258,7 @@ void mc_kernel_fn_love(const mc_grid *g, double Estar, mc_love_ctx *ctx, mc_kern
 
 /* ---- fast Love tables ---------------------------------------------------------------------- */
 
-/* F on the corner lattice ((p - 1/2) dx, (q - 1/2) dy), p = 0..np-1, q = 0..nq-1 (elastic.md 3.5):
+/* F on the corner lattice ((p - 1/2) dx, (q - 1/2) dy), p = 0..np-1, q = 0..nq-1 (theory.md §5.5):
  * each pixel value is then the four-term difference, one corner evaluation per cell. */
 static double *corner_lattice(int np, int nq, double dx, double dy)
 {

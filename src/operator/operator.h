@@ -8,7 +8,7 @@
  *   direct - plain O(N^2) summation over the kernel table, written for clarity: the reference;
  *   fft    - DC-FFT (Liu, Wang & Liu 2000): zero padding along free axes, cyclic along periodic
  *            axes, real transforms (FFTW r2c/c2r), kernel spectrum built once per plan.
- * Both read the SAME kernel table, so they agree to round-off (elastic.md 5).
+ * Both read the SAME kernel table, so they agree to round-off (theory.md §3).
  *
  * Three layers, lowest first:
  *   mc_kernel_table - the kernel sampled at cell offsets in wrap-around layout;
@@ -39,7 +39,7 @@ int mc_backend_from_name(const char *name, mc_backend *out); /* MC_OK or MC_ERR_
  *  - free axis with n cells: length >= 2n - 1 (zero padding); entry t holds offset t for t < n,
  *    offset t - len for t > len - n, and 0 in between (never reached by an output cell);
  *  - periodic axis with n cells: length n; entry t holds the sum over all periodic images of
- *    offset t (t <= n/2) or t - n, i.e. the periodic Green's function (elastic.md 5.2).
+ *    offset t (t <= n/2) or t - n, i.e. the periodic Green's function (theory.md §3.2).
  * Row-major with x fastest: k[ty_index * tx + tx_index]. */
 typedef struct {
     mc_grid grid;  /* the grid the table was built for */
@@ -81,8 +81,8 @@ void mc_kernel_table_free(mc_kernel_table *t); /* frees t->k and sets it NULL; N
 
 /* The normal-displacement kernel K = mc_love_uz / E* (m/Pa: displacement per unit pressure on one
  * cell), tx, ty as from mc_conv_table_dims, E* > 0 in Pa. Free axes hold Love's rectangle itself
- * (evaluated on the corner lattice, elastic.md 3.5). Periodic axes hold the periodic Green's
- * function of the pixel load, whose plain image sum diverges like the 1/r kernel (elastic.md 5.2):
+ * (evaluated on the corner lattice, theory.md §5.5). Periodic axes hold the periodic Green's
+ * function of the pixel load, whose plain image sum diverges like the 1/r kernel (theory.md §3.2):
  *  - both axes periodic: Ewald summation, no image truncation (the table changes by < 5e-15 of its
  *    largest entry when the splitting parameter changes; it is the limit of mc_kernel_fn_love's
  *    image sum). The mean of the table is removed (K^(0) = 0): the mean displacement of a fully
