@@ -149,7 +149,7 @@ check-sanitize: deps
 FUZZ_TARGETS = $(patsubst tests/fuzz/%.c,build/fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))
 FUZZ_LIB_SRC = src/core/error.c src/core/alloc.c src/case/units.c src/case/keys.c src/case/reader.c src/case/scene.c \
                src/kernels/kernel.c src/core/grid.c src/io/npy.c src/io/heightmap.c \
-               src/io/file.c src/io/npy_header.c src/io/surface_file.c src/io/x3p_read.c src/io/x3p_write.c \
+               src/io/file.c src/io/le.c src/io/npy_header.c src/io/surface_file.c src/io/x3p_read.c src/io/x3p_write.c \
                src/io/sdf.c src/io/gsf.c src/io/xyz.c
 FUZZ_CFLAGS  = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -g -O1 -Isrc \
                -Wall -Wextra -Werror -Wno-unknown-pragmas \

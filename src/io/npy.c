@@ -15,37 +15,15 @@
 #include <sys/stat.h>
 
 #include "core/alloc.h"
+#include "io/le.h"
 #include "io/npy_header.h"
 
 #define NPY_MAGIC "\x93NUMPY"
 #define NPY_MAGIC_LEN 6
 #define NPY_ALIGN 64
 #define NPY_PATH_MAX 4096
-#define NPY_CHUNK 512 /* doubles encoded per fwrite */
 
 static const char accepted[] = "need a 1-D or 2-D float64 array ('<f8', fortran_order False)";
-
-/* ---- little-endian encoding, independent of the host's byte order ------------------------ */
-
-static double le64_get(const unsigned char *b)
-{
-    uint64_t u = 0;
-    for (int k = 7; k >= 0; k--)
-        u = (u << 8) | b[k];
-    double d;
-    memcpy(&d, &u, sizeof d);
-    return d;
-}
-
-static void le64_put(unsigned char *b, double d)
-{
-    uint64_t u;
-    memcpy(&u, &d, sizeof u);
-    for (int k = 0; k < 8; k++) {
-        b[k] = (unsigned char)(u & 0xff);
-        u >>= 8;
-    }
-}
 
 /* Rank, emptiness and data size shared by both readers: fills the matrix shape (a 1-D array is
  * 1 x n) and the value count n, after checking that the image holds exactly n * itemsize bytes of
@@ -120,7 +98,7 @@ int mc_npy_parse(const unsigned char *buf, size_t len, const char *what, double 
 
     const unsigned char *src = h.data;
     for (size_t k = 0; k < n; k++) {
-        double v = le64_get(src + 8 * k);
+        double v = mc_le64_get(src + 8 * k);
         if (!isfinite(v)) {
             const char *kind = isnan(v) ? "NaN" : "infinite";
             if (h.rank == 1)
@@ -135,7 +113,7 @@ int mc_npy_parse(const unsigned char *buf, size_t len, const char *what, double 
     if (!d)
         return mc_fail(err, MC_ERR_NOMEM, "%s: no memory for %d x %d values", what, r, cl);
     for (size_t k = 0; k < n; k++)
-        d[k] = le64_get(src + 8 * k);
+        d[k] = mc_le64_get(src + 8 * k);
     *data = d;
     *rows = r;
     *cols = cl;
@@ -316,13 +294,8 @@ int mc_npy_write(const char *path, const double *data, int ndim, const size_t *s
     if (!f)
         return mc_fail(err, MC_ERR_IO, "%s: cannot create: %s", tmp, strerror(errno));
     int ok = fwrite(head, 1, total, f) == total;
-    unsigned char chunk[NPY_CHUNK * 8];
-    for (size_t k = 0; ok && k < n; k += NPY_CHUNK) {
-        size_t m = n - k < NPY_CHUNK ? n - k : NPY_CHUNK;
-        for (size_t q = 0; q < m; q++)
-            le64_put(chunk + 8 * q, data[k + q]);
-        ok = fwrite(chunk, 8, m, f) == m;
-    }
+    if (ok)
+        ok = mc_le_write_doubles(f, data, n);
     int e = errno;
     if (fclose(f) != 0 && ok) {
         ok = 0;

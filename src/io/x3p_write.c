@@ -19,6 +19,7 @@
 #include <zip.h>
 
 #include "core/alloc.h"
+#include "io/le.h"
 #include "io/surface_formats.h"
 
 #define XML_CAP 16384 /* main.xml with the longest creator text accepted */
@@ -210,10 +211,7 @@ int mc_x3p_write(const char *path, const mc_surface_data *s, const char *creator
     }
     int some_invalid = 0;
     for (size_t k = 0; k < n; k++) {
-        uint64_t u;
-        memcpy(&u, &s->z[k], sizeof u);
-        for (int q = 0; q < 8; q++)
-            data[8 * k + (size_t)q] = (unsigned char)(u >> (8 * q));
+        mc_le64_put(data + 8 * k, s->z[k]);
         if ((s->valid && !s->valid[k]) || !isfinite(s->z[k]))
             some_invalid = 1;
         else

@@ -23,11 +23,11 @@
 
 #include "core/alloc.h"
 #include "kernels/kernel.h"
+#include "io/le.h"
 #include "io/npy.h"
 #include "pipeline/summary_json.h"
 
 #define OUT_PATH_MAX 4096
-#define OUT_CHUNK 512 /* doubles encoded per fwrite */
 
 static const char *const stress_npy[MC_NSTRESS] = {
     [MC_SXX] = "stress_xx.npy", [MC_SYY] = "stress_yy.npy", [MC_SZZ] = "stress_zz.npy",
@@ -109,30 +109,6 @@ static int close_staged(out_ctx *c, const char *name, FILE *f, mc_error *err)
         return mc_fail(err, MC_ERR_IO, "%s/%s: cannot write: %s", c->stage, name, strerror(e));
     c->files[c->nfiles++] = name;
     return MC_OK;
-}
-
-static void put_le64(FILE *f, const double *v, size_t n)
-{
-    unsigned char buf[OUT_CHUNK * 8];
-    for (size_t k = 0; k < n; k += OUT_CHUNK) {
-        size_t m = n - k < OUT_CHUNK ? n - k : OUT_CHUNK;
-        for (size_t q = 0; q < m; q++) {
-            uint64_t u;
-            memcpy(&u, &v[k + q], sizeof u);
-            for (int b = 0; b < 8; b++)
-                buf[8 * q + (size_t)b] = (unsigned char)(u >> (8 * b));
-        }
-        if (fwrite(buf, 8, m, f) != m)
-            return; /* ferror is set; close_staged reports it */
-    }
-}
-
-static void put_u64(FILE *f, uint64_t u)
-{
-    unsigned char b[8];
-    for (int k = 0; k < 8; k++)
-        b[k] = (unsigned char)(u >> (8 * k));
-    fwrite(b, 1, 8, f);
 }
 
 static int write_npy(out_ctx *c, const char *name, const double *data, int ndim,
@@ -285,8 +261,8 @@ static int write_vti(out_ctx *c, mc_error *err)
     fprintf(f, "      </CellData>\n    </Piece>\n  </ImageData>\n"
                "  <AppendedData encoding=\"raw\">\n   _");
     for (int a = 0; a < 4; a++) {
-        put_u64(f, 8 * (uint64_t)n);
-        put_le64(f, arrays[a], n);
+        (void)mc_le_write_u64(f, 8 * (uint64_t)n);
+        (void)mc_le_write_doubles(f, arrays[a], n);
     }
     fprintf(f, "\n  </AppendedData>\n</VTKFile>\n");
     return close_staged(c, "field.vti", f, err);
@@ -344,24 +320,24 @@ static int write_vtr(out_ctx *c, mc_error *err)
     fprintf(f, "      </Coordinates>\n    </Piece>\n  </RectilinearGrid>\n"
                "  <AppendedData encoding=\"raw\">\n   _");
     for (int a = 0; a < MC_NSTRESS + 3; a++) {
-        put_u64(f, 8 * (uint64_t)n3);
+        (void)mc_le_write_u64(f, 8 * (uint64_t)n3);
         for (int k = 0; k < nl; k++)
-            put_le64(f, arrays[a] + (size_t)(reverse ? nl - 1 - k : k) * n, n);
+            (void)mc_le_write_doubles(f, arrays[a] + (size_t)(reverse ? nl - 1 - k : k) * n, n);
     }
-    put_u64(f, 8 * (uint64_t)g->nx);
+    (void)mc_le_write_u64(f, 8 * (uint64_t)g->nx);
     for (int i = 0; i < g->nx; i++) {
         double x = mc_grid_x(g, i);
-        put_le64(f, &x, 1);
+        (void)mc_le_write_doubles(f, &x, 1);
     }
-    put_u64(f, 8 * (uint64_t)g->ny);
+    (void)mc_le_write_u64(f, 8 * (uint64_t)g->ny);
     for (int j = 0; j < g->ny; j++) {
         double y = mc_grid_y(g, j);
-        put_le64(f, &y, 1);
+        (void)mc_le_write_doubles(f, &y, 1);
     }
-    put_u64(f, 8 * (uint64_t)nl);
+    (void)mc_le_write_u64(f, 8 * (uint64_t)nl);
     for (int k = 0; k < nl; k++) {
         double z = -r->depths[reverse ? nl - 1 - k : k];
-        put_le64(f, &z, 1);
+        (void)mc_le_write_doubles(f, &z, 1);
     }
     fprintf(f, "\n  </AppendedData>\n</VTKFile>\n");
     return close_staged(c, "stress.vtr", f, err);
