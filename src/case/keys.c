@@ -474,7 +474,7 @@ const case_section mc_key_sections[] = {
      "the volume stress (stress-based yield, not a pressure cap) and the residual surface "
      "displacement of the plastic strain are iterated to convergence; then the load is removed "
      "and the run-in topography and residual stresses remain. Body 1 yields."},
-    {"output", NULL, "Where the results go (see DESIGN.md, output contract)."},
+    {"output", NULL, "Where the results go (the output contract: README.md, Outputs)."},
 };
 
 const int mc_nsections = (int)(sizeof mc_key_sections / sizeof mc_key_sections[0]);

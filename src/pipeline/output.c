@@ -1,4 +1,4 @@
-/* output.c - the output contract of DESIGN.md, written atomically (see output.h).
+/* output.c - the output contract (README.md, Outputs), written atomically (see output.h).
  *
  * Protocol: the directory is created if needed and locked (outdir.c), stale staging areas of
  * killed runs are removed, every file goes into DIR/.staging-XXXXXX; only when all of them are

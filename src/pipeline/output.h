@@ -1,4 +1,4 @@
-/* output.h - the output contract of DESIGN.md: summary.json, .npy fields, .csv profiles and
+/* output.h - the output contract (README.md, Outputs): summary.json, .npy fields, .csv profiles and
  * VTK files, written atomically into an output directory that one run holds at a time.
  *
  * Files are first written into a staging directory inside DIR (DIR/.staging-XXXXXX) and renamed

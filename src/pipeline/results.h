@@ -1,5 +1,5 @@
 /* results.h - what a run produces: fields, summaries and timings (the output contract of
- * DESIGN.md, in memory). Filled by pipeline.c, written by output.c, read by suites and benches.
+ * README.md, Outputs, in memory). Filled by pipeline.c, written by output.c, read by suites and benches.
  */
 #ifndef MC_RESULTS_H
 #define MC_RESULTS_H

@@ -1,4 +1,4 @@
-/* summary_json.c - summary.json of the output contract (DESIGN.md), built as a jansson document
+/* summary_json.c - summary.json of the output contract (README.md, Outputs), built as a jansson document
  * from a scene and its results (see summary_json.h). Every allocation inside jansson is checked:
  * a failure gives MC_ERR_NOMEM, never a partial document.
  */

@@ -1,4 +1,4 @@
-/* summary_json.h - the summary.json document of a run (the output contract of DESIGN.md). */
+/* summary_json.h - the summary.json document of a run (the output contract: README.md, Outputs). */
 #ifndef MC_SUMMARY_JSON_H
 #define MC_SUMMARY_JSON_H
 
