@@ -35,6 +35,8 @@ _Static_assert(sizeof(mc_psi_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_yield_criterion) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_hardening_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_table_unit) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_nominal_deflection) == sizeof(int), "enum size");
+_Static_assert(MC_DEFLECTION_KEEP == 1, "[runin] nominal_deflection choices follow the enum");
 _Static_assert(MC_SHAPE_ELLIPSOID == 3 && MC_ROUGH_FILE == 3 && MC_BACKEND_DIRECT == 1 &&
                    MC_METHOD_ACTIVE_SET == 2 && MC_SPACING_GEOMETRIC == 1 && MC_STRESS_POINT == 1 &&
                    MC_STRESS_WINDOW_FULL == 1 && MC_FILM_GIVEN == 1 && MC_FILM_HAMROCK_DOWSON_MIN == 5 &&
@@ -432,6 +434,30 @@ const case_key mc_keys[] = {
      .doc = "Coulomb coefficient of the traction q_x = friction (p - p_lub) in solid contact "
             "(sliding in +x), in the stresses that drive yield."},
 
+    /* [runin] */
+    {.section = "runin", .name = "enabled", .kind = K_BOOL,
+     .def = "yes, when [runin] is present", .def_rule = 1, .off = AT(runin.enabled),
+     .doc = "Run the running-in driver (no: one run of the scene, e.g. --set runin.enabled=no)."},
+    {.section = "runin", .name = "forces", .kind = K_LIST, .unit = MC_UNIT_FORCE, .lo = 0,
+     .lo_open = 1, .hi = HUGE_VAL, .list_max = MC_RUNIN_MAX, .def = "[load] force alone",
+     .def_rule = 1, .off = AT(runin.forces), .count_off = AT(runin.nforces),
+     .doc = "Macro normal forces F_N, e.g. 1086 N, 2172 N, 3258 N, in the order run: a run-down "
+            "and a run-up each, each starting on the surface the one before left. The first "
+            "must be [load] force."},
+    {.section = "runin", .name = "speeds", .kind = K_LIST, .unit = MC_UNIT_ROTATION, .lo = 0,
+     .lo_open = 1, .hi = HUGE_VAL, .order = -1, .list_max = MC_RUNIN_MAX, .required = 1,
+     .off = AT(runin.speeds), .count_off = AT(runin.nspeeds),
+     .doc = "The run-down: speeds of disc 1, e.g. 3000, 2000, 1000, 500, 200 rpm (the first is "
+            "[lubrication] rpm; disc 2 keeps the ratio rpm2 / rpm, or equal surface speed); "
+            "elastic-plastic steps that carry the surface over. The run-up takes them in "
+            "reverse, elastic on the run-in surface."},
+    {.section = "runin", .name = "nominal_deflection", .kind = K_ENUM, .choices = "remove keep",
+     .def = "remove", .off = AT(runin.deflection),
+     .doc = "remove: the patch, the centre of the macro contact, is not bent by its own nominal "
+            "pressure (the bowl K p_nom of a load on a grid with free axes belongs to the macro "
+            "contact; on a periodic grid it is zero); keep: the patch deflects as a loaded "
+            "island."},
+
     /* [output] */
     {.section = "output", .name = "dir", .kind = K_PATH, .def = "out/(case file name without .ini)",
      .def_rule = 1, .off = AT(output.dir),
@@ -478,6 +504,14 @@ const case_section mc_key_sections[] = {
      "displacement of the plastic strain are iterated to convergence; then the load is removed "
      "and the run-in topography and residual stresses remain. Body 1 yields."},
     {"output", NULL, "Where the results go (the output contract: README.md, Outputs)."},
+    {"runin", "enabled",
+     "Running-in (Mevissen et al. 2025): for each force a speed run-down, every speed an "
+     "elastic-plastic step with the lubricant volume equilibrium and the surface carried over, "
+     "then the run-up, elastic on the run-in surface. The scene itself is the first step: [load] "
+     "force is the first force, [lubrication] rpm (film = ehl, with radius1, radius2) the first "
+     "speed, [load] lubricant_pressure = auto. Without [plasticity] the material is elastic and "
+     "nothing runs in. Writes runin.csv, runin.gp, surface_initial.npy, surface_final.npy; "
+     "checkpoints in DIR/checkpoint/ for --resume."},
 };
 
 const int mc_nsections = (int)(sizeof mc_key_sections / sizeof mc_key_sections[0]);
@@ -597,6 +631,19 @@ void mc_key_describe(const case_key *k, int noun, char *buf, size_t len)
         mc_key_fmt(buf, len, "%scomma-separated lengths >= 0, strictly increasing, at most %d",
             noun ? "a list of " : "", MC_MAX_DEPTHS);
         return;
+    case K_LIST: {
+        case_key item = *k;
+        char one[160];
+        item.kind = K_REAL;
+        mc_key_describe(&item, 0, one, sizeof one);
+        mc_key_fmt(buf, len, "%scomma-separated %ss %s%s, at most %d", noun ? "a list of " : "",
+                   mc_unit_kind_name(k->unit), one,
+                   k->order > 0   ? ", strictly increasing"
+                   : k->order < 0 ? ", strictly decreasing"
+                                  : "",
+                   k->list_max);
+        return;
+    }
     case K_REAL: break;
     }
     if (k->lo_text)
@@ -661,6 +708,83 @@ int mc_key_get_int(const mc_scene *sc, size_t off)
 
 /* Comma-separated lengths; a line break (continuation) also separates, and a comma may end a
  * line. */
+/* Trimmed copy of p[0..n) into buf (NUL-terminated, cut to len). */
+static void trimmed(const char *p, size_t n, char *buf, size_t len)
+{
+    while (n > 0 && isspace((unsigned char)*p)) {
+        p++;
+        n--;
+    }
+    while (n > 0 && isspace((unsigned char)p[n - 1]))
+        n--;
+    if (n >= len)
+        n = len - 1;
+    memcpy(buf, p, n);
+    buf[n] = '\0';
+}
+
+/* K_LIST: comma-separated quantities, e.g. "1086 N, 1500 N" or "3000, 2000, 500 rpm": a unit
+ * written after the last number applies to the bare numbers before it. */
+static int convert_list(const case_key *k, const char *v, mc_scene *sc, char *why, size_t wl)
+{
+    double x[MC_RUNIN_MAX > MC_MAX_DEPTHS ? MC_RUNIN_MAX : MC_MAX_DEPTHS];
+    const int cap = k->list_max < (int)(sizeof x / sizeof x[0]) ? k->list_max
+                                                                  : (int)(sizeof x / sizeof x[0]);
+    char item[160], text[200], shown[96], prev[96] = "", unit[64] = "", uwhy[200];
+    /* the unit of the last item, if it has one */
+    const char *last = strrchr(v, ',');
+    trimmed(last ? last + 1 : v, strlen(last ? last + 1 : v), item, sizeof item);
+    char *end = NULL;
+    (void)strtod(item, &end);
+    if (end && end != item)
+        trimmed(end, strlen(end), unit, sizeof unit);
+    int n = 0;
+    for (const char *p = v;; n++) {
+        size_t len = strcspn(p, ",");
+        trimmed(p, len, item, sizeof item);
+        if (!item[0]) {
+            mc_key_fmt(why, wl, "item %d is empty; give comma-separated values", n + 1);
+            return 1;
+        }
+        if (n == cap) {
+            mc_key_fmt(why, wl, "more than %d items", cap);
+            return 1;
+        }
+        end = NULL;
+        (void)strtod(item, &end);
+        int bare = end && end != item && !*end;
+        mc_key_fmt(text, sizeof text, "%s%s%s", item, bare && unit[0] ? " " : "",
+                   bare ? unit : "");
+        mc_text_quote(text, shown, sizeof shown);
+        if (mc_parse_quantity(text, k->unit, &x[n], uwhy, sizeof uwhy)) {
+            mc_key_fmt(why, wl, "item %d (%s): %s", n + 1, shown, uwhy);
+            return 1;
+        }
+        if (!mc_key_in_range(k, x[n])) {
+            case_key one = *k;
+            char range[160];
+            one.kind = K_REAL;
+            mc_key_describe(&one, 1, range, sizeof range);
+            mc_key_fmt(why, wl, "item %d (%s) must be %s", n + 1, shown, range);
+            return 1;
+        }
+        if (n > 0 && k->order != 0 && !(k->order > 0 ? x[n] > x[n - 1] : x[n] < x[n - 1])) {
+            mc_key_fmt(why, wl, "item %d (%s) must be %s than item %d (%s): the list is strictly "
+                       "%s",
+                       n + 1, shown, k->order > 0 ? "greater" : "less", n, prev,
+                       k->order > 0 ? "increasing" : "decreasing");
+            return 1;
+        }
+        memcpy(prev, shown, sizeof shown);
+        if (!p[len])
+            break;
+        p += len + 1;
+    }
+    memcpy((char *)sc + k->off, x, sizeof(double) * (size_t)(n + 1));
+    mc_key_put_int(sc, k->count_off, n + 1);
+    return 0;
+}
+
 /* x0, y0, width, height (lengths; width and height > 0). */
 static int convert_region(const case_key *k, const char *v, mc_scene *sc, char *why, size_t wl)
 {
@@ -863,6 +987,7 @@ int mc_key_convert(const case_key *k, const char *v, const char *base, mc_scene 
     }
     case K_LENGTHS: return convert_lengths(k, v, sc, why, wl);
     case K_REGION: return convert_region(k, v, sc, why, wl);
+    case K_LIST: return convert_list(k, v, sc, why, wl);
     }
     return 1;
 }
@@ -952,6 +1077,31 @@ static int fail_key(const case_key *k, mc_error *err, const char **section, cons
                    value, what);
 }
 
+/* K_LIST in a scene: an optional list may be empty (count 0: not given); otherwise 1..list_max
+ * finite items in range and in order. */
+static int check_list(const mc_scene *sc, const case_key *k, mc_error *err, const char **section,
+                      const char **key)
+{
+    int n;
+    memcpy(&n, (const char *)sc + k->count_off, sizeof n);
+    char v[64], item[32];
+    if (n == 0 && !k->required)
+        return MC_OK;
+    if (n < 1 || n > k->list_max) {
+        mc_key_fmt(v, sizeof v, "%d items", n);
+        return fail_key(k, err, section, key, v, "");
+    }
+    const double *x = (const double *)((const char *)sc + k->off);
+    for (int i = 0; i < n; i++)
+        if (!(isfinite(x[i]) && mc_key_in_range(k, x[i]) &&
+              (i == 0 || k->order == 0 || (k->order > 0 ? x[i] > x[i - 1] : x[i] < x[i - 1])))) {
+            mc_key_fmt(v, sizeof v, "%g %s", x[i], mc_unit_si_symbol(k->unit));
+            mc_key_fmt(item, sizeof item, " item %d", i + 1);
+            return fail_key(k, err, section, key, v, item);
+        }
+    return MC_OK;
+}
+
 static int check_lengths(const mc_scene *sc, const case_key *k, mc_error *err,
                          const char **section, const char **key)
 {
@@ -1025,6 +1175,12 @@ int mc_keys_check_scene(const mc_scene *sc, const char *only, mc_error *err, con
             break;
         case K_LENGTHS: {
             int rc = check_lengths(sc, row, err, section, key);
+            if (rc)
+                return rc;
+            break;
+        }
+        case K_LIST: {
+            int rc = check_list(sc, row, err, section, key);
             if (rc)
                 return rc;
             break;

@@ -23,7 +23,9 @@ typedef enum {
     K_BOOL,   /* yes/no; stored as 0/1 in an int */
     K_PATH,   /* char[MC_PATH_MAX] */
     K_LENGTHS, /* comma-separated lengths, strictly increasing, >= 0 */
-    K_REGION   /* x0, y0, width, height: four lengths, width and height > 0 */
+    K_REGION,  /* x0, y0, width, height: four lengths, width and height > 0 */
+    K_LIST     /* comma-separated quantities of the row's unit, each in the row's range, in the
+                  row's order; a unit written once at the end applies to the bare numbers */
 } key_kind;
 
 typedef enum {
@@ -55,6 +57,8 @@ typedef struct {
     const char *word; /* K_REAL: a word accepted instead of a number, stored as word_value */
     double word_value;
     const char *doc;
+    int order;    /* K_LIST: 1 strictly increasing, -1 strictly decreasing, 0 any order */
+    int list_max; /* K_LIST: most items (the capacity at off); the count is an int at count_off */
 } case_key;
 
 typedef struct {

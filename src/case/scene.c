@@ -130,10 +130,44 @@ static int plasticity_rules(const mc_scene *s, mc_error *err, const char **secti
         BLAME("plasticity", "bodies",
               "[plasticity] bodies = both needs body 2 of the same material as body 1 (E, nu; "
               "not rigid)");
-    if (s->lubrication.enabled)
-        BLAME("lubrication", "enabled",
-              "[lubrication] with [plasticity] is not supported yet (the volume equilibrium runs "
-              "with the elastic stage only)");
+    return MC_OK;
+}
+
+/* The rules of the running-in driver ([runin], pipeline/runin.h). */
+static int runin_rules(const mc_scene *s, mc_error *err, const char **section,
+                       const char **keyname)
+{
+    if (!s->runin.enabled)
+        return MC_OK;
+    if (s->load.lubricant_pressure != MC_LUBRICANT_AUTO)
+        BLAME("load", "lubricant_pressure",
+              "[runin] needs [load] lubricant_pressure = auto and [lubrication]: every step takes "
+              "its lubricant pressure from the volume equilibrium at its speed");
+    if (s->lubrication.film != MC_FILM_EHL)
+        BLAME("lubrication", "film",
+              "[runin] needs [lubrication] film = ehl: the speeds set the film thickness");
+    if (!(s->lubrication.rpm > 0))
+        BLAME("lubrication", "speed",
+              "[runin] speeds are disc speeds: [lubrication] gives rpm (the first speed of the "
+              "run-down) with radius1 and radius2, not speed");
+    if (s->runin.nspeeds > 0 && s->runin.speeds[0] != s->lubrication.rpm)
+        BLAME("runin", "speeds",
+              "[runin] speeds: the first speed (%g rpm) must be [lubrication] rpm (%g rpm), the "
+              "speed the run starts with",
+              s->runin.speeds[0] * 60.0 / (2.0 * M_PI), s->lubrication.rpm * 60.0 / (2.0 * M_PI));
+    if (s->runin.nforces > 0 && s->runin.forces[0] != s->load.value)
+        BLAME("runin", "forces",
+              "[runin] forces: the first force (%g N) must be [load] force (%g N), the force "
+              "the run starts with",
+              s->runin.forces[0], s->load.value);
+    if (s->plasticity.enabled && s->plasticity.criterion != MC_CRITERION_VON_MISES)
+        BLAME("plasticity", "criterion",
+              "[runin] needs [plasticity] criterion = von_mises: a pressure cap carries no "
+              "plastic state from one step to the next");
+    if (s->stress.enabled)
+        BLAME("stress", "enabled",
+              "[stress] cannot be combined with [runin] (not supported: run the final surface, "
+              "surface_final.npy, as a [roughness] file)");
     return MC_OK;
 }
 
@@ -178,6 +212,8 @@ static int scene_rules(const mc_scene *s, mc_error *err, const char **section,
     int rc = lubrication_rules(s, err, section, keyname);
     if (rc == MC_OK)
         rc = plasticity_rules(s, err, section, keyname);
+    if (rc == MC_OK)
+        rc = runin_rules(s, err, section, keyname);
     if (rc != MC_OK)
         return rc;
     if (s->stress.enabled)

@@ -43,6 +43,10 @@ typedef enum { MC_STRESS_WINDOW_AUTO, MC_STRESS_WINDOW_FULL } mc_stress_window_m
 typedef enum { MC_FILM_EHL, MC_FILM_GIVEN } mc_film_source;
 typedef enum { MC_CRITERION_VON_MISES, MC_CRITERION_PRESSURE_CAP } mc_yield_criterion;
 typedef enum { MC_TABLE_UNIT_PA, MC_TABLE_UNIT_MPA, MC_TABLE_UNIT_GPA } mc_table_unit;
+/* [runin] nominal_deflection: the patch's own bowl under its nominal pressure (pipeline/runin.h) */
+typedef enum { MC_DEFLECTION_REMOVE, MC_DEFLECTION_KEEP } mc_nominal_deflection;
+
+#define MC_RUNIN_MAX 32 /* entries of [runin] forces and speeds */
 
 /* [stress] depth_max = auto: derived from the contact by the stress stage (stress.h) */
 #define MC_STRESS_DEPTH_AUTO 0.0
@@ -132,6 +136,15 @@ typedef struct {
         double margin;                /* columns around the contact's box, m; 0: auto */
         double friction;              /* q_x = friction (p - p_lub) in solid contact */
     } plasticity;
+
+    struct { /* [runin]: the running-in driver, speed run-down and run-up per force */
+        int enabled;                  /* case files: 1 when [runin] is present */
+        int nforces;                  /* 0: [load] force alone */
+        double forces[MC_RUNIN_MAX];  /* macro normal forces F_N, N, taken in this order */
+        int nspeeds;
+        double speeds[MC_RUNIN_MAX];  /* run-down speeds of disc 1, rad/s, strictly decreasing */
+        mc_nominal_deflection deflection; /* remove (default) or keep the nominal bowl */
+    } runin;
 
     struct { /* [output] */
         char dir[MC_PATH_MAX]; /* "": derive from path (mc_scene_output_dir); case files fill it */

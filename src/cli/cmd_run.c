@@ -12,8 +12,10 @@
 
 #include "case/case.h"
 #include "cli/cli.h"
+#include "pipeline/checkpoint.h"
 #include "pipeline/output.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/runin.h"
 
 #define MAX_SETS 256
 
@@ -25,7 +27,16 @@ static const char run_help[] =
     "  --set section.key=value  change one key of the case without editing it (repeatable);\n"
     "                           section.key= (empty) removes the key, e.g.\n"
     "                           --set load.force= --set load.approach=1um\n"
+    "  --quiet                  no progress lines (a running-in prints one per step to stderr)\n"
+    "  --resume                 continue the interrupted running-in whose checkpoint is in\n"
+    "                           DIR/checkpoint/ (same case, same --set values)\n"
     "  -h, --help               this text\n\n"
+    "Running-in ([runin]): one progress line per step on stderr (step, force, phase, speed,\n"
+    "p_lub, psi, mu, Ra, elapsed and estimated time left). DIR is created at the start and the\n"
+    "state after every step is checkpointed atomically in DIR/checkpoint/; SIGINT or SIGTERM\n"
+    "stops the run after abandoning the step in progress, keeps the checkpoint and says how to\n"
+    "resume; --resume gives the results of an uninterrupted run (same machine and threads).\n"
+    "The checkpoint is removed when the results are committed.\n\n"
     "Output directory: created, with its parents, only when the results are committed (a run\n"
     "that fails creates nothing). Results go to DIR/.staging-XXXXXX first and are moved into DIR\n"
     "when all are complete: DIR holds the earlier results or the new ones, never a mix.\n"
@@ -128,6 +139,133 @@ static void print_solve(const mc_results *r)
            peak_memory_mib());
 }
 
+/* ---- running-in -------------------------------------------------------------------------- */
+
+/* "12 s", "4 min 12 s", "1 h 02 min" */
+static void duration(double s, char *buf, size_t len)
+{
+    if (!(s >= 0) || !isfinite(s))
+        snprintf(buf, len, "?");
+    else if (s < 60)
+        snprintf(buf, len, "%.0f s", s);
+    else if (s < 3600)
+        snprintf(buf, len, "%d min %02d s", (int)(s / 60), (int)fmod(s, 60));
+    else
+        snprintf(buf, len, "%d h %02d min", (int)(s / 3600), (int)fmod(s / 60, 60));
+}
+
+static void progress_line(void *ctx, const mc_runin_progress *p)
+{
+    (void)ctx;
+    const mc_runin_row *w = p->row;
+    char el[32], left[32];
+    duration(p->elapsed, el, sizeof el);
+    duration(p->eta, left, sizeof left);
+    fprintf(stderr,
+            "step %*d/%d  F %.6g N  %-4s  %6.0f rpm  p_lub %7.2f MPa  psi %.4f  mu %.4f  "
+            "Ra %.4f um%s  elapsed %s, left %s\n",
+            p->nsteps >= 100 ? 3 : p->nsteps >= 10 ? 2 : 1, p->step, p->nsteps, w->force,
+            w->up ? "up" : "down", w->speed * 60.0 / (2.0 * M_PI), w->p_lub * 1e-6, w->psi_load,
+            w->mu, w->ra * 1e6, w->plastic ? "  (plastic)" : "", el, left);
+}
+
+static int stop_requested(void *ctx)
+{
+    (void)ctx;
+    return mc_output_stop_requested();
+}
+
+static void print_runin(const mc_results *r)
+{
+    const mc_runin_summary *ri = &r->runin;
+    int plastic = 0;
+    for (int k = 0; k < ri->done; k++)
+        plastic += ri->rows[k].plastic;
+    printf("  running-in: %d force%s x %d speeds, %d steps (%d elastic-plastic)%s\n", ri->nforces,
+           ri->nforces > 1 ? "s" : "", ri->nspeeds, ri->nsteps, plastic,
+           ri->resumed_from ? ", resumed" : "");
+    for (int f = 0; f < ri->nforces; f++) {
+        const int m = ri->nspeeds, first = 2 * m * f, last = first + 2 * m - 1;
+        if (last >= ri->done)
+            break;
+        const mc_runin_row *a = &ri->rows[first], *b = &ri->rows[first + m - 1];
+        printf("    F %.6g N: mu %.4f -> %.4f (down), Ra %.4f -> %.4f um, hysteresis %.4g "
+               "(mu x decades)\n",
+               a->force, a->mu, b->mu, a->ra * 1e6, b->ra * 1e6, ri->hysteresis[f]);
+    }
+}
+
+/* How to continue: the same case, directory and --set values. */
+static void resume_hint(const char *case_path, const char *dir, const char *ckdir,
+                        const char *const *sets, int nsets)
+{
+    fprintf(stderr, "microcontact: the checkpoint in %s/ keeps the completed steps; continue "
+                    "with:\n  microcontact run %s --out %s",
+            ckdir, case_path, dir);
+    for (int k = 0; k < nsets; k++)
+        fprintf(stderr, " --set '%s'", sets[k]);
+    fprintf(stderr, " --resume\n");
+}
+
+/* The running-in: DIR exists from the start (it holds the checkpoints) and is locked; progress on
+ * stderr; a signal stops the run between steps or outer iterations. Returns the status of
+ * mc_runin_run, or minus the exit status when it has reported and ended the run itself. */
+static int run_runin(const mc_scene *scene, const char *case_path, const char *dir,
+                     const char *ckdir, const char *const *sets, int nsets, int quiet,
+                     int resume, mc_outdir *od, mc_results *res, mc_error *err)
+{
+    memset(res, 0, sizeof *res);
+    if (resume && !mc_checkpoint_exists(ckdir)) {
+        fprintf(stderr, "microcontact: error: --resume: no checkpoint in '%s' (nothing to "
+                        "resume; run without --resume to start)\n",
+                ckdir);
+        mc_output_close(od);
+        return -2;
+    }
+    /* from here a signal asks the run to stop (and a signal before the first step leaves no
+     * directory behind: the rollback below) */
+    mc_output_hold(1);
+    mc_error derr = {0};
+    if (mc_outdir_acquire(od, &derr) != MC_OK) {
+        mc_output_hold(0);
+        fprintf(stderr, "microcontact: error: %s\n", derr.msg);
+        mc_output_close(od);
+        return -mc_status_exit_code(derr.code);
+    }
+    if (!resume && mc_checkpoint_exists(ckdir)) {
+        fprintf(stderr, "microcontact: note: '%s' held the checkpoint of an unfinished run; "
+                        "starting over (--resume continues one)\n",
+                ckdir);
+        mc_checkpoint_remove(ckdir);
+    }
+    mc_runin_options opt = {.checkpoint_dir = ckdir,
+                            .resume = resume,
+                            .progress = quiet ? NULL : progress_line,
+                            .stop = stop_requested};
+    int rc = mc_runin_run(scene, &opt, res, err);
+    mc_output_hold(0);
+    if (rc == MC_ERR_INTERRUPTED) {
+        int sig = mc_cli_signal_caught();
+        fprintf(stderr, "microcontact: stopped by %s after %d of %d steps\n", signal_name(sig),
+                res->runin.done, res->runin.nsteps);
+        if (res->runin.done > 0)
+            resume_hint(case_path, dir, ckdir, sets, nsets);
+        else
+            mc_outdir_rollback(od);
+        mc_results_free(res);
+        mc_output_close(od);
+        if (sig)
+            mc_cli_signal_exit(sig);
+        return -mc_status_exit_code(MC_ERR_INTERRUPTED);
+    }
+    if (rc != MC_OK && rc != MC_NOT_CONVERGED && !resume) {
+        /* a failed run leaves nothing behind (a refused resume keeps its checkpoint) */
+        mc_checkpoint_remove(ckdir);
+        mc_outdir_rollback(od);
+    }
+    return rc;
+}
+
 static int add_set(const char **sets, int *nsets, const char *s)
 {
     if (*nsets == MAX_SETS) {
@@ -142,7 +280,7 @@ int mc_cli_run(int argc, char **argv)
 {
     const char *case_path = NULL, *out = NULL;
     const char *sets[MAX_SETS];
-    int nsets = 0;
+    int nsets = 0, quiet = 0, resume = 0;
     for (int k = 0; k < argc; k++) {
         if (mc_cli_is_help(argv[k])) {
             fputs(run_help, stdout);
@@ -158,6 +296,10 @@ int mc_cli_run(int argc, char **argv)
                 return 2;
         } else if (!strncmp(argv[k], "--out=", 6)) {
             out = argv[k] + 6;
+        } else if (!strcmp(argv[k], "--quiet")) {
+            quiet = 1;
+        } else if (!strcmp(argv[k], "--resume")) {
+            resume = 1;
         } else if (argv[k][0] == '-') {
             return usage_error("unknown or incomplete option", argv[k], NULL);
         } else if (!case_path) {
@@ -190,6 +332,12 @@ int mc_cli_run(int argc, char **argv)
     } else if (mc_scene_output_dir(&scene, dir, sizeof dir, &err) != MC_OK) {
         return fail(&err);
     }
+    if (resume && !scene.runin.enabled) {
+        fprintf(stderr, "microcontact: error: --resume: %s has no [runin] section (only a "
+                        "running-in is checkpointed)\n",
+                case_path);
+        return 2;
+    }
     static mc_outdir od;
     if (mc_output_open(&od, dir, &err) != MC_OK) {
         mc_output_close(&od);
@@ -197,13 +345,24 @@ int mc_cli_run(int argc, char **argv)
     }
 
     mc_results res;
-    int rc = mc_pipeline_run(&scene, &res, &err);
+    int rc;
+    char ckdir[MC_PATH_MAX + 16];
+    snprintf(ckdir, sizeof ckdir, "%s/checkpoint", dir);
+    if (scene.runin.enabled) {
+        rc = run_runin(&scene, case_path, dir, ckdir, sets, nsets, quiet, resume, &od, &res,
+                       &err);
+        if (rc < 0) /* reported and ended there */
+            return -rc;
+    } else
+        rc = mc_pipeline_run(&scene, &res, &err);
     if (rc != MC_OK && rc != MC_NOT_CONVERGED) {
         mc_results_free(&res);
         mc_output_close(&od);
         return fail_case(case_path, &err);
     }
     print_solve(&res);
+    if (res.runin.enabled)
+        print_runin(&res);
     printf("  writing results to %s/\n", dir);
     mc_error werr = {0};
     int wrc = mc_output_commit(&od, &scene, &res, &werr);
@@ -213,6 +372,8 @@ int mc_cli_run(int argc, char **argv)
                 "microcontact: stopped by %s while writing results: the partial files are "
                 "removed, '%s' is as it was\n",
                 signal_name(sig), dir);
+        if (res.runin.enabled)
+            resume_hint(case_path, dir, ckdir, sets, nsets);
         mc_results_free(&res);
         mc_output_close(&od);
         if (sig)
@@ -224,12 +385,16 @@ int mc_cli_run(int argc, char **argv)
         mc_output_close(&od);
         return fail(&werr);
     }
+    if (res.runin.enabled)
+        mc_checkpoint_remove(ckdir); /* the results are committed: nothing left to resume */
     printf("  results in %s/ (summary.json, pressure.npy, gap.npy, displacement.npy, "
-           "topography.npy, profile_x.csv%s%s)\n",
+           "topography.npy, profile_x.csv%s%s%s)\n",
            dir, res.nlayers > 0 ? ", von_mises.npy, stress_*.npy, axis.csv, depths.csv" : "",
            res.plastic.enabled ? ", residual_displacement.npy, topography_final.npy, "
                                  "plastic_strain.npy, residual_von_mises.npy, plastic.csv"
-                               : "");
+                               : "",
+           res.runin.enabled ? ", runin.csv, runin.gp, surface_initial.npy, surface_final.npy"
+                             : "");
     mc_results_free(&res);
     mc_output_close(&od);
     int sig = mc_cli_signal_caught();

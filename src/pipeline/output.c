@@ -40,7 +40,8 @@ static const char *const contract_files[] = {
     "stress_zz.npy", "stress_xy.npy", "stress_yz.npy", "stress_xz.npy",    "depths.csv",
     "axis.csv",      "field.vti",     "stress.vtr",
     "residual_displacement.npy", "topography_final.npy", "plastic_strain.npy",
-    "residual_von_mises.npy", "plastic.csv"};
+    "residual_von_mises.npy", "plastic.csv", "runin.csv", "runin.gp", "surface_initial.npy",
+    "surface_final.npy"};
 #define N_CONTRACT ((int)(sizeof contract_files / sizeof contract_files[0]))
 
 typedef struct {
@@ -72,6 +73,19 @@ int mc_output_interrupt(int on)
 {
     atomic_store(&stop_requested, on ? 1 : 0);
     return atomic_load(&active_commits) > 0;
+}
+
+void mc_output_hold(int on)
+{
+    if (on)
+        atomic_fetch_add(&active_commits, 1);
+    else
+        atomic_fetch_sub(&active_commits, 1);
+}
+
+int mc_output_stop_requested(void)
+{
+    return atomic_load(&stop_requested);
 }
 
 static int check_stop(mc_error *err)
@@ -173,6 +187,80 @@ static int write_plastic(out_ctx *c, mc_error *err)
                 s->plastic_iterations, s->converged);
     }
     return close_staged(c, "plastic.csv", f, err);
+}
+
+/* The running-in: one row per step, the figures' script, the surfaces before and after. */
+static int write_runin(out_ctx *c, mc_error *err)
+{
+    const mc_results *r = c->res;
+    const mc_runin_summary *ri = &r->runin;
+    size_t shape[2] = {(size_t)r->grid.ny, (size_t)r->grid.nx};
+    int st = MC_OK;
+    if (r->surface_initial)
+        st = write_npy(c, "surface_initial.npy", r->surface_initial, 2, shape, err);
+    if (st == MC_OK && r->surface_final)
+        st = write_npy(c, "surface_final.npy", r->surface_final, 2, shape, err);
+    FILE *f;
+    if (st == MC_OK)
+        st = open_staged(c, "runin.csv", &f, err);
+    if (st != MC_OK)
+        return st;
+    static const char *const regimes[] = {"dry", "mixed", "full_film"};
+    fprintf(f, "force,phase,speed,h_ehd,p_lub,psi_load,psi_area,pocket_height,mu,Ra,Rq,Rz,Sa,Sq,"
+               "residual_max,converged,seconds,step,rpm,entrainment_speed,regime,plastic,"
+               "contact_solves,volume_roots,root_error\n");
+    for (int k = 0; k < ri->done; k++) {
+        const mc_runin_row *w = &ri->rows[k];
+        fprintf(f,
+                "%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                "%.17g,%.17g,%d,%.6g,%d,%.17g,%.17g,%s,%d,%d,%d,%.6g\n",
+                w->force, w->up ? "up" : "down", w->speed, w->h_ehd, w->p_lub, w->psi_load,
+                w->psi_area, w->pocket_height, w->mu, w->ra, w->rq, w->rz, w->sa, w->sq,
+                w->residual_max, w->converged, w->seconds, k + 1,
+                w->speed * 60.0 / (2.0 * M_PI), w->entrainment,
+                w->regime >= 0 && w->regime < 3 ? regimes[w->regime] : "?", w->plastic,
+                w->solves, w->roots, w->root_error);
+    }
+    st = close_staged(c, "runin.csv", f, err);
+    if (st == MC_OK)
+        st = open_staged(c, "runin.gp", &f, err);
+    if (st != MC_OK)
+        return st;
+    /* gnuplot selects each force's rows by value: the forces are written in full precision */
+    fprintf(f, "# runin.gp - the running-in figures from runin.csv (Mevissen et al. 2025, Figs.\n"
+               "# 4-1 to 4-3): cd into this directory and run  gnuplot runin.gp\n"
+               "# runin_ra.png   Ra of the surface against the mean lubrication pocket height\n"
+               "# runin_psi.png  solid contact ratio psi (load and area) against it\n"
+               "# runin_mu.png   mu against the disc speed: run-down and run-up (hysteresis)\n"
+               "set datafile separator ','\nset terminal pngcairo size 900,600 font 'sans,11'\n"
+               "set key outside right\nset grid\n");
+    fprintf(f, "down(F, v) = (strcol(2) eq 'down' && abs($1 - F) <= 1e-9 * F) ? v : 1/0\n"
+               "up(F, v) = (strcol(2) eq 'up' && abs($1 - F) <= 1e-9 * F) ? v : 1/0\n");
+    static const char *const figs[3][4] = {
+        {"runin_ra.png", "mean pocket height h_pocket [um]", "Ra [um]",
+         "($8 * 1e6):(%s(%.17g, $10 * 1e6))"},
+        {"runin_psi.png", "mean pocket height h_pocket [um]", "solid contact ratio psi_load",
+         "($8 * 1e6):(%s(%.17g, $6))"},
+        {"runin_mu.png", "disc speed [rpm]", "friction coefficient mu", "19:(%s(%.17g, $9))"}};
+    for (int g = 0; g < 3; g++) {
+        fprintf(f, "\nset output '%s'\nset xlabel '%s'\nset ylabel '%s'\n%s", figs[g][0],
+                figs[g][1], figs[g][2], g == 2 ? "set logscale x\n" : "unset logscale x\n");
+        fprintf(f, "plot");
+        for (int k = 0; k < ri->nforces; k++) {
+            const int first = 2 * ri->nspeeds * k;
+            const double F = first < ri->done ? ri->rows[first].force : 0.0;
+            for (int ph = 0; ph < 2; ph++) {
+                char using[160];
+                snprintf(using, sizeof using, figs[g][3], ph ? "up" : "down", F);
+                fprintf(f, "%s'runin.csv' every ::1 using %s with linespoints pt %d lc %d "
+                           "title '%.6g N %s'",
+                        k || ph ? ", \\\n    " : " ", using, ph ? 6 : 7, k + 1, F,
+                        ph ? "run-up" : "run-down");
+            }
+        }
+        fprintf(f, "\n");
+    }
+    return close_staged(c, "runin.gp", f, err);
 }
 
 static int write_profile(out_ctx *c, mc_error *err)
@@ -520,6 +608,8 @@ static int stage_and_commit(out_ctx *c, mc_error *err)
         st = write_stress_fields(c, err);
     if (st == MC_OK && res->plastic.enabled && res->residual_displacement)
         st = write_plastic(c, err);
+    if (st == MC_OK && res->runin.enabled)
+        st = write_runin(c, err);
     if (st == MC_OK && c->scene->output.vtk)
         st = write_vti(c, err);
     if (st == MC_OK && c->scene->output.vtk && res->nlayers > 0)

@@ -55,6 +55,15 @@ void mc_output_close(mc_outdir *out);
  * is (nothing of this process is being written: it may end at once). */
 int mc_output_interrupt(int on);
 
+/* A computation that checkpoints as it goes (the running-in, pipeline/runin.h) holds the output
+ * while it runs (on = 1; on = 0 releases): mc_output_interrupt then reports work in progress, so
+ * that a signal asks it to stop - it polls mc_output_stop_requested - instead of ending the
+ * process at once. Thread-safe (atomics). */
+void mc_output_hold(int on);
+
+/* 1 once mc_output_interrupt(1) was called (and not cleared). */
+int mc_output_stop_requested(void);
+
 /* mc_output_open + mc_output_close: the checks alone (nothing is created, no lock is kept). */
 int mc_output_prepare(const char *dir, mc_error *err);
 
@@ -67,6 +76,16 @@ int mc_output_prepare(const char *dir, mc_error *err);
  *             von_mises.npy, hydrostatic.npy, stress_xx.npy ... stress_xz.npy (layers x ny x nx),
  *             depths.csv ("layer,z"), axis.csv ("z,sxx,syy,szz,sxy,syz,sxz,von_mises,
  *             hydrostatic,tresca" under the cell of maximum pressure);
+ *  res->plastic.enabled (elastic-plastic stage or running-in)
+ *             residual_displacement.npy, topography_final.npy, plastic_strain.npy,
+ *             residual_von_mises.npy (nz x ny x nx), plastic.csv (one row per load step; for a
+ *             running-in one per run-down step that yielded: its last load step);
+ *  res->runin.enabled (running-in, pipeline/runin.h)
+ *             runin.csv (one row per step: force,phase,speed,h_ehd,p_lub,psi_load,psi_area,
+ *             pocket_height,mu,Ra,Rq,Rz,Sa,Sq,residual_max,converged,seconds, then step,rpm,
+ *             entrainment_speed,regime,plastic,contact_solves,volume_roots,root_error; SI but
+ *             rpm), runin.gp (gnuplot: runin_ra.png, runin_psi.png, runin_mu.png, the paper's
+ *             Figs. 4-1 to 4-3), surface_initial.npy, surface_final.npy (composite heights, m);
  *  scene->output.vtk
  *             field.vti (ImageData, the four surface fields as CellData) and, with stress,
  *             stress.vtr (RectilinearGrid: x, y at cell centres, z = -depth increasing; the six
@@ -80,7 +99,8 @@ int mc_output_prepare(const char *dir, mc_error *err);
  * (type; seed = res->roughness_seed, a string if above INT64_MAX; the type's parameters),
  * contact (the mc_contact_summary, plus the solver tolerance and max_iterations of the scene),
  * stress (the mc_stress_summary, when stress was run), timing (total_s, setup_s, contact_s,
- * stress_s) and files (every file written, summary.json last).
+ * stress_s), with a running-in runin (forces, speeds, hysteresis per force, steps, roots) and
+ * roughness.final, and files (every file written, summary.json last).
  * Returns MC_OK; MC_ERR_ENV (DIR cannot be created or locked, a write failed - disk full,
  * file too large -, a result file name in DIR is taken by a directory: DIR unchanged);
  * MC_ERR_NOMEM (DIR unchanged); MC_ERR_INPUT (empty path, invalid grid); MC_ERR_INTERNAL

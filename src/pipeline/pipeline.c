@@ -14,6 +14,7 @@
 #include "pipeline/stage_stress.h"
 #include "pipeline/stage_lube.h"
 #include "pipeline/stage_plastic.h"
+#include "pipeline/runin.h"
 #include "surface/surface.h"
 
 double mc_clock(void)
@@ -213,7 +214,8 @@ int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
     /* the scene's thread count holds for this run only (core/threads.h) */
     mc_threads_scope scope;
     mc_threads_begin(sc->solver.threads, &scope);
-    int rc = run_stages(sc, res, err);
+    /* a running-in is its own sequence of stages (pipeline/runin.h) */
+    int rc = sc->runin.enabled ? mc_runin_run(sc, NULL, res, err) : run_stages(sc, res, err);
     mc_threads_end(&scope);
     return rc;
 }

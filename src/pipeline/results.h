@@ -84,6 +84,36 @@ typedef struct {
     mc_plastic_step *steps;    /* steps_done records (owned) */
 } mc_plastic_summary;
 
+/* One step of the running-in ([runin], pipeline/runin.h): a row of runin.csv. */
+typedef struct {
+    int force_index;         /* into [runin] forces, from 0 */
+    int up;                  /* 0: run-down (elastic-plastic), 1: run-up (elastic) */
+    double force;            /* macro normal force F_N, N */
+    double speed;            /* disc 1, rad/s */
+    double entrainment;      /* mean entrainment speed u, m/s */
+    double h_ehd, p_lub;     /* film of the smooth discs, m; lubricant pressure, Pa */
+    double psi_load, psi_area, pocket_height, mu; /* pocket height in m */
+    int regime;              /* lube/volume.h mc_lube_regime */
+    double ra, rq, rz, sa, sq; /* of the surface after the step (ISO, as roughness.initial), m */
+    double residual_max;     /* largest residual displacement of body 1 so far, m */
+    int plastic;             /* the step ran the plastic loop (something yielded) */
+    int converged;           /* every solve of the step converged */
+    int solves;              /* contact solves of the step */
+    int roots;               /* volume equilibria of the step */
+    double root_error;       /* |V - V*| / V* of its last equilibrium */
+    double seconds;          /* wall time of the step */
+} mc_runin_row;
+
+typedef struct {
+    int enabled;
+    int nforces, nspeeds, nsteps; /* nsteps = 2 nforces nspeeds, in run order */
+    int done;                     /* rows filled (all of them unless the run stopped) */
+    int resumed_from;             /* steps taken from a checkpoint (0: none) */
+    mc_runin_row *rows;           /* nsteps (owned) */
+    double *hysteresis;           /* nforces: integral of mu_down - mu_up over log10 speed (owned) */
+    const char *deflection;       /* "remove" | "keep" */
+} mc_runin_summary;
+
 typedef struct {
     /* seconds: the whole run; kernel tables, spectra and plans of the operator; the contact solve
      * (with its coarse-grid start and the plans it makes for the contact's box); the stress stage */
@@ -121,6 +151,13 @@ typedef struct {
     mc_roughness_params roughness_initial;
     long surface_missing, surface_filled; /* [roughness] file: points not measured, filled */
     char surface_format[16];              /* [roughness] file: the format read */
+
+    /* running-in (NULL / 0 when not run): the composite surface heights (m, up towards the
+     * counter body, ny*nx) before and after, and the ISO parameters of the final one */
+    mc_runin_summary runin;
+    double *surface_initial, *surface_final;
+    int has_roughness_final;
+    mc_roughness_params roughness_final;
 
     mc_timing timing;
     unsigned long long roughness_seed;

@@ -90,19 +90,32 @@ int mc_lube_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, cons
     rc = mc_volume_equilibrium(s, K, &prob, res->pressure, res->displacement, res->gap, &vr, err);
     if (rc != MC_OK && rc != MC_NOT_CONVERGED)
         return rc;
-    res->contact = vr.contact;
-    lube->p_lub = vr.p_lub;
-    lube->regime = mc_lube_regime_name(vr.regime);
-    lube->volume = vr.volume;
-    lube->v_target = vr.v_target;
-    lube->rel_error = vr.rel_error;
-    lube->solves = vr.solves;
-    lube->converged = vr.converged;
+    mc_error oerr = {0};
+    int orc = mc_lube_outcome(sc, &vr, res, &oerr);
+    if (orc != MC_OK) {
+        *err = oerr;
+        return orc;
+    }
+    return rc;
+}
+
+int mc_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_results *res,
+                    mc_error *err)
+{
+    mc_lube_summary *lube = &res->lube;
+    res->contact = vr->contact;
+    lube->p_lub = vr->p_lub;
+    lube->regime = mc_lube_regime_name(vr->regime);
+    lube->volume = vr->volume;
+    lube->v_target = vr->v_target;
+    lube->rel_error = vr->rel_error;
+    lube->solves = vr->solves;
+    lube->converged = vr->converged;
     const size_t n = mc_grid_cells(&res->grid);
     mc_lube_split split;
     mc_error serr = {0};
     int src = mc_lube_split_of(res->pressure, res->gap, n, mc_grid_cell_area(&res->grid),
-                               vr.p_lub, lube->patch_load, &split, &serr);
+                               vr->p_lub, lube->patch_load, &split, &serr);
     /* psi_load = F_solid / F_N reaches 1 + round-off in the dry regime (the load is met to the
      * contact tolerance): clamp what is within that, refuse anything beyond */
     double psi = mc_lube_split_psi(&split, sc->lubrication.psi);
@@ -112,11 +125,30 @@ int mc_lube_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, cons
         src = mc_friction_mu(psi,
                              sc->lubrication.mu_solid, sc->lubrication.mu_fluid, &lube->mu, &serr);
     if (src != MC_OK) {
-        *err = serr;
+        if (err)
+            *err = serr;
         return src;
     }
     lube->psi_load = fmin(split.psi_load, 1.0);
     lube->psi_area = split.psi_area;
     lube->pocket_height = split.pocket_height;
+    return MC_OK;
+}
+
+int mc_lube_contact_step(void *ctx, const mc_contact_problem *cp, double *p, double *u,
+                         double *gap, mc_contact_summary *sum, double *p_lub, mc_error *err)
+{
+    mc_lube_contact *lc = ctx;
+    mc_volume_problem prob = {.h = cp->h,
+                              .h_extra = cp->h_extra,
+                              .load = cp->load,
+                              .h_target = lc->h_target,
+                              .tolerance = lc->tolerance,
+                              .p_start = cp->p_start};
+    int rc = mc_volume_equilibrium(lc->solver, lc->K, &prob, p, u, gap, &lc->last, err);
+    lc->calls++;
+    lc->solves += lc->last.solves;
+    *sum = lc->last.contact;
+    *p_lub = lc->last.p_lub;
     return rc;
 }

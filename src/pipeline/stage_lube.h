@@ -8,6 +8,7 @@
 #include "case/scene.h"
 #include "contact/contact.h"
 #include "core/error.h"
+#include "lube/volume.h"
 #include "operator/operator.h"
 #include "pipeline/results.h"
 
@@ -23,5 +24,28 @@ int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, m
  * error. */
 int mc_lube_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, const double *h_extra,
                   const double *p_start, mc_results *res, mc_error *err);
+
+/* The outcome of an equilibrium vr whose state is in res (pressure, gap): res->contact and the
+ * lubrication figures of res->lube (p_lub, regime, volumes, solves, the load and area ratios,
+ * the pocket height and mu). res->lube must hold the macro contact (mc_lube_macro) already.
+ * MC_OK or MC_ERR_INPUT (a ratio out of range: psi above 1 beyond the contact tolerance). */
+int mc_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_results *res,
+                    mc_error *err);
+
+/* The contact step of the elastic-plastic loop as a lubricant volume equilibrium: set
+ * solver, K, h_target (h_EHD, m) and tolerance (relative on V; <= 0: the default), then pass
+ * mc_lube_contact_step with a pointer to this as the loop's contact (plastic/loop.h). Each call
+ * solves the equilibrium of the loop's problem (h, h_extra, its load, its warm start) and keeps
+ * the figures of the last one in `last`. */
+typedef struct {
+    mc_contact_solver *solver;
+    mc_operator *K;
+    double h_target, tolerance;
+    mc_volume_result last; /* of the last call */
+    int calls, solves;     /* equilibria solved, contact solves in all */
+} mc_lube_contact;
+
+int mc_lube_contact_step(void *ctx, const mc_contact_problem *cp, double *p, double *u,
+                         double *gap, mc_contact_summary *sum, double *p_lub, mc_error *err);
 
 #endif

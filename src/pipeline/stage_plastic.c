@@ -6,13 +6,16 @@
 
 #include "core/alloc.h"
 #include "kernels/invariants.h"
+#include "pipeline/stage_lube.h"
 #include "plastic/loop.h"
 #include "stress/stress.h"
 
 static const char *const hardening_names[] = {"perfect", "linear", "swift", "table"};
 
-/* The hardening law of the scene. */
-static int make_law(const mc_scene *sc, mc_hardening *law, mc_error *err)
+/* History depth of the Anderson acceleration of a lubricated elastic-plastic run (loop.h). */
+#define MC_ANDERSON_LUBRICATED 4
+
+int mc_plastic_stage_law(const mc_scene *sc, mc_hardening *law, mc_error *err)
 {
     const double unit[] = {1.0, 1e6, 1e9};
     switch (sc->plasticity.hardening) {
@@ -33,10 +36,9 @@ static int make_law(const mc_scene *sc, mc_hardening *law, mc_error *err)
     return mc_fail(err, MC_ERR_INPUT, "[plasticity] hardening: unknown law");
 }
 
-/* Largest von Mises stress per layer of the pressure p at the depths z (body 1, with the
- * friction traction); vm_layer[k]. */
-static int layer_maxima(const mc_scene *sc, const mc_grid *g, const double *p, double p_lub,
-                        const double *z, int nz, double *vm_layer, mc_error *err)
+int mc_plastic_stage_layer_maxima(const mc_scene *sc, const mc_grid *g, const double *p,
+                                  double p_lub, const double *z, int nz, double *vm_layer,
+                                  mc_error *err)
 {
     const size_t n = mc_grid_cells(g);
     const double f = sc->plasticity.friction;
@@ -76,14 +78,14 @@ static int layer_maxima(const mc_scene *sc, const mc_grid *g, const double *p, d
     return rc;
 }
 
-/* Depth and columns of the plastic volume from the elastic solution at the full load. */
-static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, mc_eigen_volume *v,
-                       mc_error *err)
+/* Depth and columns of the plastic volume from the elastic solution at the full load (lubricant
+ * pressure p_lub). */
+static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, double p_lub,
+                       mc_eigen_volume *v, mc_error *err)
 {
     const mc_grid *g = &res->grid;
     mc_plastic_summary *ps = &res->plastic;
     const double dz = sc->plasticity.dz > 0 ? sc->plasticity.dz : fmin(g->dx, g->dy);
-    const double p_lub = fmax(sc->load.lubricant_pressure, 0.0);
     /* the contact's bounding box */
     int i0 = g->nx, i1 = -1, j0 = g->ny, j1 = -1;
     for (int j = 0; j < g->ny; j++)
@@ -112,7 +114,7 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, mc_ei
         for (int k = 0; rc == MC_OK && k < nprobe; k++)
             z[k] = (k + 0.5) * step;
         if (rc == MC_OK)
-            rc = layer_maxima(sc, g, res->pressure, p_lub, z, nprobe, vm, err);
+            rc = mc_plastic_stage_layer_maxima(sc, g, res->pressure, p_lub, z, nprobe, vm, err);
         double deepest = 0;
         for (int k = 0; rc == MC_OK && k < nprobe; k++) {
             ps->vm_elastic_max = fmax(ps->vm_elastic_max, vm[k]);
@@ -214,24 +216,31 @@ int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
     ps->load_steps = sc->plasticity.load_steps;
     mc_hardening law;
     memset(&law, 0, sizeof law);
-    int rc = make_law(sc, &law, err);
+    int rc = mc_plastic_stage_law(sc, &law, err);
     if (rc != MC_OK) {
         mc_error_prefix(err, "[plasticity] ");
         return rc;
     }
     ps->yield_initial = mc_hardening_initial(&law);
-    const double p_lub = fmax(sc->load.lubricant_pressure, 0.0);
-    /* the elastic solve at the full load: the volume's depth and columns, and the shortcut */
-    mc_contact_problem prob = {.h = res->topography,
-                               .p_lub = p_lub,
-                               .p_cap = INFINITY,
-                               .control = MC_CONTROL_FORCE,
-                               .load = sc->load.value};
-    rc = mc_contact_solve(solver, &prob, res->pressure, res->displacement, res->gap,
-                          &res->contact, err);
+    /* the elastic solve at the full load: the volume's depth and columns, and the shortcut;
+     * lubricated, the volume equilibrium sets p_lub, at every contact of the loop too */
+    const int lubricated = sc->load.lubricant_pressure == MC_LUBRICANT_AUTO;
+    double p_lub = fmax(sc->load.lubricant_pressure, 0.0);
+    if (lubricated) {
+        rc = mc_lube_stage(sc, K, solver, NULL, NULL, res, err);
+        p_lub = res->lube.p_lub;
+    } else {
+        mc_contact_problem prob = {.h = res->topography,
+                                   .p_lub = p_lub,
+                                   .p_cap = INFINITY,
+                                   .control = MC_CONTROL_FORCE,
+                                   .load = sc->load.value};
+        rc = mc_contact_solve(solver, &prob, res->pressure, res->displacement, res->gap,
+                              &res->contact, err);
+    }
     mc_eigen_volume v;
     if (rc == MC_OK)
-        rc = plan_volume(sc, res, ps->yield_initial, &v, err);
+        rc = plan_volume(sc, res, ps->yield_initial, p_lub, &v, err);
     if (rc == MC_OK)
         rc = alloc_fields(res, ps->nz, err);
     if (rc != MC_OK) {
@@ -246,8 +255,17 @@ int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
         mc_hardening_free(&law);
         return MC_OK;
     }
+    mc_lube_contact lc = {.solver = solver,
+                          .K = K,
+                          .h_target = res->lube.h_ehd,
+                          .tolerance = sc->lubrication.tolerance};
     mc_plastic_problem pb = {.h = res->topography,
-                             .load = sc->load.value,
+                             .load = lubricated ? res->lube.patch_load : sc->load.value,
+                             .contact = lubricated ? mc_lube_contact_step : NULL,
+                             .contact_ctx = &lc,
+                             /* p_lub moves with every outer iteration: Anderson mixing keeps
+                              * the two-cycles of a flipping contact set from stalling it */
+                             .anderson = lubricated ? MC_ANDERSON_LUBRICATED : 0,
                              .p_lub = p_lub,
                              .friction = sc->plasticity.friction,
                              .load_steps = sc->plasticity.load_steps,
@@ -289,6 +307,14 @@ int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
         ps->residual_max = 0;
         for (size_t i = 0; i < n; i++)
             ps->residual_max = fmax(ps->residual_max, pr.u_r[i]);
+        if (lubricated && lc.calls > 0) { /* the figures of the last equilibrium */
+            mc_error lerr = {0};
+            int lrc = mc_lube_outcome(sc, &lc.last, res, &lerr);
+            if (lrc != MC_OK) {
+                *err = lerr;
+                rc = lrc;
+            }
+        }
     }
     mc_plastic_result_free(&pr);
     mc_hardening_free(&law);

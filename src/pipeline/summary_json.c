@@ -124,6 +124,23 @@ static const char *shape_name(mc_shape s)
     return "unknown";
 }
 
+/* ISO parameters, named as the standards write them, SI (m; Mr and Sdr in %), as o[name]. */
+static void roughness_params(jbuild *b, json_t *o, const char *name, const mc_roughness_params *rp)
+{
+    mc_roughness_entry e[MC_ROUGHNESS_NENTRIES];
+    int ne = mc_roughness_entries(rp, e);
+    json_t *p = jchild(b, o, name, json_object());
+    for (int k = 0; k < ne; k++)
+        jset(b, p, e[k].name, jnum(e[k].value));
+    jset(b, p, "cutoff_auto", json_boolean(rp->cutoff_auto));
+    jset(b, p, "cutoff_clipped", json_boolean(rp->cutoff_clipped));
+    jset(b, p, "evaluation_length", jnum(rp->evaluation_length));
+    jset(b, p, "sampling_lengths", json_integer(rp->n_sampling));
+    jset(b, p, "filtered", json_boolean(rp->filtered));
+    if (rp->warning[0])
+        jset(b, p, "warning", jstr(rp->warning));
+}
+
 static const char *rough_name(mc_roughness_type t)
 {
     switch (t) {
@@ -221,22 +238,62 @@ static void summary_inputs(jbuild *b, json_t *root, const mc_scene *s, const mc_
         jset(b, o, "missing_points", json_integer(r->surface_missing));
         jset(b, o, "filled_points", json_integer(r->surface_filled));
     }
-    if (r->has_roughness) {
-        /* ISO parameters, named as the standards write them, SI (m; Mr and Sdr in %) */
-        const mc_roughness_params *rp = &r->roughness_initial;
-        mc_roughness_entry e[MC_ROUGHNESS_NENTRIES];
-        int ne = mc_roughness_entries(rp, e);
-        json_t *init = jchild(b, o, "initial", json_object());
-        for (int k = 0; k < ne; k++)
-            jset(b, init, e[k].name, jnum(e[k].value));
-        jset(b, init, "cutoff_auto", json_boolean(rp->cutoff_auto));
-        jset(b, init, "cutoff_clipped", json_boolean(rp->cutoff_clipped));
-        jset(b, init, "evaluation_length", jnum(rp->evaluation_length));
-        jset(b, init, "sampling_lengths", json_integer(rp->n_sampling));
-        jset(b, init, "filtered", json_boolean(rp->filtered));
-        if (rp->warning[0])
-            jset(b, init, "warning", jstr(rp->warning));
+    if (r->has_roughness)
+        roughness_params(b, o, "initial", &r->roughness_initial);
+    if (r->has_roughness_final) /* the run-in surface (running-in) */
+        roughness_params(b, o, "final", &r->roughness_final);
+}
+
+/* The running-in (pipeline/runin.h): the forces and speeds, the hysteresis per force, and how
+ * the steps went (rows: runin.csv). */
+static void summary_runin(jbuild *b, json_t *root, const mc_scene *s, const mc_results *r)
+{
+    const mc_runin_summary *ri = &r->runin;
+    json_t *o = jchild(b, root, "runin", json_object());
+    json_t *forces = jchild(b, o, "forces", json_array());
+    json_t *speeds = jchild(b, o, "speeds", json_array());
+    json_t *rpm = jchild(b, o, "speeds_rpm", json_array());
+    json_t *hyst = jchild(b, o, "hysteresis", json_array());
+    int bad = !forces || !speeds || !rpm || !hyst;
+    for (int k = 0; !bad && k < ri->nspeeds; k++)
+        bad = json_array_append_new(speeds, jnum(s->runin.speeds[k])) != 0 ||
+              json_array_append_new(rpm, jnum(s->runin.speeds[k] * 60.0 / (2.0 * M_PI))) != 0;
+    for (int f = 0; !bad && f < ri->nforces; f++) {
+        double F = s->runin.nforces > 0 ? s->runin.forces[f] : s->load.value;
+        json_t *h = json_object();
+        jset(b, h, "force", jnum(F));
+        jset(b, h, "area", jnum(ri->hysteresis ? ri->hysteresis[f] : NAN));
+        bad = json_array_append_new(forces, jnum(F)) != 0 ||
+              !h || json_array_append_new(hyst, h) != 0;
     }
+    if (bad)
+        b->bad = 1;
+    jset(b, o, "hysteresis_measure",
+         jstr("integral of (mu_down - mu_up) over log10 of the speed (trapezoids over the "
+              "speeds): mu times decades"));
+    jset(b, o, "steps", json_integer(ri->nsteps));
+    jset(b, o, "done", json_integer(ri->done));
+    jset(b, o, "resumed_from", json_integer(ri->resumed_from));
+    jset(b, o, "nominal_deflection", jstr(ri->deflection ? ri->deflection : ""));
+    int converged = 1, plastic = 0, roots = 0, solves = 0;
+    double worst = 0;
+    for (int k = 0; k < ri->done; k++) {
+        const mc_runin_row *w = &ri->rows[k];
+        converged &= w->converged;
+        plastic += w->plastic;
+        roots += w->roots;
+        solves += w->solves;
+        worst = fmax(worst, w->root_error);
+    }
+    jset(b, o, "converged", json_boolean(converged));
+    jset(b, o, "plastic_steps", json_integer(plastic));
+    jset(b, o, "volume_roots", json_integer(roots));
+    jset(b, o, "contact_solves", json_integer(solves));
+    jset(b, o, "root_tolerance", jnum(s->lubrication.tolerance));
+    jset(b, o, "root_error_max", jnum(worst));
+    jset(b, o, "surface",
+         jstr("surface_initial.npy, surface_final.npy: composite heights, m, positive towards "
+              "the counter body; the fields (pressure.npy, ...) are those of the last step"));
 }
 
 /* How the stress stage computed (mc_stress_layout): the depth rule and the windows, each with its
@@ -374,6 +431,9 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
                         "its Hertz pressure p_H as nominal pressure"
                       : "the scene's own load on the whole grid (no macro contact)"));
     }
+
+    if (r->runin.enabled)
+        summary_runin(b, root, s, r);
 
     o = jchild(b, root, "timing", json_object());
     jset(b, o, "total_s", jnum(r->timing.total_s));

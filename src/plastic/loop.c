@@ -7,6 +7,7 @@
 #include "core/alloc.h"
 #include "kernels/invariants.h"
 #include "kernels/kernel.h"
+#include "plastic/anderson.h"
 #include "plastic/return_map.h"
 #include "stress/stress.h"
 
@@ -29,6 +30,8 @@ typedef struct {
     double *u_r, *u_new, *h_extra; /* ny*nx */
     double p_lub;                /* lubricant pressure of the last contact solve, Pa */
     int solves;                  /* contact solves (step a) */
+    mc_anderson *aa;             /* acceleration of the plastic fixed point (NULL: none) */
+    mc_anderson *aa_outer;       /* and of the outer iteration on u_r */
 } loop_ctx;
 
 static void ctx_free(loop_ctx *c)
@@ -36,6 +39,8 @@ static void ctx_free(loop_ctx *c)
     mc_stress_destroy(&c->elastic);
     mc_eigen_disp_destroy(&c->disp);
     mc_eigen_stress_destroy(&c->resid);
+    mc_anderson_destroy(&c->aa);
+    mc_anderson_destroy(&c->aa_outer);
     for (int k = 0; k < 6; k++)
         mc_free(c->s_full[k]);
     double *arrays[] = {c->depths, c->qx,  c->sig_e, c->sig_r, c->d_eps,  c->d_new,
@@ -63,7 +68,8 @@ static int check_problem(const mc_grid *g, const mc_plastic_problem *pb, mc_erro
                        "plastic loop: window of %d x %d columns from (%d, %d) outside %d x %d",
                        w->nx, w->ny, w->i0, w->j0, g->nx, g->ny);
     if (!(pb->relaxation > 0 && pb->relaxation <= 1) || !(pb->tol_outer > 0) ||
-        pb->max_outer < 1 || !(pb->tol_plastic > 0) || pb->max_plastic < 1)
+        pb->max_outer < 1 || !(pb->tol_plastic > 0) || pb->max_plastic < 1 ||
+        pb->anderson < 0 || pb->anderson > MC_ANDERSON_MAX_DEPTH)
         return mc_fail(err, MC_ERR_INPUT, "plastic loop: bad iteration control");
     return MC_OK;
 }
@@ -104,6 +110,10 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
         rc = mc_eigen_disp_create(g, &pb->volume, pb->nu, pb->backend, &c->disp, err);
     if (rc == MC_OK)
         rc = mc_eigen_stress_create(g, &pb->volume, pb->nu, pb->backend, &c->resid, err);
+    if (rc == MC_OK && pb->anderson > 0)
+        rc = mc_anderson_create(c->nvol, 6, pb->anderson, &c->aa, err);
+    if (rc == MC_OK && pb->anderson > 0)
+        rc = mc_anderson_create((long)c->ncell, 1, pb->anderson, &c->aa_outer, err);
     return rc;
 }
 
@@ -221,13 +231,23 @@ static int plastic_fixed_point(loop_ctx *c, const double *eps_p, const double *p
             *diverged = 1;
             return MC_OK;
         }
-        if (change > prev_change && omega > 0.125)
-            omega *= 0.5;
-        prev_change = change;
-        for (size_t i = 0; i < nv6; i++)
-            c->d_eps[i] += omega * (c->d_new[i] - c->d_eps[i]);
-        for (long v = 0; v < c->nvol; v++)
-            c->dp[v] += omega * (c->dp_new[v] - c->dp[v]);
+        if (c->aa) { /* Anderson mixing of the increments (the last images' dp with them) */
+            if (m == 1)
+                mc_anderson_restart(c->aa);
+            mc_error aerr;
+            if (mc_anderson_step(c->aa, c->d_eps, c->d_new, &aerr) != MC_OK) {
+                mc_anderson_destroy(&c->aa); /* no memory to mix: plain iteration from here */
+            }
+            memcpy(c->dp, c->dp_new, (size_t)c->nvol * sizeof *c->dp);
+        } else {
+            if (change > prev_change && omega > 0.125)
+                omega *= 0.5;
+            prev_change = change;
+            for (size_t i = 0; i < nv6; i++)
+                c->d_eps[i] += omega * (c->d_new[i] - c->d_eps[i]);
+            for (long v = 0; v < c->nvol; v++)
+                c->dp[v] += omega * (c->dp_new[v] - c->dp[v]);
+        }
         if (!plastic && !any) { /* nothing yields and nothing has: the step is elastic */
             *converged = 1;
             return MC_OK;
@@ -336,8 +356,17 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
             *conv = 1;
             break;
         }
-        for (size_t i = 0; i < c->ncell; i++)
-            c->u_r[i] += pb->relaxation * (c->u_new[i] - c->u_r[i]);
+        if (c->aa_outer) { /* Anderson mixing of the relaxed map: g = u + omega (u_new - u) */
+            if (k == 1)
+                mc_anderson_restart(c->aa_outer);
+            for (size_t i = 0; i < c->ncell; i++) /* h_extra is rebuilt from u_r next */
+                c->h_extra[i] = c->u_r[i] + pb->relaxation * (c->u_new[i] - c->u_r[i]);
+            mc_error aerr;
+            if (mc_anderson_step(c->aa_outer, c->u_r, c->h_extra, &aerr) != MC_OK)
+                mc_anderson_destroy(&c->aa_outer); /* plain relaxation from here */
+        } else
+            for (size_t i = 0; i < c->ncell; i++)
+                c->u_r[i] += pb->relaxation * (c->u_new[i] - c->u_r[i]);
     }
     /* commit (also an increment that used up its outer iterations: reported, not hidden) */
     for (size_t i = 0; i < nv6; i++)
@@ -369,6 +398,7 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
         if (!(res->steps = mc_calloc((size_t)pb->load_steps, sizeof *res->steps)) ||
             !(res->eps_p = mc_zeros(nv6)) || !(res->peq = mc_zeros((size_t)c.nvol)) ||
             !(res->u_r = mc_zeros(c.ncell)) || !(res->residual_vm = mc_zeros((size_t)c.nvol)) ||
+            !(res->sig_r = mc_zeros(nv6)) ||
             !(save_eps = mc_zeros(nv6)) || !(save_peq = mc_zeros((size_t)c.nvol)) ||
             !(save_ur = mc_zeros(c.ncell)))
             rc = mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the results");
@@ -430,6 +460,7 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
     if (rc == MC_OK) { /* unloading: the residual field of the plastic strain alone */
         residual_displacement(&c, res->eps_p, res->u_r);
         residual_stress(&c, res->eps_p);
+        memcpy(res->sig_r, c.sig_r, nv6 * sizeof *res->sig_r);
         for (long v = 0; v < c.nvol; v++) {
             double s3[6];
             for (int q = 0; q < 6; q++)
@@ -457,5 +488,6 @@ void mc_plastic_result_free(mc_plastic_result *res)
     mc_free(res->peq);
     mc_free(res->u_r);
     mc_free(res->residual_vm);
+    mc_free(res->sig_r);
     memset(res, 0, sizeof *res);
 }

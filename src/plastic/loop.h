@@ -50,6 +50,12 @@ typedef struct {
     int max_outer;             /* outer iterations per step */
     double tol_plastic;        /* relative change of d eps_p that ends the fixed point */
     int max_plastic;           /* fixed-point iterations per outer iteration */
+    int anderson;              /* > 0: Anderson acceleration with this history depth
+                                  (plastic/anderson.h, <= MC_ANDERSON_MAX_DEPTH) of the plastic
+                                  fixed point and of the outer iteration (on the relaxed map
+                                  u + omega (u_new - u): it also damps the two-cycles of a contact
+                                  set that flips); 0: the adaptive under-relaxation of the fixed
+                                  point and plain relaxation outside */
     /* the material state before the first step (running-in: what the steps before left), in
      * the volume layout of the result; NULL = virgin (zero). The residual displacement and the
      * residual stress of eps_p0 are taken into account from the first contact on. */
@@ -85,6 +91,8 @@ typedef struct {
     double *peq;                /* nvol accumulated equivalent plastic strain (owned) */
     double *u_r;                /* ny*nx residual displacement of body 1, m (owned) */
     double *residual_vm;        /* nvol von Mises of the residual stress after unloading (owned) */
+    double *sig_r;              /* 6 * nvol residual stress after unloading, Pa, component-major
+                                   (owned) */
     long nvol;
     long yield_skips;           /* outer iterations where nothing yielded (shortcut taken) */
     double p_lub;               /* lubricant pressure of the last contact solve, Pa */

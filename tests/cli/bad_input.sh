@@ -264,6 +264,20 @@ row lube_rpm_radius   o 1 "lube_rpm_noradius.ini" "[lubrication] rpm needs radiu
     -- lube_rpm_noradius.ini --out o
 row lube_curved       o 1 "--set geometry.shape=sphere" "[lubrication] needs [geometry] shape = flat" \
     -- lube_ok.ini --out o --set geometry.shape=sphere --set geometry.radius=10mm
+# the running-in ([runin]) and its resume
+control control_runin         o 0 runin_ok.ini --out o --quiet
+row runin_speeds_rise  o 1 "runin_increasing.ini:23:" "[runin] speeds = 200, 500, 1000 rpm" \
+    "must be less than item 1 (200 rpm): the list is strictly decreasing" -- runin_increasing.ini --out o
+row runin_first_force  o 1 "--set runin.forces=2000 N, 3000 N" \
+    "[runin] forces: the first force (2000 N) must be [load] force" \
+    -- runin_ok.ini --out o --set "runin.forces=2000 N, 3000 N"
+row runin_given_film   o 1 "--set lubrication.film=given" "[runin] needs [lubrication] film = ehl" \
+    -- runin_ok.ini --out o --set lubrication.film=given --set lubrication.film_thickness=0.5um \
+    --set lubrication.viscosity= --set lubrication.pressure_viscosity= --set lubrication.rpm= \
+    --set lubrication.radius1= --set lubrication.radius2= --set lubrication.width=
+row runin_resume_none  o 1 "--resume: no checkpoint in 'o/checkpoint'" "run without --resume" \
+    -- runin_ok.ini --out o --resume
+row resume_not_runin   o 1 "--resume: good.ini has no [runin] section" -- good.ini --out o --resume
 # the default output directory (out/<case name>) must not appear either
 row default_out_dir   out/nx_zero 1 "nx_zero.ini:2:" "[mesh] nx = 0" -- nx_zero.ini
 

@@ -434,5 +434,84 @@ for f in empty foreign; do
     rm -rf eo
 done
 
+# ---- 4. running-in: checkpoints, SIGINT and --resume ----------------------------------------
+# A small elastic-plastic running-in (two forces, six speeds: 24 steps of a few tenths of a
+# second). runin_resume_*: stopped by SIGINT while it runs, it exits 130, keeps its checkpoint,
+# commits no result and says how to continue; resumed, it ends with the uninterrupted run's
+# runin.csv (but for its seconds column) and fields, bit for bit; the checkpoint is gone then.
+{ printf '[mesh]\nnx = 32\nny = 32\ndx = 0.8 um\n[roughness]\ntype = gaussian\nrq = 0.3 um\n'
+  printf 'correlation_x = 4 um\ncorrelation_y = 24 um\nseed = 2\n[load]\nforce = 1086 N\n'
+  printf 'lubricant_pressure = auto\n[lubrication]\nviscosity = 30 mPa*s\npressure_viscosity = 2e-8\n'
+  printf 'rpm = 3000 rpm\nradius1 = 40 mm\nradius2 = 40 mm\nwidth = 10 mm\n[solver]\nthreads = 1\n'
+  printf '[plasticity]\nhardening = swift\nswift_B = 1280 MPa\nswift_C = 4\nswift_n = 0.095\n'
+  printf 'bodies = both\nload_steps = 1\ndz = 0.4 um\ndepth = 2 um\nplastic_tolerance = 1e-5\n'
+  printf '[runin]\nforces = 1086 N, 2172 N\nspeeds = 3000, 1000, 700, 500, 350, 200 rpm\n'; } > runin.ini
+# runin.csv without its seconds column (17), the one that may differ
+nosec() { cut -d, -f1-16,18- "$1"; }
+"$PROG" run runin.ini --out rref --quiet > /dev/null 2>&1 || { echo "robustness: running-in reference failed"; exit 2; }
+why=""
+[ -e rref/checkpoint ] && why="$why the checkpoint of a finished run is left;"
+for f in runin.csv runin.gp surface_initial.npy surface_final.npy; do
+    [ -f "rref/$f" ] || why="$why no $f;"
+done
+row runin_outputs "$why"
+# runin_resume SIG STEP: stop after STEP steps were reported, then resume
+runin_resume() {
+    sig=$1 step=$2
+    rm -rf rs; : > err
+    $SIGENV "$PROG" run runin.ini --out rs > log 2> err &
+    pid=$!
+    BG="$BG $pid"
+    n=0
+    while [ $n -lt 3000 ] && ! grep -q "^step  *$step/" err && kill -0 $pid 2> /dev/null; do
+        sleep 0.01; n=$((n + 1))
+    done
+    kill -s "$sig" $pid 2> /dev/null
+    wait $pid
+    st=$?
+    why=""
+    case $sig in INT) want=130 ;; TERM) want=143 ;; esac
+    [ "$st" -eq "$want" ] || why="$why exit $st, not $want;"
+    grep -q "continue with:" err && grep -q -- "--out rs --resume" err || why="$why no resume hint: $(tail -3 err | tr '\n' ' ');"
+    [ -f rs/checkpoint/state.bin ] || why="$why no checkpoint;"
+    [ -e rs/summary.json ] && why="$why results were committed;"
+    "$PROG" run runin.ini --out rs --resume --quiet > log 2> err
+    st=$?
+    [ "$st" -eq 0 ] || why="$why resume: exit $st: $(cat err);"
+    [ -s err ] && why="$why resume --quiet wrote to stderr: $(cat err);"
+    [ "$(nosec rs/runin.csv)" = "$(nosec rref/runin.csv)" ] || why="$why runin.csv differs;"
+    for f in pressure.npy gap.npy surface_final.npy plastic_strain.npy residual_displacement.npy; do
+        cmp -s "rs/$f" "rref/$f" || why="$why $f differs;"
+    done
+    [ -e rs/checkpoint ] && why="$why the checkpoint is left after the resumed run;"
+    row "runin_resume_${sig}_after_step_$step" "$why"
+}
+if [ -n "$SIGENV" ]; then runin_resume INT 3; else runin_resume TERM 3; fi
+runin_resume TERM 9
+# the progress lines: one per step on stderr, none with --quiet
+rm -rf rp
+"$PROG" run runin.ini --out rp > log 2> err
+why=""
+[ "$(grep -c '^step  *[0-9]*/24 ' err)" -eq 24 ] || why="$why $(grep -c '^step' err) progress lines, not 24;"
+grep -q 'elapsed' err && grep -q 'left' err || why="$why progress lines lack elapsed / left;"
+row runin_progress_lines "$why"
+# a resume with other --set values (another case) is refused and keeps the checkpoint
+rm -rf rs; : > err
+$SIGENV "$PROG" run runin.ini --out rs > log 2> err &
+pid=$!
+BG="$BG $pid"
+n=0
+while [ $n -lt 3000 ] && ! grep -q "^step  *2/" err && kill -0 $pid 2> /dev/null; do sleep 0.01; n=$((n + 1)); done
+kill -s TERM $pid 2> /dev/null
+wait $pid
+"$PROG" run runin.ini --out rs --resume --set lubrication.mu_solid=0.13 > log 2> err
+st=$?
+why=""
+[ "$st" -eq 2 ] || why="$why exit $st, not 2;"
+grep -q "belongs to another case" err || why="$why message: $(cat err);"
+[ -f rs/checkpoint/state.bin ] || why="$why the checkpoint was removed;"
+row runin_resume_other_case "$why"
+rm -rf rs rp rref
+
 echo "robustness: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

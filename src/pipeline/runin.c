@@ -1,0 +1,705 @@
+/* runin.c - the running-in driver (runin.h): setup, the state carried from step to step,
+ * checkpoints and resume; one step at a time. */
+#include "pipeline/runin.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contact/contact.h"
+#include "core/alloc.h"
+#include "core/threads.h"
+#include "kernels/invariants.h"
+#include "lube/film.h"
+#include "lube/volume.h"
+#include "operator/operator.h"
+#include "pipeline/checkpoint.h"
+#include "pipeline/memguard.h"
+#include "pipeline/pipeline.h"
+#include "pipeline/stage_lube.h"
+#include "pipeline/stage_plastic.h"
+#include "plastic/loop.h"
+#include "plastic/return_map.h"
+#include "stress/stress.h"
+#include "surface/roughness.h"
+#include "surface/surface.h"
+
+/* History depth of the Anderson acceleration of the plastic fixed point (plastic/anderson.h):
+ * on the running-in patches it cuts the sweeps per outer iteration about threefold (from ~26 to
+ * ~10 at the same tolerance; measured on the 64 x 32 x 15 scene of the unit tests). */
+#define MC_RUNIN_ANDERSON 4
+
+#define FNV_OFFSET 14695981039346656037ull
+#define FNV_PRIME 1099511628211ull
+
+static uint64_t fnv(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *b = p;
+    for (size_t i = 0; i < n; i++) {
+        h ^= b[i];
+        h *= FNV_PRIME;
+    }
+    return h;
+}
+
+uint64_t mc_runin_case_hash(const mc_scene *sc, const double *h0, size_t n)
+{
+    mc_scene *s = mc_malloc(sizeof *s);
+    if (!s)
+        return 0;
+    memcpy(s, sc, sizeof *s); /* a byte copy: the padding stays what the defaults zeroed */
+    memset(s->path, 0, sizeof s->path);
+    memset(s->output.dir, 0, sizeof s->output.dir);
+    uint64_t h = fnv(FNV_OFFSET, s, sizeof *s);
+    mc_free(s);
+    return fnv(h, h0, n * sizeof *h0);
+}
+
+double mc_runin_hysteresis(const mc_runin_summary *r, int f)
+{
+    const int m = r->nspeeds, base = 2 * m * f;
+    if (f < 0 || f >= r->nforces || r->done < base + 2 * m)
+        return NAN;
+    double area = 0;
+    for (int k = 0; k + 1 < m; k++) { /* down rows base + k, up rows base + 2m - 1 - k */
+        const mc_runin_row *d0 = &r->rows[base + k], *d1 = &r->rows[base + k + 1];
+        const mc_runin_row *u0 = &r->rows[base + 2 * m - 1 - k];
+        const mc_runin_row *u1 = &r->rows[base + 2 * m - 2 - k];
+        double dl = log10(d0->speed) - log10(d1->speed);
+        area += 0.5 * dl * ((d0->mu - u0->mu) + (d1->mu - u1->mu));
+    }
+    return area;
+}
+
+/* ---- the context ----------------------------------------------------------------------------- */
+
+typedef struct {
+    const mc_scene *sc;
+    const mc_runin_options *opt;
+    mc_results *res;
+    mc_scene *step;           /* the scene of the current step: force and speed set */
+    mc_grid g;
+    size_t n;
+    int nf, m, nsteps;
+    double forces[MC_RUNIN_MAX];
+    mc_operator *K;
+    mc_contact_solver *solver;
+    double *h0;               /* initial topography (= res->topography) */
+    double *bowl;             /* K 1: the patch's deflection per unit nominal pressure, m/Pa */
+    double *h_base, *h_extra; /* per step: h0 - p_nom bowl, f u_r */
+    double *z;                /* scratch: the composite surface */
+    mc_roughness_options ropt;
+    double factor;            /* gap opening per residual displacement of body 1 (1 or 2) */
+    /* the material: state carried from step to step */
+    int plastic;
+    mc_hardening law;
+    double G;
+    mc_eigen_volume vol;
+    long nvol;
+    double *eps_p, *peq, *sig_r, *u_r;
+    mc_stress_plan *splan;    /* elastic stresses at the cuboid centres (the yield check) */
+    double *s_full[6], *qx;
+    uint64_t hash;
+    double seconds;           /* compute time of the steps done (also those of a checkpoint) */
+} runin_ctx;
+
+static void ctx_free(runin_ctx *c)
+{
+    mc_free(c->step);
+    mc_contact_destroy(&c->solver);
+    mc_operator_destroy(&c->K);
+    double *a[] = {c->bowl, c->h_base, c->h_extra, c->z, c->eps_p, c->peq, c->sig_r, c->u_r, c->qx};
+    for (size_t k = 0; k < sizeof a / sizeof a[0]; k++)
+        mc_free(a[k]);
+    for (int k = 0; k < 6; k++)
+        mc_free(c->s_full[k]);
+    mc_stress_destroy(&c->splan);
+    mc_hardening_free(&c->law);
+}
+
+static int stopped(const runin_ctx *c)
+{
+    return c->opt && c->opt->stop && c->opt->stop(c->opt->stop_ctx);
+}
+
+static int stop_poll(void *ctx) { return stopped(ctx); }
+
+/* ISO parameters of the composite surface z = -(h0 + f u_r). */
+static int surface_roughness(runin_ctx *c, double *z, mc_roughness_params *out, mc_error *err)
+{
+    for (size_t i = 0; i < c->n; i++)
+        z[i] = -(c->h0[i] + c->factor * c->u_r[i]);
+    return mc_roughness_compute(z, NULL, c->g.nx, c->g.ny, c->g.dx, c->g.dy, &c->ropt, out, err);
+}
+
+/* The macro contact of step (force F, disc speed n) into res->lube; the step's base gap. */
+static int step_macro(runin_ctx *c, double F, double speed, mc_error *err)
+{
+    c->step->load.value = F;
+    c->step->lubrication.rpm = speed;
+    if (c->sc->lubrication.rpm2 > 0) /* rolling-sliding: the slide-to-roll ratio stays */
+        c->step->lubrication.rpm2 = c->sc->lubrication.rpm2 * speed / c->sc->lubrication.rpm;
+    int rc = mc_lube_macro(c->step, &c->g, &c->res->lube, err);
+    if (rc != MC_OK)
+        return rc;
+    const double pnom = c->res->lube.nominal_pressure;
+    for (size_t i = 0; i < c->n; i++) {
+        c->h_base[i] = c->bowl ? c->h0[i] - pnom * c->bowl[i] : c->h0[i];
+        c->h_extra[i] = c->factor * c->u_r[i];
+    }
+    return MC_OK;
+}
+
+/* The volume equilibrium of the current step on the current surface, from a cold start, into
+ * res's fields. */
+static int equilibrium(runin_ctx *c, mc_volume_result *vr, mc_error *err)
+{
+    mc_results *r = c->res;
+    mc_volume_problem prob = {.h = c->h_base,
+                              .h_extra = c->h_extra,
+                              .load = r->lube.patch_load,
+                              .h_target = r->lube.h_ehd,
+                              .tolerance = c->sc->lubrication.tolerance};
+    return mc_volume_equilibrium(c->solver, c->K, &prob, r->pressure, r->displacement, r->gap, vr,
+                                 err);
+}
+
+/* Does anything yield under pressure p (lubricant pressure p_lub) with the residual stress and
+ * hardening of the state? The loop's first sweep (plastic/loop.c) from a zero increment. */
+static int yields(runin_ctx *c, const double *p, double p_lub, int *any, mc_error *err)
+{
+    const double f = c->sc->plasticity.friction;
+    if (f > 0)
+        for (size_t i = 0; i < c->n; i++)
+            c->qx[i] = p[i] > p_lub ? f * (p[i] - p_lub) : 0.0;
+    int rc = mc_stress_field(c->splan, p, f > 0 ? c->qx : NULL, NULL, c->s_full, err);
+    if (rc != MC_OK)
+        return rc;
+    int hit = 0, bad = 0;
+#pragma omp parallel for schedule(static) reduction(| : hit, bad) if (c->nvol > 4096)
+    for (long v = 0; v < c->nvol; v++) {
+        double trial[6], out[6], de[6], dp;
+        for (int q = 0; q < 6; q++)
+            trial[q] = c->s_full[q][v] + c->sig_r[(size_t)q * (size_t)c->nvol + (size_t)v];
+        mc_error e1;
+        if (mc_return_map(trial, c->peq[v], &c->law, c->G, out, de, &dp, &e1) != MC_OK)
+            bad = 1;
+        else
+            hit |= dp > 0;
+    }
+    if (bad)
+        return mc_fail(err, MC_ERR_NUMERIC, "running-in: non-finite stress in the yield check");
+    *any = hit;
+    return MC_OK;
+}
+
+/* The elastic-plastic loop of a run-down step from the carried state; the state is updated. */
+static int plastic_step(runin_ctx *c, mc_plastic_step *record, mc_lube_contact *lc, int *conv,
+                        mc_error *err)
+{
+    const mc_scene *sc = c->sc;
+    mc_results *r = c->res;
+    *lc = (mc_lube_contact){.solver = c->solver,
+                            .K = c->K,
+                            .h_target = r->lube.h_ehd,
+                            .tolerance = sc->lubrication.tolerance};
+    mc_plastic_problem pb = {.h = c->h_base,
+                             .load = r->lube.patch_load,
+                             .p_lub = r->lube.p_lub,
+                             .friction = sc->plasticity.friction,
+                             .load_steps = sc->plasticity.load_steps,
+                             .E = sc->body1.E,
+                             .nu = sc->body1.nu,
+                             .law = &c->law,
+                             .both = sc->plasticity.both,
+                             .volume = c->vol,
+                             .backend = sc->solver.backend,
+                             .relaxation = sc->plasticity.relaxation,
+                             .tol_outer = sc->plasticity.tolerance,
+                             .max_outer = sc->plasticity.max_outer,
+                             .tol_plastic = sc->plasticity.plastic_tolerance,
+                             .max_plastic = sc->plasticity.max_plastic,
+                             .anderson = MC_RUNIN_ANDERSON,
+                             .eps_p0 = c->eps_p,
+                             .peq0 = c->peq,
+                             .contact = mc_lube_contact_step,
+                             .contact_ctx = lc,
+                             .stop = stop_poll,
+                             .stop_ctx = c};
+    mc_plastic_result pr;
+    int rc = mc_plastic_run(&c->g, c->K, c->solver, &pb, r->pressure, r->displacement, r->gap,
+                            &r->contact, &pr, err);
+    if (rc == MC_OK || rc == MC_NOT_CONVERGED) {
+        const size_t nv6 = 6 * (size_t)c->nvol;
+        memcpy(c->eps_p, pr.eps_p, nv6 * sizeof *c->eps_p);
+        memcpy(c->peq, pr.peq, (size_t)c->nvol * sizeof *c->peq);
+        memcpy(c->sig_r, pr.sig_r, nv6 * sizeof *c->sig_r);
+        memcpy(c->u_r, pr.u_r, c->n * sizeof *c->u_r);
+        if (pr.steps_done > 0)
+            *record = pr.steps[pr.steps_done - 1];
+        *conv = pr.converged;
+    }
+    mc_plastic_result_free(&pr);
+    return rc;
+}
+
+/* One step: s in [0, nsteps). Fills row and, for a plastic run-down step, record. */
+static int run_step(runin_ctx *c, int s, mc_runin_row *row, mc_plastic_step *record,
+                    mc_error *err)
+{
+    const int m = c->m, f = s / (2 * m), k = s % (2 * m), up = k >= m;
+    const double F = c->forces[f], speed = c->sc->runin.speeds[up ? 2 * m - 1 - k : k];
+    double t0 = mc_clock();
+    mc_results *r = c->res;
+    memset(row, 0, sizeof *row);
+    row->force_index = f;
+    row->up = up;
+    row->force = F;
+    row->speed = speed;
+    int rc = step_macro(c, F, speed, err);
+    if (rc != MC_OK)
+        return rc;
+    mc_volume_result vr;
+    rc = equilibrium(c, &vr, err);
+    if (rc != MC_OK && rc != MC_NOT_CONVERGED)
+        return rc;
+    row->converged = rc == MC_OK;
+    row->solves = vr.solves;
+    row->roots = 1;
+    const mc_volume_result *last = &vr;
+    mc_lube_contact lc;
+    if (!up && c->plastic && rc == MC_OK) {
+        int any = 0;
+        rc = yields(c, r->pressure, vr.p_lub, &any, err);
+        if (rc != MC_OK)
+            return rc;
+        if (any) {
+            int conv = 0;
+            memset(record, 0, sizeof *record);
+            rc = plastic_step(c, record, &lc, &conv, err);
+            if (rc != MC_OK && rc != MC_NOT_CONVERGED)
+                return rc;
+            row->plastic = 1;
+            row->converged = rc == MC_OK && conv && lc.last.converged;
+            row->solves += lc.solves;
+            row->roots += lc.calls;
+            if (lc.calls > 0)
+                last = &lc.last;
+        }
+    }
+    int src = mc_lube_outcome(c->step, last, r, err);
+    if (src != MC_OK)
+        return src;
+    const mc_lube_summary *l = &r->lube;
+    row->entrainment = l->entrainment;
+    row->h_ehd = l->h_ehd;
+    row->p_lub = l->p_lub;
+    row->psi_load = l->psi_load;
+    row->psi_area = l->psi_area;
+    row->pocket_height = l->pocket_height;
+    row->mu = l->mu;
+    row->regime = (int)last->regime;
+    row->root_error = last->rel_error;
+    mc_roughness_params rp;
+    src = surface_roughness(c, c->z, &rp, err);
+    if (src != MC_OK)
+        return src;
+    row->ra = rp.Ra;
+    row->rq = rp.Rq;
+    row->rz = rp.Rz;
+    row->sa = rp.Sa;
+    row->sq = rp.Sq;
+    for (size_t i = 0; i < c->n; i++)
+        row->residual_max = fmax(row->residual_max, c->u_r[i]);
+    row->seconds = mc_clock() - t0;
+    return rc;
+}
+
+/* ---- setup ----------------------------------------------------------------------------------- */
+
+/* The plastic volume under the whole grid: nz layers of [plasticity] dz down to [plasticity]
+ * depth, or (auto) to 1.25 times the deepest layer where the elastic von Mises stress of the
+ * dry contact (p_lub = 0) at the largest force exceeds the initial yield stress. (The
+ * elastic-plastic stage of a single contact keeps the layers above half of it; a rough patch
+ * under a dry load stays above that deep below the asperities, where nothing yields.) */
+static int plan_volume(runin_ctx *c, mc_error *err)
+{
+    const mc_scene *sc = c->sc;
+    const double dz = sc->plasticity.dz > 0 ? sc->plasticity.dz : fmin(c->g.dx, c->g.dy);
+    double depth = sc->plasticity.depth;
+    if (!(depth > 0)) {
+        double fmax_ = 0;
+        for (int f = 0; f < c->nf; f++)
+            fmax_ = fmax(fmax_, c->forces[f]);
+        int rc = step_macro(c, fmax_, sc->runin.speeds[0], err);
+        mc_contact_problem prob = {.h = c->h_base,
+                                   .p_cap = INFINITY,
+                                   .control = MC_CONTROL_FORCE,
+                                   .load = c->res->lube.patch_load};
+        mc_contact_summary cs;
+        if (rc == MC_OK)
+            rc = mc_contact_solve(c->solver, &prob, c->res->pressure, c->res->displacement,
+                                  c->res->gap, &cs, err);
+        enum { NPROBE = 48 };
+        double z[NPROBE], vm[NPROBE];
+        for (int k = 0; k < NPROBE; k++)
+            z[k] = (k + 0.5) * dz;
+        if (rc == MC_OK)
+            rc = mc_plastic_stage_layer_maxima(sc, &c->g, c->res->pressure, 0.0, z, NPROBE, vm,
+                                               err);
+        if (rc != MC_OK)
+            return rc;
+        double deepest = 0, y0 = mc_hardening_initial(&c->law);
+        for (int k = 0; k < NPROBE; k++)
+            if (vm[k] > y0)
+                deepest = z[k] + 0.5 * dz;
+        depth = fmax(1.25 * deepest, 2 * dz);
+    }
+    int nz = (int)ceil(depth / dz - 1e-9);
+    c->vol = mc_eigen_volume_full(&c->g, nz < 1 ? 1 : nz, dz);
+    c->nvol = (long)c->vol.nz * c->g.nx * c->g.ny;
+    return MC_OK;
+}
+
+static int setup(runin_ctx *c, mc_error *err)
+{
+    const mc_scene *sc = c->sc;
+    mc_results *r = c->res;
+    c->g = sc->grid;
+    c->n = mc_grid_cells(&c->g);
+    c->m = sc->runin.nspeeds;
+    c->nf = sc->runin.nforces > 0 ? sc->runin.nforces : 1;
+    for (int f = 0; f < c->nf; f++)
+        c->forces[f] = sc->runin.nforces > 0 ? sc->runin.forces[f] : sc->load.value;
+    c->nsteps = 2 * c->nf * c->m;
+    c->plastic = sc->plasticity.enabled;
+    c->factor = c->plastic && sc->plasticity.both ? 2.0 : 1.0;
+    r->grid = c->g;
+    r->roughness_seed = sc->roughness.seed;
+    double **fields[] = {&r->topography, &r->pressure, &r->gap, &r->displacement,
+                         &r->surface_initial, &r->surface_final};
+    for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++)
+        if (!(*fields[k] = mc_zeros(c->n)))
+            return mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory for the fields");
+    if (!(c->step = mc_malloc(sizeof *c->step)) || !(c->h_base = mc_zeros(c->n)) ||
+        !(c->h_extra = mc_zeros(c->n)) || !(c->z = mc_zeros(c->n)) || !(c->u_r = mc_zeros(c->n)))
+        return mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory");
+    memcpy(c->step, sc, sizeof *c->step);
+    c->h0 = r->topography;
+    int rc = mc_surface_topography(&c->g, &sc->geometry, &sc->roughness, c->h0, err);
+    if (rc != MC_OK)
+        return rc;
+    c->hash = mc_runin_case_hash(sc, c->h0, c->n);
+    /* a simulated window is much shorter than the ISO 4288 cut-off (0.8 mm for ground
+     * surfaces): without a [roughness] cutoff the rows are only levelled (their mean removed),
+     * not filtered (dossier plastic-lubrication §6.2) */
+    mc_roughness_options_default(&c->ropt);
+    c->ropt.cutoff = sc->roughness.cutoff;
+    c->ropt.filter = sc->roughness.cutoff > 0;
+    c->ropt.periodic_x = c->g.periodic_x;
+    c->ropt.periodic_y = c->g.periodic_y;
+    if (sc->roughness.type != MC_ROUGH_NONE) {
+        rc = surface_roughness(c, r->surface_initial, &r->roughness_initial, err);
+        if (rc != MC_OK)
+            return rc;
+        r->has_roughness = 1;
+    } else
+        for (size_t i = 0; i < c->n; i++)
+            r->surface_initial[i] = -c->h0[i];
+    double t0 = mc_clock();
+    const double estar = mc_scene_estar(sc);
+    rc = mc_operator_plan_love(&c->g, estar, sc->solver.backend, &c->K, err);
+    mc_contact_options copt = {.method = sc->solver.method,
+                               .tolerance = sc->solver.tolerance,
+                               .max_iterations = sc->solver.max_iterations,
+                               .estar = estar};
+    if (rc == MC_OK)
+        rc = mc_contact_create(c->K, &copt, &c->solver, err);
+    if (rc == MC_OK && sc->runin.deflection == MC_DEFLECTION_REMOVE) {
+        double *one = mc_zeros(c->n);
+        if (!one || !(c->bowl = mc_zeros(c->n))) {
+            mc_free(one);
+            return mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory");
+        }
+        for (size_t i = 0; i < c->n; i++)
+            one[i] = 1.0;
+        mc_operator_apply(c->K, one, c->bowl);
+        mc_free(one);
+    }
+    if (rc == MC_OK && c->plastic) {
+        rc = mc_plastic_stage_law(sc, &c->law, err);
+        if (rc != MC_OK)
+            mc_error_prefix(err, "[plasticity] ");
+        c->G = sc->body1.E / (2.0 * (1.0 + sc->body1.nu));
+        if (rc == MC_OK)
+            rc = plan_volume(c, err);
+        const size_t nv = (size_t)c->nvol;
+        if (rc == MC_OK && (!(c->eps_p = mc_zeros(6 * nv)) || !(c->peq = mc_zeros(nv)) ||
+                            !(c->sig_r = mc_zeros(6 * nv)) || !(c->qx = mc_zeros(c->n))))
+            rc = mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory for %ld volume cells",
+                         c->nvol);
+        for (int q = 0; rc == MC_OK && q < 6; q++)
+            if (!(c->s_full[q] = mc_zeros(nv)))
+                rc = mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory");
+        double *depths = rc == MC_OK ? mc_zeros((size_t)c->vol.nz) : NULL;
+        if (rc == MC_OK && !depths)
+            rc = mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory");
+        for (int k = 0; rc == MC_OK && k < c->vol.nz; k++)
+            depths[k] = (k + 0.5) * c->vol.dz;
+        mc_stress_options so = {.kernel = MC_STRESS_PATCH,
+                                .nu = sc->body1.nu,
+                                .nlayers = c->vol.nz,
+                                .depths = depths,
+                                .backend = sc->solver.backend,
+                                .loads = MC_TRACTION_P |
+                                         (sc->plasticity.friction > 0 ? MC_TRACTION_QX : 0)};
+        if (rc == MC_OK)
+            rc = mc_stress_create(&c->g, &so, &c->splan, err);
+        mc_free(depths);
+    }
+    r->timing.setup_s = mc_clock() - t0;
+    return rc;
+}
+
+/* ---- checkpoints ----------------------------------------------------------------------------- */
+
+static int save(runin_ctx *c, int done, const mc_plastic_step *records, int nrec, mc_error *err)
+{
+    if (!c->opt || !c->opt->checkpoint_dir)
+        return MC_OK;
+    mc_checkpoint ck = {.case_hash = c->hash,
+                        .nx = c->g.nx,
+                        .ny = c->g.ny,
+                        .nz = c->plastic ? c->vol.nz : 0,
+                        .nvol = c->plastic ? c->nvol : 0,
+                        .nsteps = c->nsteps,
+                        .done = done,
+                        .seconds = c->seconds,
+                        .rows = c->res->runin.rows,
+                        .eps_p = c->eps_p,
+                        .peq = c->peq,
+                        .sig_r = c->sig_r,
+                        .u_r = c->u_r,
+                        .nrec = nrec,
+                        .records = (mc_plastic_step *)records};
+    return mc_checkpoint_write(c->opt->checkpoint_dir, &ck, err);
+}
+
+static int restore(runin_ctx *c, int *start, mc_plastic_step *records, int *nrec, mc_error *err)
+{
+    const char *dir = c->opt->checkpoint_dir;
+    mc_checkpoint ck;
+    int rc = mc_checkpoint_read(dir, &ck, err);
+    if (rc != MC_OK)
+        return rc;
+    if (ck.case_hash != c->hash)
+        rc = mc_fail(err, MC_ERR_INPUT,
+                     "the checkpoint in '%s' belongs to another case (or other --set values): "
+                     "resume with the case and settings that started it, or run without "
+                     "--resume to start over",
+                     dir);
+    else if (ck.nx != c->g.nx || ck.ny != c->g.ny || ck.nsteps != c->nsteps ||
+             ck.nvol != (c->plastic ? c->nvol : 0) || ck.nz != (c->plastic ? c->vol.nz : 0))
+        rc = mc_fail(err, MC_ERR_INPUT,
+                     "the checkpoint in '%s' does not fit this run (grid %d x %d, %d steps, %ld "
+                     "volume cells; the case asks %d x %d, %d, %ld)",
+                     dir, ck.nx, ck.ny, ck.nsteps, ck.nvol, c->g.nx, c->g.ny, c->nsteps,
+                     c->plastic ? c->nvol : 0);
+    if (rc == MC_OK) {
+        const size_t nv = (size_t)ck.nvol;
+        memcpy(c->res->runin.rows, ck.rows, (size_t)ck.done * sizeof *ck.rows);
+        if (nv > 0) {
+            memcpy(c->eps_p, ck.eps_p, 6 * nv * sizeof *c->eps_p);
+            memcpy(c->peq, ck.peq, nv * sizeof *c->peq);
+            memcpy(c->sig_r, ck.sig_r, 6 * nv * sizeof *c->sig_r);
+        }
+        memcpy(c->u_r, ck.u_r, c->n * sizeof *c->u_r);
+        c->seconds = ck.seconds;
+        memcpy(records, ck.records, (size_t)ck.nrec * sizeof *records);
+        *nrec = ck.nrec;
+        /* a finished run is resumed at its last step (a run-up: elastic, from the state, so it
+         * adds no record), so that its fields are there to be written */
+        *start = ck.done < ck.nsteps ? ck.done : ck.nsteps - 1;
+        if (*start < ck.done)
+            c->seconds -= ck.rows[*start].seconds; /* it is timed again */
+        c->res->runin.resumed_from = *start;
+    }
+    mc_checkpoint_free(&ck);
+    return rc;
+}
+
+/* ---- results --------------------------------------------------------------------------------- */
+
+/* The plastic fields and summary of the final state (results.h). */
+static int plastic_results(runin_ctx *c, const mc_plastic_step *records, int nrec, mc_error *err)
+{
+    const mc_scene *sc = c->sc;
+    mc_results *r = c->res;
+    mc_plastic_summary *ps = &r->plastic;
+    const size_t n = c->n, nv = (size_t)c->nvol;
+    memset(ps, 0, sizeof *ps);
+    ps->enabled = 1;
+    ps->criterion = "von_mises";
+    static const char *const names[] = {"perfect", "linear", "swift", "table"};
+    ps->hardening = names[sc->plasticity.hardening];
+    ps->yield_initial = mc_hardening_initial(&c->law);
+    ps->load_steps = nrec;
+    ps->steps_done = nrec;
+    ps->converged = 1;
+    for (int s = 0; s < r->runin.done; s++)
+        ps->converged &= r->runin.rows[s].converged;
+    if (!(r->residual_displacement = mc_zeros(n)) || !(r->topography_final = mc_zeros(n)) ||
+        !(r->plastic_strain = mc_zeros(nv)) || !(r->residual_von_mises = mc_zeros(nv)) ||
+        (nrec > 0 && !(ps->steps = mc_calloc((size_t)nrec, sizeof *ps->steps))))
+        return mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory for the outputs");
+    if (nrec > 0)
+        memcpy(ps->steps, records, (size_t)nrec * sizeof *records);
+    for (int k = 0; k < nrec; k++)
+        ps->outer_iterations += records[k].outer_iterations;
+    for (size_t i = 0; i < n; i++) {
+        r->residual_displacement[i] = c->u_r[i];
+        r->topography_final[i] = c->h0[i] + c->factor * c->u_r[i];
+        ps->residual_max = fmax(ps->residual_max, c->u_r[i]);
+    }
+    long at = -1;
+    for (size_t v = 0; v < nv; v++) {
+        double s6[6];
+        for (int q = 0; q < 6; q++)
+            s6[q] = c->sig_r[(size_t)q * nv + v];
+        r->residual_von_mises[v] = mc_von_mises(s6);
+        r->plastic_strain[v] = c->peq[v];
+        if (c->peq[v] > 0)
+            ps->plastic_volume += c->g.dx * c->g.dy * c->vol.dz;
+        if (c->peq[v] > ps->peq_max) {
+            ps->peq_max = c->peq[v];
+            at = (long)v;
+        }
+    }
+    if (at >= 0) {
+        long i = at % c->g.nx, j = (at / c->g.nx) % c->g.ny, k = at / ((long)c->g.nx * c->g.ny);
+        ps->peq_max_at[0] = mc_grid_x(&c->g, (int)i);
+        ps->peq_max_at[1] = mc_grid_y(&c->g, (int)j);
+        ps->peq_max_at[2] = (k + 0.5) * c->vol.dz;
+    }
+    ps->depth = c->vol.nz * c->vol.dz;
+    ps->dz = c->vol.dz;
+    ps->nz = c->vol.nz;
+    ps->depth_auto = !(sc->plasticity.depth > 0);
+    ps->wnx = c->g.nx;
+    ps->wny = c->g.ny;
+    ps->volume_cells = c->nvol;
+    return MC_OK;
+}
+
+static int final_results(runin_ctx *c, const mc_plastic_step *records, int nrec, mc_error *err)
+{
+    mc_results *r = c->res;
+    for (size_t i = 0; i < c->n; i++)
+        r->surface_final[i] = -(c->h0[i] + c->factor * c->u_r[i]);
+    if (r->has_roughness) {
+        int rc = surface_roughness(c, c->z, &r->roughness_final, err);
+        if (rc != MC_OK)
+            return rc;
+        r->has_roughness_final = 1;
+    }
+    for (int f = 0; f < c->nf; f++)
+        r->runin.hysteresis[f] = mc_runin_hysteresis(&r->runin, f);
+    return c->plastic ? plastic_results(c, records, nrec, err) : MC_OK;
+}
+
+/* ---- the run --------------------------------------------------------------------------------- */
+
+static int run(runin_ctx *c, mc_error *err)
+{
+    const mc_scene *sc = c->sc;
+    mc_results *r = c->res;
+    const double t_start = mc_clock();
+    int rc = mc_scene_check(sc, err);
+    if (rc == MC_OK && !sc->runin.enabled)
+        rc = mc_fail(err, MC_ERR_INPUT, "running-in: the scene has no [runin] section");
+    if (rc == MC_OK)
+        rc = mc_memory_check(sc, err);
+    if (rc == MC_OK)
+        rc = setup(c, err);
+    mc_runin_summary *ri = &r->runin;
+    ri->enabled = 1;
+    ri->nforces = c->nf;
+    ri->nspeeds = c->m;
+    ri->nsteps = c->nsteps;
+    ri->deflection = sc->runin.deflection == MC_DEFLECTION_REMOVE ? "remove" : "keep";
+    mc_plastic_step *records = NULL;
+    if (rc == MC_OK && (!(ri->rows = mc_calloc((size_t)c->nsteps, sizeof *ri->rows)) ||
+                        !(ri->hysteresis = mc_zeros((size_t)c->nf)) ||
+                        !(records = mc_calloc((size_t)c->nsteps, sizeof *records))))
+        rc = mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory for the rows");
+    int start = 0, nrec = 0, worst = MC_OK;
+    if (rc == MC_OK && c->opt && c->opt->resume) {
+        if (!c->opt->checkpoint_dir)
+            rc = mc_fail(err, MC_ERR_INPUT, "running-in: resume needs a checkpoint directory");
+        else
+            rc = restore(c, &start, records, &nrec, err);
+    }
+    const double t_session = mc_clock();
+    for (int s = start; rc == MC_OK && s < c->nsteps; s++) {
+        if (stopped(c)) {
+            rc = mc_fail(err, MC_ERR_INTERRUPTED, "running-in: stopped before step %d of %d",
+                         s + 1, c->nsteps);
+            break;
+        }
+        mc_plastic_step rec;
+        memset(&rec, 0, sizeof rec);
+        int src = run_step(c, s, &ri->rows[s], &rec, err);
+        if (src == MC_ERR_INTERRUPTED) {
+            rc = src;
+            break;
+        }
+        if (src != MC_OK && src != MC_NOT_CONVERGED) {
+            rc = mc_error_prefix(err, "running-in step %d of %d (%g N, %s, %.6g rpm): ", s + 1,
+                                 c->nsteps, ri->rows[s].force, ri->rows[s].up ? "up" : "down",
+                                 ri->rows[s].speed * 60.0 / (2.0 * M_PI));
+            break;
+        }
+        if (src == MC_NOT_CONVERGED)
+            worst = src;
+        if (ri->rows[s].plastic)
+            records[nrec++] = rec;
+        c->seconds += ri->rows[s].seconds;
+        ri->done = s + 1;
+        rc = save(c, ri->done, records, nrec, err);
+        if (rc == MC_OK && c->opt && c->opt->progress) {
+            const double el = mc_clock() - t_session;
+            mc_runin_progress pr = {.step = s + 1,
+                                    .nsteps = c->nsteps,
+                                    .row = &ri->rows[s],
+                                    .elapsed = el,
+                                    .eta = el / (s + 1 - start) * (c->nsteps - s - 1)};
+            c->opt->progress(c->opt->progress_ctx, &pr);
+        }
+    }
+    if (rc == MC_OK)
+        rc = final_results(c, records, nrec, err);
+    mc_free(records);
+    r->timing.total_s = mc_clock() - t_start;
+    r->timing.contact_s = c->seconds;
+    if (rc == MC_OK && worst != MC_OK)
+        rc = mc_fail(err, worst, "running-in: a solve did not converge (see runin.csv, column "
+                                 "converged)");
+    return rc;
+}
+
+int mc_runin_run(const mc_scene *sc, const mc_runin_options *opt, mc_results *res,
+                 mc_error *err)
+{
+    memset(res, 0, sizeof *res);
+    runin_ctx c;
+    memset(&c, 0, sizeof c);
+    c.sc = sc;
+    c.opt = opt;
+    c.res = res;
+    mc_threads_scope scope;
+    mc_threads_begin(sc->solver.threads, &scope);
+    int rc = run(&c, err);
+    mc_threads_end(&scope);
+    ctx_free(&c);
+    return rc;
+}

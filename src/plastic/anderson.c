@@ -1,0 +1,233 @@
+/* anderson.c - Anderson acceleration on the active cells of a field (anderson.h). */
+#include "plastic/anderson.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "core/alloc.h"
+
+struct mc_anderson {
+    long ncells;
+    int width, depth;
+    long *map;    /* ncells: slot of a cell in the compact vectors, -1 when not active */
+    long *cells;  /* nact active cells, in the order they joined */
+    long nact, cap;
+    double *f[MC_ANDERSON_MAX_DEPTH + 1], *g[MC_ANDERSON_MAX_DEPTH + 1]; /* width * cap each */
+    int count;    /* stored iterates (<= depth + 1) */
+    int head;     /* ring position of the next one */
+};
+
+int mc_anderson_create(long ncells, int width, int depth, mc_anderson **out, mc_error *err)
+{
+    *out = NULL;
+    if (ncells < 1 || width < 1 || depth < 1 || depth > MC_ANDERSON_MAX_DEPTH)
+        return mc_fail(err, MC_ERR_INPUT, "anderson: %ld cells of width %d, depth %d (1..%d)",
+                       ncells, width, depth, MC_ANDERSON_MAX_DEPTH);
+    mc_anderson *a = mc_calloc(1, sizeof *a);
+    if (!a || !(a->map = mc_malloc((size_t)ncells * sizeof *a->map)) ||
+        !(a->cells = mc_malloc((size_t)ncells * sizeof *a->cells))) {
+        mc_anderson_destroy(&a);
+        return mc_fail(err, MC_ERR_NOMEM, "anderson: out of memory for %ld cells", ncells);
+    }
+    a->ncells = ncells;
+    a->width = width;
+    a->depth = depth;
+    for (long v = 0; v < ncells; v++)
+        a->map[v] = -1;
+    *out = a;
+    return MC_OK;
+}
+
+void mc_anderson_restart(mc_anderson *a)
+{
+    for (long k = 0; k < a->nact; k++)
+        a->map[a->cells[k]] = -1;
+    a->nact = 0;
+    a->count = 0;
+    a->head = 0;
+}
+
+long mc_anderson_active(const mc_anderson *a) { return a->nact; }
+
+void mc_anderson_destroy(mc_anderson **pa)
+{
+    mc_anderson *a = pa ? *pa : NULL;
+    if (!a)
+        return;
+    for (int k = 0; k <= MC_ANDERSON_MAX_DEPTH; k++) {
+        mc_free(a->f[k]);
+        mc_free(a->g[k]);
+    }
+    mc_free(a->map);
+    mc_free(a->cells);
+    mc_free(a);
+    *pa = NULL;
+}
+
+/* Room for need active cells in every history vector; new entries are zero. */
+static int grow(mc_anderson *a, long need)
+{
+    if (need <= a->cap)
+        return 1;
+    long cap = a->cap ? a->cap : 1024;
+    while (cap < need)
+        cap *= 2;
+    if (cap > a->ncells)
+        cap = a->ncells;
+    const size_t w = (size_t)a->width;
+    for (int k = 0; k <= a->depth; k++) {
+        double *nf = mc_zeros(w * (size_t)cap), *ng = mc_zeros(w * (size_t)cap);
+        if (!nf || !ng) {
+            mc_free(nf);
+            mc_free(ng);
+            return 0;
+        }
+        if (a->f[k]) {
+            memcpy(nf, a->f[k], w * (size_t)a->cap * sizeof *nf);
+            memcpy(ng, a->g[k], w * (size_t)a->cap * sizeof *ng);
+        }
+        mc_free(a->f[k]);
+        mc_free(a->g[k]);
+        a->f[k] = nf;
+        a->g[k] = ng;
+    }
+    a->cap = cap;
+    return 1;
+}
+
+/* Dot product of two compact vectors of n values (a fixed order of summation per thread count). */
+static double dot(const double *x, const double *y, size_t n)
+{
+    double s = 0;
+#pragma omp parallel for schedule(static) reduction(+ : s) if (n > 262144)
+    for (size_t i = 0; i < n; i++)
+        s += x[i] * y[i];
+    return s;
+}
+
+/* Solve the m x m system A gamma = b in place (partial pivoting); 0 when singular. */
+static int solve_small(int m, double A[][MC_ANDERSON_MAX_DEPTH], double *b, double *gamma)
+{
+    for (int c = 0; c < m; c++) {
+        int piv = c;
+        for (int r = c + 1; r < m; r++)
+            if (fabs(A[r][c]) > fabs(A[piv][c]))
+                piv = r;
+        if (!(fabs(A[piv][c]) > 0))
+            return 0;
+        if (piv != c) {
+            for (int q = 0; q < m; q++) {
+                double t = A[c][q];
+                A[c][q] = A[piv][q];
+                A[piv][q] = t;
+            }
+            double t = b[c];
+            b[c] = b[piv];
+            b[piv] = t;
+        }
+        for (int r = c + 1; r < m; r++) {
+            double f = A[r][c] / A[c][c];
+            for (int q = c; q < m; q++)
+                A[r][q] -= f * A[c][q];
+            b[r] -= f * b[c];
+        }
+    }
+    for (int c = m - 1; c >= 0; c--) {
+        double s = b[c];
+        for (int q = c + 1; q < m; q++)
+            s -= A[c][q] * gamma[q];
+        gamma[c] = s / A[c][c];
+    }
+    for (int c = 0; c < m; c++)
+        if (!isfinite(gamma[c]))
+            return 0;
+    return 1;
+}
+
+int mc_anderson_step(mc_anderson *a, double *x, const double *gx, mc_error *err)
+{
+    const long N = a->ncells;
+    const int w = a->width;
+    /* cells that turned non-zero join the active set */
+    long need = a->nact;
+    for (long v = 0; v < N; v++) {
+        if (a->map[v] >= 0)
+            continue;
+        int nz = 0;
+        for (int q = 0; q < w && !nz; q++)
+            nz = x[(size_t)q * (size_t)N + (size_t)v] != 0.0 ||
+                 gx[(size_t)q * (size_t)N + (size_t)v] != 0.0;
+        if (nz) {
+            a->map[v] = need;
+            a->cells[need++] = v;
+        }
+    }
+    if (!grow(a, need)) {
+        for (long k = a->nact; k < need; k++)
+            a->map[a->cells[k]] = -1;
+        mc_anderson_restart(a);
+        memcpy(x, gx, (size_t)w * (size_t)N * sizeof *x);
+        return mc_fail(err, MC_ERR_NOMEM, "anderson: out of memory for %ld active cells", need);
+    }
+    a->nact = need;
+    /* store f_k = g(x_k) - x_k and g(x_k) on the active cells, slot-major */
+    const int cur = a->head;
+    double *fc = a->f[cur], *gc = a->g[cur];
+    for (long k = 0; k < a->nact; k++) {
+        const size_t v = (size_t)a->cells[k];
+        for (int q = 0; q < w; q++) {
+            double gv = gx[(size_t)q * (size_t)N + v];
+            fc[(size_t)k * (size_t)w + (size_t)q] = gv - x[(size_t)q * (size_t)N + v];
+            gc[(size_t)k * (size_t)w + (size_t)q] = gv;
+        }
+    }
+    if (a->count < a->depth + 1)
+        a->count++;
+    a->head = (a->head + 1) % (a->depth + 1);
+    const int m = a->count - 1; /* differences available */
+    /* cells outside the active set are zero in x and g(x): they stay zero */
+    double gamma[MC_ANDERSON_MAX_DEPTH];
+    int mix = m > 0;
+    const size_t len = (size_t)a->nact * (size_t)w;
+    if (mix) {
+        int ring[MC_ANDERSON_MAX_DEPTH + 1]; /* oldest .. newest (= cur) */
+        for (int j = 0; j <= m; j++)
+            ring[j] = (cur - m + j + 2 * (a->depth + 1)) % (a->depth + 1);
+        /* dF_j = f_{ring[j+1]} - f_{ring[j]}; normal equations dF' dF gamma = dF' f_k */
+        double A[MC_ANDERSON_MAX_DEPTH][MC_ANDERSON_MAX_DEPTH], b[MC_ANDERSON_MAX_DEPTH];
+        double ff[MC_ANDERSON_MAX_DEPTH + 1][MC_ANDERSON_MAX_DEPTH + 1];
+        for (int i = 0; i <= m; i++)
+            for (int j = 0; j <= i; j++)
+                ff[i][j] = ff[j][i] = dot(a->f[ring[i]], a->f[ring[j]], len);
+        double trace = 0;
+        for (int i = 0; i < m; i++) {
+            for (int j = 0; j < m; j++)
+                A[i][j] = ff[i + 1][j + 1] - ff[i + 1][j] - ff[i][j + 1] + ff[i][j];
+            b[i] = ff[i + 1][m] - ff[i][m];
+            trace += A[i][i];
+        }
+        /* a little Tikhonov regularisation keeps near-dependent differences harmless */
+        for (int i = 0; i < m; i++)
+            A[i][i] += 1e-12 * trace;
+        mix = trace > 0 && solve_small(m, A, b, gamma);
+        if (mix) {
+            for (long k = 0; k < a->nact; k++) {
+                const size_t v = (size_t)a->cells[k];
+                for (int q = 0; q < w; q++) {
+                    const size_t s = (size_t)k * (size_t)w + (size_t)q;
+                    double xv = gc[s];
+                    for (int j = 0; j < m; j++)
+                        xv -= gamma[j] * (a->g[ring[j + 1]][s] - a->g[ring[j]][s]);
+                    x[(size_t)q * (size_t)N + v] = xv;
+                }
+            }
+        }
+    }
+    if (!mix)
+        for (long k = 0; k < a->nact; k++) {
+            const size_t v = (size_t)a->cells[k];
+            for (int q = 0; q < w; q++)
+                x[(size_t)q * (size_t)N + v] = gc[(size_t)k * (size_t)w + (size_t)q];
+        }
+    return MC_OK;
+}

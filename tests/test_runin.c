@@ -1,0 +1,645 @@
+/* test_runin.c - the running-in driver (pipeline/runin.h) and its case keys: the [runin] lists
+ * and rules; an elastic material runs in nothing (run-down and run-up identical to the bit); an
+ * elastic-plastic one smooths its surface only on the run-down; the hysteresis measure; the
+ * checkpoint file; an interrupted run resumed gives the uninterrupted run's results bit for bit;
+ * and a resume is refused without a checkpoint or from another case. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "case/case.h"
+#include "contact/contact.h"
+#include "core/alloc.h"
+#include "core/threads.h"
+#include "kernels/kernel.h"
+#include "operator/operator.h"
+#include "pipeline/checkpoint.h"
+#include "pipeline/pipeline.h"
+#include "pipeline/runin.h"
+#include "plastic/hardening.h"
+#include "plastic/loop.h"
+#include "surface/surface.h"
+#include "test_util.h"
+
+#define RPM (2.0 * M_PI / 60.0) /* rad/s per rpm */
+
+/* The twin-disc patch of the paper's rig (dossier plastic-lubrication §4.4) on a small grid: a
+ * ground-like surface (correlation along y three times that along x), 1086 N on R1 = R2 = 40 mm
+ * discs 10 mm wide (p_H = 447 MPa), Pan-Hamrock film. At 1000 rpm the film is thick enough for
+ * a mixed regime on this patch, at 200 rpm the solids carry almost everything. */
+static const char *BASE =
+    "[mesh]\nnx = 32\nny = 16\ndx = 0.8 um\n%s"
+    "[roughness]\ntype = gaussian\nrq = 0.3 um\ncorrelation_x = 4 um\ncorrelation_y = 12 um\n"
+    "seed = %d\n"
+    "[load]\nforce = 1086 N\nlubricant_pressure = auto\n"
+    "[lubrication]\nviscosity = 30 mPa*s\npressure_viscosity = 2e-8\nrpm = 1000 rpm\n"
+    "radius1 = 40 mm\nradius2 = 40 mm\nwidth = 10 mm\nmu_solid = 0.12\nmu_fluid = 0.03\n"
+    "[solver]\nthreads = 1\n"
+    "[runin]\nspeeds = 1000, 500, 200 rpm\n%s";
+
+/* Swift hardening of AISI 52100 (dossier §9 point 1), both discs alike, 5 layers of 0.4 um. */
+static const char *PLASTIC = "[plasticity]\nhardening = swift\nswift_B = 1280 MPa\nswift_C = 4\n"
+                             "swift_n = 0.095\nbodies = both\nload_steps = 1\ndz = 0.4 um\n"
+                             "depth = 2 um\nplastic_tolerance = 1e-5\n";
+
+static void scene(mc_scene *s, const char *mesh, int seed, const char *extra, int nset,
+                  const char *const *set)
+{
+    char text[4096];
+    snprintf(text, sizeof text, BASE, mesh, seed, extra);
+    mc_error err = {0};
+    ck_assert_msg(mc_case_parse_text(text, "r.ini", "", nset, set, s, &err) == MC_OK, "%s",
+                  err.msg);
+}
+
+/* The message of a case text that must be refused. */
+static const char *refused(const char *text)
+{
+    static mc_error err;
+    static mc_scene s;
+    memset(&err, 0, sizeof err);
+    ck_assert_int_eq(mc_case_parse_text(text, "b.ini", "", 0, NULL, &s, &err), MC_ERR_INPUT);
+    return err.msg;
+}
+
+/* ---- keys and rules ------------------------------------------------------------------------- */
+
+/* A list takes the unit written after its last number for the bare numbers before it; an item
+ * with its own unit keeps it. Values compare exactly with the single-quantity parser. */
+START_TEST(list_units)
+{
+    mc_scene s;
+    scene(&s, "", 1, "forces = 1086 N, 2 kN\n", 0, NULL);
+    ck_assert_int_eq(s.runin.nspeeds, 3);
+    ck_assert_double_eq(s.runin.speeds[0], 1000 * RPM);
+    ck_assert_double_eq(s.runin.speeds[1], 500 * RPM);
+    ck_assert_double_eq(s.runin.speeds[2], 200 * RPM);
+    ck_assert_double_eq(s.lubrication.rpm, s.runin.speeds[0]); /* "1000 rpm" parsed alike */
+    ck_assert_int_eq(s.runin.nforces, 2);
+    ck_assert_double_eq(s.runin.forces[1], 2000.0);
+    const char *set[] = {"runin.speeds=1000 rpm, 60, 5 rad/s"};
+    scene(&s, "", 1, "", 1, set);
+    ck_assert_double_eq(s.runin.speeds[1], 60.0); /* bare: the last item's unit */
+    ck_assert_double_eq(s.runin.speeds[2], 5.0);
+    ck_assert_int_eq(s.runin.deflection, MC_DEFLECTION_REMOVE);
+}
+END_TEST
+
+/* Bad [runin] input names the file, the line and the key, and says what is accepted. */
+typedef struct {
+    const char *runin;       /* the [runin] section's keys */
+    const char *lubrication; /* replaces "rpm = 1000 rpm" of [lubrication] */
+    const char *want[3];
+} bad_row;
+
+static const bad_row bad_rows[] = {
+    {"speeds = 200, 500, 1000 rpm\n", "rpm = 1000 rpm\n",
+     {"b.ini:20:", "[runin] speeds = 200, 500, 1000 rpm", "must be less than item 1"}},
+    {"speeds = 1000, 1000 rpm\n", "rpm = 1000 rpm\n", {"b.ini:20:", "strictly decreasing", NULL}},
+    {"speeds = 1000, 0 rpm\n", "rpm = 1000 rpm\n", {"item 2 (0 rpm)", "rotation speed > 0", NULL}},
+    {"speeds = 1000, , 200 rpm\n", "rpm = 1000 rpm\n", {"item 2 is empty", NULL, NULL}},
+    {"speeds = 1000, 2 N\n", "rpm = 1000 rpm\n", {"unit 'N' is a force", NULL, NULL}},
+    {"speeds = 1000, 500 rpm\nforces = 2000 N\n", "rpm = 1000 rpm\n",
+     {"b.ini:21:", "[runin] forces: the first force (2000 N) must be [load] force", NULL}},
+    {"speeds = 1000, 500 rpm\n", "rpm = 500 rpm\n",
+     {"[runin] speeds: the first speed (1000 rpm) must be [lubrication] rpm", NULL, NULL}},
+    {"speeds = 1000, 500 rpm\n", "speed = 4 m/s\n", {"[lubrication] gives rpm", NULL, NULL}},
+    {"", "rpm = 1000 rpm\n", {"[runin] speeds is required", NULL, NULL}},
+};
+
+START_TEST(bad_input)
+{
+    const bad_row *b = &bad_rows[_i];
+    char text[2048];
+    snprintf(text, sizeof text,
+             "[mesh]\nnx = 16\nny = 16\ndx = 1 um\n[roughness]\ntype = gaussian\nrq = 0.3 um\n"
+             "correlation_x = 4 um\n[load]\nforce = 1086 N\nlubricant_pressure = auto\n"
+             "[lubrication]\nviscosity = 30 mPa*s\npressure_viscosity = 2e-8\n%sradius1 = 40 mm\n"
+             "radius2 = 40 mm\nwidth = 10 mm\n[runin]\n%s",
+             b->lubrication, b->runin);
+    const char *msg = refused(text);
+    for (int k = 0; k < 3 && b->want[k]; k++)
+        ck_assert_msg(strstr(msg, b->want[k]), "row %d: '%s' lacks '%s'", _i, msg, b->want[k]);
+}
+END_TEST
+
+/* Cross-section rules: the volume equilibrium at every step, a film from the speeds, the stress
+ * stage and a pressure cap are not combined with a running-in. */
+START_TEST(rules)
+{
+    const char *mesh = "";
+    char text[4096];
+    static const struct {
+        const char *set[2], *want;
+    } rows[] = {
+        {{"load.lubricant_pressure=0", "lubrication.enabled=no"},
+         "[runin] needs [load] lubricant_pressure = auto"},
+        {{"stress.enabled=yes", NULL}, "[stress] cannot be combined with [runin]"},
+        {{"plasticity.criterion=pressure_cap", NULL},
+         "[runin] needs [plasticity] criterion = von_mises"},
+    };
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+        snprintf(text, sizeof text, BASE, mesh, 1, "");
+        if (strstr(rows[k].set[0], "plasticity"))
+            strncat(text, "[plasticity]\nhardness = 3 GPa\n", sizeof text - strlen(text) - 1);
+        mc_scene s;
+        mc_error err = {0};
+        ck_assert_int_eq(mc_case_parse_text(text, "r.ini", "", rows[k].set[1] ? 2 : 1,
+                                            rows[k].set, &s, &err),
+                         MC_ERR_INPUT);
+        ck_assert_msg(strstr(err.msg, rows[k].want), "%s: %s", rows[k].set[0], err.msg);
+    }
+}
+END_TEST
+
+/* ---- the hysteresis measure -------------------------------------------------------------------- */
+
+/* Trapezoids over log10 of the speed: speeds 1000, 100, 10 (one decade each), mu down 0.05, 0.08,
+ * 0.10 and up 0.04, 0.06, 0.10: (0.01 + 0.02)/2 + (0.02 + 0)/2 = 0.025 mu decades. */
+START_TEST(hysteresis_measure)
+{
+    mc_runin_row rows[6];
+    memset(rows, 0, sizeof rows);
+    const double speed[3] = {1000, 100, 10}, down[3] = {0.05, 0.08, 0.10}, up[3] = {0.04, 0.06, 0.10};
+    for (int k = 0; k < 3; k++) {
+        rows[k].speed = speed[k];
+        rows[k].mu = down[k];
+        rows[5 - k].speed = speed[k];
+        rows[5 - k].mu = up[k];
+        rows[5 - k].up = 1;
+    }
+    mc_runin_summary r = {.nforces = 1, .nspeeds = 3, .nsteps = 6, .done = 6, .rows = rows};
+    /* 4 operations on values of 0.1: a few ulps */
+    ck_assert_double_eq_tol(mc_runin_hysteresis(&r, 0), 0.025, TOL_TIGHT);
+    r.done = 5; /* the run-up is incomplete */
+    ck_assert(isnan(mc_runin_hysteresis(&r, 0)));
+}
+END_TEST
+
+/* ---- the loop's carried state ------------------------------------------------------------------ */
+
+/* mc_plastic_run from an earlier state (eps_p0, peq0): reloading to 0.6 of the load that made
+ * the state yields nothing (the residual stress and the hardening of the first run hold it), so
+ * the state and the residual displacement come back bit for bit; the same 0.6 load on virgin
+ * material yields less than the first run did (so the first check can fail). A rigid sphere
+ * (R = 15 mm) on an elastic-perfectly plastic half-space (Y = 1 GPa) at 4 P_c (P_c = 91.96 N,
+ * the Kogut-Etsion geometry of docs/theory.md §9.3). */
+START_TEST(loop_carries_state)
+{
+    /* one thread: the DC-FFT of the residual displacement sums its per-thread partial spectra
+     * over a dynamic schedule (plastic/eigen_disp_op.c), so with more threads its last bits vary
+     * from call to call */
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    mc_grid g = {.nx = 16, .ny = 16, .dx = 40e-6, .dy = 40e-6};
+    const size_t n = mc_grid_cells(&g);
+    double *h = mc_zeros(n), *p = mc_zeros(n), *u = mc_zeros(n), *gap = mc_zeros(n);
+    mc_shape_spec sphere = {.shape = MC_SHAPE_SPHERE, .radius = 15e-3};
+    mc_surface_shape(&g, &sphere, h);
+    mc_error err = {0};
+    const double estar = mc_combined_modulus(210e9, 0.3, 0, 0, 1);
+    mc_operator *K = NULL;
+    mc_contact_solver *s = NULL;
+    ck_assert_int_eq(mc_operator_plan_love(&g, estar, MC_BACKEND_FFT, &K, &err), MC_OK);
+    mc_contact_options o = {.method = MC_METHOD_CG, .tolerance = 1e-10, .max_iterations = 5000};
+    ck_assert_int_eq(mc_contact_create(K, &o, &s, &err), MC_OK);
+    mc_hardening law;
+    ck_assert_int_eq(mc_hardening_perfect(1e9, &law, &err), MC_OK);
+    mc_plastic_problem pb = {.h = h, .load = 4 * 91.96, .load_steps = 2, .E = 210e9, .nu = 0.3,
+                             .law = &law, .volume = mc_eigen_volume_full(&g, 6, 40e-6),
+                             .backend = MC_BACKEND_FFT, .relaxation = 0.7, .tol_outer = 1e-3,
+                             .max_outer = 30, .tol_plastic = 1e-4, .max_plastic = 100};
+    mc_plastic_result a, b, c;
+    mc_contact_summary cs;
+    ck_assert_msg(mc_plastic_run(&g, K, s, &pb, p, u, gap, &cs, &a, &err) == MC_OK, "%s",
+                  err.msg);
+    const size_t nv = (size_t)a.nvol;
+    double peq_a = 0;
+    for (size_t v = 0; v < nv; v++)
+        peq_a = fmax(peq_a, a.peq[v]);
+    ck_assert(peq_a > 0);
+    mc_plastic_problem again = pb;
+    again.load = 0.6 * pb.load;
+    again.load_steps = 1;
+    again.eps_p0 = a.eps_p;
+    again.peq0 = a.peq;
+    ck_assert_msg(mc_plastic_run(&g, K, s, &again, p, u, gap, &cs, &b, &err) == MC_OK, "%s",
+                  err.msg);
+    ck_assert(memcmp(b.eps_p, a.eps_p, 6 * nv * sizeof(double)) == 0);
+    ck_assert(memcmp(b.peq, a.peq, nv * sizeof(double)) == 0);
+    ck_assert(memcmp(b.u_r, a.u_r, n * sizeof(double)) == 0);
+    again.eps_p0 = again.peq0 = NULL;
+    ck_assert_msg(mc_plastic_run(&g, K, s, &again, p, u, gap, &cs, &c, &err) == MC_OK, "%s",
+                  err.msg);
+    double peq_c = 0;
+    for (size_t v = 0; v < nv; v++)
+        peq_c = fmax(peq_c, c.peq[v]);
+    ck_assert_msg(peq_c < peq_a, "virgin at 0.6 load: %g, at the full load %g", peq_c, peq_a);
+    mc_plastic_result_free(&a);
+    mc_plastic_result_free(&b);
+    mc_plastic_result_free(&c);
+    mc_hardening_free(&law);
+    mc_contact_destroy(&s);
+    mc_operator_destroy(&K);
+    mc_free(h);
+    mc_free(p);
+    mc_free(u);
+    mc_free(gap);
+    mc_threads_end(&scope);
+}
+END_TEST
+
+/* ---- runs ------------------------------------------------------------------------------------ */
+
+/* Rows k of the run-down and 2m - 1 - k of the run-up are the same speed. */
+static void assert_no_hysteresis(const mc_results *r)
+{
+    const mc_runin_summary *ri = &r->runin;
+    const int m = ri->nspeeds;
+    ck_assert_int_eq(ri->done, ri->nsteps);
+    for (int f = 0; f < ri->nforces; f++) {
+        for (int k = 0; k < m; k++) {
+            const mc_runin_row *d = &ri->rows[2 * m * f + k], *u = &ri->rows[2 * m * f + 2 * m - 1 - k];
+            ck_assert(!d->up && u->up && d->speed == u->speed && !d->plastic);
+            /* identical solves from identical states: identical bits */
+            ck_assert_double_eq(d->mu, u->mu);
+            ck_assert_double_eq(d->p_lub, u->p_lub);
+            ck_assert_double_eq(d->psi_load, u->psi_load);
+            ck_assert_double_eq(d->pocket_height, u->pocket_height);
+            ck_assert_double_eq(d->ra, ri->rows[0].ra);
+        }
+        ck_assert_double_eq(ri->hysteresis[f], 0.0);
+    }
+}
+
+/* An elastic material (no [plasticity]) runs in nothing: down and up identical to the bit, the
+ * hysteresis exactly zero, the surface unchanged. Periodic, so that the run is quick. The speeds
+ * span the regimes on this patch (full film at 1000 rpm, mixed at 600 and 500, dry at 200): the
+ * check is not the trivial one of equal full-film rows. */
+START_TEST(elastic_material)
+{
+    mc_scene s;
+    const char *set[] = {"runin.speeds=1000, 600, 500, 200 rpm"};
+    scene(&s, "periodic_x = yes\nperiodic_y = yes\n", 3, "", 1, set);
+    mc_results r;
+    mc_error err = {0};
+    ck_assert_msg(mc_runin_run(&s, NULL, &r, &err) == MC_OK, "%s", err.msg);
+    assert_no_hysteresis(&r);
+    int mixed = 0;
+    for (int k = 0; k < r.runin.done; k++)
+        mixed += r.runin.rows[k].regime == 1;
+    ck_assert_msg(mixed > 0, "no step in the mixed regime");
+    ck_assert(!r.plastic.enabled && !r.residual_displacement);
+    for (size_t i = 0; i < mc_grid_cells(&r.grid); i++)
+        ck_assert_double_eq(r.surface_final[i], r.surface_initial[i]);
+    mc_results_free(&r);
+}
+END_TEST
+
+/* A material that never yields (Y = 100 GPa) on a free grid takes the elastic path of every
+ * run-down step, with the same result. */
+START_TEST(never_yields)
+{
+    mc_scene s;
+    scene(&s, "", 2, "[plasticity]\nyield_stress = 100 GPa\nbodies = both\ndepth = 2 um\n", 0,
+          NULL);
+    mc_results r;
+    mc_error err = {0};
+    ck_assert_msg(mc_runin_run(&s, NULL, &r, &err) == MC_OK, "%s", err.msg);
+    assert_no_hysteresis(&r);
+    ck_assert(r.plastic.enabled && r.plastic.peq_max == 0.0 && r.plastic.residual_max == 0.0);
+    mc_results_free(&r);
+}
+END_TEST
+
+/* The shared run of the elastic-plastic tests (computed once). */
+static mc_results plastic_run;
+static int plastic_done;
+
+static const mc_results *plastic_reference(void)
+{
+    if (!plastic_done) {
+        mc_scene s;
+        scene(&s, "", 2, PLASTIC, 0, NULL);
+        mc_error err = {0};
+        ck_assert_msg(mc_runin_run(&s, NULL, &plastic_run, &err) == MC_OK, "%s", err.msg);
+        plastic_done = 1;
+    }
+    return &plastic_run;
+}
+
+/* Running-in: the surface is smoothed only where something yields, on the run-down; Ra falls
+ * there and stays on the run-up. The outputs are consistent: mu is the mix of psi, the final
+ * surface is the initial one lowered by the residual displacement of both bodies. */
+START_TEST(running_in)
+{
+    const mc_results *r = plastic_reference();
+    const mc_runin_summary *ri = &r->runin;
+    const int m = ri->nspeeds;
+    int plastic = 0;
+    for (int k = 0; k < m; k++) {
+        const mc_runin_row *w = &ri->rows[k], *prev = k ? &ri->rows[k - 1] : NULL;
+        plastic += w->plastic;
+        ck_assert(w->converged && !w->up);
+        if (prev && !w->plastic) /* nothing yielded: the surface is the one before */
+            ck_assert_double_eq(w->ra, prev->ra);
+        if (prev)
+            ck_assert_msg(w->ra <= prev->ra, "Ra rose from %g to %g at step %d", prev->ra, w->ra,
+                          k + 1);
+        /* mu = psi mu_solid + (1 - psi) mu_fluid (psi = psi_load, the default): 3 operations */
+        ck_assert_double_eq_tol(w->mu, w->psi_load * 0.12 + (1 - w->psi_load) * 0.03, TOL_TIGHT);
+    }
+    ck_assert_msg(plastic > 0, "no run-down step yielded");
+    ck_assert_msg(ri->rows[m - 1].ra < r->roughness_initial.Ra, "Ra %g did not fall below %g",
+                  ri->rows[m - 1].ra, r->roughness_initial.Ra);
+    for (int k = m; k < 2 * m; k++) { /* the run-up is elastic: the surface stays */
+        ck_assert(ri->rows[k].up && !ri->rows[k].plastic);
+        ck_assert_double_eq(ri->rows[k].ra, ri->rows[m - 1].ra);
+        ck_assert_double_eq(ri->rows[k].residual_max, ri->rows[m - 1].residual_max);
+    }
+    ck_assert_double_eq(r->roughness_final.Ra, ri->rows[2 * m - 1].ra);
+    const size_t n = mc_grid_cells(&r->grid);
+    double umax = 0;
+    for (size_t i = 0; i < n; i++) {
+        ck_assert_double_eq(r->surface_final[i],
+                            -(r->topography[i] + 2.0 * r->residual_displacement[i]));
+        ck_assert_double_eq(r->surface_initial[i], -r->topography[i]);
+        umax = fmax(umax, r->residual_displacement[i]);
+    }
+    ck_assert_double_eq(umax, r->plastic.residual_max);
+    ck_assert(r->plastic.peq_max > 0 && isfinite(ri->hysteresis[0]));
+}
+END_TEST
+
+/* A single elastic-plastic run with the lubricant volume equilibrium (no [runin]): the loop
+ * solves every contact with the current p_lub; the returned state meets the equilibrium on its
+ * own gap, the load splits, and something yielded. 800 rpm is mixed on this patch. */
+START_TEST(lubricated_plastic_stage)
+{
+    mc_scene s;
+    const char *set[] = {"runin.enabled=no", "lubrication.rpm=800 rpm"};
+    scene(&s, "", 2, PLASTIC, 2, set);
+    mc_results r;
+    mc_error err = {0};
+    ck_assert_msg(mc_pipeline_run(&s, &r, &err) == MC_OK, "%s", err.msg);
+    const mc_lube_summary *l = &r.lube;
+    ck_assert(r.plastic.enabled && r.plastic.converged && r.plastic.residual_max > 0);
+    ck_assert_str_eq(l->regime, "mixed");
+    const size_t n = mc_grid_cells(&r.grid);
+    const double dA = mc_grid_cell_area(&r.grid), a_nom = dA * (double)n;
+    double v = 0, f_solid = 0, a_c = 0;
+    for (size_t i = 0; i < n; i++) {
+        v += dA * r.gap[i];
+        if (r.pressure[i] > l->p_lub) {
+            f_solid += dA * r.pressure[i];
+            a_c += dA;
+        }
+    }
+    /* the root tolerance 1e-6 plus the contact tolerance's share (1e-8 x the gap scale) */
+    ck_assert_msg(fabs(v - l->h_ehd * a_nom) <= 2e-6 * l->h_ehd * a_nom, "V = %g, V* = %g", v,
+                  l->h_ehd * a_nom);
+    /* the load splits between the solids and the fluid, to the contact tolerance (1e-8) */
+    ck_assert_msg(fabs(f_solid + l->p_lub * (a_nom - a_c) - l->patch_load) <=
+                      1e-6 * l->patch_load,
+                  "F = %g of %g", f_solid + l->p_lub * (a_nom - a_c), l->patch_load);
+    ck_assert(l->p_lub > 0 && l->p_lub < l->nominal_pressure);
+    mc_results_free(&r);
+}
+END_TEST
+
+/* ---- checkpoints and resume ----------------------------------------------------------------- */
+
+typedef struct {
+    int steps;     /* progress calls seen */
+    int polls;     /* stop polls since the last step */
+    int stop_step; /* stop once this many steps are done ... */
+    int stop_poll; /* ... and this many polls have been made since (0: at once) */
+} stopper;
+
+static void count_step(void *ctx, const mc_runin_progress *p)
+{
+    stopper *s = ctx;
+    s->steps = p->step;
+    s->polls = 0;
+}
+
+static int stop_now(void *ctx)
+{
+    stopper *s = ctx;
+    return s->steps >= s->stop_step && ++s->polls > s->stop_poll;
+}
+
+static void assert_same_rows(const mc_results *a, const mc_results *b)
+{
+    ck_assert_int_eq(a->runin.done, b->runin.done);
+    for (int k = 0; k < a->runin.done; k++) {
+        mc_runin_row x = a->runin.rows[k], y = b->runin.rows[k];
+        x.seconds = y.seconds = 0; /* the one column that may differ */
+        ck_assert_msg(memcmp(&x, &y, sizeof x) == 0, "row %d differs", k + 1);
+    }
+    const size_t n = mc_grid_cells(&a->grid);
+    ck_assert(memcmp(a->pressure, b->pressure, n * sizeof(double)) == 0);
+    ck_assert(memcmp(a->gap, b->gap, n * sizeof(double)) == 0);
+    ck_assert(memcmp(a->surface_final, b->surface_final, n * sizeof(double)) == 0);
+    ck_assert_int_eq(a->plastic.nz, b->plastic.nz);
+    ck_assert(memcmp(a->plastic_strain, b->plastic_strain,
+                     n * (size_t)a->plastic.nz * sizeof(double)) == 0);
+    ck_assert(memcmp(a->residual_von_mises, b->residual_von_mises,
+                     n * (size_t)a->plastic.nz * sizeof(double)) == 0);
+    ck_assert_int_eq(a->plastic.steps_done, b->plastic.steps_done);
+    ck_assert(memcmp(a->plastic.steps, b->plastic.steps,
+                     (size_t)a->plastic.steps_done * sizeof *a->plastic.steps) == 0);
+    for (int f = 0; f < a->runin.nforces; f++)
+        ck_assert_double_eq(a->runin.hysteresis[f], b->runin.hysteresis[f]);
+}
+
+/* Stopped between steps (before any yielding, and between two elastic-plastic steps: the second
+ * needs the plastic strain, hardening and residual stress of the first from the checkpoint), and
+ * inside an elastic-plastic step: resumed, the run ends with the uninterrupted run's rows and
+ * fields, bit for bit. */
+START_TEST(resume_identical)
+{
+    const mc_results *ref = plastic_reference();
+    /* the first plastic step: stop inside it (after its first outer iteration) */
+    int first_plastic = -1, last_plastic = -1;
+    for (int k = 0; k < ref->runin.done; k++)
+        if (ref->runin.rows[k].plastic) {
+            first_plastic = first_plastic < 0 ? k : first_plastic;
+            last_plastic = k;
+        }
+    ck_assert(first_plastic >= 0 && first_plastic + 1 < ref->runin.done &&
+              ref->runin.rows[first_plastic + 1].plastic && last_plastic + 1 < ref->runin.done);
+    /* the last stop resumes after every plastic step: the residual stress comes from the file */
+    const struct {
+        int step, poll;
+    } stops[] = {{1, 0}, {first_plastic, 1}, {first_plastic + 1, 0}, {last_plastic + 1, 0}};
+    for (size_t t = 0; t < sizeof stops / sizeof stops[0]; t++) {
+        char dir[512];
+        snprintf(dir, sizeof dir, "%s/ck", test_tmpdir());
+        mc_scene s;
+        scene(&s, "", 2, PLASTIC, 0, NULL);
+        stopper st = {.stop_step = stops[t].step, .stop_poll = stops[t].poll};
+        mc_runin_options opt = {.checkpoint_dir = dir,
+                                .progress = count_step,
+                                .progress_ctx = &st,
+                                .stop = stop_now,
+                                .stop_ctx = &st};
+        mc_results r;
+        mc_error err = {0};
+        ck_assert_int_eq(mc_runin_run(&s, &opt, &r, &err), MC_ERR_INTERRUPTED);
+        ck_assert_int_eq(r.runin.done, stops[t].step);
+        mc_results_free(&r);
+        ck_assert(mc_checkpoint_exists(dir));
+        mc_runin_options again = {.checkpoint_dir = dir, .resume = 1};
+        ck_assert_msg(mc_runin_run(&s, &again, &r, &err) == MC_OK, "%s", err.msg);
+        ck_assert_int_eq(r.runin.resumed_from, stops[t].step);
+        assert_same_rows(ref, &r);
+        mc_results_free(&r);
+        /* a finished run's checkpoint resumes to the same results too */
+        ck_assert_msg(mc_runin_run(&s, &again, &r, &err) == MC_OK, "%s", err.msg);
+        assert_same_rows(ref, &r);
+        mc_results_free(&r);
+        mc_checkpoint_remove(dir);
+        ck_assert(!mc_checkpoint_exists(dir));
+    }
+}
+END_TEST
+
+/* Resume is refused without a checkpoint, from another case (another seed, or a --set value),
+ * and from a torn file; the refusal leaves the checkpoint where it is. */
+START_TEST(resume_refused)
+{
+    char dir[512];
+    snprintf(dir, sizeof dir, "%s/ck", test_tmpdir());
+    mc_scene s;
+    scene(&s, "periodic_x = yes\nperiodic_y = yes\n", 2, "", 0, NULL);
+    mc_runin_options again = {.checkpoint_dir = dir, .resume = 1};
+    mc_results r;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_runin_run(&s, &again, &r, &err), MC_ERR_INPUT);
+    ck_assert_msg(strstr(err.msg, "no checkpoint to resume"), "%s", err.msg);
+    mc_results_free(&r);
+    stopper st = {.stop_step = 2};
+    mc_runin_options opt = {.checkpoint_dir = dir,
+                            .progress = count_step,
+                            .progress_ctx = &st,
+                            .stop = stop_now,
+                            .stop_ctx = &st};
+    ck_assert_int_eq(mc_runin_run(&s, &opt, &r, &err), MC_ERR_INTERRUPTED);
+    mc_results_free(&r);
+    mc_scene other;
+    scene(&other, "periodic_x = yes\nperiodic_y = yes\n", 3, "", 0, NULL);
+    ck_assert_int_eq(mc_runin_run(&other, &again, &r, &err), MC_ERR_INPUT);
+    ck_assert_msg(strstr(err.msg, "belongs to another case"), "%s", err.msg);
+    mc_results_free(&r);
+    const char *set[] = {"lubrication.mu_solid=0.13"};
+    scene(&other, "periodic_x = yes\nperiodic_y = yes\n", 2, "", 1, set);
+    ck_assert_int_eq(mc_runin_run(&other, &again, &r, &err), MC_ERR_INPUT);
+    ck_assert_msg(strstr(err.msg, "belongs to another case"), "%s", err.msg);
+    mc_results_free(&r);
+    ck_assert(mc_checkpoint_exists(dir));
+    /* the same case from another path, or into another output directory, is the same case */
+    mc_scene same = s;
+    snprintf(same.path, sizeof same.path, "elsewhere/r.ini");
+    snprintf(same.output.dir, sizeof same.output.dir, "other_out");
+    ck_assert_msg(mc_runin_run(&same, &again, &r, &err) == MC_OK, "%s", err.msg);
+    mc_results_free(&r);
+    /* a flipped byte in the middle of the file */
+    char path[600];
+    snprintf(path, sizeof path, "%s/%s", dir, MC_CHECKPOINT_FILE);
+    FILE *f = fopen(path, "r+b");
+    ck_assert(f != NULL);
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fseek(f, size / 2, SEEK_SET);
+    int c = fgetc(f);
+    fseek(f, size / 2, SEEK_SET);
+    fputc(c ^ 0x10, f);
+    fclose(f);
+    ck_assert_int_eq(mc_runin_run(&s, &again, &r, &err), MC_ERR_INPUT);
+    ck_assert_msg(strstr(err.msg, "checksum differs"), "%s", err.msg);
+    mc_results_free(&r);
+}
+END_TEST
+
+/* The file itself: a round trip keeps every value; a truncated file is refused. */
+START_TEST(checkpoint_round_trip)
+{
+    char dir[512];
+    snprintf(dir, sizeof dir, "%s/ck", test_tmpdir());
+    enum { NX = 5, NY = 3, NZ = 2, NV = NX * NY * NZ };
+    double eps[6 * NV], peq[NV], sig[6 * NV], ur[NX * NY];
+    test_random_field(eps, 6 * NV, 1);
+    test_random_field(peq, NV, 2);
+    test_random_field(sig, 6 * NV, 3);
+    test_random_field(ur, NX * NY, 4);
+    mc_runin_row rows[2];
+    memset(rows, 0, sizeof rows);
+    rows[1].mu = 0.07;
+    rows[1].up = 1;
+    mc_plastic_step rec;
+    memset(&rec, 0, sizeof rec);
+    rec.peq_max = 0.25;
+    mc_checkpoint w = {.case_hash = 0x0123456789abcdefull, .nx = NX, .ny = NY, .nz = NZ,
+                       .nvol = NV, .nsteps = 8, .done = 2, .seconds = 3.5, .rows = rows,
+                       .eps_p = eps, .peq = peq, .sig_r = sig, .u_r = ur, .nrec = 1,
+                       .records = &rec};
+    mc_error err = {0};
+    ck_assert_msg(mc_checkpoint_write(dir, &w, &err) == MC_OK, "%s", err.msg);
+    mc_checkpoint c;
+    ck_assert_msg(mc_checkpoint_read(dir, &c, &err) == MC_OK, "%s", err.msg);
+    ck_assert(c.case_hash == w.case_hash && c.nx == NX && c.ny == NY && c.nz == NZ &&
+              c.nvol == NV && c.nsteps == 8 && c.done == 2 && c.seconds == 3.5 && c.nrec == 1);
+    ck_assert(memcmp(c.rows, rows, sizeof rows) == 0);
+    ck_assert(memcmp(c.eps_p, eps, sizeof eps) == 0 && memcmp(c.peq, peq, sizeof peq) == 0 &&
+              memcmp(c.sig_r, sig, sizeof sig) == 0 && memcmp(c.u_r, ur, sizeof ur) == 0);
+    ck_assert_double_eq(c.records[0].peq_max, 0.25);
+    mc_checkpoint_free(&c);
+    char path[600];
+    snprintf(path, sizeof path, "%s/%s", dir, MC_CHECKPOINT_FILE);
+    ck_assert_int_eq(truncate(path, 100), 0);
+    ck_assert_int_eq(mc_checkpoint_read(dir, &c, &err), MC_ERR_INPUT);
+    mc_checkpoint_free(&c);
+    mc_checkpoint_remove(dir);
+    struct stat sb;
+    ck_assert(stat(dir, &sb) != 0); /* the directory went with its file */
+}
+END_TEST
+
+/* Computed once, before the tests of the case fork (unchecked fixture): they share it. */
+static void setup(void) { (void)plastic_reference(); }
+
+static void teardown(void)
+{
+    if (plastic_done)
+        mc_results_free(&plastic_run);
+    plastic_done = 0;
+}
+
+Suite *suite_runin(void);
+Suite *suite_runin(void)
+{
+    Suite *s = suite_create("runin");
+    TCase *t = tcase_create("keys");
+    tcase_add_test(t, list_units);
+    tcase_add_loop_test(t, bad_input, 0, (int)(sizeof bad_rows / sizeof bad_rows[0]));
+    tcase_add_test(t, rules);
+    tcase_add_test(t, hysteresis_measure);
+    tcase_add_test(t, checkpoint_round_trip);
+    suite_add_tcase(s, t);
+    t = tcase_create("runs");
+    tcase_set_timeout(t, 600);
+    tcase_add_unchecked_fixture(t, setup, teardown);
+    tcase_add_test(t, loop_carries_state);
+    tcase_add_test(t, elastic_material);
+    tcase_add_test(t, never_yields);
+    tcase_add_test(t, running_in);
+    tcase_add_test(t, lubricated_plastic_stage);
+    tcase_add_test(t, resume_identical);
+    tcase_add_test(t, resume_refused);
+    suite_add_tcase(s, t);
+    return s;
+}

@@ -1,0 +1,243 @@
+/* runin.c - suite `runin`: the friction hysteresis of running-in, the paper's headline result
+ * (Mevissen et al. 2025, Figs. 4-1 to 4-3): three normal forces, 1086 N and two higher, on the
+ * twin-disc case of the dossier (plastic-lubrication §4.4: R1 = R2 = 40 mm, 10 mm wide, Pan-Hamrock
+ * film) with a ground-like synthetic surface (§7: lay along y, correlation along y six times that
+ * along x). Per force a speed run-down (elastic-plastic, the surface carried over) and a run-up
+ * (elastic on the run-in surface), pipeline/runin.h. Checked: Ra falls during each run-down and
+ * stays during the run-up; the hysteresis (area between the down and up mu curves over log
+ * speed) is positive and largest at the lowest force; an elastic material shows none at all
+ * (down and up identical to the bit). The paper's own numbers cannot be compared: its disc
+ * geometry, surface and friction constants are unknown (dossier §9). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "case/case.h"
+#include "harness.h"
+#include "pipeline/runin.h"
+#include "suites.h"
+#include "vutil.h"
+
+/* The case: the dossier's disc rig on a patch of the paper's 0.8 um cells. Swift hardening of
+ * AISI 52100 (dossier §9 point 1, [S]), both discs alike; mu_solid 0.12 and mu_fluid 0.03 stand
+ * for boundary and EHL friction (dossier §5.2; the paper's are unknown). */
+static const char *CASE =
+    "[mesh]\nnx = %d\nny = %d\ndx = 0.8 um\n"
+    "[roughness]\ntype = gaussian\nrq = 0.3 um\ncorrelation_x = 4 um\ncorrelation_y = 24 um\n"
+    "seed = 1\n"
+    "[load]\nforce = 1086 N\nlubricant_pressure = auto\n"
+    "[lubrication]\nviscosity = 30 mPa*s\npressure_viscosity = 2e-8\nrpm = 3000 rpm\n"
+    "radius1 = 40 mm\nradius2 = 40 mm\nwidth = 10 mm\nmu_solid = 0.12\nmu_fluid = 0.03\n"
+    "[runin]\nforces = %s\nspeeds = %s\n"
+    "%s";
+static const char *PLASTIC = "[plasticity]\nhardening = swift\nswift_B = 1280 MPa\nswift_C = 4\n"
+                             "swift_n = 0.095\nbodies = both\nload_steps = 1\ndz = 0.4 um\n"
+                             "depth = %s\nplastic_tolerance = 1e-5\n";
+
+#define RPM (60.0 / (2.0 * M_PI)) /* rpm per rad/s */
+/* the mixed regime of these patches lies between about 700 and 300 rpm: both lists sample it */
+#define FULL_SPEEDS "3000, 2000, 1000, 700, 500, 350, 200 rpm"
+#define FAST_SPEEDS "3000, 1000, 700, 500, 350, 200 rpm"
+
+static int run_case(vf_ctx *ctx, int fast, int plastic, mc_results *r)
+{
+    char plas[512] = "", text[4096];
+    if (plastic)
+        snprintf(plas, sizeof plas, PLASTIC, fast ? "2 um" : "4 um");
+    snprintf(text, sizeof text, CASE, fast ? 48 : 64, fast ? 48 : 64,
+             fast ? "1086 N, 2172 N" : "1086 N, 2172 N, 3258 N",
+             fast ? FAST_SPEEDS : FULL_SPEEDS, plas);
+    mc_scene sc;
+    mc_error err = {0};
+    int rc = mc_case_parse_text(text, "runin_suite.ini", "", 0, NULL, &sc, &err);
+    if (rc == MC_OK)
+        rc = mc_runin_run(&sc, NULL, r, &err);
+    if (rc != MC_OK)
+        vf_fail(ctx, plastic ? "run" : "run_elastic", "%s", err.msg);
+    return rc;
+}
+
+static void table(vf_ctx *ctx, const mc_results *r)
+{
+    const mc_runin_summary *ri = &r->runin;
+    vf_text(ctx, "| step | F_N [N] | phase | speed [rpm] | h_EHD [um] | p_lub [MPa] | psi_load | "
+                 "h_pocket [um] | mu | Ra [um] | plastic | seconds |\n"
+                 "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int k = 0; k < ri->done; k++) {
+        const mc_runin_row *w = &ri->rows[k];
+        vf_text(ctx, "| %d | %.0f | %s | %.0f | %.3f | %.1f | %.4f | %.3f | %.5f | %.5f | %s | %.1f |\n",
+                k + 1, w->force, w->up ? "up" : "down", w->speed * RPM, w->h_ehd * 1e6,
+                w->p_lub * 1e-6, w->psi_load, w->pocket_height * 1e6, w->mu, w->ra * 1e6,
+                w->plastic ? "yes" : "", w->seconds);
+    }
+    vf_text(ctx, "\n");
+}
+
+int vf_suite_runin(vf_ctx *ctx, int fast)
+{
+    vf_text(ctx,
+            "The running-in of the paper (Mevissen et al. 2025, Figs. 4-1 to 4-3) on the twin-disc "
+            "case of the dossier (§4.4): R1 = R2 = 40 mm, width 10 mm, eta0 = 30 mPa s, alpha = "
+            "2e-8 1/Pa, pure rolling; forces %s. A %s patch of 0.8 um cells, free edges, with a "
+            "ground-like Gaussian surface (Sq = 0.3 um, correlation 4 um across and 24 um along "
+            "the lay: dossier §7), stands for the centre of the line contact (its nominal "
+            "pressure p_H, its own bowl under p_H removed: pipeline/runin.h). Swift hardening of "
+            "AISI 52100, both discs plastic, %s of 0.4 um layers. Speeds %s: the run-down takes "
+            "them in this order (elastic-plastic, with the lubricant volume equilibrium at every "
+            "contact solve), the run-up in reverse (elastic on the run-in surface).\n\n"
+            "Checks: during each run-down Ra never rises and ends below where it began; during "
+            "each run-up it stays exactly (nothing deforms); the hysteresis H = integral of "
+            "(mu_down - mu_up) d log10(n) is positive at the lowest force and largest there; the "
+            "same case with an elastic material (no [plasticity]) gives run-down and run-up rows "
+            "identical to the bit and H = 0 exactly.\n\n"
+            "What cannot be compared with the paper (dossier §9): its disc geometry (crowning, "
+            "width; p_H = 447 MPa here against the 3139 MPa it quotes), its measured surfaces, "
+            "its mu_solid and mu_fluid and whether psi is load- or area-based, its film formula "
+            "(central, minimum or mean) and any thermal correction. So the mu values, the speed "
+            "at which the regimes change and the size of the hysteresis are this model's, not the "
+            "paper's; the shape of the result (a smoother run-up with less solid friction, and "
+            "most of the running-in at the first, lowest force) is what is compared.\n\n",
+            fast ? "1086 N and 2172 N (fast variant: two)" : "1086 N, 2172 N and 3258 N",
+            fast ? "48 x 48" : "64 x 64", fast ? "2 um" : "4 um", fast ? FAST_SPEEDS : FULL_SPEEDS);
+    mc_results r, e;
+    memset(&e, 0, sizeof e);
+    if (run_case(ctx, fast, 1, &r) != MC_OK) {
+        mc_results_free(&r);
+        return 1;
+    }
+    const mc_runin_summary *ri = &r.runin;
+    const int m = ri->nspeeds, nf = ri->nforces;
+    char id[64], q[200];
+    double h1 = ri->hysteresis[0], hmax_other = -INFINITY;
+    for (int f = 0; f < nf; f++) {
+        const mc_runin_row *first = &ri->rows[2 * m * f], *last = &ri->rows[2 * m * f + m - 1];
+        double ra_before = f == 0 ? r.roughness_initial.Ra : ri->rows[2 * m * f - 1].ra;
+        int rises = 0;
+        double prev = ra_before, up_dev = 0;
+        for (int k = 0; k < m; k++) {
+            rises += first[k].ra > prev;
+            prev = first[k].ra;
+        }
+        for (int k = m; k < 2 * m; k++)
+            up_dev = fmax(up_dev, fabs(first[k].ra - last->ra));
+        snprintf(id, sizeof id, "ra_never_rises_F%d", f + 1);
+        snprintf(q, sizeof q, "F_N = %.0f N: run-down steps where Ra rose", first->force);
+        vf_check(ctx, id, q, "plastic smoothing only lowers the surface", 0, rises, 0, VF_MAX);
+        snprintf(id, sizeof id, "ra_falls_F%d", f + 1);
+        snprintf(q, sizeof q, "F_N = %.0f N: Ra after the run-down / Ra before it", first->force);
+        /* strictly below: by more than the 1e-6 the roughness parameters can resolve */
+        vf_check(ctx, id, q, "paper Fig. 4-1: Ra falls during the run-down", 1.0,
+                 last->ra / ra_before, 1 - 1e-6, VF_MAX);
+        snprintf(id, sizeof id, "ra_up_unchanged_F%d", f + 1);
+        snprintf(q, sizeof q, "F_N = %.0f N: max |Ra - Ra(end of run-down)| over the run-up, m",
+                 first->force);
+        vf_check(ctx, id, q, "the run-up is elastic", 0, up_dev, 0, VF_MAX);
+        snprintf(id, sizeof id, "hysteresis_F%d", f + 1);
+        snprintf(q, sizeof q, "F_N = %.0f N: hysteresis H (mu x decades of speed)", first->force);
+        vf_info(ctx, id, q, "paper Fig. 4-3 (shape only)", NAN, ri->hysteresis[f]);
+        if (f > 0)
+            hmax_other = fmax(hmax_other, ri->hysteresis[f]);
+    }
+    vf_check(ctx, "hysteresis_positive", "-H at 1086 N (passes when H > 1e-6)",
+             "paper: mu_up below mu_down", 0, -h1, -1e-6, VF_MAX);
+    vf_check(ctx, "hysteresis_largest_first",
+             "max H at the higher forces / H at 1086 N", "paper: largest at the lowest force", 1,
+             hmax_other / h1, 1 - 1e-3, VF_MAX);
+    vf_info(ctx, "ra_initial", "Ra of the initial surface, um", "rows levelled, not filtered",
+            NAN, r.roughness_initial.Ra * 1e6);
+    vf_info(ctx, "ra_final", "Ra of the run-in surface, um", "", NAN, r.roughness_final.Ra * 1e6);
+    vf_info(ctx, "residual_max", "largest residual dent of a disc, um", "", NAN,
+            r.plastic.residual_max * 1e6);
+    int roots = 0, solves = 0, plastic = 0;
+    double worst_root = 0, seconds = 0, plastic_seconds = 0;
+    for (int k = 0; k < ri->done; k++) {
+        roots += ri->rows[k].roots;
+        solves += ri->rows[k].solves;
+        plastic += ri->rows[k].plastic;
+        worst_root = fmax(worst_root, ri->rows[k].root_error);
+        seconds += ri->rows[k].seconds;
+        if (ri->rows[k].plastic)
+            plastic_seconds += ri->rows[k].seconds;
+    }
+    vf_check(ctx, "root_error", "max |V - V*| / V* of the rows' equilibria",
+             "[lubrication] tolerance 1e-6", 0, worst_root, 1e-6, VF_MAX);
+    vf_info(ctx, "solves_per_root", "contact solves per volume equilibrium (mean)", "", NAN,
+            roots ? (double)solves / roots : NAN);
+    vf_info(ctx, "plastic_steps", "elastic-plastic steps", "", NAN, plastic);
+    vf_info(ctx, "seconds_per_plastic_step", "wall time per elastic-plastic step, s",
+            "this machine, shared", NAN, plastic ? plastic_seconds / plastic : NAN);
+    table(ctx, &r);
+    FILE *f = vf_open(ctx, "runin.csv");
+    if (f) {
+        fprintf(f, "force,phase,rpm,h_ehd_um,p_lub_MPa,psi_load,psi_area,pocket_um,mu,Ra_um,"
+                   "Sa_um,plastic\n");
+        for (int k = 0; k < ri->done; k++) {
+            const mc_runin_row *w = &ri->rows[k];
+            fprintf(f, "%.0f,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.8g,%.8g,%.8g,%d\n", w->force,
+                    w->up ? "up" : "down", w->speed * RPM, w->h_ehd * 1e6, w->p_lub * 1e-6,
+                    w->psi_load, w->psi_area, w->pocket_height * 1e6, w->mu, w->ra * 1e6,
+                    w->sa * 1e6, w->plastic);
+        }
+        vf_close(ctx, f);
+    }
+    /* the elastic material: no hysteresis at all */
+    if (run_case(ctx, fast, 0, &e) == MC_OK) {
+        const mc_runin_summary *ei = &e.runin;
+        double dev = 0, hmax = 0;
+        for (int ff = 0; ff < ei->nforces; ff++) {
+            for (int k = 0; k < m; k++)
+                dev = fmax(dev, fabs(ei->rows[2 * m * ff + k].mu -
+                                     ei->rows[2 * m * ff + 2 * m - 1 - k].mu));
+            hmax = fmax(hmax, fabs(ei->hysteresis[ff]));
+        }
+        vf_check(ctx, "elastic_identity", "elastic material: max |mu_down - mu_up| at equal speed",
+                 "nothing runs in: identical solves", 0, dev, 0, VF_MAX);
+        vf_check(ctx, "elastic_hysteresis", "elastic material: max |H| over the forces",
+                 "no hysteresis", 0, hmax, 0, VF_MAX);
+        f = vf_open(ctx, "runin_elastic.csv");
+        if (f) {
+            fprintf(f, "force,phase,rpm,mu\n");
+            for (int k = 0; k < ei->done; k++)
+                fprintf(f, "%.0f,%s,%.6g,%.8g\n", ei->rows[k].force,
+                        ei->rows[k].up ? "up" : "down", ei->rows[k].speed * RPM, ei->rows[k].mu);
+            vf_close(ctx, f);
+        }
+    }
+    /* the paper's three figures */
+    char plot[4096];
+    size_t o = 0;
+    static const char *const pt_down = "pt 7", *const pt_up = "pt 6";
+    const char *figs[3][4] = {
+        {"runin_ra.png", "Ra of the surface against the mean lubrication pocket height (paper Fig. 4-1)",
+         "h_{pocket} [um]", "Ra [um]"},
+        {"runin_psi.png", "Solid contact ratio against the mean pocket height (paper Fig. 4-2)",
+         "h_{pocket} [um]", "psi_{load}"},
+        {"runin_mu.png", "Friction coefficient against the disc speed: run-down and run-up "
+         "(paper Fig. 4-3)", "disc speed [rpm]", "mu"}};
+    const char *cols[3] = {"8:10", "8:6", "3:9"};
+    for (int g = 0; g < 3; g++) {
+        o = (size_t)snprintf(plot, sizeof plot,
+                             "set datafile separator ','\nset grid\nset key outside right\n"
+                             "set xlabel '%s'\nset ylabel '%s'\n%splot",
+                             figs[g][2], figs[g][3], g == 2 ? "set logscale x\n" : "");
+        for (int ff = 0; ff < nf && o < sizeof plot; ff++) {
+            double F = ri->rows[2 * m * ff].force;
+            for (int ph = 0; ph < 2 && o < sizeof plot; ph++)
+                o += (size_t)snprintf(
+                    plot + o, sizeof plot - o,
+                    "%s'runin.csv' every ::1 using ($1 == %.0f && strcol(2) eq '%s' ? $%.*s : "
+                    "1/0):%s with linespoints %s lc %d title '%.0f N %s'",
+                    ff || ph ? ", " : " ", F, ph ? "up" : "down", (int)(strchr(cols[g], ':') - cols[g]),
+                    cols[g], strchr(cols[g], ':') + 1, ph ? pt_up : pt_down, ff + 1, F,
+                    ph ? "run-up" : "run-down");
+        }
+        if (g == 2 && o < sizeof plot)
+            snprintf(plot + o, sizeof plot - o,
+                     ", 'runin_elastic.csv' every ::1 using ($1 == 1086 ? $3 : 1/0):4 with lines "
+                     "dt 2 lc 0 title 'elastic material (1086 N)'");
+        vf_plot(ctx, figs[g][0], figs[g][1], plot);
+    }
+    mc_results_free(&r);
+    mc_results_free(&e);
+    return 0;
+}
