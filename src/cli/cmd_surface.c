@@ -54,6 +54,21 @@ static int fail(const mc_error *err)
     return mc_status_exit_code(err->code);
 }
 
+/* An error of the case layer, worded for this command: it names the file once, and a missing
+ * spacing says how to give it here. */
+static int fail_parse(const char *path, mc_error *err)
+{
+    const char *tag = "[roughness] file: ", *tail = strstr(err->msg, tag);
+    if (tail) /* "--set roughness.file=FILE: [roughness] file: ..." -> "..." */
+        tail += strlen(tag);
+    else
+        tail = err->msg;
+    fprintf(stderr, "microcontact: error: %s%s%s%s\n", strstr(tail, path) ? "" : path,
+            strstr(tail, path) ? "" : ": ", tail,
+            strstr(tail, "give [mesh] dx") ? " (here: --set mesh.dx=... --set mesh.dy=...)" : "");
+    return mc_status_exit_code(err->code);
+}
+
 /* --set: only [roughness] keys other than type and file, and [mesh] keys. */
 static int set_allowed(const char *s)
 {
@@ -237,16 +252,9 @@ int mc_cli_surface(int argc, char **argv)
     static mc_scene scene;
     mc_error err = {0};
     /* a load only because a scene needs one: nothing is solved */
-    if (mc_case_parse_text("[load]\nforce = 1\n[roughness]\ntype = file\n", "surface", NULL,
-                           nsets, sets, &scene, &err) != MC_OK) {
-        /* "--set roughness.file=FILE: [roughness] file: FILE: ..." -> "FILE: ..." */
-        const char *tail = strstr(err.msg, "[roughness] file: ");
-        if (!strncmp(err.msg, "--set roughness.file=", 21) && tail) {
-            tail += strlen("[roughness] file: ");
-            memmove(err.msg, tail, strlen(tail) + 1);
-        }
-        return fail(&err);
-    }
+    if (mc_case_parse_text("[load]\nforce = 1\n[roughness]\ntype = file\n", path, NULL, nsets,
+                           sets, &scene, &err) != MC_OK)
+        return fail_parse(path, &err);
 
     const mc_grid *g = &scene.grid;
     mc_measured_spec ms;
