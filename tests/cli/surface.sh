@@ -98,6 +98,18 @@ done
 if [ $rc -eq 2 ] && grep -q "$T/absent.x3p" "$T/e"; then pass "missing file: exit 2, named"
 else bad "missing file: exit $rc"; fi
 
+# a map without lateral scale (the .npy just written) needs the spacing: exit 2 saying how
+"$PROG" surface "$T/lev/el/surface.npy" > "$T/o" 2> "$T/e"; rc=$?
+if [ $rc -eq 2 ] && grep -q "$T/lev/el/surface.npy" "$T/e" && grep -q 'npy file states no lateral spacing' "$T/e" \
+   && grep -q -- '--set mesh.dx=' "$T/e"; then pass "npy without spacing: exit 2, says --set mesh.dx"
+else bad "npy without spacing: exit $rc"; cat "$T/e"; fi
+
+# a run's topography.x3p ([output] x3p = yes) is a surface file too
+"$PROG" run cases/measured.ini --out "$T/runx" --set output.x3p=yes > /dev/null 2>&1 \
+    && "$PROG" surface "$T/runx/topography.x3p" --set roughness.detrend=none > "$T/o" 2> "$T/e" \
+    && grep -q '^  file grid  *160 x 96 points' "$T/o" && grep -q '"topography.x3p"' "$T/runx/summary.json" \
+    && pass "run with x3p = yes: topography.x3p reads" || { bad "run with x3p = yes"; cat "$T/e"; }
+
 # ---- usage ---------------------------------------------------------------------------------------
 usage_row() { # name, then the arguments
     name=$1; shift
