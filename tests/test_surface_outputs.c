@@ -77,7 +77,7 @@ static void check_x3p(const char *dir, const char *stem, const double *want, con
     size_t nxml = 0, nmd5 = 0;
     ck_assert(tk_unzip(in(dir, x3p), "main.xml", &xml, &nxml));
     for (int k = 1; k <= 4; k++) {
-        char rec[16];
+        char rec[32];
         snprintf(rec, sizeof rec, "<Record%d>", k);
         ck_assert_msg(tk_contains(xml, nxml, rec), "%s: no %s", x3p, rec);
     }
