@@ -118,6 +118,7 @@ _check: $(PROGRAM) $(TESTS)
 	tests/cli/bad_input.sh ./$(PROGRAM)
 	tests/cli/cases.sh ./$(PROGRAM)
 	tests/cli/robustness.sh ./$(PROGRAM)
+	tests/cli/surface.sh ./$(PROGRAM)
 
 verify: deps
 	@$(MAKE) --no-print-directory all

@@ -464,6 +464,11 @@ const case_key mc_keys[] = {
      .doc = "Output directory, relative to the current directory (not to the case file)."},
     {.section = "output", .name = "vtk", .kind = K_BOOL, .def = "no", .off = AT(output.vtk),
      .doc = "Also write field.vti for ParaView."},
+    {.section = "output", .name = "x3p", .kind = K_BOOL, .def = "no", .off = AT(output.x3p),
+     .doc = "Also write every surface height map as X3P (ISO 25178-72, heights in m, the same "
+            "field as the .npy of the same name): topography.x3p, and where the run has them "
+            "topography_final.x3p (elastic-plastic), surface_initial.x3p and surface_final.x3p "
+            "(running-in)."},
 };
 
 const int mc_nkeys = (int)(sizeof mc_keys / sizeof mc_keys[0]);

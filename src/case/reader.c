@@ -541,11 +541,13 @@ static int mesh_from_file(ctx *c)
     g->ny = m.grid.ny;
     if (c->slot[kdx] < 0) {
         if (!(m.grid.dx > 0)) {
+            char format[sizeof m.format];
+            memcpy(format, m.format, sizeof format); /* mc_measured_free zeroes m */
             mc_measured_free(&m);
             return fail_at(c, fe, fe->line,
                            "[roughness] file: this %s file states no lateral spacing: give "
                            "[mesh] dx (and dy)",
-                           m.format);
+                           format);
         }
         g->dx = m.grid.dx;
         if (c->slot[kdy] < 0)

@@ -149,6 +149,7 @@ typedef struct {
     struct { /* [output] */
         char dir[MC_PATH_MAX]; /* "": derive from path (mc_scene_output_dir); case files fill it */
         int vtk;               /* write field.vti */
+        int x3p;               /* write an .x3p beside every surface height map .npy */
     } output;
 } mc_scene;
 

@@ -7,6 +7,7 @@
 #define MC_USAGE_VERIFY "usage: microcontact verify [SUITE... | --all] [--fast] [--bless] [--reports DIR] [--baselines DIR | --no-baselines] [--index] [--list]"
 #define MC_USAGE_BENCH "usage: microcontact bench [--quick] [--reports DIR]"
 #define MC_USAGE_KEYS "usage: microcontact keys [SECTION]"
+#define MC_USAGE_SURFACE "usage: microcontact surface FILE [--set section.key=value]... [--out DIR]"
 
 /* The exit-status paragraph shared by every --help text. */
 #define MC_EXIT_STATUS_HELP                                                                        \
@@ -19,6 +20,7 @@ int mc_cli_run(int argc, char **argv);
 int mc_cli_verify(int argc, char **argv);
 int mc_cli_bench(int argc, char **argv);
 int mc_cli_keys(int argc, char **argv);
+int mc_cli_surface(int argc, char **argv);
 
 /* 1 when s is -h or --help. */
 int mc_cli_is_help(const char *s);

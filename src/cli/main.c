@@ -4,6 +4,7 @@
  *   microcontact verify [SUITE... | --all] [--fast] [--bless] [--reports DIR] [--list]
  *   microcontact bench [--quick] [--reports DIR]
  *   microcontact keys [SECTION]
+ *   microcontact surface FILE [--set section.key=value]... [--out DIR]
  *   microcontact help | --help | --version
  * Every command takes -h/--help (usage on stdout, exit 0) and refuses arguments it does not
  * know with its usage on stderr (exit 2). Exit statuses: see MC_EXIT_STATUS_HELP in cli.h.
@@ -36,6 +37,9 @@ static void usage(FILE *f)
             "        benchmark report in DIR/bench/report.md\n"
             "  microcontact keys [SECTION]\n"
             "        print the case-file reference (also in docs/case-format.md), or one section\n"
+            "  microcontact surface FILE [--set section.key=value]... [--out DIR]\n"
+            "        check a surface file before a run: format, grid, missing points, heights,\n"
+            "        roughness parameters; --out writes it levelled as surface.npy and .x3p\n"
             "  microcontact help | --help | --version\n\n"
             "microcontact COMMAND --help describes a command.\n\n"
             "%s\n"
@@ -80,6 +84,8 @@ int main(int argc, char **argv)
         return mc_cli_bench(argc - 2, argv + 2);
     if (!strcmp(cmd, "keys"))
         return mc_cli_keys(argc - 2, argv + 2);
+    if (!strcmp(cmd, "surface"))
+        return mc_cli_surface(argc - 2, argv + 2);
     fprintf(stderr, "microcontact: unknown command '%s'\n\n", cmd);
     usage(stderr);
     return 2;

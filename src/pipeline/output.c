@@ -25,6 +25,7 @@
 #include "kernels/kernel.h"
 #include "io/le.h"
 #include "io/npy.h"
+#include "io/surface_file.h"
 #include "pipeline/summary_json.h"
 
 #define OUT_PATH_MAX 4096
@@ -41,7 +42,8 @@ static const char *const contract_files[] = {
     "axis.csv",      "field.vti",     "stress.vtr",
     "residual_displacement.npy", "topography_final.npy", "plastic_strain.npy",
     "residual_von_mises.npy", "plastic.csv", "runin.csv", "runin.gp", "surface_initial.npy",
-    "surface_final.npy"};
+    "surface_final.npy", "topography.x3p", "topography_final.x3p", "surface_initial.x3p",
+    "surface_final.x3p"};
 #define N_CONTRACT ((int)(sizeof contract_files / sizeof contract_files[0]))
 
 typedef struct {
@@ -136,6 +138,47 @@ static int write_npy(out_ctx *c, const char *name, const double *data, int ndim,
         st = mc_npy_write(path, data, ndim, shape, err);
     if (st == MC_OK)
         c->files[c->nfiles++] = name;
+    return st;
+}
+
+static int produced(const out_ctx *c, const char *name)
+{
+    for (int k = 0; k < c->nfiles; k++)
+        if (strcmp(c->files[k], name) == 0)
+            return 1;
+    return 0;
+}
+
+/* One surface height map (ny x nx, m) as X3P: points at the cell centres of the grid, so the
+ * file's offsets are the centre of cell (0, 0); the heights bit for bit (io/surface_file.h). */
+static int write_x3p(out_ctx *c, const char *name, const double *z, mc_error *err)
+{
+    const mc_grid *g = &c->res->grid;
+    char path[OUT_PATH_MAX];
+    int st = check_stop(err);
+    if (st == MC_OK)
+        st = join(path, c->stage, name, err);
+    if (st != MC_OK)
+        return st;
+    mc_surface_data s = {.nx = g->nx, .ny = g->ny, .dx = g->dx, .dy = g->dy,
+                         .x0 = mc_grid_x(g, 0), .y0 = mc_grid_y(g, 0), .z = (double *)z};
+    st = mc_x3p_write(path, &s, "microcontact", err);
+    if (st == MC_OK)
+        c->files[c->nfiles++] = name;
+    return st;
+}
+
+/* [output] x3p: an .x3p beside every surface height map .npy, the same field. */
+static int write_x3p_surfaces(out_ctx *c, mc_error *err)
+{
+    const mc_results *r = c->res;
+    int st = write_x3p(c, "topography.x3p", r->topography, err);
+    if (st == MC_OK && produced(c, "topography_final.npy"))
+        st = write_x3p(c, "topography_final.x3p", r->topography_final, err);
+    if (st == MC_OK && produced(c, "surface_initial.npy"))
+        st = write_x3p(c, "surface_initial.x3p", r->surface_initial, err);
+    if (st == MC_OK && produced(c, "surface_final.npy"))
+        st = write_x3p(c, "surface_final.x3p", r->surface_final, err);
     return st;
 }
 
@@ -479,14 +522,6 @@ static void remove_stage(const char *stage)
     rmdir(stage);
 }
 
-static int produced(const out_ctx *c, const char *name)
-{
-    for (int k = 0; k < c->nfiles; k++)
-        if (strcmp(c->files[k], name) == 0)
-            return 1;
-    return 0;
-}
-
 static int commit(out_ctx *c, mc_error *err)
 {
     char from[OUT_PATH_MAX], to[OUT_PATH_MAX];
@@ -610,6 +645,8 @@ static int stage_and_commit(out_ctx *c, mc_error *err)
         st = write_plastic(c, err);
     if (st == MC_OK && res->runin.enabled)
         st = write_runin(c, err);
+    if (st == MC_OK && c->scene->output.x3p)
+        st = write_x3p_surfaces(c, err);
     if (st == MC_OK && c->scene->output.vtk)
         st = write_vti(c, err);
     if (st == MC_OK && c->scene->output.vtk && res->nlayers > 0)

@@ -122,6 +122,19 @@ static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_e
     return rc;
 }
 
+/* The ISO parameters of roughness heights with the scene's cut-off rule and periodicity. */
+static int roughness_of(const mc_scene *sc, const double *heights, mc_roughness_params *out,
+                        mc_error *err)
+{
+    const mc_grid *g = &sc->grid;
+    mc_roughness_options opt;
+    mc_roughness_options_default(&opt);
+    opt.cutoff = sc->roughness.cutoff;
+    opt.periodic_x = g->periodic_x;
+    opt.periodic_y = g->periodic_y;
+    return mc_roughness_compute(heights, NULL, g->nx, g->ny, g->dx, g->dy, &opt, out, err);
+}
+
 /* The ISO parameters of the roughness heights (surface/roughness.h), for summary.json. */
 static int roughness_parameters(const mc_scene *sc, mc_results *res, mc_error *err)
 {
@@ -146,15 +159,27 @@ static int roughness_parameters(const mc_scene *sc, mc_results *res, mc_error *e
     } else
         rc = mc_surface_roughness(g, &sc->roughness, heights, err);
     if (rc == MC_OK) {
-        mc_roughness_options opt;
-        mc_roughness_options_default(&opt);
-        opt.cutoff = sc->roughness.cutoff;
-        opt.periodic_x = g->periodic_x;
-        opt.periodic_y = g->periodic_y;
-        rc = mc_roughness_compute(heights, NULL, g->nx, g->ny, g->dx, g->dy, &opt,
-                                  &res->roughness_initial, err);
+        rc = roughness_of(sc, heights, &res->roughness_initial, err);
         res->has_roughness = rc == MC_OK;
     }
+    mc_free(heights);
+    return rc;
+}
+
+/* roughness.final of an elastic-plastic run: the final roughness heights, shape minus
+ * topography_final (surface.h: topography = shape - heights), with the rules of the initial. */
+static int final_roughness(const mc_scene *sc, mc_results *res, mc_error *err)
+{
+    const mc_grid *g = &sc->grid;
+    const size_t n = mc_grid_cells(g);
+    double *heights = mc_zeros(n);
+    if (!heights)
+        return mc_fail(err, MC_ERR_NOMEM, "out of memory for the final roughness heights");
+    mc_surface_shape(g, &sc->geometry, heights);
+    for (size_t k = 0; k < n; k++)
+        heights[k] -= res->topography_final[k];
+    int rc = roughness_of(sc, heights, &res->roughness_final, err);
+    res->has_roughness_final = rc == MC_OK;
     mc_free(heights);
     return rc;
 }
@@ -194,6 +219,14 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
     else
         rc = run_contact(sc, K, res, err);
     mc_operator_destroy(&K);
+    if ((rc == MC_OK || rc == MC_NOT_CONVERGED) && res->has_roughness && res->topography_final) {
+        mc_error ferr = {0};
+        int frc = final_roughness(sc, res, &ferr);
+        if (frc != MC_OK) {
+            *err = ferr;
+            rc = frc;
+        }
+    }
     /* stresses of an unconverged solve are still worth writing; its status stays */
     if ((rc == MC_OK || rc == MC_NOT_CONVERGED) && sc->stress.enabled) {
         mc_error serr = {0};

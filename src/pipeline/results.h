@@ -153,7 +153,8 @@ typedef struct {
     char surface_format[16];              /* [roughness] file: the format read */
 
     /* running-in (NULL / 0 when not run): the composite surface heights (m, up towards the
-     * counter body, ny*nx) before and after, and the ISO parameters of the final one */
+     * counter body, ny*nx) before and after; the ISO parameters of the final surface (also of
+     * the elastic-plastic stage: of shape - topography_final, pipeline.c) */
     mc_runin_summary runin;
     double *surface_initial, *surface_final;
     int has_roughness_final;

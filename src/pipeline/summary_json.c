@@ -240,7 +240,7 @@ static void summary_inputs(jbuild *b, json_t *root, const mc_scene *s, const mc_
     }
     if (r->has_roughness)
         roughness_params(b, o, "initial", &r->roughness_initial);
-    if (r->has_roughness_final) /* the run-in surface (running-in) */
+    if (r->has_roughness_final) /* the final surface (elastic-plastic, running-in) */
         roughness_params(b, o, "final", &r->roughness_final);
 }
 
