@@ -438,7 +438,9 @@ int vf_suite_mesh_convergence(vf_ctx *ctx, int fast)
         }
         if (!fast) {
             snprintf(id, sizeof id, "%s_order", q_id[k]);
-            snprintf(qn, sizeof qn, "%s: observed order from 1.6, 0.8, 0.4 um", q_label[k]);
+            snprintf(qn, sizeof qn, "%s: observed order from 1.6, 0.8, 0.4 um%s", q_label[k],
+                     isnan(order[k]) ? " (undefined, nan: the differences change sign or do "
+                                       "not shrink)" : "");
             vf_info(ctx, id, qn, "2 for the smooth elastic part", NAN, order[k]);
         }
     }
@@ -457,8 +459,10 @@ int vf_suite_mesh_convergence(vf_ctx *ctx, int fast)
             snprintf(id, sizeof id, "zmin_total_%g_%.1f", 100 * eps_list[e], m[q].dx);
             snprintf(qn, sizeof qn,
                      "point minus patch kernel on the node, below eps = %g %% of p from z / dx = "
-                     "(on %.1f um)",
-                     100 * eps_list[e], m[q].dx);
+                     "(on %.1f um)%s",
+                     100 * eps_list[e], m[q].dx,
+                     isnan(m[q].zmin[1][e]) ? " (nan: not below eps within the evaluated depths)"
+                                            : "");
             vf_info(ctx, id, qn, "artefact plus the smooth quadrature difference", NAN,
                     m[q].zmin[1][e]);
             if (m[q].dx <= 0.8 + 1e-9) {
