@@ -17,6 +17,9 @@
  * centre, which sharpens the pressure of an asperity with neighbours; shown for contrast with
  * the pressure cap, information rows.)
  *
+ * (Longer than our files usually are: one experiment, its scenes, checks, tables and figures
+ * read in one sitting; the geometry helpers it shares with mesh_convergence are in topo_run.c.)
+ *
  * Each pattern runs through the elastic-plastic stage (pipeline/stage_plastic.h) with
  * criterion = von_mises (elastic-perfectly plastic, Y) and with criterion = pressure_cap
  * (hardness H: the pressure is capped at H, the penetration of the capped cells is the
