@@ -1,0 +1,9 @@
+set terminal pngcairo size 900,600 font 'sans,11'
+set output 'runin_mu.png'
+set datafile separator ','
+set grid
+set key outside right
+set xlabel 'disc speed [rpm]'
+set ylabel 'mu'
+set logscale x
+plot 'runin.csv' every ::1 using ($1 == 1086 && strcol(2) eq 'down' ? $3 : 1/0):9 with linespoints pt 7 lc 1 title '1086 N run-down', 'runin.csv' every ::1 using ($1 == 1086 && strcol(2) eq 'up' ? $3 : 1/0):9 with linespoints pt 6 lc 1 title '1086 N run-up', 'runin.csv' every ::1 using ($1 == 2172 && strcol(2) eq 'down' ? $3 : 1/0):9 with linespoints pt 7 lc 2 title '2172 N run-down', 'runin.csv' every ::1 using ($1 == 2172 && strcol(2) eq 'up' ? $3 : 1/0):9 with linespoints pt 6 lc 2 title '2172 N run-up', 'runin.csv' every ::1 using ($1 == 3258 && strcol(2) eq 'down' ? $3 : 1/0):9 with linespoints pt 7 lc 3 title '3258 N run-down', 'runin.csv' every ::1 using ($1 == 3258 && strcol(2) eq 'up' ? $3 : 1/0):9 with linespoints pt 6 lc 3 title '3258 N run-up', 'runin_elastic.csv' every ::1 using ($1 == 1086 ? $3 : 1/0):4 with lines dt 2 lc 0 title 'elastic material (1086 N)'
