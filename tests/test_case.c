@@ -783,7 +783,7 @@ START_TEST(test_docs_match_generated)
     ck_assert_int_eq(s.stress.enabled, 1);
     if (strcmp(gen, md) != 0) {
         char fresh[700];
-        snprintf(fresh, sizeof fresh, "%s/case-format.md", test_tmpdir());
+        snprintf(fresh, sizeof fresh, "%s/case-format.md", test_tmpdir_kept());
         FILE *o = fopen(fresh, "wb");
         if (o) {
             fwrite(doc, 1, (size_t)(gen - doc), o);

@@ -171,6 +171,80 @@ static int runin_rules(const mc_scene *s, mc_error *err, const char **section,
     return MC_OK;
 }
 
+/* Largest ratio of the cell sizes of a grid periodic along x and y: the real-space part of the
+ * Ewald table (operator/kernel_table.c) spans 15 max(dx, dy) along both axes, so its cost grows
+ * with the ratio (about 2 s at 1000 for any grid size; 20 s at 10^4). */
+#define MC_EWALD_ASPECT_MAX 1000.0
+
+/* Scale rules: numbers the solver can represent and a load the grid can carry. A mean pressure
+ * over the grid above the reduced modulus E* means strains of order one (linear elasticity has
+ * lost its meaning, and products such as p A / E* leave the double range: 1e300 N, E = 1e-300
+ * Pa). Not for lubricant_pressure = auto, whose force is the macro contact's (F_N), not the
+ * patch's. */
+static int scale_rules(const mc_scene *s, mc_error *err, const char **section,
+                       const char **keyname)
+{
+    const mc_grid *g = &s->grid;
+    const double dmin = fmin(g->dx, g->dy), dmax = fmax(g->dx, g->dy);
+    if (!(dmin >= 1e-10))
+        BLAME("mesh", g->dx <= g->dy ? "dx" : "dy",
+              "[mesh] %s = %g m: must be >= 1e-10 m (below 0.1 nm, the atomic spacing, a "
+              "continuum does not hold and cell areas leave the double range)",
+              g->dx <= g->dy ? "dx" : "dy", dmin);
+    if (g->periodic_x && g->periodic_y && dmax / dmin > MC_EWALD_ASPECT_MAX)
+        BLAME("mesh", g->dx > g->dy ? "dx" : "dy",
+              "[mesh] dy/dx = %g on a grid periodic along x and y: the cell aspect ratio must be "
+              "at most %g (and at least 1/%g), the Ewald table's cost grows with it; use cells "
+              "closer to square, or a free axis",
+              g->dy / g->dx, MC_EWALD_ASPECT_MAX, MC_EWALD_ASPECT_MAX);
+    const double Lx = g->nx * g->dx, Ly = g->ny * g->dy, estar = mc_scene_estar(s);
+    const double p_lub = s->load.lubricant_pressure;
+    if (p_lub == MC_LUBRICANT_AUTO || s->load.kind == MC_LOAD_PRESSURE_FILE)
+        return MC_OK;
+    const double f = s->load.value;
+    switch (s->load.kind) {
+    case MC_LOAD_FORCE:
+        if (!(f / (Lx * Ly) <= estar))
+            BLAME("load", "force",
+                  "[load] force = %g N: the mean pressure over the grid, F / (nx dx ny dy) = %g "
+                  "Pa, is above the reduced modulus E* = %g Pa (strains of order one, outside "
+                  "linear elasticity); accepted: force <= E* nx dx ny dy = %g N, or E* >= %g Pa "
+                  "(reduce the force, enlarge the grid or check the moduli E)",
+                  f, f / (Lx * Ly), estar, estar * Lx * Ly, f / (Lx * Ly));
+        if (p_lub * Lx * Ly > f)
+            BLAME("load", "lubricant_pressure",
+                  "[load] lubricant_pressure = %g Pa over the whole grid (%g x %g m) carries "
+                  "%g N, more than the requested force %g N: the contact cannot carry the "
+                  "force asked for; lower lubricant_pressure below F / (nx dx ny dy) = %g Pa, or "
+                  "raise the force",
+                  p_lub, Lx, Ly, p_lub * Lx * Ly, f, f / (Lx * Ly));
+        break;
+    case MC_LOAD_FORCE_PER_LENGTH:
+        if (!(f / Lx <= estar))
+            BLAME("load", "force_per_length",
+                  "[load] force_per_length = %g N/m: the mean pressure over the grid, w / (nx "
+                  "dx) = %g Pa, is above the reduced modulus E* = %g Pa (strains of order one, "
+                  "outside linear elasticity); accepted: force_per_length <= E* nx dx = %g N/m",
+                  f, f / Lx, estar, estar * Lx);
+        if (p_lub * Lx > f)
+            BLAME("load", "lubricant_pressure",
+                  "[load] lubricant_pressure = %g Pa over the grid's width (%g m) carries %g N/m, "
+                  "more than the requested force_per_length %g N/m: lower lubricant_pressure "
+                  "below w / (nx dx) = %g Pa, or raise the load",
+                  p_lub, Lx, p_lub * Lx, f, f / Lx);
+        break;
+    case MC_LOAD_APPROACH:
+        if (!(f <= fmax(Lx, Ly)))
+            BLAME("load", "approach",
+                  "[load] approach = %g m: larger than the grid (%g x %g m), strains of order "
+                  "one, outside linear elasticity; accepted: approach <= max(nx dx, ny dy) = %g m",
+                  f, Lx, Ly, fmax(Lx, Ly));
+        break;
+    case MC_LOAD_PRESSURE_FILE: break;
+    }
+    return MC_OK;
+}
+
 /* The rules that tie keys together; each key's own bounds are the table's (mc_keys_check_scene).
  * A key that is given but has no effect in its scene is refused here or by the table's use
  * conditions, never silently ignored. */
@@ -210,6 +284,8 @@ static int scene_rules(const mc_scene *s, mc_error *err, const char **section,
               "[load] pressure_cap = %g Pa: must be > lubricant_pressure = %g Pa",
               s->load.pressure_cap, s->load.lubricant_pressure);
     int rc = lubrication_rules(s, err, section, keyname);
+    if (rc == MC_OK)
+        rc = scale_rules(s, err, section, keyname);
     if (rc == MC_OK)
         rc = plasticity_rules(s, err, section, keyname);
     if (rc == MC_OK)
