@@ -310,6 +310,20 @@ int mc_scene_check(const mc_scene *s, mc_error *err)
     return mc_scene_check_key(s, err, NULL, NULL);
 }
 
+void mc_scene_where(const mc_scene *s, const char *section, const char *name, char *buf,
+                    size_t len)
+{
+    const int k = mc_key_find(section, name);
+    const int line = k >= 0 && k < MC_SCENE_KEYS_MAX ? s->key_line[k] : 0;
+    const char *path = s->path[0] ? s->path : "<scene>";
+    if (line > 0)
+        snprintf(buf, len, "%s:%d: ", path, line);
+    else if (line < 0)
+        snprintf(buf, len, "%s: --set %s.%s: ", path, section, name);
+    else
+        snprintf(buf, len, "%s: ", path);
+}
+
 double mc_scene_estar(const mc_scene *s)
 {
     return mc_combined_modulus(s->body1.E, s->body1.nu, s->body2.E, s->body2.nu, s->body2.rigid);

@@ -361,6 +361,8 @@ int mc_cli_run(int argc, char **argv)
         return fail_case(case_path, &err);
     }
     print_solve(&res);
+    for (int k = 0; k < res.nwarnings; k++) /* pipeline/warnings.h */
+        fprintf(stderr, "microcontact: warning: %s\n", res.warnings[k].message);
     if (res.runin.enabled)
         print_runin(&res);
     printf("  writing results to %s/\n", dir);

@@ -2,6 +2,7 @@
 #include "pipeline/pipeline.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 #include <time.h>
 
@@ -15,6 +16,7 @@
 #include "pipeline/stage_lube.h"
 #include "pipeline/stage_plastic.h"
 #include "pipeline/runin.h"
+#include "pipeline/warnings.h"
 #include "surface/surface.h"
 
 double mc_clock(void)
@@ -22,6 +24,34 @@ double mc_clock(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* An error found after parsing: prefix it with the place of the key that caused it in the case
+ * file ("case.ini:12: "), as the case reader's errors are (case/scene.h mc_scene_where). */
+static int blame_key(const mc_scene *sc, const char *section, const char *name, int rc,
+                     mc_error *err)
+{
+    if (rc != MC_OK && err) {
+        char where[MC_PATH_MAX + 64], key[96];
+        mc_scene_where(sc, section, name, where, sizeof where);
+        snprintf(key, sizeof key, "[%s] %s", section, name);
+        if (strncmp(err->msg, key, strlen(key)) == 0)
+            mc_error_prefix(err, "%s", where);
+        else
+            mc_error_prefix(err, "%s%s: ", where, key);
+    }
+    return rc;
+}
+
+static const char *load_key(const mc_scene *sc)
+{
+    switch (sc->load.kind) {
+    case MC_LOAD_FORCE_PER_LENGTH: return "force_per_length";
+    case MC_LOAD_APPROACH: return "approach";
+    case MC_LOAD_PRESSURE_FILE: return "pressure_file";
+    case MC_LOAD_FORCE: break;
+    }
+    return "force";
 }
 
 /* Prescribed pressure: the displacement is K p; the approach is the largest one that keeps the
@@ -35,16 +65,17 @@ static int run_prescribed(const mc_scene *sc, mc_operator *K, mc_results *res, m
     if (rc != MC_OK) {
         if (err)
             mc_error_prefix(err, "[load] pressure_file: ");
-        return rc;
+        return blame_key(sc, "load", "pressure_file", rc, err);
     }
     for (size_t i = 0; i < n; i++) {
         if (p[i] < 0) {
             double v = p[i];
             mc_free(p);
-            return mc_fail(err, MC_ERR_INPUT,
-                           "[load] pressure_file: %s: pressure %g Pa at row %zu, column %zu is "
-                           "negative; a prescribed pressure map must be >= 0 (compressive)",
-                           sc->load.pressure_file, v, i / (size_t)g->nx, i % (size_t)g->nx);
+            mc_fail(err, MC_ERR_INPUT,
+                    "[load] pressure_file: %s: pressure %g Pa at row %zu, column %zu is "
+                    "negative; a prescribed pressure map must be >= 0 (compressive)",
+                    sc->load.pressure_file, v, i / (size_t)g->nx, i % (size_t)g->nx);
+            return blame_key(sc, "load", "pressure_file", MC_ERR_INPUT, err);
         }
     }
     memcpy(res->pressure, p, n * sizeof *p);
@@ -119,6 +150,12 @@ static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_e
                               &res->contact, err);
     res->timing.contact_s = mc_clock() - t0;
     mc_contact_destroy(&solver);
+    if (rc == MC_ERR_INPUT || rc == MC_ERR_LIMIT) /* a load the contact cannot take */
+        return blame_key(sc, "load",
+                         isfinite(prob.p_cap) && err && strstr(err->msg, "pressure cap")
+                             ? "pressure_cap"
+                             : load_key(sc),
+                         rc, err);
     return rc;
 }
 
@@ -168,7 +205,7 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
         return rc;
     rc = mc_memory_check(sc, err);
     if (rc != MC_OK)
-        return rc;
+        return blame_key(sc, "mesh", "nx", rc, err);
     res->grid = sc->grid;
     res->roughness_seed = sc->roughness.seed;
     const size_t n = mc_grid_cells(&sc->grid);
@@ -180,6 +217,8 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
     rc = mc_surface_topography(&sc->grid, &sc->geometry, &sc->roughness, res->topography, err);
     if (rc == MC_OK && sc->roughness.type != MC_ROUGH_NONE)
         rc = roughness_parameters(sc, res, err);
+    if (rc != MC_OK && rc != MC_ERR_NOMEM && sc->roughness.type == MC_ROUGH_FILE)
+        return blame_key(sc, "roughness", "file", rc, err);
     if (rc != MC_OK)
         return rc;
 
@@ -200,6 +239,11 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
         t0 = mc_clock();
         int src = mc_stress_stage(sc, res, &serr);
         res->timing.stress_s = mc_clock() - t0;
+        if (src == MC_ERR_INPUT || src == MC_ERR_LIMIT) /* the [stress] settings */
+            blame_key(sc, "stress",
+                      sc->stress.kernel == MC_STRESS_POINT && strstr(serr.msg, "kernel") ? "kernel"
+                                                                            : "depth_max",
+                      src, &serr);
         if (src != MC_OK) {
             *err = serr;
             rc = src;
@@ -216,6 +260,8 @@ int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
     mc_threads_begin(sc->solver.threads, &scope);
     /* a running-in is its own sequence of stages (pipeline/runin.h) */
     int rc = sc->runin.enabled ? mc_runin_run(sc, NULL, res, err) : run_stages(sc, res, err);
+    if (rc == MC_OK || rc == MC_NOT_CONVERGED)
+        mc_results_warnings(sc, res);
     mc_threads_end(&scope);
     return rc;
 }
