@@ -177,10 +177,12 @@ static int runin_rules(const mc_scene *s, mc_error *err, const char **section,
 #define MC_EWALD_ASPECT_MAX 1000.0
 
 /* Scale rules: numbers the solver can represent and a load the grid can carry. A mean pressure
- * over the grid above the reduced modulus E* means strains of order one (linear elasticity has
- * lost its meaning, and products such as p A / E* leave the double range: 1e300 N, E = 1e-300
- * Pa). Not for lubricant_pressure = auto, whose force is the macro contact's (F_N), not the
- * patch's. */
+ * over the grid far above the reduced modulus E* (SCALE_MAX times) or an approach far beyond the
+ * grid means strains far beyond one: linear elasticity has lost its meaning, and products such as
+ * p A / E* leave the double range (1e300 N, E = 1e-300 Pa give NaN in the solver). Milder
+ * excesses (p_max above E*) are a warning of the run (pipeline/warnings.h). Not for
+ * lubricant_pressure = auto, whose force is the macro contact's (F_N), not the patch's. */
+#define SCALE_MAX 1000.0
 static int scale_rules(const mc_scene *s, mc_error *err, const char **section,
                        const char **keyname)
 {
@@ -204,13 +206,14 @@ static int scale_rules(const mc_scene *s, mc_error *err, const char **section,
     const double f = s->load.value;
     switch (s->load.kind) {
     case MC_LOAD_FORCE:
-        if (!(f / (Lx * Ly) <= estar))
+        if (!(f / (Lx * Ly) <= SCALE_MAX * estar))
             BLAME("load", "force",
                   "[load] force = %g N: the mean pressure over the grid, F / (nx dx ny dy) = %g "
-                  "Pa, is above the reduced modulus E* = %g Pa (strains of order one, outside "
-                  "linear elasticity); accepted: force <= E* nx dx ny dy = %g N, or E* >= %g Pa "
-                  "(reduce the force, enlarge the grid or check the moduli E)",
-                  f, f / (Lx * Ly), estar, estar * Lx * Ly, f / (Lx * Ly));
+                  "Pa, is more than %g times the reduced modulus E* = %g Pa (strains far beyond "
+                  "one, outside linear elasticity and the solver's number range); accepted: "
+                  "force <= %g E* nx dx ny dy = %g N (reduce the force, enlarge the grid or "
+                  "check the moduli E)",
+                  f, f / (Lx * Ly), SCALE_MAX, estar, SCALE_MAX, SCALE_MAX * estar * Lx * Ly);
         if (p_lub * Lx * Ly > f)
             BLAME("load", "lubricant_pressure",
                   "[load] lubricant_pressure = %g Pa over the whole grid (%g x %g m) carries "
@@ -220,12 +223,13 @@ static int scale_rules(const mc_scene *s, mc_error *err, const char **section,
                   p_lub, Lx, Ly, p_lub * Lx * Ly, f, f / (Lx * Ly));
         break;
     case MC_LOAD_FORCE_PER_LENGTH:
-        if (!(f / Lx <= estar))
+        if (!(f / Lx <= SCALE_MAX * estar))
             BLAME("load", "force_per_length",
                   "[load] force_per_length = %g N/m: the mean pressure over the grid, w / (nx "
-                  "dx) = %g Pa, is above the reduced modulus E* = %g Pa (strains of order one, "
-                  "outside linear elasticity); accepted: force_per_length <= E* nx dx = %g N/m",
-                  f, f / Lx, estar, estar * Lx);
+                  "dx) = %g Pa, is more than %g times the reduced modulus E* = %g Pa (strains "
+                  "far beyond one, outside linear elasticity and the solver's number range); "
+                  "accepted: force_per_length <= %g E* nx dx = %g N/m",
+                  f, f / Lx, SCALE_MAX, estar, SCALE_MAX, SCALE_MAX * estar * Lx);
         if (p_lub * Lx > f)
             BLAME("load", "lubricant_pressure",
                   "[load] lubricant_pressure = %g Pa over the grid's width (%g m) carries %g N/m, "
@@ -234,11 +238,12 @@ static int scale_rules(const mc_scene *s, mc_error *err, const char **section,
                   p_lub, Lx, p_lub * Lx, f, f / Lx);
         break;
     case MC_LOAD_APPROACH:
-        if (!(f <= fmax(Lx, Ly)))
+        if (!(f <= SCALE_MAX * fmax(Lx, Ly)))
             BLAME("load", "approach",
-                  "[load] approach = %g m: larger than the grid (%g x %g m), strains of order "
-                  "one, outside linear elasticity; accepted: approach <= max(nx dx, ny dy) = %g m",
-                  f, Lx, Ly, fmax(Lx, Ly));
+                  "[load] approach = %g m: more than %g times the grid (%g x %g m), strains far "
+                  "beyond one, outside linear elasticity and the solver's number range; "
+                  "accepted: approach <= %g max(nx dx, ny dy) = %g m",
+                  f, SCALE_MAX, Lx, Ly, SCALE_MAX, SCALE_MAX * fmax(Lx, Ly));
         break;
     case MC_LOAD_PRESSURE_FILE: break;
     }

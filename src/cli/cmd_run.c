@@ -97,11 +97,16 @@ static double peak_memory_mib(void)
     return kb / 1024.0;
 }
 
+/* The first line, before the solve: a log of a run killed while it computes is not empty. */
+static void print_start(const mc_scene *sc)
+{
+    printf("microcontact: %d x %d cells, dx = %.4g um, dy = %.4g um\n", sc->grid.nx, sc->grid.ny,
+           sc->grid.dx * 1e6, sc->grid.dy * 1e6);
+}
+
 static void print_solve(const mc_results *r)
 {
     const mc_contact_summary *c = &r->contact;
-    printf("microcontact: %d x %d cells, dx = %.4g um, dy = %.4g um\n", r->grid.nx, r->grid.ny,
-           r->grid.dx * 1e6, r->grid.dy * 1e6);
     if (c->solved)
         printf("  contact (%s, %s operator): %s in %d iterations, residual %.2e\n", c->solver,
                mc_backend_name(c->backend), c->converged ? "converged" : "NOT CONVERGED", c->iterations,
@@ -344,6 +349,7 @@ int mc_cli_run(int argc, char **argv)
         return fail(&err);
     }
 
+    print_start(&scene);
     mc_results res;
     int rc;
     char ckdir[MC_PATH_MAX + 16];

@@ -112,7 +112,7 @@ static int parse_number(const char *tb, size_t tl, const char *what, long line, 
                        what, line, show);
     if (!is_nan && !mc_text_is_decimal(tok, tl))
         return mc_fail(err, MC_ERR_INPUT,
-                       "%s:%ld: '%s' is not a decimal number (accepted: the forms of a case file, "
+                       "%s:%ld: '%s' is not a number (accepted: decimal numbers as in a case file, "
                        "e.g. 12, -0.5, 1.5e-6; no hexadecimal, no infinity%s; values are separated "
                        "by spaces or tabs; '#' starts a comment)",
                        what, line, show, finite_only ? ", no NaN" : "; nan marks a missing point");
@@ -120,8 +120,9 @@ static int parse_number(const char *tb, size_t tl, const char *what, long line, 
     double x = strtod(tok, NULL);
     if (!is_nan && !isfinite(x))
         return mc_fail(err, MC_ERR_INPUT,
-                       "%s:%ld: '%s' is out of the double range (magnitude above %g)", what, line,
-                       show, DBL_MAX);
+                       "%s:%ld: value '%s' is not finite (beyond %g, the double range); values "
+                       "must be finite",
+                       what, line, show, DBL_MAX);
     *v = x;
     return MC_OK;
 }
