@@ -54,9 +54,9 @@ static const char *load_key(const mc_scene *sc)
     return "force";
 }
 
-/* Prescribed pressure: the displacement is K p; the approach is the largest one that keeps the
- * gap non-negative, so the gap closes exactly where a consistent pressure would be in contact. */
-static int run_prescribed(const mc_scene *sc, mc_operator *K, mc_results *res, mc_error *err)
+/* Prescribed pressure: [load] pressure_file into res->pressure (>= 0, the mesh's shape), before
+ * the stages begin. */
+static int read_prescribed(const mc_scene *sc, mc_results *res, mc_error *err)
 {
     const mc_grid *g = &res->grid;
     const size_t n = mc_grid_cells(g);
@@ -80,6 +80,17 @@ static int run_prescribed(const mc_scene *sc, mc_operator *K, mc_results *res, m
     }
     memcpy(res->pressure, p, n * sizeof *p);
     mc_free(p);
+    return MC_OK;
+}
+
+/* Prescribed pressure (read_prescribed): the displacement is K p; the approach is the largest one
+ * that keeps the gap non-negative, so the gap closes exactly where a consistent pressure would be
+ * in contact. */
+static int run_prescribed(const mc_scene *sc, mc_operator *K, mc_results *res, mc_error *err)
+{
+    (void)sc, (void)err;
+    const mc_grid *g = &res->grid;
+    const size_t n = mc_grid_cells(g);
     double t0 = mc_clock();
     mc_operator_apply(K, res->pressure, res->displacement);
     double delta = INFINITY, load = 0, pmax = 0;
@@ -196,7 +207,8 @@ static int roughness_parameters(const mc_scene *sc, mc_results *res, mc_error *e
     return rc;
 }
 
-static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
+static int run_stages(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_results *res,
+                      mc_error *err)
 {
     double t_start = mc_clock();
     memset(res, 0, sizeof *res);
@@ -222,6 +234,10 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
     if (rc != MC_OK)
         return rc;
 
+    if (sc->load.kind == MC_LOAD_PRESSURE_FILE && (rc = read_prescribed(sc, res, err)) != MC_OK)
+        return rc;
+    if (stage)
+        stage(ctx, "contact");
     mc_operator *K = NULL;
     double t0 = mc_clock();
     rc = mc_operator_plan_love(&sc->grid, mc_scene_estar(sc), sc->solver.backend, &K, err);
@@ -236,6 +252,8 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
     /* stresses of an unconverged solve are still worth writing; its status stays */
     if ((rc == MC_OK || rc == MC_NOT_CONVERGED) && sc->stress.enabled) {
         mc_error serr = {0};
+        if (stage)
+            stage(ctx, "stress");
         t0 = mc_clock();
         int src = mc_stress_stage(sc, res, &serr);
         res->timing.stress_s = mc_clock() - t0;
@@ -255,11 +273,18 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
 
 int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
 {
+    return mc_pipeline_run_staged(sc, NULL, NULL, res, err);
+}
+
+int mc_pipeline_run_staged(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_results *res,
+                           mc_error *err)
+{
     /* the scene's thread count holds for this run only (core/threads.h) */
     mc_threads_scope scope;
     mc_threads_begin(sc->solver.threads, &scope);
     /* a running-in is its own sequence of stages (pipeline/runin.h) */
-    int rc = sc->runin.enabled ? mc_runin_run(sc, NULL, res, err) : run_stages(sc, res, err);
+    int rc = sc->runin.enabled ? mc_runin_run(sc, NULL, res, err)
+                                 : run_stages(sc, stage, ctx, res, err);
     if (rc == MC_OK || rc == MC_NOT_CONVERGED)
         mc_results_warnings(sc, res);
     mc_threads_end(&scope);
