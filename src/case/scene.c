@@ -96,6 +96,9 @@ static int lubrication_rules(const mc_scene *s, mc_error *err, const char **sect
     return MC_OK;
 }
 
+#define PLASTIC_DZ_MIN_RATIO 16.0 /* dz >= min(dx, dy) / 16 */
+#define PLASTIC_LAYERS_MAX 1024    /* depth <= 1024 dz */
+
 /* The rules of the elastic-plastic stage. */
 static int plasticity_rules(const mc_scene *s, mc_error *err, const char **section,
                             const char **keyname)
@@ -116,6 +119,20 @@ static int plasticity_rules(const mc_scene *s, mc_error *err, const char **secti
               "pressure_cap takes its limit from [plasticity] hardness)");
     if (s->plasticity.criterion == MC_CRITERION_PRESSURE_CAP)
         return MC_OK;
+    /* the plastic volume has depth / dz layers: a loop count set by values, not by the grid */
+    const double dmin = fmin(s->grid.dx, s->grid.dy), dz = s->plasticity.dz;
+    if (dz > 0 && dz < dmin / PLASTIC_DZ_MIN_RATIO)
+        BLAME("plasticity", "dz",
+              "[plasticity] dz = %g m: must be >= min(dx, dy) / %g = %g m (thinner layers than "
+              "that resolve nothing the surface grid can carry, and their number makes the run "
+              "take hours)",
+              dz, PLASTIC_DZ_MIN_RATIO, dmin / PLASTIC_DZ_MIN_RATIO);
+    if (s->plasticity.depth > 0 && s->plasticity.depth / (dz > 0 ? dz : dmin) > PLASTIC_LAYERS_MAX)
+        BLAME("plasticity", "depth",
+              "[plasticity] depth = %g m: more than %d layers of dz = %g m; accepted: depth <= "
+              "%d dz = %g m (raise dz or lower depth)",
+              s->plasticity.depth, PLASTIC_LAYERS_MAX, dz > 0 ? dz : dmin, PLASTIC_LAYERS_MAX,
+              PLASTIC_LAYERS_MAX * (dz > 0 ? dz : dmin));
     if (!(s->body1.nu < 0.5))
         BLAME("body1", "nu",
               "[body1] nu = 0.5 with [plasticity]: an incompressible body has no finite bulk "

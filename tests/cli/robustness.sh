@@ -522,6 +522,12 @@ printf '0 0\n0 1e999\n' > big.txt
 phys phys_height_overflow "big.txt:2: value '1e999' is not finite" hex.ini --set roughness.file=big.txt
 
 # ---- 5. no hangs -----------------------------------------------------------------------------
+# plastic layers: depth / dz is a loop count set by values (dz = 1 pm took hours, or died out of
+# memory): dz below min(dx, dy)/16 and more than 1024 layers are refused
+{ mesh 16; printf '[load]\nforce = 1 N\n[plasticity]\nyield_stress = 1 GPa\n'; } > plastic.ini
+phys hang_plastic_dz_tiny "must be >= min(dx, dy) / 16" plastic.ini --set plasticity.dz=1e-12m
+phys hang_plastic_layers "accepted: depth <= 1024 dz" plastic.ini --set plasticity.dz=1um \
+    --set plasticity.depth=2mm
 # dy/dx = 1e5 on a doubly periodic grid took minutes in the Ewald table: refused at once
 t0=$(date +%s%N)
 phys hang_ewald_aspect_ratio "at most 1000" small.ini --set mesh.periodic_x=yes \
