@@ -205,10 +205,12 @@ static int scale_rules(const mc_scene *s, mc_error *err, const char **section,
 {
     const mc_grid *g = &s->grid;
     const double dmin = fmin(g->dx, g->dy), dmax = fmax(g->dx, g->dy);
-    if (!(dmin >= 1e-10))
+    /* a floor of the number range only: the scale covariance of the solvers is verified down to
+     * cells of 1e-11 m (verify/stability.c height_1e-12) */
+    if (!(dmin >= 1e-150))
         BLAME("mesh", g->dx <= g->dy ? "dx" : "dy",
-              "[mesh] %s = %g m: must be >= 1e-10 m (below 0.1 nm, the atomic spacing, a "
-              "continuum does not hold and cell areas leave the double range)",
+              "[mesh] %s = %g m: must be >= 1e-150 m (a cell area dx dy below 1e-300 m^2 leaves "
+              "the double range)",
               g->dx <= g->dy ? "dx" : "dy", dmin);
     if (g->periodic_x && g->periodic_y && dmax / dmin > MC_EWALD_ASPECT_MAX)
         BLAME("mesh", g->dx > g->dy ? "dx" : "dy",

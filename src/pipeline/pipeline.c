@@ -32,8 +32,9 @@ static int blame_key(const mc_scene *sc, const char *section, const char *name, 
                      mc_error *err)
 {
     if (rc != MC_OK && err) {
-        char where[MC_PATH_MAX + 64], key[96];
-        mc_scene_where(sc, section, name, where, sizeof where);
+        char where[MC_PATH_MAX + 64] = "", key[96];
+        if (sc->path[0]) /* a scene built in code has no file to point at */
+            mc_scene_where(sc, section, name, where, sizeof where);
         snprintf(key, sizeof key, "[%s] %s", section, name);
         if (strncmp(err->msg, key, strlen(key)) == 0)
             mc_error_prefix(err, "%s", where);

@@ -508,7 +508,7 @@ phys phys_lubricant_per_length "more than the requested force_per_length" small.
     --set geometry.shape=cylinder --set load.lubricant_pressure=1GPa
 phys phys_force_overflow "accepted: force <=" small.ini --set load.force=1e300N
 phys phys_modulus_tiny "accepted: force <=" small.ini --set body1.E=1e-300Pa --set body2.E=1e-300Pa
-phys phys_dx_tiny "must be >= 1e-10 m" small.ini --set mesh.dx=1e-300m
+phys phys_dx_tiny "must be >= 1e-150 m" small.ini --set mesh.dx=1e-300m
 phys phys_approach_overflow "accepted: approach <=" small.ini --set load.force= \
     --set load.approach=1e300m
 printf '[mesh]\nnx = 2\nny = 2\ndx = 4 um\n[roughness]\ntype = file\nfile = %s\nmissing = fill\n' \
