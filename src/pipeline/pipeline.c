@@ -35,11 +35,11 @@ static int blame_key(const mc_scene *sc, const char *section, const char *name, 
         char where[MC_PATH_MAX + 64] = "", key[96];
         if (sc->path[0]) /* a scene built in code has no file to point at */
             mc_scene_where(sc, section, name, where, sizeof where);
-        snprintf(key, sizeof key, "[%s] %s", section, name);
+        snprintf(key, sizeof key, "[%s]", section); /* the message names the section already */
         if (strncmp(err->msg, key, strlen(key)) == 0)
             mc_error_prefix(err, "%s", where);
         else
-            mc_error_prefix(err, "%s%s: ", where, key);
+            mc_error_prefix(err, "%s[%s] %s: ", where, section, name);
     }
     return rc;
 }
@@ -230,8 +230,9 @@ static int run_stages(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_resul
     rc = mc_surface_topography(&sc->grid, &sc->geometry, &sc->roughness, res->topography, err);
     if (rc == MC_OK && sc->roughness.type != MC_ROUGH_NONE)
         rc = roughness_parameters(sc, res, err);
-    if (rc != MC_OK && rc != MC_ERR_NOMEM && sc->roughness.type == MC_ROUGH_FILE)
-        return blame_key(sc, "roughness", "file", rc, err);
+    if (rc != MC_OK && rc != MC_ERR_NOMEM && sc->roughness.type != MC_ROUGH_NONE)
+        return blame_key(sc, "roughness", sc->roughness.type == MC_ROUGH_FILE ? "file" : "type",
+                         rc, err);
     if (rc != MC_OK)
         return rc;
 
