@@ -423,6 +423,18 @@ static const bad_case bad[] = {
      {NAME ":8: [mesh] periodic_x = maybe: must be yes or no (also true/false, on/off, 1/0)"}},
     {BASE "lubricant_pressure = 2 MPa\npressure_cap = 1 MPa\n",
      {NAME ":8: [load] pressure_cap = 1e+06 Pa: must be > lubricant_pressure = 2e+06 Pa"}},
+    /* scale rules (issue 15): a load the grid cannot carry, numbers beyond the solver's range,
+     * loop counts set by values */
+    {BASE "lubricant_pressure = 20 GPa\n",
+     {NAME ":7: [load] lubricant_pressure = 2e+10 Pa over the whole grid",
+      "carries 1.28 N, more than the requested force 1 N"}},
+    {BASE "[body1]\nE = 1 kPa\n[body2]\nE = 1 kPa\n",
+     {NAME ":6: [load] force = 1 N: the mean pressure over the grid",
+      "accepted: force <= 1000 E* nx dx ny dy"}},
+    {BASE "[mesh]\nperiodic_x = yes\nperiodic_y = yes\ndy = 2 mm\n",
+     {NAME ":10: [mesh] dy/dx = 2000 on a grid periodic along x and y", "at most 1000"}},
+    {BASE "[plasticity]\nyield_stress = 1 GPa\ndz = 0.01 um\n",
+     {NAME ":9: [plasticity] dz = 1e-08 m: must be >= min(dx, dy) / 16"}},
     {BASE "[solver]\ntolerance = 1\n",
      {NAME ":8: [solver] tolerance = 1: must be a number >= 1e-15 and <= 0.01"}},
     {BASE "[solver]\noperator = fast\n",
@@ -783,7 +795,7 @@ START_TEST(test_docs_match_generated)
     ck_assert_int_eq(s.stress.enabled, 1);
     if (strcmp(gen, md) != 0) {
         char fresh[700];
-        snprintf(fresh, sizeof fresh, "%s/case-format.md", test_tmpdir());
+        snprintf(fresh, sizeof fresh, "%s/case-format.md", test_tmpdir_kept());
         FILE *o = fopen(fresh, "wb");
         if (o) {
             fwrite(doc, 1, (size_t)(gen - doc), o);

@@ -391,7 +391,7 @@ START_TEST(test_text_matrix)
                         "\n"
                         "1 2.5\t-3e-6  4 # trailing comment\r\n"
                         "   # indented comment\n"
-                        "5 6 7 0x1p-2\n"
+                        "5 6 7 0.25\n"
                         "\t\n"
                         "9 10 11 +12";
     double *d;
@@ -422,8 +422,15 @@ START_TEST(test_text_matrix_errors)
         {"# only a comment\n\n  \n", "h.txt: no data rows"},
         {"", "h.txt: no data rows"},
         {"1 2\n3 4\0\n", "h.txt:2: '4?' is not a number"},
+        /* only the case file's decimal forms (issue 15: 0x10 was read as 16 m) */
+        {"1 0x10\n", "h.txt:1: '0x10' is not a number (accepted: decimal numbers"},
+        {"1 0x1p-2\n", "h.txt:1: '0x1p-2' is not a number"},
+        {"1 2\n-inf 4\n", "h.txt:2: '-inf' is not a number"},
+        {"1 2\n3 infinity\n", "h.txt:2: 'infinity' is not a number"},
+        {"1 .e5\n", "h.txt:1: '.e5' is not a number"},
+        {"1 1e\n", "h.txt:1: '1e' is not a number"},
     };
-    size_t lens[] = {0, 0, 0, 0, 0, 0, 0, 9}; /* the last one holds a NUL byte */
+    size_t lens[] = {0, 0, 0, 0, 0, 0, 0, 9, 0, 0, 0, 0, 0, 0}; /* [7] holds a NUL byte */
     for (size_t t = 0; t < sizeof cases / sizeof cases[0]; t++) {
         double *d;
         int r, c;

@@ -4,7 +4,10 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <ftw.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 const char *test_physics_dir(void)
 {
@@ -82,11 +85,50 @@ void test_random_field(double *f, size_t n, unsigned long long seed)
     }
 }
 
-const char *test_tmpdir(void)
+/* The directories test_tmpdir made in this process, removed at its exit. Check runs each test
+ * in a forked child: a directory belongs to the process that made it (a child inherits the
+ * parent's list and handler, and must not remove the parent's directories). */
+#define TMPDIRS_MAX 64
+static struct {
+    char path[64];
+    pid_t pid;
+} tmpdirs[TMPDIRS_MAX];
+static int ntmpdirs;
+
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
 {
-    static char path[256];
+    (void)st, (void)flag, (void)ftw;
+    remove(path);
+    return 0;
+}
+
+static void remove_tmpdirs(void)
+{
+    for (int k = 0; k < ntmpdirs; k++)
+        if (tmpdirs[k].pid == getpid())
+            nftw(tmpdirs[k].path, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+const char *test_tmpdir_kept(void)
+{
+    static char path[64];
     snprintf(path, sizeof path, "/tmp/mc_test_XXXXXX");
     char *r = mkdtemp(path);
     ck_assert_msg(r != NULL, "mkdtemp failed");
+    return path;
+}
+
+const char *test_tmpdir(void)
+{
+    static char path[64];
+    snprintf(path, sizeof path, "%s", test_tmpdir_kept());
+    static int registered;
+    if (!registered) {
+        registered = atexit(remove_tmpdirs) == 0;
+    }
+    if (ntmpdirs < TMPDIRS_MAX) {
+        snprintf(tmpdirs[ntmpdirs].path, sizeof tmpdirs[ntmpdirs].path, "%s", path);
+        tmpdirs[ntmpdirs++].pid = getpid();
+    }
     return path;
 }

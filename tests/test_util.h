@@ -28,7 +28,11 @@ double test_rel_maxdiff(const double *a, const double *b, size_t n);
 /* Deterministic pseudo-random values in [-1, 1) (splitmix64), for property tests. */
 void test_random_field(double *f, size_t n, unsigned long long seed);
 
-/* A fresh empty temporary directory (mkdtemp); path valid until the process exits. */
+/* A fresh empty temporary directory (mkdtemp); the path is valid until the next call (a static
+ * buffer); the directory and its contents are removed when the process that made it exits. */
 const char *test_tmpdir(void);
+
+/* The same, but kept after the process exits (a file the user is told to look at). */
+const char *test_tmpdir_kept(void);
 
 #endif

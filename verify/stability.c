@@ -412,8 +412,10 @@ static const st_scene scenes[] = {
     {"lub_0.99", "lubricant", "sphere 1 N, lubricant pressure 0.99 W / A_nominal", b_lub, 0.99,
      FC | FP | FA, ALL, 0, X_NONE, T_DEF, NULL, 0, MUST_CONVERGE},
     {"lub_1.01", "lubricant", "sphere 1 N, lubricant pressure 1.01 W / A_nominal: the lubricant "
-                              "carries everything",
-     b_lub, 1.01, FC | FP | FA, ALL, 0, X_NONE, T_DEF, NULL, 0, MUST_CONVERGE},
+                              "alone would carry more than W (issue 15: refused, no silent load)",
+     b_lub, 1.01, FC | FP | FA, ALL, 0, X_INFEASIBLE, T_DEF, NULL, 0,
+     "the requested load cannot be met: the run must be refused as an input error (check "
+     "`refused`)"},
     {"cap_0.3p0", "pressure cap", "sphere 1 N, cap 0.3 p0 (Hertz p0 = 297 MPa), 24^2", b_cap, 0.3,
      ALL, ALL, 0, X_NONE, T_DEF, NULL, 0, MUST_CONVERGE},
     {"cap_0.3p0_64", "pressure cap", "as cap_0.3p0 on 64^2 (same domain)", b_cap, -0.3, FC | FP,
@@ -969,8 +971,8 @@ int vf_suite_stability(vf_ctx *ctx, int fast)
             "rule (delta - min h~, h~ = h + K p_lub, floored at 1e-6 of the range of h~ and "
             "1e-12 of its magnitude, as mc_contact_gap_scale). Tolerance %.0f x the solver "
             "tolerance, plus the round-off floor of the gap 16 eps (max|h~| + max|K p| + "
-            "|delta|)/s. When the lubricant alone carries more than W (`lub_1.01`), the load "
-            "term is the solid load A sum(p - p_lub) / W, which must vanish.\n"
+            "|delta|)/s. A lubricant that alone would carry more than W (`lub_1.01`) is refused "
+            "as an input error (check `refused`).\n"
             "- `consistent` (round-off tier, %.0e): the bounds, max(p_lub - p, p - p_cap, 0) / "
             "p_max (the solvers clip); max |gap - (topography + displacement - approach)| and "
             "max |displacement - K p| relative to max|h| + max|u| + |approach| (a few additions "

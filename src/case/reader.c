@@ -738,8 +738,14 @@ int mc_case_parse_text(const char *text, const char *name, const char *base_dir,
         memcpy(c->sc.path, c->name, strlen(c->name) + 1);
         rc = parse_and_check(c, noverrides, overrides);
     }
-    if (rc == MC_OK)
+    if (rc == MC_OK && mc_nkeys > MC_SCENE_KEYS_MAX)
+        rc = mc_fail(err, MC_ERR_INTERNAL, "the key table has %d rows, MC_SCENE_KEYS_MAX is %d",
+                     mc_nkeys, MC_SCENE_KEYS_MAX);
+    if (rc == MC_OK) {
+        for (int k = 0; k < mc_nkeys; k++) /* where each key was given (mc_scene_where) */
+            c->sc.key_line[k] = c->slot[k] < 0 ? 0 : c->e[c->slot[k]].ovr ? -1 : c->e[c->slot[k]].line;
         *scene = c->sc;
+    }
     free_entries(c);
     mc_free(c);
     return rc;

@@ -96,6 +96,9 @@ static int lubrication_rules(const mc_scene *s, mc_error *err, const char **sect
     return MC_OK;
 }
 
+#define PLASTIC_DZ_MIN_RATIO 16.0 /* dz >= min(dx, dy) / 16 */
+#define PLASTIC_LAYERS_MAX 1024    /* depth <= 1024 dz */
+
 /* The rules of the elastic-plastic stage. */
 static int plasticity_rules(const mc_scene *s, mc_error *err, const char **section,
                             const char **keyname)
@@ -116,6 +119,20 @@ static int plasticity_rules(const mc_scene *s, mc_error *err, const char **secti
               "pressure_cap takes its limit from [plasticity] hardness)");
     if (s->plasticity.criterion == MC_CRITERION_PRESSURE_CAP)
         return MC_OK;
+    /* the plastic volume has depth / dz layers: a loop count set by values, not by the grid */
+    const double dmin = fmin(s->grid.dx, s->grid.dy), dz = s->plasticity.dz;
+    if (dz > 0 && dz < dmin / PLASTIC_DZ_MIN_RATIO)
+        BLAME("plasticity", "dz",
+              "[plasticity] dz = %g m: must be >= min(dx, dy) / %g = %g m (thinner layers than "
+              "that resolve nothing the surface grid can carry, and their number makes the run "
+              "take hours)",
+              dz, PLASTIC_DZ_MIN_RATIO, dmin / PLASTIC_DZ_MIN_RATIO);
+    if (s->plasticity.depth > 0 && s->plasticity.depth / (dz > 0 ? dz : dmin) > PLASTIC_LAYERS_MAX)
+        BLAME("plasticity", "depth",
+              "[plasticity] depth = %g m: more than %d layers of dz = %g m; accepted: depth <= "
+              "%d dz = %g m (raise dz or lower depth)",
+              s->plasticity.depth, PLASTIC_LAYERS_MAX, dz > 0 ? dz : dmin, PLASTIC_LAYERS_MAX,
+              PLASTIC_LAYERS_MAX * (dz > 0 ? dz : dmin));
     if (!(s->body1.nu < 0.5))
         BLAME("body1", "nu",
               "[body1] nu = 0.5 with [plasticity]: an incompressible body has no finite bulk "
@@ -171,6 +188,87 @@ static int runin_rules(const mc_scene *s, mc_error *err, const char **section,
     return MC_OK;
 }
 
+/* Largest ratio of the cell sizes of a grid periodic along x and y: the real-space part of the
+ * Ewald table (operator/kernel_table.c) spans 15 max(dx, dy) along both axes, so its cost grows
+ * with the ratio (about 2 s at 1000 for any grid size; 20 s at 10^4). */
+#define MC_EWALD_ASPECT_MAX 1000.0
+
+/* Scale rules: numbers the solver can represent and a load the grid can carry. A mean pressure
+ * over the grid far above the reduced modulus E* (SCALE_MAX times) or an approach far beyond the
+ * grid means strains far beyond one: linear elasticity has lost its meaning, and products such as
+ * p A / E* leave the double range (1e300 N, E = 1e-300 Pa give NaN in the solver). Milder
+ * excesses (p_max above E*) are a warning of the run (pipeline/warnings.h). Not for
+ * lubricant_pressure = auto, whose force is the macro contact's (F_N), not the patch's. */
+#define SCALE_MAX 1000.0
+static int scale_rules(const mc_scene *s, mc_error *err, const char **section,
+                       const char **keyname)
+{
+    const mc_grid *g = &s->grid;
+    const double dmin = fmin(g->dx, g->dy), dmax = fmax(g->dx, g->dy);
+    /* a floor of the number range only: the scale covariance of the solvers is verified down to
+     * cells of 1e-11 m (verify/stability.c height_1e-12) */
+    if (!(dmin >= 1e-150))
+        BLAME("mesh", g->dx <= g->dy ? "dx" : "dy",
+              "[mesh] %s = %g m: must be >= 1e-150 m (a cell area dx dy below 1e-300 m^2 leaves "
+              "the double range)",
+              g->dx <= g->dy ? "dx" : "dy", dmin);
+    if (g->periodic_x && g->periodic_y && dmax / dmin > MC_EWALD_ASPECT_MAX)
+        BLAME("mesh", g->dx > g->dy ? "dx" : "dy",
+              "[mesh] dy/dx = %g on a grid periodic along x and y: the cell aspect ratio must be "
+              "at most %g (and at least 1/%g), the Ewald table's cost grows with it; use cells "
+              "closer to square, or a free axis",
+              g->dy / g->dx, MC_EWALD_ASPECT_MAX, MC_EWALD_ASPECT_MAX);
+    const double Lx = g->nx * g->dx, Ly = g->ny * g->dy, estar = mc_scene_estar(s);
+    const double p_lub = s->load.lubricant_pressure;
+    if (p_lub == MC_LUBRICANT_AUTO || s->load.kind == MC_LOAD_PRESSURE_FILE)
+        return MC_OK;
+    const double f = s->load.value;
+    switch (s->load.kind) {
+    case MC_LOAD_FORCE:
+        if (!(f / (Lx * Ly) <= SCALE_MAX * estar))
+            BLAME("load", "force",
+                  "[load] force = %g N: the mean pressure over the grid, F / (nx dx ny dy) = %g "
+                  "Pa, is more than %g times the reduced modulus E* = %g Pa (strains far beyond "
+                  "one, outside linear elasticity and the solver's number range); accepted: "
+                  "force <= %g E* nx dx ny dy = %g N (reduce the force, enlarge the grid or "
+                  "check the moduli E)",
+                  f, f / (Lx * Ly), SCALE_MAX, estar, SCALE_MAX, SCALE_MAX * estar * Lx * Ly);
+        if (p_lub * Lx * Ly > f)
+            BLAME("load", "lubricant_pressure",
+                  "[load] lubricant_pressure = %g Pa over the whole grid (%g x %g m) carries "
+                  "%g N, more than the requested force %g N: the contact cannot carry the "
+                  "force asked for; lower lubricant_pressure below F / (nx dx ny dy) = %g Pa, or "
+                  "raise the force",
+                  p_lub, Lx, Ly, p_lub * Lx * Ly, f, f / (Lx * Ly));
+        break;
+    case MC_LOAD_FORCE_PER_LENGTH:
+        if (!(f / Lx <= SCALE_MAX * estar))
+            BLAME("load", "force_per_length",
+                  "[load] force_per_length = %g N/m: the mean pressure over the grid, w / (nx "
+                  "dx) = %g Pa, is more than %g times the reduced modulus E* = %g Pa (strains "
+                  "far beyond one, outside linear elasticity and the solver's number range); "
+                  "accepted: force_per_length <= %g E* nx dx = %g N/m",
+                  f, f / Lx, SCALE_MAX, estar, SCALE_MAX, SCALE_MAX * estar * Lx);
+        if (p_lub * Lx > f)
+            BLAME("load", "lubricant_pressure",
+                  "[load] lubricant_pressure = %g Pa over the grid's width (%g m) carries %g N/m, "
+                  "more than the requested force_per_length %g N/m: lower lubricant_pressure "
+                  "below w / (nx dx) = %g Pa, or raise the load",
+                  p_lub, Lx, p_lub * Lx, f, f / Lx);
+        break;
+    case MC_LOAD_APPROACH:
+        if (!(f <= SCALE_MAX * fmax(Lx, Ly)))
+            BLAME("load", "approach",
+                  "[load] approach = %g m: more than %g times the grid (%g x %g m), strains far "
+                  "beyond one, outside linear elasticity and the solver's number range; "
+                  "accepted: approach <= %g max(nx dx, ny dy) = %g m",
+                  f, SCALE_MAX, Lx, Ly, SCALE_MAX, SCALE_MAX * fmax(Lx, Ly));
+        break;
+    case MC_LOAD_PRESSURE_FILE: break;
+    }
+    return MC_OK;
+}
+
 /* The rules that tie keys together; each key's own bounds are the table's (mc_keys_check_scene).
  * A key that is given but has no effect in its scene is refused here or by the table's use
  * conditions, never silently ignored. */
@@ -211,6 +309,8 @@ static int scene_rules(const mc_scene *s, mc_error *err, const char **section,
               s->load.pressure_cap, s->load.lubricant_pressure);
     int rc = lubrication_rules(s, err, section, keyname);
     if (rc == MC_OK)
+        rc = scale_rules(s, err, section, keyname);
+    if (rc == MC_OK)
         rc = plasticity_rules(s, err, section, keyname);
     if (rc == MC_OK)
         rc = runin_rules(s, err, section, keyname);
@@ -232,6 +332,20 @@ int mc_scene_check_key(const mc_scene *s, mc_error *err, const char **section, c
 int mc_scene_check(const mc_scene *s, mc_error *err)
 {
     return mc_scene_check_key(s, err, NULL, NULL);
+}
+
+void mc_scene_where(const mc_scene *s, const char *section, const char *name, char *buf,
+                    size_t len)
+{
+    const int k = mc_key_find(section, name);
+    const int line = k >= 0 && k < MC_SCENE_KEYS_MAX ? s->key_line[k] : 0;
+    const char *path = s->path[0] ? s->path : "<scene>";
+    if (line > 0)
+        snprintf(buf, len, "%s:%d: ", path, line);
+    else if (line < 0)
+        snprintf(buf, len, "%s: --set %s.%s: ", path, section, name);
+    else
+        snprintf(buf, len, "%s: ", path);
 }
 
 double mc_scene_estar(const mc_scene *s)

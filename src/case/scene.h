@@ -51,6 +51,8 @@ typedef enum { MC_DEFLECTION_REMOVE, MC_DEFLECTION_KEEP } mc_nominal_deflection;
 /* [stress] depth_max = auto: derived from the contact by the stress stage (stress.h) */
 #define MC_STRESS_DEPTH_AUTO 0.0
 
+#define MC_SCENE_KEYS_MAX 192 /* >= the rows of the key table (checked by the case reader) */
+
 typedef struct {
     double E;  /* Young's modulus, Pa */
     double nu; /* Poisson's ratio */
@@ -151,6 +153,11 @@ typedef struct {
         int vtk;               /* write field.vti */
         int x3p;               /* write an .x3p beside every surface height map .npy */
     } output;
+
+    /* Where each key of the table (case/keys.h, by row index) was given: its line in path, -1 for
+     * a --set override, 0 when not given (a default). Filled by the case reader, so that errors
+     * found after parsing can name the line (mc_scene_where). */
+    int key_line[MC_SCENE_KEYS_MAX];
 } mc_scene;
 
 /* Fill every field with its documented default: shape flat, no roughness (seed 1, hurst 0.8),
@@ -169,6 +176,12 @@ int mc_scene_check(const mc_scene *s, mc_error *err);
 /* Same, and on failure names the key at fault (*section, *key: static strings; either pointer
  * may be NULL), so that the case reader can point at the line that set it. */
 int mc_scene_check_key(const mc_scene *s, mc_error *err, const char **section, const char **key);
+
+/* The place of key [section] name for a message about it, into buf: "case.ini:12: " (given on line
+ * 12), "case.ini: --set load.force: " (given by an override), "case.ini: " (a default, or a scene
+ * built in code: "<scene>: " without path). Always NUL-terminated. */
+void mc_scene_where(const mc_scene *s, const char *section, const char *name, char *buf,
+                    size_t len);
 
 /* Combined modulus E* of the scene's two bodies, Pa (kernel.h mc_combined_modulus). */
 double mc_scene_estar(const mc_scene *s);

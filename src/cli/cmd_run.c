@@ -97,11 +97,22 @@ static double peak_memory_mib(void)
     return kb / 1024.0;
 }
 
+/* A line as each stage begins (stdout is line buffered): a log of a run killed while it computes
+ * is not empty. The first comes once the input files are read and the memory guard has passed,
+ * so a run refused for its input writes nothing on stdout. */
+static void print_stage(void *ctx, const char *stage)
+{
+    const mc_scene *sc = ctx;
+    if (!strcmp(stage, "contact"))
+        printf("microcontact: %d x %d cells, dx = %.4g um, dy = %.4g um\n", sc->grid.nx,
+               sc->grid.ny, sc->grid.dx * 1e6, sc->grid.dy * 1e6);
+    else /* "stress" */
+        printf("  contact solved; computing the %s\n", "subsurface stresses");
+}
+
 static void print_solve(const mc_results *r)
 {
     const mc_contact_summary *c = &r->contact;
-    printf("microcontact: %d x %d cells, dx = %.4g um, dy = %.4g um\n", r->grid.nx, r->grid.ny,
-           r->grid.dx * 1e6, r->grid.dy * 1e6);
     if (c->solved)
         printf("  contact (%s, %s operator): %s in %d iterations, residual %.2e\n", c->solver,
                mc_backend_name(c->backend), c->converged ? "converged" : "NOT CONVERGED", c->iterations,
@@ -349,18 +360,22 @@ int mc_cli_run(int argc, char **argv)
     char ckdir[MC_PATH_MAX + 16];
     snprintf(ckdir, sizeof ckdir, "%s/checkpoint", dir);
     if (scene.runin.enabled) {
+        if (!resume || mc_checkpoint_exists(ckdir))
+            print_stage(&scene, "contact");
         rc = run_runin(&scene, case_path, dir, ckdir, sets, nsets, quiet, resume, &od, &res,
                        &err);
         if (rc < 0) /* reported and ended there */
             return -rc;
     } else
-        rc = mc_pipeline_run(&scene, &res, &err);
+        rc = mc_pipeline_run_staged(&scene, print_stage, &scene, &res, &err);
     if (rc != MC_OK && rc != MC_NOT_CONVERGED) {
         mc_results_free(&res);
         mc_output_close(&od);
         return fail_case(case_path, &err);
     }
     print_solve(&res);
+    for (int k = 0; k < res.nwarnings; k++) /* pipeline/warnings.h */
+        fprintf(stderr, "microcontact: warning: %s\n", res.warnings[k].message);
     if (res.runin.enabled)
         print_runin(&res);
     printf("  writing results to %s/\n", dir);

@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <limits.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -67,6 +68,33 @@ static void shown(char *out, size_t outlen, const char *s, size_t n)
         memcpy(out + outlen - 4, "...", 4);
 }
 
+int mc_text_is_decimal(const char *s, size_t n)
+{
+    size_t k = 0, digits = 0;
+    if (k < n && (s[k] == '+' || s[k] == '-'))
+        k++;
+    while (k < n && s[k] >= '0' && s[k] <= '9')
+        k++, digits++;
+    if (k < n && s[k] == '.') {
+        k++;
+        while (k < n && s[k] >= '0' && s[k] <= '9')
+            k++, digits++;
+    }
+    if (digits == 0)
+        return 0;
+    if (k < n && (s[k] == 'e' || s[k] == 'E')) {
+        k++;
+        if (k < n && (s[k] == '+' || s[k] == '-'))
+            k++;
+        size_t e = 0;
+        while (k < n && s[k] >= '0' && s[k] <= '9')
+            k++, e++;
+        if (e == 0)
+            return 0;
+    }
+    return k == n;
+}
+
 static int parse_number(const char *tb, size_t tl, const char *what, long line, int finite_only,
                         double *v, mc_error *err)
 {
@@ -77,17 +105,24 @@ static int parse_number(const char *tb, size_t tl, const char *what, long line, 
                        line, show);
     memcpy(tok, tb, tl);
     tok[tl] = '\0';
-    char *end;
-    errno = 0;
-    double x = strtod(tok, &end);
-    if (end == tok || (size_t)(end - tok) != tl)
-        return mc_fail(err, MC_ERR_INPUT,
-                       "%s:%ld: '%s' is not a number (values are separated by spaces or tabs; "
-                       "'#' starts a comment)",
-                       what, line, show);
-    if (finite_only && !isfinite(x))
+    const int is_nan = tl == 3 && (tok[0] | 0x20) == 'n' && (tok[1] | 0x20) == 'a' &&
+                       (tok[2] | 0x20) == 'n';
+    if (is_nan && finite_only)
         return mc_fail(err, MC_ERR_INPUT, "%s:%ld: value '%s' is not finite; values must be finite",
                        what, line, show);
+    if (!is_nan && !mc_text_is_decimal(tok, tl))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "%s:%ld: '%s' is not a number (accepted: decimal numbers as in a case file, "
+                       "e.g. 12, -0.5, 1.5e-6; no hexadecimal, no infinity%s; values are separated "
+                       "by spaces or tabs; '#' starts a comment)",
+                       what, line, show, finite_only ? ", no NaN" : "; nan marks a missing point");
+    errno = 0;
+    double x = strtod(tok, NULL);
+    if (!is_nan && !isfinite(x))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "%s:%ld: value '%s' is not finite (beyond %g, the double range); values "
+                       "must be finite",
+                       what, line, show, DBL_MAX);
     *v = x;
     return MC_OK;
 }

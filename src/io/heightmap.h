@@ -25,9 +25,14 @@ int mc_heightmap_read(const char *path, int ny, int nx, double **data, mc_error 
 int mc_text_matrix_parse(const char *text, size_t len, const char *what, double **data, int *rows,
                          int *cols, mc_error *err);
 
-/* As mc_text_matrix_parse, but non-finite values ("nan", "inf" in strtod syntax) are accepted and
- * kept as they are (measured surfaces: the caller marks them as missing points). */
+/* As mc_text_matrix_parse, but "nan" (any case) is accepted and kept as NaN (measured surfaces: the
+ * caller marks it as a missing point). */
 int mc_text_matrix_parse_any(const char *text, size_t len, const char *what, double **data,
                              int *rows, int *cols, mc_error *err);
+
+/* 1 when s[0..n) is a decimal number in the forms a case file accepts ([+-]digits[.digits]
+ * [e[+-]digits], at least one digit before the exponent); 0 for anything else, hexadecimal,
+ * "inf" and "nan" included. The text readers take only these forms. */
+int mc_text_is_decimal(const char *s, size_t n);
 
 #endif

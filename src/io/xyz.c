@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "io/heightmap.h"
 #include "io/surface_formats.h"
 
 #define CLUSTER_REL 1e-5 /* grid-line width, relative to the axis extent */
@@ -63,9 +64,12 @@ static int number(const char *b, size_t n, double *v)
         return 0;
     memcpy(tok, b, n);
     tok[n] = '\0';
-    char *end;
-    *v = strtod(tok, &end);
-    return (size_t)(end - tok) == n;
+    const int is_nan = n == 3 && (tok[0] | 0x20) == 'n' && (tok[1] | 0x20) == 'a' &&
+                       (tok[2] | 0x20) == 'n';
+    if (!is_nan && !mc_text_is_decimal(tok, n)) /* the case file's forms: no hex, no inf */
+        return 0;
+    *v = strtod(tok, NULL);
+    return is_nan || isfinite(*v);
 }
 
 static int cmp_double(const void *a, const void *b)

@@ -21,6 +21,7 @@
 #define EWALD_ALPHA 0.4
 #define EWALD_ERFC_R 6.0
 #define EWALD_ERFC_G 6.5
+#define EWALD_ASPECT_MAX 1000.0 /* largest max(dx, dy) / min(dx, dy): about 2 s of table */
 #define EWALD_GAUSS 8 /* Gauss-Legendre points per axis for the pixel average of erf(alpha r)/r */
 
 int mc_table_offset(int t, int n, int len, int *used)
@@ -407,6 +408,13 @@ static int love_ewald(const mc_grid *g, double *k, mc_error *err)
     const int nx = g->nx, ny = g->ny, hx = nx / 2 + 1;
     const double dx = g->dx, dy = g->dy, a = 0.5 * dx, b = 0.5 * dy;
     const double Lx = nx * dx, Ly = ny * dy;
+    /* the real-space sum spans 2 rcut / min(dx, dy) cells along the short side: its cost grows
+     * with the aspect ratio (case/scene.c refuses ratios above 1000 with the key's line) */
+    if (fmax(dx, dy) / fmin(dx, dy) > EWALD_ASPECT_MAX)
+        return mc_fail(err, MC_ERR_LIMIT,
+                       "Ewald Love table: cell aspect ratio dy/dx = %g on a grid periodic along x "
+                       "and y; at most %g (and at least 1/%g) is supported",
+                       dy / dx, EWALD_ASPECT_MAX, EWALD_ASPECT_MAX);
     const double alpha = EWALD_ALPHA / fmax(dx, dy);
     const double gcut = 2.0 * alpha * EWALD_ERFC_G, rcut = EWALD_ERFC_R / alpha;
     const double kxmax = gcut * Lx / (2.0 * M_PI), kymax = gcut * Ly / (2.0 * M_PI);

@@ -2,6 +2,7 @@
 #include "pipeline/pipeline.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 #include <time.h>
 
@@ -15,6 +16,7 @@
 #include "pipeline/stage_lube.h"
 #include "pipeline/stage_plastic.h"
 #include "pipeline/runin.h"
+#include "pipeline/warnings.h"
 #include "surface/surface.h"
 
 double mc_clock(void)
@@ -24,9 +26,38 @@ double mc_clock(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Prescribed pressure: the displacement is K p; the approach is the largest one that keeps the
- * gap non-negative, so the gap closes exactly where a consistent pressure would be in contact. */
-static int run_prescribed(const mc_scene *sc, mc_operator *K, mc_results *res, mc_error *err)
+/* An error found after parsing: prefix it with the place of the key that caused it in the case
+ * file ("case.ini:12: "), as the case reader's errors are (case/scene.h mc_scene_where). */
+static int blame_key(const mc_scene *sc, const char *section, const char *name, int rc,
+                     mc_error *err)
+{
+    if (rc != MC_OK && err) {
+        char where[MC_PATH_MAX + 64] = "", key[96];
+        if (sc->path[0]) /* a scene built in code has no file to point at */
+            mc_scene_where(sc, section, name, where, sizeof where);
+        snprintf(key, sizeof key, "[%s]", section); /* the message names the section already */
+        if (strncmp(err->msg, key, strlen(key)) == 0)
+            mc_error_prefix(err, "%s", where);
+        else
+            mc_error_prefix(err, "%s[%s] %s: ", where, section, name);
+    }
+    return rc;
+}
+
+static const char *load_key(const mc_scene *sc)
+{
+    switch (sc->load.kind) {
+    case MC_LOAD_FORCE_PER_LENGTH: return "force_per_length";
+    case MC_LOAD_APPROACH: return "approach";
+    case MC_LOAD_PRESSURE_FILE: return "pressure_file";
+    case MC_LOAD_FORCE: break;
+    }
+    return "force";
+}
+
+/* Prescribed pressure: [load] pressure_file into res->pressure (>= 0, the mesh's shape), before
+ * the stages begin. */
+static int read_prescribed(const mc_scene *sc, mc_results *res, mc_error *err)
 {
     const mc_grid *g = &res->grid;
     const size_t n = mc_grid_cells(g);
@@ -35,20 +66,32 @@ static int run_prescribed(const mc_scene *sc, mc_operator *K, mc_results *res, m
     if (rc != MC_OK) {
         if (err)
             mc_error_prefix(err, "[load] pressure_file: ");
-        return rc;
+        return blame_key(sc, "load", "pressure_file", rc, err);
     }
     for (size_t i = 0; i < n; i++) {
         if (p[i] < 0) {
             double v = p[i];
             mc_free(p);
-            return mc_fail(err, MC_ERR_INPUT,
-                           "[load] pressure_file: %s: pressure %g Pa at row %zu, column %zu is "
-                           "negative; a prescribed pressure map must be >= 0 (compressive)",
-                           sc->load.pressure_file, v, i / (size_t)g->nx, i % (size_t)g->nx);
+            mc_fail(err, MC_ERR_INPUT,
+                    "[load] pressure_file: %s: pressure %g Pa at row %zu, column %zu is "
+                    "negative; a prescribed pressure map must be >= 0 (compressive)",
+                    sc->load.pressure_file, v, i / (size_t)g->nx, i % (size_t)g->nx);
+            return blame_key(sc, "load", "pressure_file", MC_ERR_INPUT, err);
         }
     }
     memcpy(res->pressure, p, n * sizeof *p);
     mc_free(p);
+    return MC_OK;
+}
+
+/* Prescribed pressure (read_prescribed): the displacement is K p; the approach is the largest one
+ * that keeps the gap non-negative, so the gap closes exactly where a consistent pressure would be
+ * in contact. */
+static int run_prescribed(const mc_scene *sc, mc_operator *K, mc_results *res, mc_error *err)
+{
+    (void)sc, (void)err;
+    const mc_grid *g = &res->grid;
+    const size_t n = mc_grid_cells(g);
     double t0 = mc_clock();
     mc_operator_apply(K, res->pressure, res->displacement);
     double delta = INFINITY, load = 0, pmax = 0;
@@ -119,6 +162,12 @@ static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_e
                               &res->contact, err);
     res->timing.contact_s = mc_clock() - t0;
     mc_contact_destroy(&solver);
+    if (rc == MC_ERR_INPUT || rc == MC_ERR_LIMIT) /* a load the contact cannot take */
+        return blame_key(sc, "load",
+                         isfinite(prob.p_cap) && err && strstr(err->msg, "pressure cap")
+                             ? "pressure_cap"
+                             : load_key(sc),
+                         rc, err);
     return rc;
 }
 
@@ -184,7 +233,8 @@ static int final_roughness(const mc_scene *sc, mc_results *res, mc_error *err)
     return rc;
 }
 
-static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
+static int run_stages(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_results *res,
+                      mc_error *err)
 {
     double t_start = mc_clock();
     memset(res, 0, sizeof *res);
@@ -193,7 +243,7 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
         return rc;
     rc = mc_memory_check(sc, err);
     if (rc != MC_OK)
-        return rc;
+        return blame_key(sc, "mesh", "nx", rc, err);
     res->grid = sc->grid;
     res->roughness_seed = sc->roughness.seed;
     const size_t n = mc_grid_cells(&sc->grid);
@@ -205,9 +255,16 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
     rc = mc_surface_topography(&sc->grid, &sc->geometry, &sc->roughness, res->topography, err);
     if (rc == MC_OK && sc->roughness.type != MC_ROUGH_NONE)
         rc = roughness_parameters(sc, res, err);
+    if (rc != MC_OK && rc != MC_ERR_NOMEM && sc->roughness.type != MC_ROUGH_NONE)
+        return blame_key(sc, "roughness", sc->roughness.type == MC_ROUGH_FILE ? "file" : "type",
+                         rc, err);
     if (rc != MC_OK)
         return rc;
 
+    if (sc->load.kind == MC_LOAD_PRESSURE_FILE && (rc = read_prescribed(sc, res, err)) != MC_OK)
+        return rc;
+    if (stage)
+        stage(ctx, "contact");
     mc_operator *K = NULL;
     double t0 = mc_clock();
     rc = mc_operator_plan_love(&sc->grid, mc_scene_estar(sc), sc->solver.backend, &K, err);
@@ -230,9 +287,16 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
     /* stresses of an unconverged solve are still worth writing; its status stays */
     if ((rc == MC_OK || rc == MC_NOT_CONVERGED) && sc->stress.enabled) {
         mc_error serr = {0};
+        if (stage)
+            stage(ctx, "stress");
         t0 = mc_clock();
         int src = mc_stress_stage(sc, res, &serr);
         res->timing.stress_s = mc_clock() - t0;
+        if (src == MC_ERR_INPUT || src == MC_ERR_LIMIT) /* the [stress] settings */
+            blame_key(sc, "stress",
+                      sc->stress.kernel == MC_STRESS_POINT && strstr(serr.msg, "kernel") ? "kernel"
+                                                                            : "depth_max",
+                      src, &serr);
         if (src != MC_OK) {
             *err = serr;
             rc = src;
@@ -244,11 +308,20 @@ static int run_stages(const mc_scene *sc, mc_results *res, mc_error *err)
 
 int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
 {
+    return mc_pipeline_run_staged(sc, NULL, NULL, res, err);
+}
+
+int mc_pipeline_run_staged(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_results *res,
+                           mc_error *err)
+{
     /* the scene's thread count holds for this run only (core/threads.h) */
     mc_threads_scope scope;
     mc_threads_begin(sc->solver.threads, &scope);
     /* a running-in is its own sequence of stages (pipeline/runin.h) */
-    int rc = sc->runin.enabled ? mc_runin_run(sc, NULL, res, err) : run_stages(sc, res, err);
+    int rc = sc->runin.enabled ? mc_runin_run(sc, NULL, res, err)
+                                 : run_stages(sc, stage, ctx, res, err);
+    if (rc == MC_OK || rc == MC_NOT_CONVERGED)
+        mc_results_warnings(sc, res);
     mc_threads_end(&scope);
     return rc;
 }

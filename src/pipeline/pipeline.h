@@ -16,6 +16,15 @@
  * Returns MC_OK, MC_NOT_CONVERGED, or an error status with err filled. */
 int mc_pipeline_run(const mc_scene *scene, mc_results *res, mc_error *err);
 
+/* A stage begins: stage is "contact" (the input files are read and the memory guard has passed;
+ * the operator and the contact solve follow) or "stress". For progress output. */
+typedef void (*mc_stage_fn)(void *ctx, const char *stage);
+
+/* mc_pipeline_run, calling stage (when not NULL) as each stage of a single solve begins (not for
+ * a running-in, which reports its own steps: pipeline/runin.h). */
+int mc_pipeline_run_staged(const mc_scene *scene, mc_stage_fn stage, void *ctx, mc_results *res,
+                           mc_error *err);
+
 /* Seconds on a monotonic clock (for timings in the library and front ends). */
 double mc_clock(void);
 

@@ -120,6 +120,13 @@ typedef struct {
     double total_s, setup_s, contact_s, stress_s;
 } mc_timing;
 
+/* A warning a user can act on (pipeline/warnings.h): a stable code and one line of text. */
+#define MC_WARNINGS_MAX 8
+typedef struct {
+    const char *code; /* static: "contact_at_edge", "contact_ratio_high", ... */
+    char message[640];
+} mc_warning;
+
 typedef struct {
     mc_grid grid;
     /* surface fields, ny*nx each (owned) */
@@ -162,6 +169,10 @@ typedef struct {
 
     mc_timing timing;
     unsigned long long roughness_seed;
+
+    /* warnings of a solve that succeeded (pipeline/warnings.h); summary.json "warnings" */
+    int nwarnings;
+    mc_warning warnings[MC_WARNINGS_MAX];
 } mc_results;
 
 /* Free every owned array and zero the struct (safe on a zeroed or half-filled struct). */

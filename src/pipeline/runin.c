@@ -50,6 +50,7 @@ uint64_t mc_runin_case_hash(const mc_scene *sc, const double *h0, size_t n)
     memcpy(s, sc, sizeof *s); /* a byte copy: the padding stays what the defaults zeroed */
     memset(s->path, 0, sizeof s->path);
     memset(s->output.dir, 0, sizeof s->output.dir);
+    memset(s->key_line, 0, sizeof s->key_line); /* where keys stand in the file is no matter */
     uint64_t h = fnv(FNV_OFFSET, s, sizeof *s);
     mc_free(s);
     return fnv(h, h0, n * sizeof *h0);

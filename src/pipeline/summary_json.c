@@ -454,6 +454,14 @@ int mc_summary_json(const mc_scene *scene, const mc_results *res, const char *co
     jset(&b, root, "case", jstr(scene->path));
     summary_inputs(&b, root, scene, res);
     summary_results(&b, root, scene, res);
+    json_t *warn = jchild(&b, root, "warnings", json_array()); /* pipeline/warnings.h */
+    for (int k = 0; warn && k < res->nwarnings; k++) {
+        json_t *w = json_object();
+        jset(&b, w, "code", jstr(res->warnings[k].code));
+        jset(&b, w, "message", jstr(res->warnings[k].message));
+        if (!w || json_array_append_new(warn, w) != 0) /* steals w, also on failure */
+            b.bad = 1;
+    }
     json_t *list = jchild(&b, root, "files", json_array());
     for (int k = 0; list && k < nfiles; k++)
         if (json_array_append_new(list, json_string(files[k])) != 0)

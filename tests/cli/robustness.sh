@@ -14,6 +14,12 @@
 #   cli_*         front end: --help of every command, keys SECTION, extra arguments, verify from
 #                 any directory, a dangling symlink as --out, --set key= removes a key, a file
 #                 that is not .npy
+#   line_*        errors found after parsing name the case file and the line of the key
+#   log_*         stdout is written per stage: a run killed (SIGKILL) while it computes has a log
+#   phys_*        no silent physics: a lubricant load above the force, numbers beyond the solver's
+#                 range, hexadecimal or infinite heights are exit 2 naming what is accepted
+#   hang_*        no hangs: a doubly periodic grid of a huge cell aspect ratio is refused at once
+#   warn_*        warnings a user can act on: summary.json "warnings" and stderr
 # Every row prints one PASS or FAIL line; the last line is "robustness: N passed, M failed".
 # ROBUST_PAIRS (default 50) and ROBUST_SIGNAL_REPS (default 2) set the repetitions.
 # shellcheck disable=SC2010,SC2012,SC2045 # ls over directories that hold only names this script
@@ -433,6 +439,154 @@ for f in empty foreign; do
     row "cli_npy_$f" "$why"
     rm -rf eo
 done
+
+# ---- 3b. errors after parsing name the key's line --------------------------------------------
+# lines: a case whose keys stand on known lines (load on 9, pressure_cap 10, kernel 12, nx 2)
+{ mesh 16; printf '[load]\nforce = 1 N\npressure_cap = 1 MPa\n[stress]\nkernel = point\n'
+  printf 'depth_max = 20 um\n'; } > lines.ini
+{ mesh 16; printf '[load]\npressure_file = truncated.npy\n'; } > lines_p.ini
+# lineof NAME WANT STATUS ARGS...: the run fails with STATUS and its message holds WANT
+lineof() {
+    name=$1 want=$2 st_want=$3
+    shift 3
+    rm -rf lo
+    "$PROG" run "$@" --out lo > out 2> err
+    st=$?
+    why=""
+    [ "$st" -eq "$st_want" ] || why="$why exit $st, not $st_want;"
+    grep -qF "$want" err || why="$why message lacks '$want': $(cat err);"
+    row "$name" "$why"
+    rm -rf lo
+}
+lineof line_infeasible_cap "lines.ini:10: [load] pressure_cap" 2 lines.ini --set stress.depth_max=
+lineof line_point_kernel_zero_depth "lines.ini:12: [stress] kernel" 2 lines.ini \
+    --set load.pressure_cap=
+lineof line_bad_data_file "lines_p.ini:9: [load] pressure_file" 2 lines_p.ini
+{ mesh 60000; printf '[load]\nforce = 1 N\n'; } > lines_m.ini
+lineof line_memory_guard "lines_m.ini:2: [mesh] nx" 3 lines_m.ini
+lineof line_override_named "lines.ini: --set load.pressure_cap: [load] pressure_cap" 2 lines.ini \
+    --set load.pressure_cap=2MPa
+
+# ---- 2b. a log per stage ---------------------------------------------------------------------
+# SIGKILL while the run computes (0.4 s into a solve of about 1.5 s): its log is not empty
+rm -rf lk
+"$PROG" run heavy.ini --out lk --set stress.layers=128 > log 2> err &
+pid=$!
+BG="$BG $pid"
+sleep 0.4
+alive=0
+kill -0 $pid 2> /dev/null && alive=1
+kill -9 $pid 2> /dev/null
+wait $pid 2> /dev/null
+why=""
+[ "$alive" -eq 1 ] || why="$why (setup) the run had ended before the signal;"
+[ -s log ] || why="$why the log of the killed run is empty;"
+grep -q "cells" log || why="$why the log lacks the grid line: $(cat log);"
+row log_sigkill_while_computing "$why"
+rm -rf lk
+
+# ---- 4b. no silent physics -------------------------------------------------------------------
+# phys NAME FRAGMENT ARGS...: exit 2, the message holds FRAGMENT, no output directory
+phys() {
+    name=$1 frag=$2
+    shift 2
+    rm -rf po
+    timeout 60 "$PROG" run "$@" --out po > out 2> err
+    st=$?
+    why=""
+    [ "$st" -eq 2 ] || why="$why exit $st, not 2: $(head -c 300 err);"
+    grep -qF -- "$frag" err || why="$why message lacks '$frag': $(cat err);"
+    [ -e po ] && why="$why po/ created;"
+    row "$name" "$why"
+    rm -rf po
+}
+# 1 GPa over the (64 um)^2 grid carries 4.096 N: more than the 1 N asked for
+phys phys_lubricant_load_above_force "carries 4.096 N, more than the requested force 1 N" \
+    small.ini --set load.lubricant_pressure=1GPa
+phys phys_lubricant_per_length "more than the requested force_per_length" small.ini \
+    --set load.force= --set load.force_per_length=1N/m --set mesh.periodic_y=yes \
+    --set geometry.shape=cylinder --set load.lubricant_pressure=1GPa
+phys phys_force_overflow "accepted: force <=" small.ini --set load.force=1e300N
+phys phys_modulus_tiny "accepted: force <=" small.ini --set body1.E=1e-300Pa --set body2.E=1e-300Pa
+phys phys_dx_tiny "must be >= 1e-150 m" small.ini --set mesh.dx=1e-300m
+phys phys_approach_overflow "accepted: approach <=" small.ini --set load.force= \
+    --set load.approach=1e300m
+printf '[mesh]\nnx = 2\nny = 2\ndx = 4 um\n[roughness]\ntype = file\nfile = %s\nmissing = fill\n' \
+    hex.txt > hex.ini
+printf '[load]\nforce = 1 mN\n' >> hex.ini
+printf '0 0x10\n0 0\n' > hex.txt
+phys phys_height_hex "hex.txt:1: '0x10' is not a number" hex.ini
+printf '0 0\n0 inf\n' > inf.txt
+phys phys_height_inf "inf.txt:2: 'inf' is not a number" hex.ini --set roughness.file=inf.txt
+printf '0 0\n0 1e999\n' > big.txt
+phys phys_height_overflow "big.txt:2: value '1e999' is not finite" hex.ini --set roughness.file=big.txt
+
+# ---- 5. no hangs -----------------------------------------------------------------------------
+# plastic layers: depth / dz is a loop count set by values (dz = 1 pm took hours, or died out of
+# memory): dz below min(dx, dy)/16 and more than 1024 layers are refused
+{ mesh 16; printf '[load]\nforce = 1 N\n[plasticity]\nyield_stress = 1 GPa\n'; } > plastic.ini
+phys hang_plastic_dz_tiny "must be >= min(dx, dy) / 16" plastic.ini --set plasticity.dz=1e-12m
+phys hang_plastic_layers "accepted: depth <= 1024 dz" plastic.ini --set plasticity.dz=1um \
+    --set plasticity.depth=2mm
+# dy/dx = 1e5 on a doubly periodic grid took minutes in the Ewald table: refused at once
+t0=$(date +%s%N)
+phys hang_ewald_aspect_ratio "at most 1000" small.ini --set mesh.periodic_x=yes \
+    --set mesh.periodic_y=yes --set mesh.dx=0.01um --set mesh.dy=1mm --set geometry.shape=flat \
+    --set geometry.radius=
+t1=$(date +%s%N)
+why=""
+[ $(((t1 - t0) / 1000000)) -lt 2000 ] || why=" took $(((t1 - t0) / 1000000)) ms, not at once"
+row hang_ewald_aspect_ratio_time "$why"
+# the largest accepted ratio (1000) ends in seconds
+{ printf '[mesh]\nnx = 16\nny = 16\ndx = 0.01 um\ndy = 10 um\nperiodic_x = yes\nperiodic_y = yes\n'
+  printf '[roughness]\ntype = gaussian\nrq = 0.01 um\ncorrelation_x = 0.05 um\n'
+  printf 'correlation_y = 50 um\n[load]\nforce = 0.001 mN\n[solver]\nthreads = 1\n'; } > aspect.ini
+t0=$(date +%s%N)
+timeout 60 "$PROG" run aspect.ini --out ao > out 2> err
+st=$? t1=$(date +%s%N)
+why=""
+[ "$st" -eq 0 ] || why="$why exit $st: $(head -c 300 err);"
+[ $(((t1 - t0) / 1000000)) -lt 20000 ] || why="$why took $(((t1 - t0) / 1000000)) ms;"
+row hang_ewald_aspect_limit_runs "$why"
+rm -rf ao
+
+# ---- 6. warnings -----------------------------------------------------------------------------
+# warn NAME ARGS... -- CODES: exit 0; summary.json "warnings" holds exactly CODES (in order), and
+# stderr one "microcontact: warning:" line per warning
+warn() {
+    name=$1
+    shift
+    args=""
+    while [ "$1" != "--" ]; do args="$args $1"; shift; done
+    shift
+    rm -rf wo
+    # shellcheck disable=SC2086 # split on purpose
+    "$PROG" run $args --out wo > out 2> err
+    st=$?
+    why=""
+    [ "$st" -eq 0 ] || why="$why exit $st: $(head -c 300 err);"
+    got=$(tr -d ' \n' < wo/summary.json 2> /dev/null | grep -o '"warnings":\[[^]]*\]' |
+          grep -o '"code":"[a-z_]*"' | sed 's/"code":"//; s/"//' | tr '\n' ' ' | sed 's/ $//')
+    grep -q '"warnings"' wo/summary.json 2> /dev/null || why="$why summary.json has no warnings list;"
+    [ "$got" = "$*" ] || why="$why codes '$got', not '$*';"
+    n=$(grep -c '^microcontact: warning: ' err)
+    [ "$n" -eq "$#" ] || why="$why $n warning lines on stderr, not $#;"
+    row "$name" "$why"
+    rm -rf wo
+}
+# a Hertzian contact of radius 19 um on 1 um cells well inside a 64 um grid: none
+{ mesh 64 | sed 's/4 um/1 um/'; printf '[load]\nforce = 0.1 N\n[solver]\nthreads = 1\n'; } > clean.ini
+[ "$(grep -c 'dx = 1 um' clean.ini)" -eq 1 ] || echo "robustness: clean.ini fixture broken"
+warn warn_none clean.ini --
+warn warn_edge_ratio_coarse small.ini -- contact_at_edge contact_ratio_high coarse_contact
+warn warn_coarse clean.ini --set load.force=0.1mN -- coarse_contact
+warn warn_pressure_above_moduli clean.ini --set body1.E=1MPa --set body2.E=1MPa \
+    --set load.force=10mN -- contact_at_edge contact_ratio_high pressure_above_moduli
+# a flat rough patch under a nominal load touches its edges by nature: no contact_at_edge
+{ mesh 32 | sed 's/shape = sphere/shape = flat/; /radius/d'
+  printf '[roughness]\ntype = gaussian\nrq = 0.2 um\ncorrelation_x = 20 um\ncorrelation_y = 20 um\n'
+  printf 'cutoff = 16 um\n[load]\nforce = 1 N\n[solver]\nthreads = 1\n'; } > patch.ini
+warn warn_flat_patch_no_edge patch.ini --
 
 # ---- 4. running-in: checkpoints, SIGINT and --resume ----------------------------------------
 # A small elastic-plastic running-in (two forces, six speeds: 24 steps of a few tenths of a

@@ -1,0 +1,108 @@
+/* warnings.c - warnings a user can act on (see warnings.h). */
+#include "pipeline/warnings.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+
+void mc_results_warn(mc_results *r, const char *code, const char *fmt, ...)
+{
+    if (r->nwarnings >= MC_WARNINGS_MAX)
+        return;
+    mc_warning *w = &r->warnings[r->nwarnings++];
+    w->code = code;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(w->message, sizeof w->message, fmt, ap);
+    va_end(ap);
+}
+
+/* Solid contact on a cell: the pressure exceeds the lubricant's (the contact's own test). */
+static int in_contact(const mc_results *r, size_t q, double p_lub)
+{
+    return r->pressure[q] > p_lub;
+}
+
+/* Edges of the free axes that solid contact touches: bit 1 x, bit 2 y. */
+static int edges_touched(const mc_results *r, int periodic_x, int periodic_y, double p_lub)
+{
+    const int nx = r->grid.nx, ny = r->grid.ny;
+    int hit = 0;
+    if (!periodic_x)
+        for (int j = 0; j < ny && !(hit & 1); j++)
+            if (in_contact(r, (size_t)j * nx, p_lub) || in_contact(r, (size_t)j * nx + nx - 1, p_lub))
+                hit |= 1;
+    if (!periodic_y)
+        for (int i = 0; i < nx && !(hit & 2); i++)
+            if (in_contact(r, (size_t)i, p_lub) || in_contact(r, (size_t)(ny - 1) * nx + i, p_lub))
+                hit |= 2;
+    return hit;
+}
+
+/* Radius of a rough macro contact from the extent of its solid contact (the box around every
+ * contact cell): the half-width along x for a line contact, else sqrt(a_x a_y) of the
+ * half-extents (the radius of a circular contact). */
+static double extent_radius(const mc_results *r, int line, double p_lub)
+{
+    const int nx = r->grid.nx, ny = r->grid.ny;
+    int i0 = nx, i1 = -1, j0 = ny, j1 = -1;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            if (in_contact(r, (size_t)j * nx + i, p_lub)) {
+                i0 = i < i0 ? i : i0, i1 = i > i1 ? i : i1;
+                j0 = j < j0 ? j : j0, j1 = j > j1 ? j : j1;
+            }
+    if (i1 < 0)
+        return 0.0;
+    const double ax = 0.5 * (i1 - i0 + 1) * r->grid.dx, ay = 0.5 * (j1 - j0 + 1) * r->grid.dy;
+    return line ? ax : sqrt(ax * ay);
+}
+
+void mc_results_warnings(const mc_scene *sc, mc_results *r)
+{
+    const mc_contact_summary *c = &r->contact;
+    const mc_grid *g = &r->grid;
+    const int macro = sc->geometry.shape != MC_SHAPE_FLAT;
+    const double p_lub = r->lube.enabled ? r->lube.p_lub : fmax(sc->load.lubricant_pressure, 0.0);
+    const double estar = mc_scene_estar(sc);
+    if (r->pressure && c->solved && macro && c->area > 0) {
+        const int hit = edges_touched(r, g->periodic_x, g->periodic_y, p_lub);
+        if (hit)
+            mc_results_warn(r, "contact_at_edge",
+                            "the contact reaches the %s of the grid (%d x %d cells of %.4g x "
+                            "%.4g um): the grid truncates it and the pressure is not the "
+                            "unbounded body's; enlarge the grid (nx, ny) or lower the load",
+                            hit == 3 ? "x and y edges" : hit == 1 ? "x edges" : "y edges", g->nx,
+                            g->ny, g->dx * 1e6, g->dy * 1e6);
+    }
+    if (c->solved && c->contact_ratio > MC_WARN_CONTACT_RATIO)
+        mc_results_warn(r, "contact_ratio_high",
+                        "%.1f %% of the grid is in solid contact (above %.0f %%): little free "
+                        "surface is left; enlarge the grid or lower the load",
+                        100.0 * c->contact_ratio, 100.0 * MC_WARN_CONTACT_RATIO);
+    if (c->solved && macro && c->area > 0) {
+        const int line = sc->geometry.shape == MC_SHAPE_CYLINDER;
+        double radius;
+        if (sc->roughness.type == MC_ROUGH_NONE)
+            radius = line ? c->area / (2.0 * g->ny * g->dy) : sqrt(c->area / M_PI);
+        else /* the micro-contacts' area is not the macro contact's: its extent is */
+            radius = extent_radius(r, line, p_lub);
+        const double cells = radius / (line ? g->dx : fmax(g->dx, g->dy));
+        if (cells < MC_WARN_CELLS_PER_RADIUS)
+            mc_results_warn(r, "coarse_contact",
+                            "the contact %s %.4g um spans %.3g cells (fewer than %.0f): the "
+                            "pressure peak and the stresses are under-resolved; use smaller cells "
+                            "(dx%s)",
+                            line ? "half-width" : "radius", radius * 1e6, cells,
+                            MC_WARN_CELLS_PER_RADIUS, line ? "" : ", dy");
+    }
+    if (c->p_max > estar)
+        mc_results_warn(r, "pressure_above_moduli",
+                        "p_max = %.4g MPa is above the reduced modulus E* = %.4g MPa: strains of "
+                        "order one, outside linear elasticity; check the load, the moduli and the "
+                        "roughness heights",
+                        c->p_max * 1e-6, estar * 1e-6);
+    if (r->has_roughness && r->roughness_initial.warning[0])
+        mc_results_warn(r, "roughness_cutoff", "roughness parameters: %s",
+                        r->roughness_initial.warning);
+}

@@ -1,0 +1,40 @@
+/* warnings.h - warnings a user can act on, found after a run: the result is computed, but it may
+ * not be what the user wants (summary.json "warnings", and stderr through the CLI).
+ *
+ * Codes (stable, for scripts):
+ *   contact_at_edge      solid contact reaches the edge of a free (non-periodic) axis of a grid
+ *                        whose shape has a macro geometry (sphere, cylinder, ellipsoid): the grid
+ *                        truncates the contact. Not for shape = flat: a flat rough patch stands
+ *                        for a piece of a larger nominal contact, and contact at its edges is
+ *                        what a nominal load gives.
+ *   contact_ratio_high   more than 90 % of the grid in solid contact: the grid holds little free
+ *                        surface (enlarge it, or lower the load).
+ *   coarse_contact       fewer than 10 cells per contact radius (shapes with a macro geometry):
+ *                        smooth, r = sqrt(A/pi) for a point-like contact (sphere, ellipsoid), the
+ *                        half-width A / (2 ny dy) for a line contact (cylinder); rough, from the
+ *                        extent of the solid contact (the micro-contacts' area is a fraction of
+ *                        the macro contact's): half-extents a_x, a_y of the box around the
+ *                        contact cells, r = sqrt(a_x a_y) (point) or a_x (line). Cells per radius
+ *                        r / dx (line) or r / max(dx, dy) (point).
+ *   pressure_above_moduli  p_max above the reduced modulus E*: strains of order one, outside the
+ *                        linear elasticity the solve assumes.
+ *   roughness_cutoff     the ISO roughness parameters deviate from the standard (cut-off clipped
+ *                        on a short surface, short evaluation length; surface/roughness.h).
+ */
+#ifndef MC_WARNINGS_H
+#define MC_WARNINGS_H
+
+#include "case/scene.h"
+#include "pipeline/results.h"
+
+#define MC_WARN_CONTACT_RATIO 0.9 /* contact_ratio_high above this fraction */
+#define MC_WARN_CELLS_PER_RADIUS 10.0 /* coarse_contact below this many cells */
+
+/* Add one warning to r (dropped when MC_WARNINGS_MAX are there). */
+void mc_results_warn(mc_results *r, const char *code, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* The warnings of a finished solve of scene sc (the fields and summaries of r filled). */
+void mc_results_warnings(const mc_scene *sc, mc_results *r);
+
+#endif

@@ -1,0 +1,121 @@
+/* test_warnings.c - the warnings of a finished solve (pipeline/warnings.h), on Hertzian contacts
+ * whose contact radius a = (3 F R / 4 E*)^(1/3) (Johnson 1985 eq. 4.22) sets what must be warned:
+ * the expectations come from the theory and the grid, not from our own outputs. */
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "case/case.h"
+#include "pipeline/pipeline.h"
+#include "pipeline/warnings.h"
+#include "test_util.h"
+
+/* steel on steel: E* = E / (2 (1 - nu^2)) */
+#define E_STEEL 210e9
+#define NU 0.3
+
+static double hertz_radius(double force, double radius)
+{
+    const double estar = E_STEEL / (2.0 * (1.0 - NU * NU));
+    return cbrt(3.0 * force * radius / (4.0 * estar));
+}
+
+/* Run the case text; returns the codes of its warnings joined by spaces into buf. */
+static const char *codes_of(const char *text, char *buf, size_t len)
+{
+    mc_scene s;
+    mc_error err = {0};
+    ck_assert_msg(mc_case_parse_text(text, "w.ini", NULL, 0, NULL, &s, &err) == MC_OK, "%s",
+                  err.msg);
+    mc_results r;
+    ck_assert_msg(mc_pipeline_run(&s, &r, &err) == MC_OK, "%s", err.msg);
+    buf[0] = '\0';
+    for (int k = 0; k < r.nwarnings; k++) {
+        ck_assert(r.warnings[k].message[0] != '\0');
+        snprintf(buf + strlen(buf), len - strlen(buf), "%s%s", k ? " " : "", r.warnings[k].code);
+    }
+    mc_results_free(&r);
+    return buf;
+}
+
+static void sphere(char *text, size_t len, int n, double dx_um, double force, const char *extra)
+{
+    snprintf(text, len,
+             "[mesh]\nnx = %d\nny = %d\ndx = %g um\n[geometry]\nshape = sphere\nradius = 10 mm\n"
+             "[load]\nforce = %g N\n[solver]\nthreads = 1\n%s",
+             n, n, dx_um, force, extra);
+}
+
+/* a = 18.7 um: on 1 um cells of a 64 um grid the contact is resolved (18.7 cells per radius) and
+ * 13 um from every edge, its area 27 % of the grid: nothing to warn. */
+START_TEST(resolved_contact_raises_none)
+{
+    ck_assert_double_lt(fabs(hertz_radius(0.1, 0.01) - 18.7e-6), 0.1e-6);
+    char text[512], codes[256];
+    sphere(text, sizeof text, 64, 1.0, 0.1, "");
+    ck_assert_str_eq(codes_of(text, codes, sizeof codes), "");
+}
+END_TEST
+
+/* the same contact on 4 um cells: a / dx = 4.7 < 10, the contact still inside the grid */
+START_TEST(coarse_cells)
+{
+    const double a = hertz_radius(0.1, 0.01);
+    ck_assert_double_lt(a / 4e-6, MC_WARN_CELLS_PER_RADIUS);
+    char text[512], codes[256];
+    sphere(text, sizeof text, 16, 4.0, 0.1, "");
+    ck_assert_str_eq(codes_of(text, codes, sizeof codes), "coarse_contact");
+}
+END_TEST
+
+/* the same contact on a 32 um grid: a = 18.7 um > 16 um, the half-width of the grid */
+START_TEST(contact_beyond_the_grid)
+{
+    ck_assert_double_gt(hertz_radius(0.1, 0.01), 16e-6);
+    char text[512], codes[256];
+    sphere(text, sizeof text, 64, 0.5, 0.1, "");
+    const char *c = codes_of(text, codes, sizeof codes);
+    ck_assert_msg(strstr(c, "contact_at_edge") != NULL, "codes: %s", c);
+    ck_assert_msg(strstr(c, "coarse_contact") == NULL, "codes: %s", c);
+}
+END_TEST
+
+/* E = 1 MPa: the mean pressure over the grid, F / A = 24 MPa, is above E* = 0.55 MPa, so p_max
+ * (>= the mean) is too, whatever the solve */
+START_TEST(pressure_above_moduli)
+{
+    char text[512], codes[256];
+    sphere(text, sizeof text, 64, 1.0, 0.1, "[body1]\nE = 1 MPa\n[body2]\nE = 1 MPa\n");
+    const char *c = codes_of(text, codes, sizeof codes);
+    ck_assert_msg(strstr(c, "pressure_above_moduli") != NULL, "codes: %s", c);
+}
+END_TEST
+
+/* a flat rough patch under a nominal load: its contact touches the free edges by nature (a piece
+ * of a larger nominal contact), no contact_at_edge */
+START_TEST(flat_patch_edges_are_no_warning)
+{
+    char codes[256];
+    const char *text = "[mesh]\nnx = 32\nny = 32\ndx = 4 um\n[roughness]\ntype = gaussian\n"
+                       "rq = 0.2 um\ncorrelation_x = 20 um\ncorrelation_y = 20 um\ncutoff = 16 um\n"
+                       "[load]\nforce = 1 N\n[solver]\nthreads = 1\n";
+    const char *c = codes_of(text, codes, sizeof codes);
+    ck_assert_msg(strstr(c, "contact_at_edge") == NULL, "codes: %s", c);
+}
+END_TEST
+
+Suite *suite_warnings(void);
+Suite *suite_warnings(void)
+{
+    Suite *s = suite_create("warnings");
+    TCase *t = tcase_create("hertz");
+    tcase_set_timeout(t, 60);
+    tcase_add_test(t, resolved_contact_raises_none);
+    tcase_add_test(t, coarse_cells);
+    tcase_add_test(t, contact_beyond_the_grid);
+    tcase_add_test(t, pressure_above_moduli);
+    tcase_add_test(t, flat_patch_edges_are_no_warning);
+    suite_add_tcase(s, t);
+    return s;
+}
