@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 #include "bench.h"
 #include "core/alloc.h"
@@ -27,6 +28,7 @@
 #define KE_Y 1e9
 #define KE_R 15e-3
 #define KE_TOL_W 0.03    /* w/w_c within 3 % of the KE fit (issue 11 item 7) */
+#define KE_TOL_A 0.05    /* A/A_c within 5 % of the KE fit (issue 11 item 7) */
 #define KE_TIME_MAX 60.0 /* s: the KE point at 10 P_c within KE_TOL_W (issue 11 item 8) */
 #define OP_RATIO_MAX 3.0 /* apply / FFT bound at 256^2 x 32 (issue 11 item 8) */
 #define BYTES_MAX 400.0  /* bytes per volume cell (issue 11 item 8) */
@@ -65,6 +67,7 @@ static double ke_a(double w) { return w <= 6 ? 0.93 * pow(w, 1.136) : 0.94 * pow
 typedef struct {
     /* in: 0 = the default */
     double margin, depth, yield; /* [plasticity] margin, depth (m), yield_stress (Pa) */
+    double side;                 /* domain side, m (0: 24 a_c / 2.7) */
     /* out */
     int ok, converged, shortcut, steps, outer, sweeps, nz, wnx, wny;
     long volume_cells;
@@ -76,7 +79,7 @@ typedef struct {
 static void ke_solve(int n, double p_pc, ke_run *r)
 {
     const ke_crit k = ke_critical();
-    const double side = 24 * k.ac / 2.7;
+    const double side = r->side > 0 ? r->side : 24 * k.ac / 2.7;
     mc_scene sc;
     vu_scene(&sc, n, n, side / n, side / n);
     sc.geometry.shape = MC_SHAPE_SPHERE;
@@ -125,6 +128,36 @@ static void ke_solve(int n, double p_pc, ke_run *r)
 
 /* ---- the operators --------------------------------------------------------------------------- */
 
+/* CPU time of the calling thread, s: the operator timings run on one thread, and on a machine
+ * shared with other work its CPU time is what the code costs (the wall clock swung by 3x between
+ * runs here). */
+static double thread_cpu(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Median thread CPU time of reps calls of fn(arg) after one warm-up call, s. */
+static double cpu_time(void (*fn)(void *), void *arg, int reps)
+{
+    double t[16];
+    reps = reps < 1 ? 1 : reps > 16 ? 16 : reps;
+    fn(arg);
+    for (int k = 0; k < reps; k++) {
+        const double t0 = thread_cpu();
+        fn(arg);
+        t[k] = thread_cpu() - t0;
+    }
+    for (int a = 1; a < reps; a++) /* insertion sort: a handful of values */
+        for (int b = a; b > 0 && t[b] < t[b - 1]; b--) {
+            const double x = t[b];
+            t[b] = t[b - 1];
+            t[b - 1] = x;
+        }
+    return t[reps / 2];
+}
+
 typedef struct {
     fftw_plan f, b;
 } pair_arg;
@@ -137,7 +170,7 @@ static void do_pair(void *a)
 }
 
 /* One bare r2c + c2r pair of tx x ty on ONE thread (the operators run their transforms on one
- * thread each, layers in parallel), FFTW_ESTIMATE as they plan: median of reps, s. */
+ * thread each, layers in parallel), FFTW_ESTIMATE as they plan: median CPU time of reps, s. */
 static double pair_time(int tx, int ty, int reps)
 {
     double *r = fftw_malloc(sizeof(double) * (size_t)tx * ty);
@@ -150,7 +183,7 @@ static double pair_time(int tx, int ty, int reps)
                       fftw_plan_dft_c2r_2d(ty, tx, c, r, FFTW_ESTIMATE)};
         for (size_t i = 0; i < (size_t)tx * ty; i++)
             r[i] = (double)(i % 17);
-        t = mc_bench_time(do_pair, &p, reps);
+        t = cpu_time(do_pair, &p, reps);
         fftw_destroy_plan(p.f);
         fftw_destroy_plan(p.b);
         mc_fftw_prepare(NULL); /* the planner's count back to the run's */
@@ -208,7 +241,7 @@ static int op_measure(int n, int nz, int reps, op_cost *c)
     }
     if (rc == MC_OK) {
         c->disp_b = (double)mc_eigen_disp_bytes(a.d) / (double)nv;
-        c->disp_s = mc_bench_time(do_disp, &a, reps);
+        c->disp_s = cpu_time(do_disp, &a, reps);
         mc_eigen_disp_destroy(&a.d);
         const double t0 = mc_clock();
         rc = mc_eigen_stress_create(&g, &v, KE_NU, MC_BACKEND_FFT, &a.s, &err);
@@ -216,7 +249,7 @@ static int op_measure(int n, int nz, int reps, op_cost *c)
     }
     if (rc == MC_OK) {
         c->stress_b = (double)mc_eigen_stress_bytes(a.s) / (double)nv;
-        c->stress_s = mc_bench_time(do_stress, &a, reps);
+        c->stress_s = cpu_time(do_stress, &a, reps);
     }
     mc_eigen_stress_destroy(&a.s);
     mc_eigen_disp_destroy(&a.d);
@@ -283,14 +316,16 @@ static void section_operators(vf_ctx *ctx, int quick, double *ratio256, double *
     const int nop = quick ? 2 : 3;
     *ratio256 = *bytes256 = NAN;
     vf_text(ctx, "## Elastic-plastic stage\n\n### Eigenstrain operators against their FFT bound\n\n"
-                 "One application (median of repeated calls) of each operator (plastic/eigen_op.h, "
-                 "fft backend, ONE thread) on a volume of n x n x nz cells under the whole grid, "
+                 "One application (median CPU time of repeated calls) of each operator "
+                 "(plastic/eigen_op.h, fft backend, ONE thread) on a volume of n x n x nz cells under the whole grid, "
                  "against the bare one-thread FFTW transforms it cannot avoid, timed here on the "
                  "padded size (2m)², m = the 7-smooth size >= n: residual stress, 6 nz r2c + "
                  "6 nz c2r = 6 nz pairs; residual displacement, 6 nz r2c + one c2r = "
                  "(6 nz + 1) / 2 pairs. Bytes: the operator's own count (tables, spectra, "
                  "workspaces) per volume cell. Create: tables, their spectra and plans (once per "
-                 "volume).\n\n"
+                 "volume). The operators skip the all-zero rows of the padding (a pruned 2-D transform), so a "
+                 "ratio can fall below 1. Not counted in the bytes: the loop's own volume arrays "
+                 "(plastic strain, stresses, return-mapping state).\n\n"
                  "| volume | pair (ms) | stress apply (s) | bound (s) | ratio | B / cell | create (s) "
                  "| displacement apply (s) | bound (s) | ratio | B / cell | create (s) |\n"
                  "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -351,14 +386,18 @@ static void section_operators(vf_ctx *ctx, int quick, double *ratio256, double *
 static void section_ke(vf_ctx *ctx, int quick)
 {
     const ke_crit kc = ke_critical();
-    static const int kn[] = {12, 16, 20};
+    /* 20^2 takes ~2 minutes on the loaded 2-core machine (its volume is above the eigen
+     * operators' threads cutoff): left out to keep the section near 2 minutes */
+    static const int kn[] = {10, 12, 16};
     const int nke = quick ? 1 : 3;
     vf_text(ctx, "### Kogut-Etsion sphere at P/P_c = 10: work against precision\n\n"
                  "Dossier plastic-lubrication §2.6: elastic-perfectly plastic half-space (E = 210 "
                  "GPa, nu = 0.3, Y = 1 GPa) under a rigid sphere R = 15 mm: w_c = %.3f um, "
                  "P_c = %.2f N, a_c = %.1f um; square domain of side 24 a_c / 2.7 = %.0f um; every "
                  "other setting the default (%s threads, load steps, tolerances, depth and column "
-                 "window auto). KE fit at 10 P_c: w/w_c = %.3f, A/A_c = %.2f. Time: the whole "
+                 "window auto). The target row takes the fastest converged grid with w/w_c within "
+                 "3 %% and A/A_c within 5 %% (the kogut_etsion acceptance); the error need not fall "
+                 "monotonically with the grid (contact area is grid-quantised). KE fit at 10 P_c: w/w_c = %.3f, A/A_c = %.2f. Time: the whole "
                  "pipeline run (no output files). Sweeps: plastic fixed-point iterations, one "
                  "residual stress application each.\n\n"
                  "| grid | volume | w/w_c | error | A/A_c | error | time (s) | outer it. | sweeps "
@@ -386,7 +425,8 @@ static void section_ke(vf_ctx *ctx, int quick)
             fprintf(f, "%d,%d,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%d\n", kn[k], r.nz,
                     r.volume_cells, r.w, r.err_w, r.a, r.err_a, r.t, r.outer, r.sweeps,
                     r.converged);
-        if (fabs(r.err_w) <= KE_TOL_W && r.converged && !(best_t <= r.t)) {
+        if (fabs(r.err_w) <= KE_TOL_W && fabs(r.err_a) <= KE_TOL_A && r.converged &&
+            !(best_t <= r.t)) {
             best_n = kn[k];
             best_t = r.t;
             best_err = r.err_w;
@@ -404,14 +444,15 @@ static void section_ke(vf_ctx *ctx, int quick)
     if (best_n) {
         char q[160];
         snprintf(q, sizeof q,
-                 "KE at 10 P_c: fastest converged grid with w/w_c within 3 %% (%d², %+.1f %%), "
-                 "run time (s)",
+                 "KE at 10 P_c: fastest converged grid with w/w_c within 3 %% and A/A_c within "
+                 "5 %% (%d², w/w_c %+.1f %%), run time (s)",
                  best_n, 100 * best_err);
         vf_check(ctx, "plastic_ke_time", q, "target <= 60 s (issue 11)", KE_TIME_MAX, best_t,
                  KE_TIME_MAX, VF_MAX);
     } else {
         vf_fail(ctx, "plastic_ke_time",
-                "no converged grid of the study has w/w_c within 3 %% of the KE fit");
+                "no converged grid of the study has w/w_c within 3 %% and A/A_c within 5 %% of "
+                "the KE fit");
     }
 }
 
@@ -426,16 +467,20 @@ static void section_skips(vf_ctx *ctx, int quick)
                  "| skip | with (s) | without (s) | saved | volume with / without |\n"
                  "|---|---|---|---|---|\n",
             n);
-    /* the column window: at 2 P_c the contact covers a small part of the domain */
+    /* the column window: at 2 P_c on a domain twice as wide (2n cells of the same size) the
+     * contact's box plus its margin covers a part of the grid */
     ke_run w0, w1;
     memset(&w0, 0, sizeof w0);
     memset(&w1, 0, sizeof w1);
-    ke_solve(n, 2.0, &w0);
-    w1.margin = side; /* the window grows to the whole grid */
-    ke_solve(n, 2.0, &w1);
-    vf_text(ctx, "| column window (2 P_c: plastic cells under the contact's box plus a margin, "
-                 "against every column) | %.2f | %.2f | %.0f %% | %d x %d x %d / %d x %d x %d |\n",
-            w0.t, w1.t, 100 * (1 - w0.t / w1.t), w0.wnx, w0.wny, w0.nz, w1.wnx, w1.wny, w1.nz);
+    w0.side = w1.side = 2 * side;
+    ke_solve(2 * n, 2.0, &w0);
+    w1.margin = 2 * side; /* the window grows to the whole grid */
+    ke_solve(2 * n, 2.0, &w1);
+    vf_text(ctx, "| column window (2 P_c, %d² grid of the same cells on a domain twice as wide: "
+                 "plastic cells under the contact's box plus a margin, against every column) | "
+                 "%.2f | %.2f | %.0f %% | %d x %d x %d / %d x %d x %d |\n",
+            2 * n, w0.t, w1.t, 100 * (1 - w0.t / w1.t), w0.wnx, w0.wny, w0.nz, w1.wnx, w1.wny,
+            w1.nz);
     /* depth = auto against twice the depth it chose */
     ke_run d0, d1;
     memset(&d0, 0, sizeof d0);
