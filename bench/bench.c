@@ -2,6 +2,7 @@
 #include "bench.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "operator/operator.h"
 #include "pipeline/pipeline.h"
@@ -29,17 +30,61 @@ double mc_bench_time(void (*fn)(void *), void *arg, int reps)
     return t[reps / 2];
 }
 
+/* The sections in report order, by name (`microcontact bench NAME...` runs those alone). */
+static const struct {
+    const char *name;
+    int (*run)(vf_ctx *, int);
+} sections[] = {
+    {"operator", mc_bench_operator}, {"hertz", mc_bench_hertz},     {"rough", mc_bench_rough},
+    {"stress", mc_bench_stress},     {"threads", mc_bench_threads}, {"skips", mc_bench_skips},
+    {"memory", mc_bench_memory},     {"plastic", mc_bench_plastic},
+};
+
+static const char *only; /* comma-separated section names; NULL = all */
+
+int mc_bench_select(const char *names)
+{
+    for (const char *p = names; p && *p;) {
+        const size_t n = strcspn(p, ",");
+        int found = 0;
+        for (size_t k = 0; k < sizeof sections / sizeof sections[0]; k++)
+            found |= strlen(sections[k].name) == n && !strncmp(sections[k].name, p, n);
+        if (!found)
+            return -1;
+        p += n + (p[n] == ',');
+    }
+    only = names && *names ? names : NULL;
+    return 0;
+}
+
+const char *mc_bench_section_names(void)
+{
+    return "operator, hertz, rough, stress, threads, skips, memory, plastic";
+}
+
+static int selected(const char *name)
+{
+    if (!only)
+        return 1;
+    const size_t n = strlen(name);
+    for (const char *p = only; *p;) {
+        const size_t m = strcspn(p, ",");
+        if (m == n && !strncmp(p, name, n))
+            return 1;
+        p += m + (p[m] == ',');
+    }
+    return 0;
+}
+
 static int run_bench(vf_ctx *ctx, int quick)
 {
     vf_text(ctx, "All times on this machine (%d threads unless stated), measured in this run; the "
                  "ratios are what counts, absolute times drift with the machine's load.\n\n",
             mc_threads_count());
-    int (*sections[])(vf_ctx *, int) = {mc_bench_operator, mc_bench_hertz,  mc_bench_rough,
-                                         mc_bench_stress,   mc_bench_threads, mc_bench_skips,
-                                         mc_bench_memory};
     int rc = 0;
     for (size_t k = 0; k < sizeof sections / sizeof sections[0]; k++)
-        rc |= sections[k](ctx, quick);
+        if (selected(sections[k].name))
+            rc |= sections[k].run(ctx, quick);
     return rc;
 }
 

@@ -16,6 +16,13 @@ int mc_bench_stress(vf_ctx *ctx, int quick);
 int mc_bench_threads(vf_ctx *ctx, int quick);
 int mc_bench_memory(vf_ctx *ctx, int quick);
 int mc_bench_skips(vf_ctx *ctx, int quick);
+int mc_bench_plastic(vf_ctx *ctx, int quick);
+
+/* Run only the sections named in names (comma-separated, e.g. "plastic" or "operator,hertz";
+ * NULL or "" = all); the string must outlive the run. 0, or -1 for an unknown name. */
+int mc_bench_select(const char *names);
+/* The section names, comma-separated in report order (for usage messages). */
+const char *mc_bench_section_names(void);
 
 /* Median wall time (s) of reps calls of fn(arg) after one warm-up call. */
 double mc_bench_time(void (*fn)(void *), void *arg, int reps);

@@ -5,7 +5,7 @@
 
 #define MC_USAGE_RUN "usage: microcontact run CASE.ini [--out DIR] [--set section.key=value]..."
 #define MC_USAGE_VERIFY "usage: microcontact verify [SUITE... | --all] [--fast] [--bless] [--reports DIR] [--baselines DIR | --no-baselines] [--index] [--list]"
-#define MC_USAGE_BENCH "usage: microcontact bench [--quick] [--reports DIR]"
+#define MC_USAGE_BENCH "usage: microcontact bench [SECTION...] [--quick] [--reports DIR]"
 #define MC_USAGE_KEYS "usage: microcontact keys [SECTION]"
 #define MC_USAGE_SURFACE "usage: microcontact surface FILE [--set section.key=value]... [--out DIR]"
 

@@ -2,7 +2,7 @@
  *
  *   microcontact run CASE.ini [--out DIR] [--set section.key=value]...
  *   microcontact verify [SUITE... | --all] [--fast] [--bless] [--reports DIR] [--list]
- *   microcontact bench [--quick] [--reports DIR]
+ *   microcontact bench [SECTION...] [--quick] [--reports DIR]
  *   microcontact keys [SECTION]
  *   microcontact surface FILE [--set section.key=value]... [--out DIR]
  *   microcontact help | --help | --version
@@ -33,7 +33,7 @@ static void usage(FILE *f)
             "        output directory at a time\n"
             "  microcontact verify [SUITE... | --all] [--fast] [--bless] [--reports DIR] [--list]\n"
             "        run verification suites (all by default); reports in DIR/<suite>/report.md\n"
-            "  microcontact bench [--quick] [--reports DIR]\n"
+            "  microcontact bench [SECTION...] [--quick] [--reports DIR]\n"
             "        benchmark report in DIR/bench/report.md\n"
             "  microcontact keys [SECTION]\n"
             "        print the case-file reference (also in docs/case-format.md), or one section\n"

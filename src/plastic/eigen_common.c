@@ -42,10 +42,10 @@ int mc_eig_check(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backe
     return MC_OK;
 }
 
-int mc_eig_threads(void)
+int mc_eig_threads(size_t work)
 {
     const int n = mc_threads_count();
-    return n > 0 ? n : 1;
+    return n > 1 && work >= MC_THREADS_MIN_CELLS ? n : 1;
 }
 
 /* ---- quadrant tables ------------------------------------------------------------------------- */

@@ -122,7 +122,7 @@ static int fft_create(mc_eigen_disp *op, mc_error *err)
     int rc = mc_eig_fft_create(&op->fft, 2 * mx, 2 * my, op->v.j0, op->v.ny, op->g.ny, err);
     if (rc)
         return rc;
-    op->nthr = mc_eig_threads();
+    op->nthr = mc_eig_threads(6 * (size_t)op->v.nz * (size_t)op->fft.tx * (size_t)op->fft.ty);
     const size_t rlen = (size_t)op->g.ny * op->fft.tx;
     if (!(op->rows = mc_malloc((size_t)op->nthr * rlen * sizeof *op->rows)) ||
         !(op->spec = mc_malloc((size_t)op->nthr * 2 * op->fft.speclen * sizeof *op->spec)))

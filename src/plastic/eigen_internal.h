@@ -69,8 +69,12 @@ static inline double mc_eig_sym_factor(int i, int c)
 int mc_eig_check(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
                  const char *who, mc_error *err);
 
-/* Threads the apply loops may use (set at create: workspaces are per thread). */
-int mc_eig_threads(void);
+/* Threads the apply loops may use (set at create: workspaces are per thread): the run's count,
+ * or one when an application moves fewer than MC_THREADS_MIN_CELLS values (work: the values its
+ * transforms touch, e.g. 6 nz times the padded lateral size), where a thread team costs more than
+ * it saves (and, on a machine busy with other work, far more: a 16^2 x 13 elastic-plastic sphere
+ * took 20 s on one thread and 150 s on two, measured). */
+int mc_eig_threads(size_t work);
 
 /* ---- quadrant tables ------------------------------------------------------------------------- */
 

@@ -193,7 +193,7 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     f->cs = (f->ch + 3) / 4 * 4;
     if (f->cs % 16 == 0) /* a power-of-2 stride between depth planes thrashes the cache */
         f->cs += 4;
-    f->nthr = mc_eig_threads();
+    f->nthr = mc_eig_threads(12 * (size_t)nz * (size_t)f->fft.tx * (size_t)f->fft.ty);
     f->zlen = (size_t)(12 * f->L + 12) * f->cs;
     const size_t sl = f->fft.speclen, rl = (size_t)wy * f->fft.tx;
     const size_t blk = (size_t)op->qy * f->nch * f->ch; /* doubles per blocked plane */
