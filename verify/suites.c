@@ -25,6 +25,16 @@ static const vf_suite all[] = {
      .title = "Mesh convergence of stress and plastic deformation on a rough section, 2.0 to "
               "0.4 um (paper Fig. 2-4)",
      .run = vf_suite_mesh_convergence},
+    {.name = "yield_onset",
+     .title = "Yield onset of Hertz point and line contact: no plastic strain at 0.99, plastic "
+              "strain at the right depth at 1.01 of the onset p0",
+     .run = vf_suite_yield_onset},
+    {.name = "kogut_etsion",
+     .title = "Elastic-perfectly plastic sphere on a rigid flat against the Kogut-Etsion fits",
+     .run = vf_suite_kogut_etsion},
+    {.name = "swift_sphere",
+     .title = "AISI 52100 Swift sphere: regression and grid convergence of the residual dent",
+     .run = vf_suite_swift_sphere},
     {.name = "stability",
      .title = "Numerical stability: extreme scenes x backends x solvers",
      .run = vf_suite_stability},
