@@ -70,6 +70,9 @@ static const struct {
      * displacement): another FFT plan may move its stopping iterate */
     {"yield_criterion", "vm_*=noise cap_*=noise plain_*=noise"},
     {"mesh_convergence", "*_rel_*=noise *_vs_*=noise *_coarse_farther=noise *_order=noise"},
+    {"yield_onset", "*_vm_factor=noise *_depth=noise *_peq_max=noise"},
+    {"kogut_etsion", "w_*=noise A_*=noise"},
+    {"swift_sphere", "dent_*=noise pmax_*=noise peq_*=noise"},
 };
 
 const char *vf_suite_tiers(const char *suite)
