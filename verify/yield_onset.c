@@ -365,13 +365,16 @@ int vf_suite_yield_onset(vf_ctx *ctx, int fast)
             "through the three layers around the largest plastic strain of the axis column.",
             Np, 2 * (int)ceil(1.5 * Np) + 1, 2 * (int)ceil(1.5 * Np) + 1, Nl,
             2 * (int)ceil(2.0 * Nl) + 1, 2 * (int)ceil(17.0 * Nl) + 1, YIELD * 1e-6);
-    vf_plot(ctx, "onset.png", "Largest plastic strain just below and above the yield onset",
+    char plot[1024];
+    snprintf(plot, sizeof plot,
             "set datafile separator ','\nset grid\nset key top left\nset logscale y\n"
             "set xlabel 'p0 / onset p0'\nset ylabel 'max equivalent plastic strain (1e-12 = none)'\n"
             "set xrange [0.98:1.02]\n"
-            "plot 'onset.csv' every ::1 using ($1 == 0 ? 1/0 : strcol(1) eq 'point' ? $2 : 1/0):"
-            "($7 + 1e-12) with linespoints pt 7 title 'point (sphere)', "
-            "'onset.csv' every ::1 using (strcol(1) eq 'line' ? $2 : 1/0):($7 + 1e-12) with "
-            "linespoints pt 5 title 'line (plane strain)'");
+            "plot 'onset.csv' every ::1 using (strcol(1) eq 'point' ? $2 : 1/0):($7 + 1e-12) "
+            "with linespoints pt 7 title 'point (sphere)'%s",
+            fast ? "" : ", 'onset.csv' every ::1 using (strcol(1) eq 'line' ? $2 : 1/0):"
+                        "($7 + 1e-12) with linespoints pt 5 title 'line (plane strain, central "
+                        "section)'");
+    vf_plot(ctx, "onset.png", "Largest plastic strain just below and above the yield onset", plot);
     return 0;
 }
