@@ -25,6 +25,16 @@ static const vf_suite all[] = {
      .title = "Mesh convergence of stress and plastic deformation on a rough section, 2.0 to "
               "0.4 um (paper Fig. 2-4)",
      .run = vf_suite_mesh_convergence},
+    {.name = "yield_onset",
+     .title = "Yield onset of a Hertz sphere: no plastic strain at 0.99, plastic strain at the "
+              "right depth at 1.01 of the onset p0",
+     .run = vf_suite_yield_onset},
+    {.name = "kogut_etsion",
+     .title = "Elastic-perfectly plastic sphere on a rigid flat against the Kogut-Etsion fits",
+     .run = vf_suite_kogut_etsion},
+    {.name = "swift_sphere",
+     .title = "AISI 52100 Swift sphere: regression and grid convergence of the residual dent",
+     .run = vf_suite_swift_sphere},
     {.name = "stability",
      .title = "Numerical stability: extreme scenes x backends x solvers",
      .run = vf_suite_stability},
@@ -60,6 +70,9 @@ static const struct {
      * displacement): another FFT plan may move its stopping iterate */
     {"yield_criterion", "vm_*=noise cap_*=noise plain_*=noise"},
     {"mesh_convergence", "*_rel_*=noise *_vs_*=noise *_coarse_farther=noise *_order=noise"},
+    {"yield_onset", "*_vm_factor=noise *_depth=noise *_peq_max=noise"},
+    {"kogut_etsion", "w_*=noise A_*=noise"},
+    {"swift_sphere", "dent_*=noise pmax_*=noise peq_*=noise"},
 };
 
 const char *vf_suite_tiers(const char *suite)

@@ -15,6 +15,9 @@ int vf_suite_volume_equilibrium(vf_ctx *ctx, int fast);
 int vf_suite_runin(vf_ctx *ctx, int fast);
 int vf_suite_mesh_convergence(vf_ctx *ctx, int fast);
 int vf_suite_yield_criterion(vf_ctx *ctx, int fast);
+int vf_suite_yield_onset(vf_ctx *ctx, int fast);
+int vf_suite_kogut_etsion(vf_ctx *ctx, int fast);
+int vf_suite_swift_sphere(vf_ctx *ctx, int fast);
 
 /* Subsurface-stress checks of the Hertz suites (verify/hertz_stress.c), called at the end of
  * vf_suite_hertz_point / vf_suite_hertz_line: they record their checks in the same report. */
