@@ -37,7 +37,8 @@ static const struct {
 } sections[] = {
     {"operator", mc_bench_operator}, {"hertz", mc_bench_hertz},     {"rough", mc_bench_rough},
     {"stress", mc_bench_stress},     {"threads", mc_bench_threads}, {"skips", mc_bench_skips},
-    {"memory", mc_bench_memory},     {"plastic", mc_bench_plastic},
+    {"memory", mc_bench_memory},     {"plastic", mc_bench_plastic},   {"whole", mc_bench_whole},
+    {"growth", mc_bench_growth},     {"runin", mc_bench_runin},
 };
 
 static const char *only; /* comma-separated section names; NULL = all */
@@ -59,7 +60,7 @@ int mc_bench_select(const char *names)
 
 const char *mc_bench_section_names(void)
 {
-    return "operator, hertz, rough, stress, threads, skips, memory, plastic";
+    return "operator, hertz, rough, stress, threads, skips, memory, plastic, whole, growth, runin";
 }
 
 static int selected(const char *name)

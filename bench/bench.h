@@ -4,6 +4,8 @@
 #ifndef MC_BENCH_H
 #define MC_BENCH_H
 
+#include <stddef.h>
+
 #include "harness.h"
 
 extern const vf_suite mc_bench_suite;
@@ -17,12 +19,23 @@ int mc_bench_threads(vf_ctx *ctx, int quick);
 int mc_bench_memory(vf_ctx *ctx, int quick);
 int mc_bench_skips(vf_ctx *ctx, int quick);
 int mc_bench_plastic(vf_ctx *ctx, int quick);
+int mc_bench_whole(vf_ctx *ctx, int quick);
+int mc_bench_growth(vf_ctx *ctx, int quick);
+int mc_bench_runin(vf_ctx *ctx, int quick);
 
 /* Run only the sections named in names (comma-separated, e.g. "plastic" or "operator,hertz";
  * NULL or "" = all); the string must outlive the run. 0, or -1 for an unknown name. */
 int mc_bench_select(const char *names);
 /* The section names, comma-separated in report order (for usage messages). */
 const char *mc_bench_section_names(void);
+
+/* The default running-in scene's path (cases/default.ini beside the executable's bin/, else in
+ * the current directory) into path: 0, or 1 when not readable. */
+int mc_bench_default_case(char *path, size_t len);
+/* Wall time (s) of the run-down step of the default running-in scene with one force (1086 N) and
+ * one speed (e.g. "350 rpm") on an nx x ny grid of its 0.8 um cells, extra one more --set
+ * override or NULL; *plastic (may be NULL) = the step ran the plastic loop. NAN on failure. */
+double mc_bench_runin_step(int nx, int ny, const char *speed, const char *extra, int *plastic);
 
 /* Median wall time (s) of reps calls of fn(arg) after one warm-up call. */
 double mc_bench_time(void (*fn)(void *), void *arg, int reps);

@@ -1,0 +1,315 @@
+/* bench_runin.c - the running-in costs (issue 13 item 4): the default running-in scene
+ * (cases/default.ini) step by step (time, contact solves per lubricant volume root, outer
+ * iterations and plastic sweeps of its elastic-plastic steps, in FFT pairs of its padded grid);
+ * the warm start of a volume equilibrium from the previous step's pressure (lube/volume.h
+ * p_start) against a cold one; one elastic-plastic step on grids growing towards the issue's
+ * 512 x 256 x 16 (extrapolated where it does not fit); the runin suite's committed run time. */
+#include <fftw3.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench.h"
+#include "case/case.h"
+#include "core/alloc.h"
+#include "operator/operator.h"
+#include "pipeline/pipeline.h"
+#include "pipeline/runin.h"
+#include "pipeline/stage_lube.h"
+#include "surface/surface.h"
+
+#define STEP_MAX_S 30.0    /* a running-in step on 512 x 256 x 16 (issue 13 item 4) */
+#define SUITE_MAX_S 600.0  /* the three-force runin suite (issue 13 item 4) */
+#define TRY_BUDGET_S 60.0  /* the largest step tried */
+
+typedef struct {
+    fftw_plan f, b;
+} pair_arg;
+
+static void do_pair(void *a)
+{
+    pair_arg *x = a;
+    fftw_execute(x->f);
+    fftw_execute(x->b);
+}
+
+static double pair_time(int tx, int ty)
+{
+    double *r = fftw_malloc(sizeof(double) * (size_t)tx * ty);
+    fftw_complex *c = fftw_malloc(sizeof(fftw_complex) * (size_t)ty * (tx / 2 + 1));
+    double t = NAN;
+    if (r && c) {
+        mc_fftw_prepare(NULL);
+        pair_arg p = {fftw_plan_dft_r2c_2d(ty, tx, r, c, FFTW_ESTIMATE),
+                      fftw_plan_dft_c2r_2d(ty, tx, c, r, FFTW_ESTIMATE)};
+        for (size_t i = 0; i < (size_t)tx * ty; i++)
+            r[i] = (double)(i % 17);
+        t = mc_bench_time(do_pair, &p, 31);
+        fftw_destroy_plan(p.f);
+        fftw_destroy_plan(p.b);
+    }
+    fftw_free(r);
+    fftw_free(c);
+    return t;
+}
+
+/* The default scene, its steps. */
+static void section_default(vf_ctx *ctx, const mc_scene *sc)
+{
+    mc_results res;
+    mc_error err = {0};
+    memset(&res, 0, sizeof res);
+    const double t0 = mc_clock();
+    const int rc = mc_runin_run(sc, NULL, &res, &err);
+    const double total = mc_clock() - t0;
+    if (rc != MC_OK && rc != MC_NOT_CONVERGED) {
+        vf_fail(ctx, "runin_default", "the default running-in scene failed: %s", err.msg);
+        mc_results_free(&res);
+        return;
+    }
+    mc_conv *c = NULL;
+    int tx = 2 * sc->grid.nx, ty = 2 * sc->grid.ny;
+    if (mc_conv_create(&sc->grid, MC_BACKEND_FFT, &c, &err) == MC_OK) {
+        mc_conv_table_dims(c, &tx, &ty);
+        mc_conv_destroy(&c);
+    }
+    const double P = pair_time(tx, ty);
+    const mc_runin_summary *r = &res.runin;
+    /* per kind: plastic run-down steps, elastic run-down steps, run-up steps */
+    double sec[3] = {0}, solves[3] = {0}, roots[3] = {0};
+    int cnt[3] = {0};
+    long outer = 0, sweeps = 0;
+    int eps = 0;
+    for (int s = 0; s < r->done; s++) {
+        const mc_runin_row *w = &r->rows[s];
+        const int kind = w->up ? 2 : w->plastic ? 0 : 1;
+        sec[kind] += w->seconds;
+        solves[kind] += w->solves;
+        roots[kind] += w->roots;
+        cnt[kind]++;
+    }
+    for (int s = 0; s < res.plastic.steps_done && res.plastic.steps; s++)
+        if (res.plastic.steps[s].outer_iterations > 0) {
+            outer += res.plastic.steps[s].outer_iterations;
+            sweeps += res.plastic.steps[s].plastic_iterations;
+            eps++;
+        }
+    FILE *f = vf_open(ctx, "runin_steps.csv");
+    if (f) {
+        fprintf(f, "step,force,up,speed_rad_s,plastic,seconds,solves,roots,p_lub\n");
+        for (int s = 0; s < r->done; s++) {
+            const mc_runin_row *w = &r->rows[s];
+            fprintf(f, "%d,%.6g,%d,%.6g,%d,%.6g,%d,%d,%.6g\n", s + 1, w->force, w->up, w->speed,
+                    w->plastic, w->seconds, w->solves, w->roots, w->p_lub);
+        }
+        vf_close(ctx, f);
+    }
+    vf_text(ctx,
+            "## Running-in costs\n\n### The default running-in scene, step by step\n\n"
+            "cases/default.ini as shipped (%d x %d cells of %.1f um, %d forces x %d speeds, "
+            "run-down elastic-plastic where something yields, run-up elastic): %d steps in "
+            "%.2f s (%d threads). A pair is one bare FFTW r2c + c2r of the padded %d x %d "
+            "(%.3f ms, measured here). Per-step figures from runin.csv's rows (solves: contact "
+            "solves; roots: lubricant volume equilibria); the elastic-plastic loop's outer "
+            "iterations and plastic sweeps (one residual stress application each, 6 nz pairs "
+            "of the padded grid at most) from its step records.\n\n"
+            "| steps | count | mean time (s) | mean time (pairs) | contact solves per step | "
+            "solves per p_lub root |\n|---|---|---|---|---|---|\n",
+            sc->grid.nx, sc->grid.ny, sc->grid.dx * 1e6, sc->runin.nforces, sc->runin.nspeeds,
+            r->done, total, mc_threads_count(), tx, ty, 1e3 * P);
+    static const char *kname[3] = {"run-down, elastic-plastic (something yielded)",
+                                   "run-down, nothing yielded", "run-up (elastic)"};
+    for (int k = 0; k < 3; k++)
+        if (cnt[k])
+            vf_text(ctx, "| %s | %d | %.3f | %.0f | %.1f | %.1f |\n", kname[k], cnt[k],
+                    sec[k] / cnt[k], sec[k] / cnt[k] / P, solves[k] / cnt[k],
+                    roots[k] > 0 ? solves[k] / roots[k] : NAN);
+    vf_text(ctx, "\nElastic-plastic steps: %d, %.1f outer iterations and %.1f plastic sweeps "
+                 "per step (each outer iteration one volume equilibrium, i.e. one p_lub root); "
+                 "one elastic-plastic step = %.0f FFT pairs of the padded grid in time.\n\n",
+            eps, eps ? (double)outer / eps : NAN, eps ? (double)sweeps / eps : NAN,
+            cnt[0] ? sec[0] / cnt[0] / P : NAN);
+    const double tot_solves = solves[0] + solves[1] + solves[2];
+    const double tot_roots = roots[0] + roots[1] + roots[2];
+    vf_info(ctx, "runin_default_total_s", "default running-in scene: whole run, s", "", NAN,
+            total);
+    vf_regress(ctx, "runin_default_total_s", VF_TIER_NONE);
+    vf_info(ctx, "runin_solves_per_root", "default scene: contact solves per p_lub root", "",
+            NAN, tot_roots > 0 ? tot_solves / tot_roots : NAN);
+    vf_regress(ctx, "runin_solves_per_root", VF_TIER_NONE);
+    vf_info(ctx, "runin_outer_per_ep_step", "default scene: outer iterations per elastic-plastic "
+            "step", "", NAN, eps ? (double)outer / eps : NAN);
+    vf_regress(ctx, "runin_outer_per_ep_step", VF_TIER_NONE);
+    vf_info(ctx, "runin_ep_step_pairs", "default scene: one elastic-plastic step in FFT pairs "
+            "of its padded grid", "", NAN, cnt[0] ? sec[0] / cnt[0] / P : NAN);
+    vf_regress(ctx, "runin_ep_step_pairs", VF_TIER_NONE);
+    mc_results_free(&res);
+}
+
+/* The volume equilibrium at 350 rpm on the default scene's initial surface, cold and warm
+ * started from the equilibrium at 500 rpm (the run-down step before). */
+static void section_warm(vf_ctx *ctx, const mc_scene *sc0)
+{
+    mc_scene sc = *sc0;
+    const mc_grid *g = &sc.grid;
+    const size_t n = mc_grid_cells(g);
+    mc_results res;
+    memset(&res, 0, sizeof res);
+    res.grid = *g;
+    mc_error err = {0};
+    mc_operator *K = NULL;
+    mc_contact_solver *s = NULL;
+    double *prev = mc_zeros(n);
+    double t[2] = {NAN, NAN};
+    int nsolves[2] = {0, 0}, ok = 0;
+    double plub[2] = {NAN, NAN};
+    if (prev && (res.topography = mc_zeros(n)) && (res.pressure = mc_zeros(n)) &&
+        (res.gap = mc_zeros(n)) && (res.displacement = mc_zeros(n)) &&
+        mc_surface_topography(g, &sc.geometry, &sc.roughness, res.topography, &err) == MC_OK &&
+        mc_operator_plan_love(g, mc_scene_estar(&sc), sc.solver.backend, &K, &err) == MC_OK) {
+        mc_contact_options opt = {.method = sc.solver.method,
+                                  .tolerance = sc.solver.tolerance,
+                                  .max_iterations = sc.solver.max_iterations,
+                                  .estar = mc_scene_estar(&sc)};
+        if (mc_contact_create(K, &opt, &s, &err) == MC_OK) {
+            sc.lubrication.rpm = 500 * 2 * M_PI / 60; /* rad/s */
+            int rc = mc_lube_stage(&sc, K, s, NULL, NULL, &res, &err);
+            ok = rc == MC_OK;
+            memcpy(prev, res.pressure, n * sizeof *prev);
+            sc.lubrication.rpm = 350 * 2 * M_PI / 60;
+            for (int w = 0; w < 2 && ok; w++) {
+                const double t0 = mc_clock();
+                rc = mc_lube_stage(&sc, K, s, NULL, w ? prev : NULL, &res, &err);
+                t[w] = mc_clock() - t0;
+                nsolves[w] = res.lube.solves;
+                plub[w] = res.lube.p_lub;
+                ok = rc == MC_OK;
+            }
+        }
+    }
+    vf_text(ctx, "### Warm start of the volume equilibrium\n\n");
+    if (!ok) {
+        vf_text(ctx, "Could not run: %s\n\n", err.msg);
+    } else {
+        vf_text(ctx,
+                "The running-in driver starts every step's equilibrium cold (pipeline/runin.c: "
+                "steps are a deterministic function of the carried state, for checkpoints); it "
+                "has no switch for a warm start, so the saving is measured beside it with the "
+                "public stage call (mc_lube_stage, p_start): the default scene's first force on "
+                "its initial surface (without the nominal-deflection bowl the driver removes), "
+                "the equilibrium at 350 rpm cold and warm-started from the one at 500 rpm.\n\n"
+                "| start | contact solves | time (s) | p_lub (MPa) |\n|---|---|---|---|\n"
+                "| cold | %d | %.3f | %.3f |\n| warm (500 rpm pressure) | %d | %.3f | %.3f |\n\n",
+                nsolves[0], t[0], plub[0] * 1e-6, nsolves[1], t[1], plub[1] * 1e-6);
+        vf_info(ctx, "runin_warm_saving", "volume equilibrium: time saved by the warm start "
+                "(fraction of the cold time)", "", NAN, 1 - t[1] / t[0]);
+        vf_regress(ctx, "runin_warm_saving", VF_TIER_NONE);
+    }
+    mc_contact_destroy(&s);
+    mc_operator_destroy(&K);
+    mc_results_free(&res);
+    mc_free(prev);
+}
+
+/* One elastic-plastic step (350 rpm) on 2:1 grids of the default cells with 16 layers, growing
+ * while the predicted time fits; extrapolated to 512 x 256 x 16 when that does not fit. */
+static void section_big(vf_ctx *ctx, int quick)
+{
+    static const int nxs[] = {64, 96, 128, 192, 256, 384, 512};
+    enum { NB = 7 };
+    double N[NB], t[NB];
+    int m = 0;
+    for (int k = 0; k < NB; k++)
+        N[k] = (double)nxs[k] * nxs[k] / 2;
+    /* 16 layers over the default depth of 3 um */
+    const char *dz = "plasticity.dz=0.1875 um";
+    double spent = 0;
+    for (int k = 0; k < NB; k++) {
+        if (m >= 2) {
+            const double grow = log(t[m - 1] / t[m - 2]) / log(N[m - 1] / N[m - 2]);
+            const double pred = t[m - 1] * pow(N[k] / N[m - 1], fmax(grow, 1.0));
+            if (pred > (quick ? 10 : TRY_BUDGET_S) || spent + pred > (quick ? 20 : 90))
+                break;
+        }
+        int plastic = 0;
+        const double t0 = mc_clock();
+        t[k] = mc_bench_runin_step(nxs[k], nxs[k] / 2, "350 rpm", dz, &plastic);
+        spent += mc_clock() - t0;
+        if (!(t[k] > 0) || !plastic) /* a step where nothing yields is not the cost asked */
+            break;
+        m = k + 1;
+    }
+    vf_text(ctx, "### One elastic-plastic step against the grid\n\n"
+                 "The default scene's first force at 350 rpm (mixed lubrication, the asperities "
+                 "yield) on nx x nx/2 cells of 0.8 um with 16 layers (dz = 0.1875 um over the "
+                 "default depth 3 um): the wall time of the run-down step. Each size runs while "
+                 "its time predicted from the two before (at least linear in N) fits %.0f s "
+                 "and the step yields.\n\n"
+                 "| grid | time (s) |\n|---|---|\n",
+            quick ? 10.0 : TRY_BUDGET_S);
+    for (int k = 0; k < m; k++)
+        vf_text(ctx, "| %d x %d x 16 | %.2f |\n", nxs[k], nxs[k] / 2, t[k]);
+    double at512 = NAN;
+    const char *how = "measured";
+    if (m == NB) {
+        at512 = t[NB - 1];
+    } else if (m >= 2) {
+        double sx = 0, sy = 0, sxx = 0, sxy = 0; /* least squares of log t on log N, all sizes */
+        for (int k = 0; k < m; k++) {
+            const double x = log(N[k]), y = log(t[k]);
+            sx += x, sy += y, sxx += x * x, sxy += x * y;
+        }
+        const double e = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+        at512 = t[m - 1] * pow(N[NB - 1] / N[m - 1], e);
+        how = "EXTRAPOLATED";
+        vf_text(ctx, "\n512 x 256 x 16 did not fit: EXTRAPOLATED from the largest grid run with "
+                     "the least-squares exponent of all sizes (%.2f in N): %.0f s.\n",
+                e, at512);
+    }
+    vf_text(ctx, "\n");
+    char q[200];
+    snprintf(q, sizeof q, "one running-in (elastic-plastic) step on 512 x 256 x 16, s (%s)", how);
+    vf_check(ctx, "runin_step_512x256x16", q, "target <= 30 s (issue 13)", STEP_MAX_S, at512,
+             STEP_MAX_S, VF_MAX);
+    vf_regress(ctx, "runin_step_512x256x16", VF_TIER_NONE);
+}
+
+int mc_bench_runin(vf_ctx *ctx, int quick)
+{
+    char path[1100];
+    mc_scene sc;
+    mc_error err = {0};
+    if (mc_bench_default_case(path, sizeof path) || mc_case_load(path, 0, NULL, &sc, &err)) {
+        vf_fail(ctx, "runin_case", "cannot read cases/default.ini: %s", err.msg);
+        return 0;
+    }
+    section_default(ctx, &sc);
+    section_warm(ctx, &sc);
+    section_big(ctx, quick);
+    /* the suite's run time from its committed report ("Run time X s."), beside cases/ */
+    double suite_s = NAN;
+    char rep[1200];
+    char *slash = strstr(path, "cases/default.ini");
+    if (slash) {
+        *slash = '\0';
+        snprintf(rep, sizeof rep, "%sreports/runin/report.md", path);
+        FILE *f = fopen(rep, "r");
+        char line[1024];
+        while (f && fgets(line, sizeof line, f) && isnan(suite_s)) {
+            const char *p = strstr(line, "Run time ");
+            if (p)
+                suite_s = strtod(p + 9, NULL);
+        }
+        if (f)
+            fclose(f);
+    }
+    vf_text(ctx, "The three-force `runin` verification suite: %.1f s (read from "
+                 "reports/runin/report.md as committed, not re-run here).\n\n",
+            suite_s);
+    vf_check(ctx, "runin_suite_time", "the three-force runin verification suite, s (read from "
+             "reports/runin/report.md, not measured in this run)", "target <= 10 minutes "
+             "(issue 13)", SUITE_MAX_S, suite_s, SUITE_MAX_S, VF_MAX);
+    vf_regress(ctx, "runin_suite_time", VF_TIER_NONE);
+    return 0;
+}
