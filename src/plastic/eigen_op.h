@@ -28,8 +28,9 @@
  *     window smaller than the grid); 1.1-1.5 x that transform bound;
  *   stress, fft: 6 nz forward and 6 nz inverse transforms at 2x padding plus the depth step;
  *     ~640 bytes per volume cell: kernel spectra 21 (2 nz + 1) reals per lateral frequency of a
- *     quadrant (~350), the 6 nz layer spectra (~190), p3 and Love spectra (~100); ~4 x the bound
- *     of 6 nz r2c + c2r pairs at 128^2 x 16 and 256^2 x 32;
+ *     quadrant (~350), the 6 nz layer spectra (~190), p3 and Love spectra (~100); ~3.5 x the bound
+ *     of 6 nz r2c + c2r pairs at 64^2 x 8 .. 256^2 x 32 (the depth step is ~2/3 of it, in
+ *     blocks of up to 64 kx, its 6 x 6 products register-blocked, an AVX2 copy on x86-64);
  *   direct: O((window cells)^2 nz^2) (stress) and O(grid cells x window cells x nz) operations,
  *     ~430 (stress) and ~50 (displacement) bytes per volume cell of tables in space.
  */
