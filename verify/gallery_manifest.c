@@ -168,8 +168,8 @@ static const vf_gallery_row manifest[] = {
      .title = "interference of an elastic-perfectly plastic sphere on a rigid flat against load",
      .paper = "The Nelias group validated the semi-analytical method against the Kogut-Etsion "
               "(2002) FEM fits of a sphere on a rigid flat.",
-     .ours = "w/w_c = {w_2|%.3f} at P/P_c = 2 (KE fit 1.593); the full variant adds 4 and 6 "
-             "P_c. Hertz (dashed) for contrast.",
+     .ours = "w/w_c = {w_2|%.3f} at P/P_c = 2 (KE fit 1.593); the fast variant adds 6 P_c, "
+             "the full one 4, 6, 10 and 14 P_c. Hertz (dashed) for contrast.",
      .differ = "The KE fits are remembered constants [S] (dossier 2.6)."},
     {.figure = "Benchmark: Kogut-Etsion",
      .suite = "kogut_etsion",
