@@ -38,7 +38,7 @@ static const struct {
     {"operator", mc_bench_operator}, {"hertz", mc_bench_hertz},     {"rough", mc_bench_rough},
     {"stress", mc_bench_stress},     {"threads", mc_bench_threads}, {"skips", mc_bench_skips},
     {"memory", mc_bench_memory},     {"plastic", mc_bench_plastic},   {"whole", mc_bench_whole},
-    {"growth", mc_bench_growth},     {"runin", mc_bench_runin},
+    {"growth", mc_bench_growth},     {"runin", mc_bench_runin},     {"plans", mc_bench_plans},
 };
 
 static const char *only; /* comma-separated section names; NULL = all */
@@ -60,7 +60,8 @@ int mc_bench_select(const char *names)
 
 const char *mc_bench_section_names(void)
 {
-    return "operator, hertz, rough, stress, threads, skips, memory, plastic, whole, growth, runin";
+    return "operator, hertz, rough, stress, threads, skips, memory, plastic, whole, growth, runin, "
+           "plans";
 }
 
 static int selected(const char *name)

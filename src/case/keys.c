@@ -36,6 +36,9 @@ _Static_assert(sizeof(mc_yield_criterion) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_hardening_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_table_unit) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_nominal_deflection) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_plan_rigor) == sizeof(int), "enum size");
+_Static_assert(MC_PLANS_MEASURE == 1 && MC_PLANS_WISDOM == 2,
+               "[solver] plans choices follow the enum");
 _Static_assert(MC_DEFLECTION_KEEP == 1, "[runin] nominal_deflection choices follow the enum");
 _Static_assert(MC_SHAPE_ELLIPSOID == 3 && MC_ROUGH_FILE == 3 && MC_BACKEND_DIRECT == 1 &&
                    MC_METHOD_ACTIVE_SET == 2 && MC_SPACING_GEOMETRIC == 1 && MC_STRESS_POINT == 1 &&
@@ -232,6 +235,17 @@ const case_key mc_keys[] = {
      .doc = "Iteration limit; reaching it is reported as not converged."},
     {.section = "solver", .name = "threads", .kind = K_INT, .lo = 0, .hi = 1024, .def = "0",
      .off = AT(solver.threads), .doc = "Threads for FFTW and OpenMP; 0 = all cores."},
+    {.section = "solver", .name = "plans", .kind = K_ENUM, .choices = "estimate measure wisdom",
+     .def = "estimate", .off = AT(solver.plans),
+     .doc = "How FFTW plans the repeated transforms: estimate (no trial runs: the same plan and "
+            "the same results on every run); measure (times candidate algorithms while "
+            "planning: faster transforms for seconds of planning on large grids; the last bits "
+            "of the results may differ between runs); wisdom (measure, but the plans stored in "
+            "wisdom_file are reused and new ones added to it: planned once, fast afterwards)."},
+    {.section = "solver", .name = "wisdom_file", .kind = K_PATH, .required = 1, .use = USE_WHEN,
+     .use_key = "plans", .use_values = "wisdom", .off = AT(solver.wisdom_file), .relative = 1,
+     .doc = "FFTW wisdom of plans = wisdom, relative to the case file: read at the start if it "
+            "exists (a file that is not FFTW wisdom is an error), rewritten at the end."},
 
     /* [stress] */
     {.section = "stress", .name = "enabled", .kind = K_BOOL,

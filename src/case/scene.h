@@ -84,6 +84,8 @@ typedef struct {
         double tolerance;         /* relative stopping tolerance (default 1e-8) */
         int max_iterations;       /* default 2000 */
         int threads;              /* 0 = all cores */
+        mc_plan_rigor plans;      /* FFTW planner rigor (operator.h; default estimate) */
+        char wisdom_file[MC_PATH_MAX]; /* plans = wisdom: the wisdom file */
     } solver;
 
     struct { /* [stress]; the stage runs only when enabled (section present) */

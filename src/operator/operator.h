@@ -180,6 +180,48 @@ void mc_conv_convolve_real(mc_conv *c, const double *kre, const double *field, d
 mc_backend mc_conv_backend(const mc_conv *c);
 const mc_grid *mc_conv_grid(const mc_conv *c);
 
+/* ---- planner rigor and stored wisdom ----------------------------------------------------- */
+
+/* How the repeated transforms are planned ([solver] plans): the transform engine's field
+ * transforms (padfft.h, also the stress engine's), the preconditioner's, the stress engine's
+ * quadrant r2r, the eigenstrain operators' pruned and depth transforms. One-shot transforms
+ * (a kernel table's spectrum, table set-up, surfaces) always use FFTW_ESTIMATE.
+ *   estimate - FFTW_ESTIMATE: no trial runs; the same plan, hence the same round-off, on every
+ *              run (the default: the regression baselines need it);
+ *   measure  - FFTW_MEASURE: FFTW times candidate algorithms while planning (up to seconds for
+ *              large sizes) and keeps the fastest; the plan, and the last bits of the results,
+ *              may differ from run to run;
+ *   wisdom   - measure, but first import the plans stored in a wisdom file and at the end store
+ *              them there: a size planned once is planned at once on later runs. */
+typedef enum { MC_PLANS_ESTIMATE = 0, MC_PLANS_MEASURE = 1, MC_PLANS_WISDOM = 2 } mc_plan_rigor;
+
+typedef struct {
+    mc_plan_rigor previous;
+    int active;      /* 1: this scope measured or imported (its end forgets the wisdom) */
+    char file[4096]; /* wisdom file of this scope ("" = none) */
+} mc_fft_plans_scope;
+
+/* Use rigor r for the plans made until the matching mc_fft_plans_end (scopes nest, like
+ * mc_threads_begin; call from one thread, before planning). With MC_PLANS_WISDOM, wisdom_file
+ * (required) is imported if it exists; a file that exists but is not FFTW wisdom is
+ * MC_ERR_INPUT (the message names the file; nothing is changed). MC_OK, MC_ERR_INPUT or
+ * MC_ERR_INTERNAL (FFTW threads). */
+int mc_fft_plans_begin(mc_plan_rigor r, const char *wisdom_file, mc_fft_plans_scope *scope,
+                       mc_error *err);
+
+/* End the scope: with MC_PLANS_WISDOM write the accumulated wisdom to the file (atomically: a
+ * temporary file beside it renamed over it); then, if the scope measured, forget all wisdom, so
+ * that later estimate plans of the process are the deterministic ones again (FFTW's estimate
+ * planner would otherwise reuse measured plans). Restores the previous rigor. MC_OK, or
+ * MC_ERR_ENV when the file cannot be written (the results stand). */
+int mc_fft_plans_end(const mc_fft_plans_scope *scope, mc_error *err);
+
+/* FFTW planner flags for a repeated transform under the rigor in force: FFTW_ESTIMATE or
+ * FFTW_MEASURE (which overwrites the planning arrays: plan on scratch only). */
+unsigned mc_fft_plan_flags(void);
+mc_plan_rigor mc_fft_plan_rigor(void);
+const char *mc_plan_rigor_name(mc_plan_rigor r); /* "estimate" | "measure" | "wisdom" */
+
 /* ---- the operator: conv + one kernel ----------------------------------------------------- */
 
 typedef struct mc_operator mc_operator;

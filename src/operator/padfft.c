@@ -5,6 +5,7 @@
 
 #include "core/alloc.h"
 #include "core/threads.h"
+#include "operator/operator.h"
 
 /* Below this many values a memory-bound loop is not worth waking the thread team. */
 #define PAR_MIN MC_THREADS_MIN_CELLS
@@ -44,21 +45,24 @@ int mc_padfft_create(mc_padfft *t, int nx, int ny, int tx, int ty, int full, mc_
     if ((size_t)tx * (size_t)ty < MC_THREADS_MIN_CELLS)
         fftw_plan_with_nthreads(1);
     int ok = 1;
+    /* the repeated transforms follow [solver] plans (operator.h); the 2-D pair of a pruned
+     * engine only transforms whole kernel tables, once: estimate */
+    const unsigned rep = mc_fft_plan_flags(), flags2d = t->pruned ? FFTW_ESTIMATE : rep;
     if (two_d) { /* row-major (ty, tx) with x fastest */
-        t->r2c = fftw_plan_dft_r2c_2d(ty, tx, t->rbuf, t->cbuf, FFTW_ESTIMATE);
-        t->c2r = fftw_plan_dft_c2r_2d(ty, tx, t->cbuf, t->rbuf, FFTW_ESTIMATE);
+        t->r2c = fftw_plan_dft_r2c_2d(ty, tx, t->rbuf, t->cbuf, flags2d);
+        t->c2r = fftw_plan_dft_c2r_2d(ty, tx, t->cbuf, t->rbuf, flags2d);
         ok = t->r2c && t->c2r;
     }
     if (ok && t->pruned) {
         int nrow[1] = {tx}, ncol[1] = {ty};
         t->row_r2c = fftw_plan_many_dft_r2c(1, nrow, ny, t->rbuf, NULL, 1, tx, t->cbuf, NULL, 1,
-                                            hx, FFTW_ESTIMATE);
+                                            hx, rep);
         t->row_c2r = fftw_plan_many_dft_c2r(1, nrow, ny, t->cbuf, NULL, 1, hx, t->rbuf, NULL, 1,
-                                            tx, FFTW_ESTIMATE);
+                                            tx, rep);
         t->col_fwd = fftw_plan_many_dft(1, ncol, hx, t->cbuf, NULL, hx, 1, t->cbuf, NULL, hx, 1,
-                                        FFTW_FORWARD, FFTW_ESTIMATE);
+                                        FFTW_FORWARD, rep);
         t->col_bwd = fftw_plan_many_dft(1, ncol, hx, t->cbuf, NULL, hx, 1, t->cbuf, NULL, hx, 1,
-                                        FFTW_BACKWARD, FFTW_ESTIMATE);
+                                        FFTW_BACKWARD, rep);
         ok = t->row_r2c && t->row_c2r && t->col_fwd && t->col_bwd;
     }
     if (!ok) {

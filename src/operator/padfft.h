@@ -11,8 +11,9 @@
  * A quarter fewer butterflies than the 2-D pair, the same results to round-off (Liu, Wang & Liu
  * 2000 for the DC-FFT; dossier elastic §5.1).
  *
- * Plans are FFTW_ESTIMATE (no trial runs: the same plan, and the same numbers, every time), made
- * on one thread below MC_THREADS_MIN_CELLS values. FFTW's planner is not thread-safe: create from
+ * Plans follow the planner rigor in force (operator.h, [solver] plans; the default FFTW_ESTIMATE:
+ * no trial runs, the same plan and the same numbers every time; the table-only 2-D pair of a
+ * pruned engine is always FFTW_ESTIMATE), made on one thread below MC_THREADS_MIN_CELLS values. FFTW's planner is not thread-safe: create from
  * one thread. Execution never allocates; not reentrant per object (it owns rbuf and cbuf).
  */
 #ifndef MC_PADFFT_H

@@ -120,8 +120,9 @@ static box_plan *plan_for(mc_precond *pc, int fx, int fy, mc_error *err)
     }
     if ((size_t)fx * fy < MC_THREADS_MIN_CELLS)
         fftw_plan_with_nthreads(1);
-    b->fwd = fftw_plan_dft_r2c_2d(fy, fx, pc->real, pc->spec, FFTW_ESTIMATE);
-    b->inv = fftw_plan_dft_c2r_2d(fy, fx, pc->spec, pc->real, FFTW_ESTIMATE);
+    /* repeated: [solver] plans (operator.h); real and spec are scratch, filled after planning */
+    b->fwd = fftw_plan_dft_r2c_2d(fy, fx, pc->real, pc->spec, mc_fft_plan_flags());
+    b->inv = fftw_plan_dft_c2r_2d(fy, fx, pc->spec, pc->real, mc_fft_plan_flags());
     if (!b->symbol || !b->fwd || !b->inv) {
         free_plan(b); /* an evicted slot stays in the cache as an empty (0 x 0) entry */
         if (fresh_slot)

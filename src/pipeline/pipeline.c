@@ -317,11 +317,24 @@ int mc_pipeline_run_staged(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_
     /* the scene's thread count holds for this run only (core/threads.h) */
     mc_threads_scope scope;
     mc_threads_begin(sc->solver.threads, &scope);
+    /* and its planner rigor, after the thread count (wisdom is per thread count) */
+    mc_fft_plans_scope plans;
+    int rc = mc_fft_plans_begin(sc->solver.plans, sc->solver.wisdom_file, &plans, err);
+    if (rc != MC_OK) {
+        memset(res, 0, sizeof *res); /* nothing computed; the caller frees res as after a run */
+        mc_threads_end(&scope);
+        return blame_key(sc, "solver", "wisdom_file", rc, err);
+    }
     /* a running-in is its own sequence of stages (pipeline/runin.h) */
-    int rc = sc->runin.enabled ? mc_runin_run(sc, NULL, res, err)
-                                 : run_stages(sc, stage, ctx, res, err);
+    rc = sc->runin.enabled ? mc_runin_run(sc, NULL, res, err)
+                           : run_stages(sc, stage, ctx, res, err);
     if (rc == MC_OK || rc == MC_NOT_CONVERGED)
         mc_results_warnings(sc, res);
+    mc_error perr = {0};
+    if (mc_fft_plans_end(&plans, &perr) != MC_OK && (rc == MC_OK || rc == MC_NOT_CONVERGED)) {
+        /* the results stand: a wisdom file that cannot be written is a warning of the run */
+        mc_results_warn(res, "wisdom_not_written", "[solver] wisdom_file: %s", perr.msg);
+    }
     mc_threads_end(&scope);
     return rc;
 }

@@ -20,6 +20,8 @@
  *                        linear elasticity the solve assumes.
  *   roughness_cutoff     the ISO roughness parameters deviate from the standard (cut-off clipped
  *                        on a short surface, short evaluation length; surface/roughness.h).
+ *   wisdom_not_written   [solver] plans = wisdom: the wisdom file could not be written at the
+ *                        end of the run (the results stand; the next run measures again).
  */
 #ifndef MC_WARNINGS_H
 #define MC_WARNINGS_H

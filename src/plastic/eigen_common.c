@@ -6,6 +6,7 @@
 
 #include "core/alloc.h"
 #include "core/threads.h"
+#include "operator/operator.h"
 #include "plastic/eigen_internal.h"
 
 int mc_eig_check(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
@@ -154,18 +155,20 @@ int mc_eig_fft_create(mc_eig_fft *t, int tx, int ty, int row0, int nin, int nout
         mc_free(spec);
         return mc_fail(err, MC_ERR_NOMEM, "eigen FFT %d x %d: out of memory", tx, ty);
     }
-    /* ESTIMATE does not touch the arrays; each plan runs single-threaded on many arrays of the
-     * same alignment (new-array execute) from the callers' parallel loops */
+    /* planned on scratch freed below (MEASURE overwrites its arrays); each plan runs
+     * single-threaded on many arrays of the same alignment (new-array execute) from the callers'
+     * parallel loops; repeated transforms: [solver] plans (operator/operator.h) */
+    const unsigned rep = mc_fft_plan_flags();
     fftw_plan_with_nthreads(1);
     int nrow[1] = {tx}, ncol[1] = {ty};
     t->row_r2c = fftw_plan_many_dft_r2c(1, nrow, nin, rows, NULL, 1, tx,
-                                        spec + (size_t)row0 * hx, NULL, 1, hx, FFTW_ESTIMATE);
+                                        spec + (size_t)row0 * hx, NULL, 1, hx, rep);
     t->col_fwd = fftw_plan_many_dft(1, ncol, hx, spec, NULL, hx, 1, spec, NULL, hx, 1,
-                                    FFTW_FORWARD, FFTW_ESTIMATE);
+                                    FFTW_FORWARD, rep);
     t->col_bwd = fftw_plan_many_dft(1, ncol, hx, spec, NULL, hx, 1, spec, NULL, hx, 1,
-                                    FFTW_BACKWARD, FFTW_ESTIMATE);
+                                    FFTW_BACKWARD, rep);
     t->row_c2r = fftw_plan_many_dft_c2r(1, nrow, nout, spec, NULL, 1, hx, rows, NULL, 1, tx,
-                                        FFTW_ESTIMATE);
+                                        rep);
     mc_free(rows);
     mc_free(spec);
     if (!t->row_r2c || !t->col_fwd || !t->col_bwd || !t->row_c2r) {

@@ -29,6 +29,7 @@
 #include "core/alloc.h"
 #include "core/fftsize.h"
 #include "core/threads.h"
+#include "operator/operator.h"
 #include "plastic/eigen_internal.h"
 
 /* The depth step is most of an application and its loops run over contiguous kx: on x86-64 a
@@ -231,9 +232,11 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     }
     /* depth DFTs: length L with stride cs, over cs interleaved sequences (one kx each) */
     fftw_iodim dim = {f->L, f->cs, f->cs}, vec = {f->cs, 1, 1};
+    /* repeated: [solver] plans (operator/operator.h); zb is scratch, filled at each apply */
+    const unsigned rep = mc_fft_plan_flags();
     fftw_plan_with_nthreads(1);
-    f->zf = fftw_plan_guru_dft(1, &dim, 1, &vec, f->zb, f->zb, FFTW_FORWARD, FFTW_ESTIMATE);
-    f->zi = fftw_plan_guru_dft(1, &dim, 1, &vec, f->zb, f->zb, FFTW_BACKWARD, FFTW_ESTIMATE);
+    f->zf = fftw_plan_guru_dft(1, &dim, 1, &vec, f->zb, f->zb, FFTW_FORWARD, rep);
+    f->zi = fftw_plan_guru_dft(1, &dim, 1, &vec, f->zb, f->zb, FFTW_BACKWARD, rep);
     if (!f->zf || !f->zi)
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: FFTW could not plan depth transforms");
     return MC_OK;

@@ -83,9 +83,10 @@ int mc_stress_sym_create(const mc_grid *g, mc_stress_sym **out, mc_error *err)
                                  ox ? FFTW_RODFT00 : FFTW_REDFT00};
         s->off[par] = (oy ? s->qx : 0) + ox;
         double *q = s->qscratch + s->off[par];
-        /* ESTIMATE: no trial runs, the same plan every time (results reproducible) */
+        /* run for every layer's kernels: [solver] plans (operator/operator.h; the default
+         * estimate: the same plan every time, results reproducible); qscratch is scratch */
         s->r2r[par] = fftw_plan_many_r2r(2, n, 1, q, embed, 1, 0, q, embed, 1, 0, kind,
-                                         FFTW_ESTIMATE);
+                                         mc_fft_plan_flags());
         ok = s->r2r[par] != NULL;
     }
     mc_fftw_prepare(NULL); /* the default thread count again */

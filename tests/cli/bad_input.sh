@@ -65,6 +65,7 @@ nanline='1e-6 1e-6 1e-6 1e-6 1e-6 nan 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e
 lines16() { j=0; while [ $j -lt "$1" ]; do echo "$line16"; j=$((j + 1)); done; }
 { echo "# 16 x 16 heights"; lines16 16; } > micro_16x16.txt
 { echo "# 16 x 16 heights"; lines16 2; echo "$nanline"; lines16 13; } > nan_16x16.txt
+echo "1 2 3" > not_wisdom.txt  # [solver] wisdom_file that is not FFTW wisdom
 mkdir a_directory
 : > regular_file
 
@@ -306,6 +307,17 @@ row roughness_nan_text o 1 "nan_16x16.txt: 1 of 256 points are missing" \
     "set [roughness] missing = fill" "[roughness] file" -- roughness_nan_text.ini --out o
 row roughness_missing  o 1 "does_not_exist.txt" "cannot open: No such file or directory" \
     "[roughness] file" -- roughness_missing.ini --out o
+# [solver] plans = wisdom: the file is required; one that is not FFTW wisdom is refused before
+# any output (and left as it was); a fresh name is valid (the run writes the wisdom there)
+row wisdom_no_file     o 1 "wisdom_no_file.ini:" "[solver] wisdom_file is required for plans = wisdom" \
+    -- wisdom_no_file.ini --out o
+row wisdom_not_wisdom  o 1 "wisdom_bad.ini:16:" "[solver] wisdom_file" "not_wisdom.txt is not FFTW wisdom" \
+    -- wisdom_bad.ini --out o
+grep -qx "1 2 3" not_wisdom.txt || { fail=$((fail + 1)); echo "FAIL  wisdom_not_wisdom: the file was changed"; }
+control control_wisdom o 0 wisdom_bad.ini --out o --set solver.wisdom_file=fresh.wisdom
+if head -c 6 fresh.wisdom 2> /dev/null | grep -q '^(fftw-'; then pass=$((pass + 1)); else
+    fail=$((fail + 1)); echo "FAIL  control_wisdom: no FFTW wisdom in fresh.wisdom"; fi
+rm -f fresh.wisdom
 # a pressure_file given by --set is relative to the current directory, not to the case file
 row pressure_override  o 1 "--set load.pressure_file=nan.npy" "[load] pressure_file" \
     "give exactly one of force, force_per_length, approach, pressure_file" \
