@@ -1,6 +1,6 @@
 /* runin.h - the running-in driver: the friction hysteresis of a speed run-down with
  * elastic-plastic smoothing and an elastic run-up on the smoothed surface (Mevissen et al. 2025,
- * Figs. 4-1 to 4-3; docs/theory.md §9, §11, §12).
+ * Figs. 4-1 to 4-3; docs/theory.md §19, with §9, §11, §12).
  *
  * The scene is a rough flat patch standing for the centre of the twin-disc line contact
  * ([lubrication] with radius1, radius2, width; [load] lubricant_pressure = auto), and it is the
