@@ -6,6 +6,7 @@
 
 #include "operator/operator.h"
 #include "pipeline/pipeline.h"
+#include "plastic/eigen_op.h"
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -92,3 +93,15 @@ static int run_bench(vf_ctx *ctx, int quick)
 
 const vf_suite mc_bench_suite = {"bench", "Benchmarks: run time against error and against FFTW",
                                  run_bench, "make bench"};
+
+void mc_bench_eig_stress(void *arg)
+{
+    mc_bench_eig *a = arg;
+    mc_eigen_stress_apply(a->s, a->e, 80e9, a->sg);
+}
+
+void mc_bench_eig_disp(void *arg)
+{
+    mc_bench_eig *a = arg;
+    mc_eigen_disp_apply(a->d, a->e, a->uz);
+}

@@ -38,6 +38,19 @@ int mc_bench_default_case(char *path, size_t len);
  * override or NULL; *plastic (may be NULL) = the step ran the plastic loop. NAN on failure. */
 double mc_bench_runin_step(int nx, int ny, const char *speed, const char *extra, int *plastic);
 
+/* One application of the eigenstrain operators for the timers (plastic/eigen_op.h): eigenstrain
+ * components e[6] in, stresses sg[6] (shear modulus 80 GPa) or the surface displacement uz out. */
+typedef struct mc_eigen_stress mc_eigen_stress;
+typedef struct mc_eigen_disp mc_eigen_disp;
+typedef struct {
+    mc_eigen_stress *s;
+    mc_eigen_disp *d;
+    const double *e[6];
+    double *sg[6], *uz;
+} mc_bench_eig;
+void mc_bench_eig_stress(void *arg); /* mc_eigen_stress_apply on an mc_bench_eig */
+void mc_bench_eig_disp(void *arg);   /* mc_eigen_disp_apply on an mc_bench_eig */
+
 /* Median wall time (s) of reps calls of fn(arg) after one warm-up call. */
 double mc_bench_time(void (*fn)(void *), void *arg, int reps);
 

@@ -115,25 +115,6 @@ static double t_layer(int n)
     return t;
 }
 
-typedef struct {
-    mc_eigen_stress *s;
-    mc_eigen_disp *d;
-    const double *e[6];
-    double *sg[6], *uz;
-} eig_arg;
-
-static void do_estress(void *x)
-{
-    eig_arg *a = x;
-    mc_eigen_stress_apply(a->s, a->e, 80e9, a->sg);
-}
-
-static void do_edisp(void *x)
-{
-    eig_arg *a = x;
-    mc_eigen_disp_apply(a->d, a->e, a->uz);
-}
-
 /* One application of an eigenstrain operator (fft) on NZ layers under the n x n grid (created
  * once, not timed). */
 static double t_eigen(int n, int stress)
@@ -142,7 +123,7 @@ static double t_eigen(int n, int stress)
     const mc_eigen_volume v = mc_eigen_volume_full(&g, NZ, 1e-6);
     const size_t nv = (size_t)n * n * NZ;
     double *blk = mc_zeros(12 * nv + (size_t)n * n), t = NAN;
-    eig_arg a;
+    mc_bench_eig a;
     memset(&a, 0, sizeof a);
     mc_error err = {0};
     if (!blk)
@@ -153,9 +134,9 @@ static double t_eigen(int n, int stress)
     for (size_t i = 0; i < 6 * nv; i++)
         blk[i] = 1e-3 * cos(0.91 * (double)i);
     if (stress && mc_eigen_stress_create(&g, &v, NU, MC_BACKEND_FFT, &a.s, &err) == MC_OK)
-        t = mc_bench_time(do_estress, &a, n <= 128 ? 5 : 3);
+        t = mc_bench_time(mc_bench_eig_stress, &a, n <= 128 ? 5 : 3);
     if (!stress && mc_eigen_disp_create(&g, &v, NU, MC_BACKEND_FFT, &a.d, &err) == MC_OK)
-        t = mc_bench_time(do_edisp, &a, n <= 128 ? 5 : 3);
+        t = mc_bench_time(mc_bench_eig_disp, &a, n <= 128 ? 5 : 3);
     mc_eigen_stress_destroy(&a.s);
     mc_eigen_disp_destroy(&a.d);
     mc_free(blk);

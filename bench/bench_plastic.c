@@ -208,25 +208,6 @@ static double pair_time(int tx, int ty, int reps)
 }
 
 typedef struct {
-    mc_eigen_stress *s;
-    mc_eigen_disp *d;
-    const double *e[6];
-    double *sg[6], *uz;
-} eig_arg;
-
-static void do_stress(void *a)
-{
-    eig_arg *x = a;
-    mc_eigen_stress_apply(x->s, x->e, 80e9, x->sg);
-}
-
-static void do_disp(void *a)
-{
-    eig_arg *x = a;
-    mc_eigen_disp_apply(x->d, x->e, x->uz);
-}
-
-typedef struct {
     double stress_s, disp_s;         /* one apply, s */
     double stress_b, disp_b;         /* bytes per volume cell */
     double stress_create, disp_create; /* s */
@@ -239,7 +220,7 @@ static int op_measure(int n, int nz, int reps, op_cost *c)
     const mc_eigen_volume v = mc_eigen_volume_full(&g, nz, 1e-6);
     const size_t nv = (size_t)n * n * nz;
     double *blk = mc_zeros(12 * nv), *uz = mc_zeros((size_t)n * n);
-    eig_arg a;
+    mc_bench_eig a;
     memset(&a, 0, sizeof a);
     mc_error err = {0};
     int rc = blk && uz ? MC_OK : MC_ERR_NOMEM;
@@ -255,7 +236,7 @@ static int op_measure(int n, int nz, int reps, op_cost *c)
     }
     if (rc == MC_OK) {
         c->disp_b = (double)mc_eigen_disp_bytes(a.d) / (double)nv;
-        c->disp_s = cpu_time(do_disp, &a, reps);
+        c->disp_s = cpu_time(mc_bench_eig_disp, &a, reps);
         mc_eigen_disp_destroy(&a.d);
         const double t0 = mc_clock();
         rc = mc_eigen_stress_create(&g, &v, KE_NU, MC_BACKEND_FFT, &a.s, &err);
@@ -263,7 +244,7 @@ static int op_measure(int n, int nz, int reps, op_cost *c)
     }
     if (rc == MC_OK) {
         c->stress_b = (double)mc_eigen_stress_bytes(a.s) / (double)nv;
-        c->stress_s = cpu_time(do_stress, &a, reps);
+        c->stress_s = cpu_time(mc_bench_eig_stress, &a, reps);
     }
     mc_eigen_stress_destroy(&a.s);
     mc_eigen_disp_destroy(&a.d);
