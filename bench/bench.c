@@ -1,6 +1,8 @@
 /* bench.c - the benchmark suite: its sections in report order (see bench.h). */
 #include "bench.h"
 
+#include <fftw3.h>
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -104,4 +106,11 @@ void mc_bench_eig_disp(void *arg)
 {
     mc_bench_eig *a = arg;
     mc_eigen_disp_apply(a->d, a->e, a->uz);
+}
+
+void mc_bench_pair_run(void *arg)
+{
+    mc_bench_pair *p = arg;
+    fftw_execute((fftw_plan)p->f);
+    fftw_execute((fftw_plan)p->b);
 }

@@ -38,6 +38,13 @@ int mc_bench_default_case(char *path, size_t len);
  * override or NULL; *plastic (may be NULL) = the step ran the plastic loop. NAN on failure. */
 double mc_bench_runin_step(int nx, int ny, const char *speed, const char *extra, int *plastic);
 
+/* One bare FFTW r2c + c2r pair for the timers (the FFT reference every ratio is read against):
+ * the two plans (fftw_plan) executed in turn. */
+typedef struct {
+    void *f, *b; /* fftw_plan forward (r2c) and backward (c2r) */
+} mc_bench_pair;
+void mc_bench_pair_run(void *arg); /* fftw_execute(f), fftw_execute(b) of an mc_bench_pair */
+
 /* One application of the eigenstrain operators for the timers (plastic/eigen_op.h): eigenstrain
  * components e[6] in, stresses sg[6] (shear modulus 80 GPa) or the surface displacement uz out. */
 typedef struct mc_eigen_stress mc_eigen_stress;

@@ -21,17 +21,6 @@ static void do_apply(void *a)
     mc_operator_apply(x->op, x->in, x->out);
 }
 
-typedef struct {
-    fftw_plan f, b;
-} pair_arg;
-
-static void do_pair(void *a)
-{
-    pair_arg *x = a;
-    fftw_execute(x->f);
-    fftw_execute(x->b);
-}
-
 /* Bare FFTW: one r2c and one c2r of the operator's padded size, same threads; flags ESTIMATE
  * (what the operator uses) or MEASURE (for the cost of that choice; *plan_s gets the planning
  * time when not NULL). */
@@ -46,13 +35,13 @@ static double fftw_pair_time_flags(int tx, int ty, int reps, unsigned flags, dou
     }
     mc_fftw_prepare(NULL);
     double t0 = mc_clock();
-    pair_arg p = {fftw_plan_dft_r2c_2d(ty, tx, r, c, flags),
+    mc_bench_pair p = {fftw_plan_dft_r2c_2d(ty, tx, r, c, flags),
                   fftw_plan_dft_c2r_2d(ty, tx, c, r, flags)};
     if (plan_s)
         *plan_s = mc_clock() - t0;
     for (size_t i = 0; i < (size_t)tx * ty; i++)
         r[i] = (double)(i % 17);
-    double t = mc_bench_time(do_pair, &p, reps);
+    double t = mc_bench_time(mc_bench_pair_run, &p, reps);
     fftw_destroy_plan(p.f);
     fftw_destroy_plan(p.b);
     fftw_free(r);

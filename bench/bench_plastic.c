@@ -172,17 +172,6 @@ static double cpu_time(void (*fn)(void *), void *arg, int reps)
     return t[reps / 2];
 }
 
-typedef struct {
-    fftw_plan f, b;
-} pair_arg;
-
-static void do_pair(void *a)
-{
-    pair_arg *x = a;
-    fftw_execute(x->f);
-    fftw_execute(x->b);
-}
-
 /* One bare r2c + c2r pair of tx x ty on ONE thread (the operators run their transforms on one
  * thread each, layers in parallel), FFTW_ESTIMATE as they plan: median CPU time of reps, s. */
 static double pair_time(int tx, int ty, int reps)
@@ -193,11 +182,11 @@ static double pair_time(int tx, int ty, int reps)
     if (r && c) {
         mc_fftw_prepare(NULL);
         fftw_plan_with_nthreads(1);
-        pair_arg p = {fftw_plan_dft_r2c_2d(ty, tx, r, c, FFTW_ESTIMATE),
+        mc_bench_pair p = {fftw_plan_dft_r2c_2d(ty, tx, r, c, FFTW_ESTIMATE),
                       fftw_plan_dft_c2r_2d(ty, tx, c, r, FFTW_ESTIMATE)};
         for (size_t i = 0; i < (size_t)tx * ty; i++)
             r[i] = (double)(i % 17);
-        t = cpu_time(do_pair, &p, reps);
+        t = cpu_time(mc_bench_pair_run, &p, reps);
         fftw_destroy_plan(p.f);
         fftw_destroy_plan(p.b);
         mc_fftw_prepare(NULL); /* the planner's count back to the run's */

@@ -23,17 +23,6 @@
 #define SUITE_MAX_S 600.0  /* the three-force runin suite (issue 13 item 4) */
 #define TRY_BUDGET_S 30.0  /* the largest step tried (predicted; a 256 x 128 x 16 step predicted at 50 s took 519 s once: the step time is irregular) */
 
-typedef struct {
-    fftw_plan f, b;
-} pair_arg;
-
-static void do_pair(void *a)
-{
-    pair_arg *x = a;
-    fftw_execute(x->f);
-    fftw_execute(x->b);
-}
-
 static double pair_time(int tx, int ty)
 {
     double *r = fftw_malloc(sizeof(double) * (size_t)tx * ty);
@@ -41,11 +30,11 @@ static double pair_time(int tx, int ty)
     double t = NAN;
     if (r && c) {
         mc_fftw_prepare(NULL);
-        pair_arg p = {fftw_plan_dft_r2c_2d(ty, tx, r, c, FFTW_ESTIMATE),
+        mc_bench_pair p = {fftw_plan_dft_r2c_2d(ty, tx, r, c, FFTW_ESTIMATE),
                       fftw_plan_dft_c2r_2d(ty, tx, c, r, FFTW_ESTIMATE)};
         for (size_t i = 0; i < (size_t)tx * ty; i++)
             r[i] = (double)(i % 17);
-        t = mc_bench_time(do_pair, &p, 31);
+        t = mc_bench_time(mc_bench_pair_run, &p, 31);
         fftw_destroy_plan(p.f);
         fftw_destroy_plan(p.b);
     }

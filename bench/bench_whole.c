@@ -32,17 +32,6 @@ static const int sizes[NSIZES] = {256, 512, 1024};
  * machine, as quoted in issue 13 (NOT measured by this bench). */
 static const double contact_s[NSIZES] = {0.39, 2.14, 15.95};
 
-typedef struct {
-    fftw_plan f, b;
-} pair_arg;
-
-static void do_pair(void *a)
-{
-    pair_arg *x = a;
-    fftw_execute(x->f);
-    fftw_execute(x->b);
-}
-
 /* One bare r2c + c2r pair of tx x ty, FFTW_ESTIMATE (as the operator plans), the run's threads:
  * median wall time of reps after a warm-up, s. */
 static double pair_time(int tx, int ty, int reps)
@@ -52,11 +41,11 @@ static double pair_time(int tx, int ty, int reps)
     double t = NAN;
     if (r && c) {
         mc_fftw_prepare(NULL);
-        pair_arg p = {fftw_plan_dft_r2c_2d(ty, tx, r, c, FFTW_ESTIMATE),
+        mc_bench_pair p = {fftw_plan_dft_r2c_2d(ty, tx, r, c, FFTW_ESTIMATE),
                       fftw_plan_dft_c2r_2d(ty, tx, c, r, FFTW_ESTIMATE)};
         for (size_t i = 0; i < (size_t)tx * ty; i++)
             r[i] = (double)(i % 17);
-        t = mc_bench_time(do_pair, &p, reps);
+        t = mc_bench_time(mc_bench_pair_run, &p, reps);
         fftw_destroy_plan(p.f);
         fftw_destroy_plan(p.b);
     }
