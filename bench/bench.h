@@ -38,6 +38,17 @@ int mc_bench_default_case(char *path, size_t len);
  * override or NULL; *plastic (may be NULL) = the step ran the plastic loop. NAN on failure. */
 double mc_bench_runin_step(int nx, int ny, const char *speed, const char *extra, int *plastic);
 
+/* The Hertz point case of issue 13 (steel on steel, R = 10 mm, F = 100 N, a square of side 3a on
+ * N x N cells, no [solver] section: a new user's defaults) written to path: 0, or 1. */
+int mc_bench_hertz_case(const char *path, int N);
+/* Run argv (argv[0] a path) as a child, stdout and stderr to /dev/null: wall time fork to exit,
+ * s; NAN when it did not exit with 0. */
+double mc_bench_run_child(const char *const argv[]);
+/* A number "key": value of a run's summary.json (the first occurrence); NAN if absent. */
+double mc_bench_json_number(const char *path, const char *key);
+/* rm -rf dir (a temporary directory of the bench). */
+void mc_bench_remove_tree(const char *dir);
+
 /* One bare FFTW r2c + c2r pair for the timers (the FFT reference every ratio is read against):
  * the two plans (fftw_plan) executed in turn. */
 typedef struct {

@@ -54,9 +54,7 @@ static double pair_time(int tx, int ty, int reps)
     return t;
 }
 
-/* Run argv (argv[0] a path) as a child, stdout and stderr to /dev/null: wall time fork to exit,
- * s; NAN when it did not exit with 0. */
-static double run_child(const char *const argv[])
+double mc_bench_run_child(const char *const argv[])
 {
     fflush(NULL);
     const double t0 = mc_clock();
@@ -79,8 +77,13 @@ static double run_child(const char *const argv[])
     return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? t : NAN;
 }
 
-static int write_case(const char *path, int N, double side)
+int mc_bench_hertz_case(const char *path, int N)
 {
+    mc_hertz_point hz;
+    mc_error err = {0};
+    if (mc_hertz_point_from_load(R_SPHERE, E_STEEL / (2 * (1 - NU * NU)), LOAD, &hz, &err))
+        return 1;
+    const double side = 3 * hz.a;
     FILE *f = fopen(path, "w");
     if (!f)
         return 1;
@@ -92,8 +95,7 @@ static int write_case(const char *path, int N, double side)
     return fclose(f) != 0;
 }
 
-/* A number "key": value of the run's summary.json (the first occurrence); NAN if absent. */
-static double json_number(const char *path, const char *key)
+double mc_bench_json_number(const char *path, const char *key)
 {
     FILE *f = fopen(path, "r");
     if (!f)
@@ -108,7 +110,7 @@ static double json_number(const char *path, const char *key)
     return p ? strtod(p + strlen(pat), NULL) : NAN;
 }
 
-static void remove_tree(const char *dir)
+void mc_bench_remove_tree(const char *dir)
 {
     char cmd[1200];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
@@ -141,17 +143,17 @@ int mc_bench_whole(vf_ctx *ctx, int quick)
     char ini[1100], out[1100];
     double floor_wall = INFINITY;
     snprintf(ini, sizeof ini, "%s/hertz16.ini", dir);
-    if (write_case(ini, 16, 3 * hz.a) == 0)
+    if (mc_bench_hertz_case(ini, 16) == 0)
         for (int r = 0; r < 3; r++) {
             snprintf(out, sizeof out, "%s/out16_%d", dir, r);
             const char *argv[] = {self, "run", ini, "--out", out, NULL};
-            floor_wall = fmin(floor_wall, run_child(argv));
+            floor_wall = fmin(floor_wall, mc_bench_run_child(argv));
         }
     for (int k = 0; k < nsizes; k++) {
         const int N = sizes[k];
         w[k].wall = INFINITY;
         snprintf(ini, sizeof ini, "%s/hertz%d.ini", dir, N);
-        if (write_case(ini, N, 3 * hz.a)) {
+        if (mc_bench_hertz_case(ini, N)) {
             vf_fail(ctx, "whole_case", "cannot write %s", ini);
             continue;
         }
@@ -159,7 +161,7 @@ int mc_bench_whole(vf_ctx *ctx, int quick)
         for (int r = 0; r < rounds; r++) {
             snprintf(out, sizeof out, "%s/out%d_%d", dir, N, r);
             const char *argv[] = {self, "run", ini, "--out", out, NULL};
-            const double t = run_child(argv);
+            const double t = mc_bench_run_child(argv);
             char js[1200];
             snprintf(js, sizeof js, "%s/summary.json", out);
             if (!(t > 0)) {
@@ -168,13 +170,13 @@ int mc_bench_whole(vf_ctx *ctx, int quick)
             }
             if (t < w[k].wall) {
                 w[k].wall = t;
-                w[k].total = json_number(js, "total_s");
-                w[k].setup = json_number(js, "setup_s");
-                w[k].contact = json_number(js, "contact_s");
-                w[k].iterations = (int)json_number(js, "iterations");
+                w[k].total = mc_bench_json_number(js, "total_s");
+                w[k].setup = mc_bench_json_number(js, "setup_s");
+                w[k].contact = mc_bench_json_number(js, "contact_s");
+                w[k].iterations = (int)mc_bench_json_number(js, "iterations");
                 w[k].ok = 1;
             }
-            remove_tree(out);
+            mc_bench_remove_tree(out);
         }
         mc_grid g = {N, N, 3 * hz.a / N, 3 * hz.a / N, 0, 0};
         mc_conv *c = NULL;
@@ -185,7 +187,7 @@ int mc_bench_whole(vf_ctx *ctx, int quick)
         }
         w[k].pair = pair_time(w[k].tx, w[k].ty, N >= 1024 ? 7 : 15);
     }
-    remove_tree(dir);
+    mc_bench_remove_tree(dir);
 
     FILE *f = vf_open(ctx, "whole.csv");
     if (f)

@@ -7,6 +7,7 @@
 
 #include "core/alloc.h"
 #include "contact/contact_internal.h"
+#include "core/psum.h"
 
 typedef int (*method_fn)(mc_contact_solver *, mc_qproblem *, double *, mc_qresult *, mc_error *);
 
@@ -243,20 +244,33 @@ double mc_contact_residual(const mc_contact_solver *s, const mc_qproblem *qp, co
                            const double *u, double delta)
 {
     double sg = mc_contact_gap_scale(s, qp, delta);
-    double worst = 0, sum = 0;
-    for (size_t i = 0; i < s->n; i++) {
-        double g = qp->h[i] + u[i] - delta, v;
-        double c = qp->cap ? qp->cap[i] : INFINITY;
-        if (q[i] <= 0)
-            v = -g;
-        else if (q[i] >= c)
-            v = g;
-        else
-            v = fabs(g);
-        if (v > worst)
-            worst = v;
-        sum += q[i];
+    /* per block: the worst violation and sum(q), combined in block order (core/psum.h) */
+    const mc_psum ps = mc_psum_blocks(s->n);
+    double part[MC_PSUM_MAX_BLOCKS], pworst[MC_PSUM_MAX_BLOCKS];
+#pragma omp parallel for schedule(static) if (ps.nb > 1)
+    for (long b = 0; b < ps.nb; b++) {
+        double worst = 0, sum = 0;
+        for (size_t i = mc_psum_lo(&ps, b); i < mc_psum_hi(&ps, b); i++) {
+            double g = qp->h[i] + u[i] - delta, v;
+            double c = qp->cap ? qp->cap[i] : INFINITY;
+            if (q[i] <= 0)
+                v = -g;
+            else if (q[i] >= c)
+                v = g;
+            else
+                v = fabs(g);
+            if (v > worst)
+                worst = v;
+            sum += q[i];
+        }
+        part[b] = sum;
+        pworst[b] = worst;
     }
+    double worst = 0;
+    for (long b = 0; b < ps.nb; b++)
+        if (pworst[b] > worst)
+            worst = pworst[b];
+    const double sum = mc_psum_total(part, ps.nb);
     double res = worst / sg;
     if (qp->control == MC_CONTROL_FORCE && qp->W > 0) {
         double lr = fabs(s->A * sum - qp->W) / qp->W;

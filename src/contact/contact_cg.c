@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "contact/contact_internal.h"
+#include "core/psum.h"
 
 /* Restart the conjugate recurrence only when more than this fraction of the free set changed.
  * Restarting on every change (or clipping) made rough contacts converge like steepest descent
@@ -23,35 +24,84 @@
  * a descent direction is replaced by the preconditioned residual. */
 #define RESTART_FRAC 0.1
 
+/* Loops over the n cells run on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums
+ * go through core/psum.h, so the iterates are the same bits on any thread count. */
+#define PAR(n) ((n) > MC_THREADS_MIN_CELLS)
+
 static double mean_on(const double *v, const unsigned char *mask, size_t n)
 {
-    double s = 0;
-    size_t m = 0;
-    for (size_t i = 0; i < n; i++)
-        if (mask[i]) {
-            s += v[i];
-            m++;
-        }
+    size_t m;
+    const double s = mc_psum_masked(v, mask, n, &m);
     return m ? s / (double)m : 0.0;
+}
+
+/* Sum of the gaps h~ + u over the loaded cells (q > 0; below the cap unless at_cap), and their
+ * number in *m. */
+static double loaded_gap_sum(const mc_contact_solver *s, const mc_qproblem *qp, const double *q,
+                             int at_cap, size_t *m)
+{
+    const mc_psum ps = mc_psum_blocks(s->n);
+    double part[MC_PSUM_MAX_BLOCKS];
+    size_t cnt = 0;
+#pragma omp parallel for schedule(static) reduction(+ : cnt) if (ps.nb > 1)
+    for (long b = 0; b < ps.nb; b++) {
+        double sum = 0;
+        for (size_t i = mc_psum_lo(&ps, b); i < mc_psum_hi(&ps, b); i++)
+            if (q[i] > 0 && (at_cap || !qp->cap || q[i] < qp->cap[i])) {
+                sum += qp->h[i] + s->u[i];
+                cnt++;
+            }
+        part[b] = sum;
+    }
+    *m = cnt;
+    return mc_psum_total(part, ps.nb);
 }
 
 /* Lagrange multiplier of the load constraint: the mean gap over the loaded cells. */
 static double force_delta(const mc_contact_solver *s, const mc_qproblem *qp, const double *q)
 {
-    double sum = 0;
-    size_t m = 0;
-    for (size_t i = 0; i < s->n; i++)
-        if (q[i] > 0 && (!qp->cap || q[i] < qp->cap[i])) {
-            sum += qp->h[i] + s->u[i];
-            m++;
-        }
+    size_t m;
+    double sum = loaded_gap_sum(s, qp, q, 0, &m);
     if (m == 0) /* every loaded cell sits at the cap: take the loaded cells */
-        for (size_t i = 0; i < s->n; i++)
-            if (q[i] > 0) {
-                sum += qp->h[i] + s->u[i];
-                m++;
-            }
+        sum = loaded_gap_sum(s, qp, q, 1, &m);
     return m ? sum / (double)m : 0.0;
+}
+
+/* The projected step q - alpha d onto 0 <= q <= cap on the free set, u - alpha Kd everywhere;
+ * *qsum receives sum(q) after the step, *clipped whether a bound was hit. */
+static void take_step(const mc_contact_solver *s, const unsigned char *S, const double *cap,
+                      double alpha, double *q, double *qsum, int *clipped)
+{
+    const double *d = s->dir, *Kd = s->kdir;
+    double *u = s->u;
+    const mc_psum ps = mc_psum_blocks(s->n);
+    double part[MC_PSUM_MAX_BLOCKS];
+    int clip = 0;
+#pragma omp parallel for schedule(static) reduction(| : clip) if (ps.nb > 1)
+    for (long b = 0; b < ps.nb; b++) {
+        double sum = 0;
+        for (size_t i = mc_psum_lo(&ps, b); i < mc_psum_hi(&ps, b); i++) {
+            u[i] -= alpha * Kd[i];
+            if (!S[i]) {
+                sum += q[i];
+                continue;
+            }
+            double v = q[i] - alpha * d[i];
+            const double c = cap ? cap[i] : INFINITY;
+            if (v < 0) {
+                v = 0;
+                clip = 1;
+            } else if (v > c) {
+                v = c;
+                clip = 1;
+            }
+            q[i] = v;
+            sum += v;
+        }
+        part[b] = sum;
+    }
+    *qsum = mc_psum_total(part, ps.nb);
+    *clipped = clip;
 }
 
 int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err)
@@ -71,6 +121,7 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
     for (;;) {
         if (force)
             delta = force_delta(s, qp, q);
+#pragma omp parallel for schedule(static) if (PAR(n))
         for (size_t i = 0; i < n; i++)
             g[i] = qp->h[i] + u[i] - delta;
         res->residual = mc_contact_residual(s, qp, q, u, delta);
@@ -88,6 +139,7 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         it++;
 
         size_t m = 0, nchanged = 0;
+#pragma omp parallel for schedule(static) reduction(+ : m, nchanged) if (PAR(n))
         for (size_t i = 0; i < n; i++) {
             double c = cap ? cap[i] : INFINITY;
             unsigned char free_ = mc_contact_free(q[i], c, g[i]);
@@ -108,9 +160,11 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         }
         if (force) { /* P g: directions must keep sum(q) */
             double mg = mean_on(g, S, n);
+#pragma omp parallel for schedule(static) if (PAR(n))
             for (size_t i = 0; i < n; i++)
                 g[i] = S[i] ? g[i] - mg : 0.0;
         } else {
+#pragma omp parallel for schedule(static) if (PAR(n))
             for (size_t i = 0; i < n; i++)
                 if (!S[i])
                     g[i] = 0.0;
@@ -118,73 +172,49 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         mc_precond_apply(s->pc, S, g, z);
         if (force) {
             double mz = mean_on(z, S, n);
+#pragma omp parallel for schedule(static) if (PAR(n))
             for (size_t i = 0; i < n; i++)
                 if (S[i])
                     z[i] -= mz;
         }
-        double gz = 0;
-        for (size_t i = 0; i < n; i++)
-            gz += g[i] * z[i];
+        double gz = mc_psum_dot(g, z, n);
         if (!(gz > 0)) { /* M lost definiteness on this set (round-off): steepest descent */
             memcpy(z, g, n * sizeof *z);
-            gz = 0;
-            for (size_t i = 0; i < n; i++)
-                gz += g[i] * g[i];
+            gz = mc_psum_dot(g, g, n);
             restart = 1;
             if (!(gz > 0))
                 break;
         }
-        double beta = restart ? 0.0 : gz / gz_old, gd = 0;
+        double beta = restart ? 0.0 : gz / gz_old;
+#pragma omp parallel for schedule(static) if (PAR(n))
         for (size_t i = 0; i < n; i++)
             d[i] = S[i] ? z[i] + beta * d[i] : 0.0;
         if (force && beta != 0.0) { /* the old direction lost cells that left S: keep the load */
             double md = mean_on(d, S, n);
+#pragma omp parallel for schedule(static) if (PAR(n))
             for (size_t i = 0; i < n; i++)
                 if (S[i])
                     d[i] -= md;
         }
-        for (size_t i = 0; i < n; i++)
-            gd += g[i] * d[i];
+        double gd = mc_psum_dot(g, d, n);
         if (!(gd > 0)) { /* the set changed under the recurrence: not a descent direction */
             memcpy(d, z, n * sizeof *d);
             gd = gz;
         }
         mc_contact_apply(s, d, Kd);
-        double dkd = 0;
-        for (size_t i = 0; i < n; i++)
-            dkd += d[i] * Kd[i];
+        double dkd = mc_psum_dot(d, Kd, n);
         if (!(dkd > 0)) {
             rc = mc_fail(err, MC_ERR_NUMERIC, "contact cg: non-positive curvature d'Kd = %g", dkd);
             break;
         }
-        double alpha = gd / dkd;
-        int clipped = 0;
-        double qsum = 0;
-        for (size_t i = 0; i < n; i++) {
-            if (!S[i]) {
-                qsum += q[i];
-                continue;
-            }
-            double v = q[i] - alpha * d[i];
-            double c = cap ? cap[i] : INFINITY;
-            if (v < 0) {
-                v = 0;
-                clipped = 1;
-            } else if (v > c) {
-                v = c;
-                clipped = 1;
-            }
-            q[i] = v;
-            qsum += v;
-            u[i] -= alpha * Kd[i];
-        }
-        for (size_t i = 0; i < n; i++)
-            if (!S[i])
-                u[i] -= alpha * Kd[i];
+        double alpha = gd / dkd, qsum;
+        int clipped;
+        take_step(s, S, cap, alpha, q, &qsum, &clipped);
         fresh = 0;
         if (clipped) {
             if (force && !cap && qsum > 0) { /* clipping added load: restore the balance */
                 double f = qp->W / (s->A * qsum);
+#pragma omp parallel for schedule(static) if (PAR(n))
                 for (size_t i = 0; i < n; i++)
                     q[i] *= f;
             }

@@ -7,6 +7,7 @@
 
 #include "core/alloc.h"
 #include "core/fftsize.h"
+#include "core/threads.h"
 #include "operator/box.h"
 #include "operator/operator.h"
 
@@ -162,32 +163,50 @@ int mc_precond_set_mask(mc_precond *pc, const unsigned char *mask, mc_error *err
     return MC_OK;
 }
 
+/* The O(N) loops run on the run's threads from this many cells on (core/threads.h). */
+#define PAR(n) ((size_t)(n) > MC_THREADS_MIN_CELLS)
+
 void mc_precond_apply(mc_precond *pc, const unsigned char *mask, const double *r, double *z)
 {
     const int nx = pc->g.nx, ny = pc->g.ny;
     const box_plan *p = pc->cur;
     const int fx = p->fx, fy = p->fy, hx = fx / 2 + 1;
-    memset(pc->real, 0, sizeof(double) * (size_t)fx * (size_t)fy);
     const mc_box *box = &pc->box;
-    for (int j = 0; j < box->ny; j++) {
-        size_t src = (size_t)(box->j0 + j) * nx + (size_t)box->i0;
+    const int par = PAR((size_t)fx * (size_t)fy);
+#pragma omp parallel for schedule(static) if (par)
+    for (int j = 0; j < fy; j++) {
         double *dst = pc->real + (size_t)j * fx;
+        if (j >= box->ny) {
+            memset(dst, 0, sizeof(double) * (size_t)fx);
+            continue;
+        }
+        size_t src = (size_t)(box->j0 + j) * nx + (size_t)box->i0;
         for (int i = 0; i < box->nx; i++)
             dst[i] = mask[src + i] ? r[src + i] : 0.0;
+        for (int i = box->nx; i < fx; i++)
+            dst[i] = 0.0;
     }
     fftw_execute(p->fwd);
-    const size_t nspec = (size_t)fy * (size_t)hx;
-    for (size_t k = 0; k < nspec; k++) {
+    const long nspec = (long)fy * hx;
+#pragma omp parallel for schedule(static) if (par)
+    for (long k = 0; k < nspec; k++) {
         pc->spec[k][0] *= p->symbol[k];
         pc->spec[k][1] *= p->symbol[k];
     }
     fftw_execute(p->inv);
-    memset(z, 0, sizeof(double) * (size_t)nx * (size_t)ny);
-    for (int j = 0; j < box->ny; j++) {
-        size_t dst = (size_t)(box->j0 + j) * nx + (size_t)box->i0;
-        const double *src = pc->real + (size_t)j * fx;
-        for (int i = 0; i < box->nx; i++)
-            if (mask[dst + i])
-                z[dst + i] = src[i];
+#pragma omp parallel for schedule(static) if (par)
+    for (int j = 0; j < ny; j++) {
+        double *zr = z + (size_t)j * nx;
+        const int jb = j - box->j0;
+        if (jb < 0 || jb >= box->ny) {
+            memset(zr, 0, sizeof(double) * (size_t)nx);
+            continue;
+        }
+        const double *src = pc->real + (size_t)jb * fx;
+        const unsigned char *mr = mask + (size_t)j * nx;
+        for (int i = 0; i < nx; i++) {
+            const int ib = i - box->i0;
+            zr[i] = ib >= 0 && ib < box->nx && mr[i] ? src[ib] : 0.0;
+        }
     }
 }

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/psum.h"
 
 struct mc_anderson {
     long ncells;
@@ -95,15 +96,9 @@ static int grow(mc_anderson *a, long need)
     return 1;
 }
 
-/* Dot product of two compact vectors of n values (a fixed order of summation per thread count). */
-static double dot(const double *x, const double *y, size_t n)
-{
-    double s = 0;
-#pragma omp parallel for schedule(static) reduction(+ : s) if (n > 262144)
-    for (size_t i = 0; i < n; i++)
-        s += x[i] * y[i];
-    return s;
-}
+/* Dot product of two compact vectors of n values: the same bits on any thread count
+ * (core/psum.h). */
+static double dot(const double *x, const double *y, size_t n) { return mc_psum_dot(x, y, n); }
 
 /* Solve the m x m system A gamma = b in place (partial pivoting); 0 when singular. */
 static int solve_small(int m, double A[][MC_ANDERSON_MAX_DEPTH], double *b, double *gamma)
