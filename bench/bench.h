@@ -55,6 +55,10 @@ typedef struct {
     void *f, *b; /* fftw_plan forward (r2c) and backward (c2r) */
 } mc_bench_pair;
 void mc_bench_pair_run(void *arg); /* fftw_execute(f), fftw_execute(b) of an mc_bench_pair */
+/* Bare FFTW: one r2c and one c2r of tx x ty on the run's threads, median wall time of reps after
+ * a warm-up, s (NAN without memory); flags FFTW_ESTIMATE (what the operators use) or
+ * FFTW_MEASURE (for the cost of that choice: *plan_s, when not NULL, gets the planning time). */
+double mc_bench_pair_time(int tx, int ty, int reps, unsigned flags, double *plan_s);
 
 /* One application of the eigenstrain operators for the timers (plastic/eigen_op.h): eigenstrain
  * components e[6] in, stresses sg[6] (shear modulus 80 GPa) or the surface displacement uz out. */

@@ -21,10 +21,7 @@ static void do_apply(void *a)
     mc_operator_apply(x->op, x->in, x->out);
 }
 
-/* Bare FFTW: one r2c and one c2r of the operator's padded size, same threads; flags ESTIMATE
- * (what the operator uses) or MEASURE (for the cost of that choice; *plan_s gets the planning
- * time when not NULL). */
-static double fftw_pair_time_flags(int tx, int ty, int reps, unsigned flags, double *plan_s)
+double mc_bench_pair_time(int tx, int ty, int reps, unsigned flags, double *plan_s)
 {
     double *r = fftw_malloc(sizeof(double) * (size_t)tx * ty);
     fftw_complex *c = fftw_malloc(sizeof(fftw_complex) * (size_t)ty * (tx / 2 + 1));
@@ -51,7 +48,7 @@ static double fftw_pair_time_flags(int tx, int ty, int reps, unsigned flags, dou
 
 static double fftw_pair_time(int tx, int ty, int reps)
 {
-    return fftw_pair_time_flags(tx, ty, reps, FFTW_ESTIMATE, NULL);
+    return mc_bench_pair_time(tx, ty, reps, FFTW_ESTIMATE, NULL);
 }
 
 int mc_bench_operator(vf_ctx *ctx, int quick)
@@ -123,7 +120,7 @@ int mc_bench_operator(vf_ctx *ctx, int quick)
      * algorithms while planning, so a plan, and results at round-off, can differ between runs) */
     int nm = quick ? 512 : 1024, tm = 2 * nm;
     double plan_m = NAN, t_est = fftw_pair_time(tm, tm, 7);
-    double t_meas = fftw_pair_time_flags(tm, tm, 7, FFTW_MEASURE, &plan_m);
+    double t_meas = mc_bench_pair_time(tm, tm, 7, FFTW_MEASURE, &plan_m);
     fftw_forget_wisdom(); /* else later ESTIMATE plans of that size would reuse what MEASURE found */
     vf_text(ctx, "\nPlans are made with FFTW_ESTIMATE: the same plan (and the same round-off) on "
                  "every run, as the regression gate needs. Its cost, measured at %d x %d: the "

@@ -23,26 +23,6 @@
 #define SUITE_MAX_S 600.0  /* the three-force runin suite (issue 13 item 4) */
 #define TRY_BUDGET_S 30.0  /* the largest step tried (predicted; a 256 x 128 x 16 step predicted at 50 s took 519 s once: the step time is irregular) */
 
-static double pair_time(int tx, int ty)
-{
-    double *r = fftw_malloc(sizeof(double) * (size_t)tx * ty);
-    fftw_complex *c = fftw_malloc(sizeof(fftw_complex) * (size_t)ty * (tx / 2 + 1));
-    double t = NAN;
-    if (r && c) {
-        mc_fftw_prepare(NULL);
-        mc_bench_pair p = {fftw_plan_dft_r2c_2d(ty, tx, r, c, FFTW_ESTIMATE),
-                      fftw_plan_dft_c2r_2d(ty, tx, c, r, FFTW_ESTIMATE)};
-        for (size_t i = 0; i < (size_t)tx * ty; i++)
-            r[i] = (double)(i % 17);
-        t = mc_bench_time(mc_bench_pair_run, &p, 31);
-        fftw_destroy_plan(p.f);
-        fftw_destroy_plan(p.b);
-    }
-    fftw_free(r);
-    fftw_free(c);
-    return t;
-}
-
 /* The default scene, its steps. */
 static void section_default(vf_ctx *ctx, const mc_scene *sc)
 {
@@ -63,7 +43,7 @@ static void section_default(vf_ctx *ctx, const mc_scene *sc)
         mc_conv_table_dims(c, &tx, &ty);
         mc_conv_destroy(&c);
     }
-    const double P = pair_time(tx, ty);
+    const double P = mc_bench_pair_time(tx, ty, 31, FFTW_ESTIMATE, NULL);
     const mc_runin_summary *r = &res.runin;
     /* per kind: plastic run-down steps, elastic run-down steps, run-up steps */
     double sec[3] = {0}, solves[3] = {0}, roots[3] = {0};

@@ -32,28 +32,6 @@ static const int sizes[NSIZES] = {256, 512, 1024};
  * machine, as quoted in issue 13 (NOT measured by this bench). */
 static const double contact_s[NSIZES] = {0.39, 2.14, 15.95};
 
-/* One bare r2c + c2r pair of tx x ty, FFTW_ESTIMATE (as the operator plans), the run's threads:
- * median wall time of reps after a warm-up, s. */
-static double pair_time(int tx, int ty, int reps)
-{
-    double *r = fftw_malloc(sizeof(double) * (size_t)tx * ty);
-    fftw_complex *c = fftw_malloc(sizeof(fftw_complex) * (size_t)ty * (tx / 2 + 1));
-    double t = NAN;
-    if (r && c) {
-        mc_fftw_prepare(NULL);
-        mc_bench_pair p = {fftw_plan_dft_r2c_2d(ty, tx, r, c, FFTW_ESTIMATE),
-                      fftw_plan_dft_c2r_2d(ty, tx, c, r, FFTW_ESTIMATE)};
-        for (size_t i = 0; i < (size_t)tx * ty; i++)
-            r[i] = (double)(i % 17);
-        t = mc_bench_time(mc_bench_pair_run, &p, reps);
-        fftw_destroy_plan(p.f);
-        fftw_destroy_plan(p.b);
-    }
-    fftw_free(r);
-    fftw_free(c);
-    return t;
-}
-
 double mc_bench_run_child(const char *const argv[])
 {
     fflush(NULL);
@@ -185,7 +163,7 @@ int mc_bench_whole(vf_ctx *ctx, int quick)
             mc_conv_table_dims(c, &w[k].tx, &w[k].ty);
             mc_conv_destroy(&c);
         }
-        w[k].pair = pair_time(w[k].tx, w[k].ty, N >= 1024 ? 7 : 15);
+        w[k].pair = mc_bench_pair_time(w[k].tx, w[k].ty, N >= 1024 ? 7 : 15, FFTW_ESTIMATE, NULL);
     }
     mc_bench_remove_tree(dir);
 
