@@ -10,6 +10,49 @@
 #include <string.h>
 
 #include "contact/contact_internal.h"
+#include "core/psum.h"
+
+/* Loops over the n cells run on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums
+ * go through core/psum.h (the same bits on any thread count). */
+#define PAR(n) ((n) > MC_THREADS_MIN_CELLS)
+
+/* sum of a[i] b[i] over the cells of S */
+static double masked_dot(const double *a, const double *b, const unsigned char *S, size_t n)
+{
+    const mc_psum ps = mc_psum_blocks(n);
+    double part[MC_PSUM_MAX_BLOCKS];
+#pragma omp parallel for schedule(static) if (ps.nb > 1)
+    for (long k = 0; k < ps.nb; k++) {
+        double sum = 0;
+        for (size_t i = mc_psum_lo(&ps, k); i < mc_psum_hi(&ps, k); i++)
+            if (S[i])
+                sum += a[i] * b[i];
+        part[k] = sum;
+    }
+    return mc_psum_total(part, ps.nb);
+}
+
+/* sum(q) over the cells below their cap (*free_) and at it (*capped) */
+static void split_sums(const double *q, const double *cap, size_t n, double *free_,
+                       double *capped)
+{
+    const mc_psum ps = mc_psum_blocks(n);
+    double pf[MC_PSUM_MAX_BLOCKS], pc[MC_PSUM_MAX_BLOCKS];
+#pragma omp parallel for schedule(static) if (ps.nb > 1)
+    for (long k = 0; k < ps.nb; k++) {
+        double sf = 0, sc = 0;
+        for (size_t i = mc_psum_lo(&ps, k); i < mc_psum_hi(&ps, k); i++) {
+            if (cap && q[i] >= cap[i])
+                sc += q[i];
+            else
+                sf += q[i];
+        }
+        pf[k] = sf;
+        pc[k] = sc;
+    }
+    *free_ = mc_psum_total(pf, ps.nb);
+    *capped = mc_psum_total(pc, ps.nb);
+}
 
 int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err)
 {
@@ -39,16 +82,13 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
     res->converged = 0;
     for (;;) {
         mc_contact_apply(s, q, u);
-        size_t m = 0;
-        double gsum = 0;
+#pragma omp parallel for schedule(static) if (PAR(n))
         for (size_t i = 0; i < n; i++) {
             g[i] = qp->h[i] + u[i];
             S[i] = q[i] > 0 && (!cap || q[i] < cap[i]);
-            if (S[i]) {
-                gsum += g[i];
-                m++;
-            }
         }
+        size_t m;
+        const double gsum = mc_psum_masked(g, S, n, &m);
         if (force) {
             if (m == 0) {
                 if (cap) { /* the free set emptied: P&K's cap variant breaks down here */
@@ -64,6 +104,7 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
             }
             delta = gsum / (double)m;
         }
+#pragma omp parallel for schedule(static) if (PAR(n))
         for (size_t i = 0; i < n; i++)
             g[i] -= delta;
         if (!force) {
@@ -90,32 +131,24 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         if (it >= s->opt.max_iterations)
             break;
         it++;
-        double G = 0;
-        for (size_t i = 0; i < n; i++)
-            if (S[i])
-                G += g[i] * g[i];
+        const double G = masked_dot(g, g, S, n);
         double beta = !restart && G_old > 0 ? G / G_old : 0.0;
+#pragma omp parallel for schedule(static) if (PAR(n))
         for (size_t i = 0; i < n; i++)
             d[i] = S[i] ? g[i] + beta * d[i] : 0.0;
         G_old = G;
         mc_contact_apply(s, d, Kd);
         if (force) {
-            double mKd = 0;
-            for (size_t i = 0; i < n; i++)
-                if (S[i])
-                    mKd += Kd[i];
-            mKd /= (double)m;
+            size_t mk;
+            const double mKd = mc_psum_masked(Kd, S, n, &mk) / (double)m;
+#pragma omp parallel for schedule(static) if (PAR(n))
             for (size_t i = 0; i < n; i++)
                 Kd[i] -= mKd;
         }
-        double num = 0, den = 0;
-        for (size_t i = 0; i < n; i++)
-            if (S[i]) {
-                num += g[i] * d[i];
-                den += Kd[i] * d[i];
-            }
+        const double num = masked_dot(g, d, S, n), den = masked_dot(Kd, d, S, n);
         double alpha = den != 0 ? num / den : 0.0;
         int overlap = 0;
+#pragma omp parallel for schedule(static) reduction(| : overlap) if (PAR(n))
         for (size_t i = 0; i < n; i++) {
             double c = cap ? cap[i] : INFINITY;
             if (S[i]) {
@@ -131,16 +164,12 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         }
         restart = overlap;
         if (force) { /* load balance: scale the excess of the uncapped cells */
-            double sum_free = 0, sum_cap = 0;
-            for (size_t i = 0; i < n; i++) {
-                if (cap && q[i] >= cap[i])
-                    sum_cap += q[i];
-                else
-                    sum_free += q[i];
-            }
+            double sum_free, sum_cap;
+            split_sums(q, cap, n, &sum_free, &sum_cap);
             double target = qp->W / s->A - sum_cap;
             if (sum_free > 0 && target > 0) {
                 double f = target / sum_free;
+#pragma omp parallel for schedule(static) if (PAR(n))
                 for (size_t i = 0; i < n; i++)
                     if (!(cap && q[i] >= cap[i]))
                         q[i] = cap ? fmin(q[i] * f, cap[i]) : q[i] * f;
