@@ -1,10 +1,11 @@
 /* test_eigen_bar.c - the bar limit (plane strain) of the eigenstrain kernels and the strip limit of
  * Love's pressure stresses (kernels/eigen.h mc_eigen_*_bar, kernels/kernel.h mc_strip_stress_p;
- * docs/theory.md §20) against their independently tested cuboid and rectangle counterparts
+ * docs/theory.md §8.5) against their independently tested cuboid and rectangle counterparts
  * evaluated at a large y half-length L: the difference must shrink at the rate of the missing
  * tail (stress of a cuboid ~ 1/y^3 beyond L: O(L^-2); surface displacement and Love's stresses
  * ~ 1/y^2: O(L^-1)), which a wrong limit (an error d independent of L) cannot do once d exceeds
- * a tenth of the tail. Lengths in units of the cell (hx = 1/2). */
+ * a tenth of the tail; and the bar's surface displacement against the 2-D reciprocity with
+ * Flamant's line load. Lengths in units of the cell (hx = 1/2). */
 #include <float.h>
 #include <math.h>
 
@@ -145,6 +146,43 @@ START_TEST(test_bar_p3_and_strip_limit)
 }
 END_TEST
 
+/* An independent closed form of the bar's surface displacement: reciprocity with the Flamant line
+ * load directly in 2-D (docs/theory.md §8.5; Johnson 1985 ch. 2):
+ *   D_ij = -(2/pi) sum over corners s_x s_z G_ij(x_c - X, z_c), s = +1 at upper bounds,
+ *   G_xx = (z/2) atan(x/z), G_zz = (x/2) ln(x^2 + z^2) + (z/2) atan(x/z), G_xz = (x/2) atan(z/x),
+ *   D_yy = nu (D_xx + D_zz) (plane strain), column xz = 2 D_xz.
+ * The two forms share no code (the bar limit comes from the 3-D corner functions): round-off of
+ * O(1) corner terms (measured 3e-16). */
+#define TOL_FLAMANT (64.0 * DBL_EPSILON)
+
+static void flamant_G(double x, double z, double g[3])
+{
+    g[0] = 0.5 * z * atan2(x, z);
+    g[1] = (x != 0.0 ? 0.5 * x * log(x * x + z * z) : 0.0) + 0.5 * z * atan2(x, z);
+    g[2] = x != 0.0 ? 0.5 * x * atan(z / x) : 0.0;
+}
+
+START_TEST(test_bar_disp_flamant)
+{
+    const double x = PTS[_i][0], z1 = PTS[_i][1], z2 = z1 + 0.7;
+    const double xs[2] = {x - HX, x + HX}, zs[2] = {z1, z2};
+    double B[6], d[3] = {0.0, 0.0, 0.0};
+    mc_eigen_surface_uz_bar(xs[0], xs[1], z1, z2, NU, B);
+    for (int i = 0; i < 2; i++)
+        for (int k = 0; k < 2; k++) {
+            double g[3];
+            flamant_G(xs[i], zs[k], g);
+            const double sgn = (i ? 1.0 : -1.0) * (k ? 1.0 : -1.0);
+            for (int q = 0; q < 3; q++)
+                d[q] += -2.0 / M_PI * sgn * g[q];
+        }
+    const double want[6] = {d[0], NU * (d[0] + d[1]), d[1], 0.0, 0.0, 2.0 * d[2]};
+    for (int c = 0; c < 6; c++)
+        ck_assert_msg(fabs(B[c] - want[c]) <= TOL_FLAMANT, "point %d column %d: bar %.15g, "
+                      "Flamant %.15g", _i, c, B[c], want[c]);
+}
+END_TEST
+
 Suite *suite_eigen_bar(void);
 Suite *suite_eigen_bar(void)
 {
@@ -152,6 +190,7 @@ Suite *suite_eigen_bar(void)
     TCase *t = tcase_create("limits");
     tcase_add_loop_test(t, test_bar_stress_limit, 0, NPTS);
     tcase_add_loop_test(t, test_bar_disp_limit, 0, NPTS);
+    tcase_add_loop_test(t, test_bar_disp_flamant, 0, NPTS);
     tcase_add_loop_test(t, test_bar_p3_and_strip_limit, 0, NPTS);
     suite_add_tcase(s, t);
     return s;
