@@ -71,7 +71,7 @@ void mc_eigen_stress1(double x, double y, double z, double hx, double hy, double
 void mc_eigen_surface_szz12(double x, double y, double hx, double hy, double z1, double z2,
                             double nu, double s[6]);
 
-/* ---- the bar limit: a cuboid infinitely long along y (plane strain; docs/theory.md §20) -------
+/* ---- the bar limit: a cuboid infinitely long along y (plane strain; docs/theory.md §8.5) -------
  *
  * A y-uniform eigenstrain field is a sum of bars |y'| < infinity; each function below is the limit
  * of its cuboid counterpart above as the y half-length tends to infinity, observed at any y (the

@@ -90,7 +90,7 @@ void mc_eigen_surface_uz(double x1, double x2, double y1, double y2, double z1, 
     D[5] = 2.0 * g * (J[2] + J[6]);
 }
 
-/* The bar limit (docs/theory.md §20): F(x, +L, z) - F(x, -L, z) of the y corners as L -> infinity,
+/* The bar limit (docs/theory.md §8.5): F(x, +L, z) - F(x, -L, z) of the y corners as L -> infinity,
  * over c0, up to parts of x alone or z alone (they cancel in the corner sum over x and z). With
  * th = atan2(x, z) (z >= 0), lr = ln(x^2 + z^2), m = 1 - 2nu, n2 = 2 (1 - nu):
  *   F_x^(x) = x lr - m (2 z th + x lr)      F_x^(z) = (1 + m) z lr - 2 m x th

@@ -114,7 +114,7 @@ static void cuboid_H(double x, double y, double z, double xlo, double xhi, doubl
             }
 }
 
-/* The bar limit (docs/theory.md §20): the corner functions of an infinitely long bar along y,
+/* The bar limit (docs/theory.md §8.5): the corner functions of an infinitely long bar along y,
  * the difference H(a_x, +L, a_z) - H(a_x, -L, a_z) of the y corners as L -> infinity, up to
  * parts that depend on a_x alone or a_z alone (they cancel in the corner sum over x and z).
  * With rho^2 = a_x^2 + a_z^2 and t_p = atan(a_s/a_p) for the in-plane pair (p, s) = (x, z):
@@ -272,7 +272,7 @@ void mc_eigen_surface_szz12(double x, double y, double hx, double hy, double z1,
         s[c] = 2.0 * S[2][c];
 }
 
-/* ---- the bar limit (plane strain; docs/theory.md §20) --------------------------------------- */
+/* ---- the bar limit (plane strain; docs/theory.md §8.5) --------------------------------------- */
 
 static int inside_bar(double x, double z, double hx, double z1, double z2)
 {

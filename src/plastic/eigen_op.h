@@ -21,7 +21,7 @@
  * eigenstrain is then uniform along y and every cuboid is a bar infinitely long along y: the
  * tables hold the bar limits of kernels/eigen.h (mc_eigen_*_bar) and the strip limit of Love's
  * stresses (kernels/kernel.h mc_strip_stress_p), and both backends run unchanged over them
- * (theory.md §20). Periodic y with ny > 1 is refused with MC_ERR_LIMIT.
+ * (theory.md §8.5). Periodic y with ny > 1 is refused with MC_ERR_LIMIT.
  *
  * Objects are planned once and applied many times; apply never allocates and cannot fail; one
  * thread at a time per object (it owns its workspace); create from one thread (FFTW's planner).
