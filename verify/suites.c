@@ -26,8 +26,8 @@ static const vf_suite all[] = {
               "0.4 um (paper Fig. 2-4)",
      .run = vf_suite_mesh_convergence},
     {.name = "yield_onset",
-     .title = "Yield onset of a Hertz sphere: no plastic strain at 0.99, plastic strain at the "
-              "right depth at 1.01 of the onset p0",
+     .title = "Yield onset of a Hertz sphere and cylinder: no plastic strain at 0.99, plastic "
+              "strain at the right depth at 1.01 of the onset p0",
      .run = vf_suite_yield_onset},
     {.name = "kogut_etsion",
      .title = "Elastic-perfectly plastic sphere on a rigid flat against the Kogut-Etsion fits",

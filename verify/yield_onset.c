@@ -12,14 +12,10 @@
  * Point: a rigid sphere R = 15 mm on an E = 210 GPa, nu = 0.3 half-space (the scene's sphere,
  * [body2] rigid), load from Hertz for the target p0.
  *
- * Line contact: not run. The elastic-plastic stage needs [load] force on a free grid (the
- * eigenstrain operators refuse a periodic axis, plastic/eigen_op.h), so plane strain can only be
- * approximated by a long roller; tried with a straight section |y| <= 8b and crowned ends, the
- * roller's ends carry a pressure rise (its largest von Mises stress 0.665 p0 against the
- * plane-strain 0.5575 p0) and yield first, and plastic strain reached the central section
- * |y| <= 4b already at 0.99 onset (4 minutes per pair of runs): not a test of the plane-strain
- * onset. The line factor 1.794 Y rests on the elastic stress suites (hertz_line, §6.3) until the
- * stage supports a periodic axis. */
+ * Line: a rigid cylinder R = 15 mm on the same half-space, the contact uniform along y: a grid
+ * periodic along y with one row (as hertz_line), where the eigenstrain operators take every
+ * cuboid as a bar infinitely long along y (plane strain; docs/theory.md §8.5), loaded by
+ * [load] force_per_length from Hertz line for the target p0. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,6 +36,9 @@
  * stresses of Johnson 1985 eqs. 3.45 and 4.76: 0.620041 at 0.48086 a, 0.557516 at 0.70429 b) */
 #define VM_POINT 0.620041
 #define Z_POINT 0.48086
+#define VM_LINE 0.557516
+#define Z_LINE 0.70429
+#define R_CYL 15e-3
 #define BELOW 0.99
 #define ABOVE 1.01
 /* Depth tolerance: 0.01 a (b), the brief's +-1 %. The layers are 0.02 a (0.025 b) thick, finer
@@ -48,6 +47,18 @@
  * pixelation O((dx/a)^2) (hertz_point: p_max within 0.15 (dx/a)^2); 0.5 % keeps the bracket 0.99/1.01 on the right side with a factor 2 to spare. */
 #define DEPTH_TOL 0.01
 #define FACTOR_TOL 0.005
+/* Line: b/dx = LINE_N (fast) or LINE_N_FULL cells (the 2-D grid is cheap), layers of dz =
+ * LINE_DZ_DX dx down to LINE_DEPTH b (the onset at 0.7043 b; the 0.5 Y contour of the elastic
+ * field reaches ~1.1 b), columns: the contact box + 0.25 b. dz = dx / 2 on purpose: for
+ * 0.6 < dz/dx < 1.6 the discrete residual stress operator (cell-centre collocation) gives an
+ * x-z checkerboard of deviatoric eigenstrain a negative energy (-sigma_r : eps < 0; the 3-D
+ * operator likewise for a pattern uniform along y, docs/theory.md §8.5), and on a line grid,
+ * where that pattern is available, the perfectly plastic fixed point locked into it at b/dx = 30
+ * and 40 with dz = dx (alternate cells yielding, 3 x the plastic strain, 500+ sweeps). */
+#define LINE_DEPTH 1.2
+#define LINE_DZ_DX 0.5
+#define LINE_N 20
+#define LINE_N_FULL 40
 #define SOLVER_TOL 1e-10
 
 typedef struct {
@@ -158,6 +169,42 @@ static int run_point(double ratio, int N, onset_t *o, double yscale, mc_error *e
     return rc;
 }
 
+/* ---- line contact ---- */
+static int run_line(double ratio, int N, onset_t *o, double yscale, mc_error *err)
+{
+    double estar = E1 / (1 - NU * NU);
+    double p0 = ratio * YIELD / VM_LINE;
+    double w = M_PI * R_CYL * p0 * p0 / estar; /* p0^2 = w E* / (pi R) */
+    mc_hertz_line hz;
+    int rc = mc_hertz_line_from_load(R_CYL, estar, w, &hz, err);
+    if (rc != MC_OK)
+        return rc;
+    double dx = hz.b / N;
+    int n = 2 * (int)ceil(1.5 * N) + 1;
+    mc_scene sc;
+    vu_scene(&sc, n, 1, dx, dx);
+    sc.grid.periodic_y = 1;
+    sc.geometry.shape = MC_SHAPE_CYLINDER;
+    sc.geometry.radius = R_CYL;
+    sc.body1 = (mc_material){E1, NU, 0};
+    sc.body2 = (mc_material){E1, NU, 1};
+    sc.load.kind = MC_LOAD_FORCE_PER_LENGTH;
+    sc.load.value = w;
+    plastic_keys(&sc, hz.b, LINE_DEPTH, LINE_DZ_DX / N, 0.25);
+    sc.plasticity.yield_stress *= yscale;
+    mc_results r;
+    rc = mc_pipeline_run(&sc, &r, err);
+    if (rc == MC_OK || rc == MC_NOT_CONVERGED) {
+        o->p0 = hz.p0;
+        o->a = hz.b;
+        o->load = w;
+        measure(&r, o);
+        rc = MC_OK;
+    }
+    mc_results_free(&r);
+    return rc;
+}
+
 static const char *getenv_scale(double *s)
 {
     /* MC_VERIFY_YIELD_SCALE: multiply the yield stress (a mutation test of this suite) */
@@ -174,25 +221,31 @@ int vf_suite_yield_onset(vf_ctx *ctx, int fast)
     if (getenv_scale(&yscale))
         vf_text(ctx, "**Mutation run**: yield stress scaled by %.4g (MC_VERIFY_YIELD_SCALE).",
                 yscale);
-    const int N = fast ? 10 : 16;
-    onset_t lo = {0}, hi = {0};
+    const int N = fast ? 10 : 16, NL = fast ? LINE_N : LINE_N_FULL;
+    onset_t lo = {0}, hi = {0}, llo = {0}, lhi = {0};
     FILE *f = vf_open(ctx, "onset.csv");
     if (f)
         fprintf(f, "contact,p0_over_onset,p0_Pa,a_m,load,vm_factor,peq_max,peq_axis,z_peak_over_a,"
                    "off_axis_over_a,shortcut,converged,nz,dz_over_a,outer,time_s\n");
-    for (int s = 0; s < 2; s++) {
+    /* s = 0, 1: the point below and above its onset; s = 2, 3: the line (a_m is b, the load
+     * N/m) */
+    for (int s = 0; s < 4; s++) {
         mc_error err = {0};
-        double ratio = s ? ABOVE : BELOW;
-        onset_t *o = s ? &hi : &lo;
-        if (run_point(ratio, N, o, yscale, &err) != MC_OK) {
-            vf_fail(ctx, s ? "run_above" : "run_below", "%s", err.msg);
+        const int line = s >= 2, above = s & 1;
+        double ratio = above ? ABOVE : BELOW;
+        onset_t *o = line ? (above ? &lhi : &llo) : (above ? &hi : &lo);
+        int rc = line ? run_line(ratio, NL, o, yscale, &err) : run_point(ratio, N, o, yscale, &err);
+        if (rc != MC_OK) {
+            static const char *ids[] = {"run_below", "run_above", "line_run_below",
+                                        "line_run_above"};
+            vf_fail(ctx, ids[s], "%s", err.msg);
             continue;
         }
         if (f)
-            fprintf(f, "point,%.2f,%.8g,%.8g,%.8g,%.8g,%.8g,%.8g,%.6f,%.6f,%d,%d,%d,%.5f,%d,%.3f\n",
-                    ratio, o->p0, o->a, o->load, o->vm_factor, o->peq_max, o->peq_axis,
-                    o->z_peak / o->a, o->off_axis / o->a, o->shortcut, o->converged, o->nz,
-                    o->dz / o->a, o->outer, o->time);
+            fprintf(f, "%s,%.2f,%.8g,%.8g,%.8g,%.8g,%.8g,%.8g,%.6f,%.6f,%d,%d,%d,%.5f,%d,%.3f\n",
+                    line ? "line" : "point", ratio, o->p0, o->a, o->load, o->vm_factor, o->peq_max,
+                    o->peq_axis, o->z_peak / o->a, o->off_axis / o->a, o->shortcut, o->converged,
+                    o->nz, o->dz / o->a, o->outer, o->time);
     }
     if (f)
         vf_close(ctx, f);
@@ -224,18 +277,41 @@ int vf_suite_yield_onset(vf_ctx *ctx, int fast)
             "counter-body, 2 load steps. The depth is the vertex of the parabola through the three "
             "layers around the largest plastic strain of the axis column.",
             N, 2 * (int)ceil(1.5 * N) + 1, 2 * (int)ceil(1.5 * N) + 1, YIELD * 1e-6);
+
+    vf_check(ctx, "line_vm_factor", "max elastic von Mises / p0 of the discrete line solve at "
+             "0.99 onset", "docs/theory.md §6.5 (Johnson 1985, plane strain)", VM_LINE,
+             llo.vm_factor, FACTOR_TOL, VF_REL);
+    vf_check(ctx, "line_below_peq", "largest plastic strain at p0 = 0.99 x 1.7937 Y (line)",
+             "no yield below onset (§18.1)", 0, llo.peq_max, 0, VF_MAX);
+    vf_check(ctx, "line_below_shortcut", "elastic shortcut taken at 0.99 onset, line (1 = yes)",
+             "no yield below onset", 1, llo.shortcut, 0, VF_ABS);
+    vf_check(ctx, "line_above_yields", "plastic strain on the axis at p0 = 1.01 x onset, line "
+             "(1 = yes)", "yield above onset (§18.1)", 1, lhi.peq_axis > 0, 0, VF_ABS);
+    vf_check(ctx, "line_above_depth", "depth of the plastic strain maximum on the axis, z/b",
+             "docs/theory.md §6.5, §18.1", Z_LINE, lhi.z_peak / lhi.a, DEPTH_TOL, VF_ABS);
+    vf_check(ctx, "line_above_on_axis", "distance of the largest plastic strain from the axis / b",
+             "yield starts on the axis (within one cell)", 0, lhi.off_axis / lhi.a, 1.01 / NL,
+             VF_MAX);
+    vf_check(ctx, "line_above_converged", "every load step converged at 1.01 onset, line",
+             "loop contract", 1, lhi.converged, 0, VF_ABS);
+    vf_info(ctx, "line_above_peq_max", "largest plastic strain at 1.01 onset, line", "", NAN,
+            lhi.peq_max);
+    vf_regress(ctx, "line_above_peq_max", VF_TIER_NONE);
+    vf_info(ctx, "line_time_s", "run time of both line runs, s", "", NAN, llo.time + lhi.time);
+    vf_regress(ctx, "line_time_s", VF_TIER_NONE);
     vf_text(ctx,
-            "Line contact (p0 = 1.7937 Y at 0.7043 b): not run. The elastic-plastic stage needs "
-            "[load] force on a free grid (the eigenstrain operators refuse a periodic axis), and a "
-            "long crowned roller yields first at its ends (von Mises 0.665 p0 there against the "
-            "plane-strain 0.5575 p0), with plastic strain reaching the central section at 0.99 "
-            "onset: that is not a test of the plane-strain onset (see the header of "
-            "verify/yield_onset.c).");
+            "\n\nLine: a rigid cylinder R = %.0f mm, the contact uniform along y (periodic y, one "
+            "row: plane strain, every volume cell a bar infinitely long along y, docs/theory.md §8.5), "
+            "load per unit length from Hertz line. Grid: b/dx = %d (%d x 1 cells), layers of "
+            "%.3g b (dx/2) down to %.2g b, columns: the contact box + 0.25 b; otherwise as the "
+            "point.",
+            R_CYL * 1e3, NL, 2 * (int)ceil(1.5 * NL) + 1, LINE_DZ_DX / NL, LINE_DEPTH);
     vf_plot(ctx, "onset.png", "Largest plastic strain just below and above the yield onset",
             "set datafile separator ','\nset grid\nset key top left\nset logscale y\n"
             "set xlabel 'p0 / onset p0'\nset ylabel 'max equivalent plastic strain (1e-12 = none)'\n"
             "set xrange [0.98:1.02]\n"
-            "plot 'onset.csv' every ::1 using 2:($7 + 1e-12) with linespoints pt 7 title "
-            "'Hertz sphere'");
+            "plot 'onset.csv' every ::1::2 using 2:($7 + 1e-12) with linespoints pt 7 title "
+            "'Hertz sphere', '' every ::3::4 using 2:($7 + 1e-12) with linespoints pt 5 title "
+            "'Hertz cylinder (plane strain)'");
     return 0;
 }

@@ -105,14 +105,19 @@ static int plasticity_rules(const mc_scene *s, mc_error *err, const char **secti
 {
     if (!s->plasticity.enabled)
         return MC_OK;
-    if (s->load.kind != MC_LOAD_FORCE)
+    if (s->load.kind != MC_LOAD_FORCE && s->load.kind != MC_LOAD_FORCE_PER_LENGTH)
         BLAME("load", "force",
-              "[plasticity] needs [load] force (the load rises in steps to it); approach, "
-              "force_per_length and pressure_file are not supported by the elastic-plastic stage");
-    if (s->grid.periodic_x || s->grid.periodic_y)
-        BLAME("mesh", s->grid.periodic_x ? "periodic_x" : "periodic_y",
-              "[plasticity] needs free (non-periodic) mesh axes: the residual fields of a local "
-              "plastic zone are not periodic");
+              "[plasticity] needs [load] force or force_per_length (the load rises in steps to "
+              "it); approach and pressure_file are not supported by the elastic-plastic stage");
+    if (s->grid.periodic_x)
+        BLAME("mesh", "periodic_x",
+              "[plasticity] with [mesh] periodic_x = yes: the x axis must be free (the residual "
+              "fields of a local plastic zone are not periodic)");
+    if (s->grid.periodic_y && s->grid.ny != 1)
+        BLAME("mesh", "periodic_y",
+              "[plasticity] with [mesh] periodic_y = yes needs ny = 1 (a line contact, uniform "
+              "along y: plane strain), not ny = %d; accepted: periodic_y = no, or ny = 1",
+              s->grid.ny);
     if (isfinite(s->load.pressure_cap))
         BLAME("load", "pressure_cap",
               "[load] pressure_cap cannot be combined with [plasticity] (criterion = "

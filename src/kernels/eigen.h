@@ -71,4 +71,24 @@ void mc_eigen_stress1(double x, double y, double z, double hx, double hy, double
 void mc_eigen_surface_szz12(double x, double y, double hx, double hy, double z1, double z2,
                             double nu, double s[6]);
 
+/* ---- the bar limit: a cuboid infinitely long along y (plane strain; docs/theory.md §8.5) -------
+ *
+ * A y-uniform eigenstrain field is a sum of bars |y'| < infinity; each function below is the limit
+ * of its cuboid counterpart above as the y half-length tends to infinity, observed at any y (the
+ * field does not depend on y), in closed form (the corner functions' y-corner difference expanded
+ * for large length; no large number is formed, so no cancellation). The limit is finite: S1 and S2
+ * decay like the inverse cube of the distance from a cuboid and u_z like its inverse square, so
+ * the sum over a row of cuboids converges. Columns and rows odd in y (xy, yz) vanish (pairs that
+ * couple an odd-in-y row with an even-in-y column), as does the yy row's total strain: the bar's
+ * total eps_yy is 0 (plane strain; the eps*_yy column acts through the other components).
+ * The surface displacement of a bar decays like 1/x^2 or faster (the field of an eigenstrain
+ * bar is a force dipole): unlike the 2-D displacement of a line load it has no arbitrary
+ * constant. Arguments as the cuboid functions with the y extent dropped. */
+void mc_eigen_surface_uz_bar(double x1, double x2, double z1, double z2, double nu, double D[6]);
+void mc_eigen_stress1_bar(double x, double z, double hx, double z1, double z2, double nu,
+                          double S[6][6]);
+void mc_eigen_stress12_bar(double x, double z, double hx, double z1, double z2, double nu,
+                           double S[6][6]);
+void mc_eigen_surface_szz12_bar(double x, double hx, double z1, double z2, double nu, double s[6]);
+
 #endif

@@ -89,3 +89,46 @@ void mc_eigen_surface_uz(double x1, double x2, double y1, double y2, double z1, 
     D[4] = 2.0 * g * (J[5] + J[7]);
     D[5] = 2.0 * g * (J[2] + J[6]);
 }
+
+/* The bar limit (docs/theory.md §8.5): F(x, +L, z) - F(x, -L, z) of the y corners as L -> infinity,
+ * over c0, up to parts of x alone or z alone (they cancel in the corner sum over x and z). With
+ * th = atan2(x, z) (z >= 0), lr = ln(x^2 + z^2), m = 1 - 2nu, n2 = 2 (1 - nu):
+ *   F_x^(x) = x lr - m (2 z th + x lr)      F_x^(z) = (1 + m) z lr - 2 m x th
+ *   F_z^(x) = 2 x th - n2 (z lr + 2 x atan(z/x))      F_z^(z) = 2 z th - n2 (x lr + 2 z th)
+ * and the y entries 0. */
+static void corner_F_bar(double x, double z, double nu, double F[9])
+{
+    const double m = 1.0 - 2.0 * nu;
+    const double n2 = 2.0 * (1.0 - nu);
+    const double lr = log(x * x + z * z);
+    const double th = atan2(x, z);
+    const double xlr = mul0(x, lr), zlr = mul0(z, lr);
+    for (int q = 0; q < 9; q++)
+        F[q] = 0.0;
+    F[0] = xlr - m * (2.0 * z * th + xlr);
+    F[2] = (1.0 + m) * zlr - 2.0 * m * x * th;
+    F[6] = 2.0 * x * th - n2 * (zlr + 2.0 * xatan(x, z, 1.0));
+    F[8] = 2.0 * z * th - n2 * (xlr + 2.0 * z * th);
+}
+
+void mc_eigen_surface_uz_bar(double x1, double x2, double z1, double z2, double nu, double D[6])
+{
+    const double xs[2] = {x1, x2}, zs[2] = {z1, z2};
+    double J[9] = {0.0};
+    for (int k = 0; k < 2; k++)
+        for (int i = 0; i < 2; i++) {
+            const double s = ((i + k) & 1) ? -1.0 : 1.0; /* (-1)^(number of lower) */
+            double F[9];
+            corner_F_bar(xs[i], zs[k], nu, F);
+            for (int q = 0; q < 9; q++)
+                J[q] += s * F[q];
+        }
+    const double g = 0.25 / M_PI;
+    const double l = 2.0 * nu / (1.0 - 2.0 * nu) * g * (J[0] + J[4] + J[8]);
+    D[0] = l + 2.0 * g * J[0];
+    D[1] = l + 2.0 * g * J[4];
+    D[2] = l + 2.0 * g * J[8];
+    D[3] = 2.0 * g * (J[1] + J[3]);
+    D[4] = 2.0 * g * (J[5] + J[7]);
+    D[5] = 2.0 * g * (J[2] + J[6]);
+}

@@ -114,6 +114,49 @@ static void cuboid_H(double x, double y, double z, double xlo, double xhi, doubl
             }
 }
 
+/* The bar limit (docs/theory.md §8.5): the corner functions of an infinitely long bar along y,
+ * the difference H(a_x, +L, a_z) - H(a_x, -L, a_z) of the y corners as L -> infinity, up to
+ * parts that depend on a_x alone or a_z alone (they cancel in the corner sum over x and z).
+ * With rho^2 = a_x^2 + a_z^2 and t_p = atan(a_s/a_p) for the in-plane pair (p, s) = (x, z):
+ *   psi_,xxxx -4 t_x + 2 a_x a_z/rho^2    psi_,zzzz -4 t_z + 2 a_x a_z/rho^2
+ *   psi_,xxxz -ln rho^2 - 2 a_x^2/rho^2   psi_,xzzz -ln rho^2 - 2 a_z^2/rho^2
+ *   psi_,xxzz -2 a_x a_z/rho^2            phi_,xx -2 t_x, phi_,zz -2 t_z, phi_,xz -ln rho^2
+ * and every function with a y derivative 0 (the field does not vary along y). */
+static void corner_H_bar(double ax, double az, double h[NH])
+{
+    const double r2 = ax * ax + az * az;
+    const double lr = log(r2);
+    const double tx = atan_p(az, ax), tz = atan_p(ax, az);
+    const double c = ratio0(ax * az, r2);
+    for (int n = 0; n < NH; n++)
+        h[n] = 0.0;
+    h[P400] = -4.0 * tx + 2.0 * c;
+    h[P004] = -4.0 * tz + 2.0 * c;
+    h[P301] = -lr - 2.0 * ratio0(ax * ax, r2);
+    h[P103] = -lr - 2.0 * ratio0(az * az, r2);
+    h[P202] = -2.0 * c;
+    h[NP4 + F11] = -2.0 * tx;
+    h[NP4 + F33] = -2.0 * tz;
+    h[NP4 + F13] = -lr;
+}
+
+/* Corner sums of the bar functions over the rectangle [xlo,xhi] x [zlo,zhi] seen from (x, z). */
+static void bar_H(double x, double z, double xlo, double xhi, double zlo, double zhi,
+                  double sum[NH])
+{
+    const double ax[2] = {x - xlo, x - xhi}, az[2] = {z - zlo, z - zhi};
+    for (int n = 0; n < NH; n++)
+        sum[n] = 0.0;
+    for (int k = 0; k < 2; k++)
+        for (int i = 0; i < 2; i++) {
+            const double s = ((i + k) & 1) ? -1.0 : 1.0; /* +1 at the lower bound */
+            double h[NH];
+            corner_H_bar(ax[i], az[k], h);
+            for (int n = 0; n < NH; n++)
+                sum[n] += s * h[n];
+        }
+}
+
 /* Slot of psi_,ijkl among the 15, by how often axes 0 and 1 occur in ijkl (axis 2: the rest). */
 static const int p4_slot[5][5] = {
     {P004, P013, P022, P031, P040},
@@ -225,6 +268,45 @@ void mc_eigen_surface_szz12(double x, double y, double hx, double hy, double z1,
     /* sigma_zz^S2(x, y, 0) = sigma_zz^S1(x, y, -0) (mirror; R_zz^2 = 1) = sigma_zz^S1(x, y, +0)
      * (the traction is continuous across the face z = z1 = 0, or the field is smooth). */
     mc_eigen_stress1(x, y, 0.0, hx, hy, z1, z2, nu, S);
+    for (int c = 0; c < 6; c++)
+        s[c] = 2.0 * S[2][c];
+}
+
+/* ---- the bar limit (plane strain; docs/theory.md §8.5) --------------------------------------- */
+
+static int inside_bar(double x, double z, double hx, double z1, double z2)
+{
+    return x >= -hx && x < hx && z >= z1 && z < z2;
+}
+
+void mc_eigen_stress1_bar(double x, double z, double hx, double z1, double z2, double nu,
+                          double S[6][6])
+{
+    double sum[NH], eps[6][6];
+    bar_H(x, z, -hx, hx, z1, z2, sum);
+    chiu_strain(sum, nu, 0, 6, eps);
+    hooke(eps, nu, inside_bar(x, z, hx, z1, z2), S);
+}
+
+void mc_eigen_stress12_bar(double x, double z, double hx, double z1, double z2, double nu,
+                           double S[6][6])
+{
+    double s1[NH], s2[NH], sp[NH], sm[NH], eps[6][6];
+    bar_H(x, z, -hx, hx, z1, z2, s1);
+    bar_H(x, z, -hx, hx, -z2, -z1, s2);
+    for (int n = 0; n < NH; n++) {
+        sp[n] = s1[n] + s2[n];
+        sm[n] = s1[n] - s2[n];
+    }
+    chiu_strain(sp, nu, 0, 4, eps);
+    chiu_strain(sm, nu, 4, 6, eps);
+    hooke(eps, nu, inside_bar(x, z, hx, z1, z2), S);
+}
+
+void mc_eigen_surface_szz12_bar(double x, double hx, double z1, double z2, double nu, double s[6])
+{
+    double S[6][6];
+    mc_eigen_stress1_bar(x, 0.0, hx, z1, z2, nu, S);
     for (int c = 0; c < 6; c++)
         s[c] = 2.0 * S[2][c];
 }

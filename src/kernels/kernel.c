@@ -197,6 +197,29 @@ void mc_rect_stress_qy(double x, double y, double z, double a, double b, double 
     swap_xy(g, s);
 }
 
+/* The strip corner function g(X) of mc_strip_stress_p (kernel.h), 1/pi included. */
+static void corner_strip(double X, double z, double nu, double g[MC_NSTRESS])
+{
+    const double r2 = X * X + z * z;
+    const double th = atan2(X, z);
+    const double zx = r2 > 0.0 ? z * X / r2 : 0.0, zz = r2 > 0.0 ? z * z / r2 : 0.0;
+    g[MC_SXX] = (-th + zx) / M_PI;
+    g[MC_SYY] = -2.0 * nu * th / M_PI;
+    g[MC_SZZ] = -(th + zx) / M_PI;
+    g[MC_SXY] = 0.0;
+    g[MC_SYZ] = 0.0;
+    g[MC_SXZ] = zz / M_PI;
+}
+
+void mc_strip_stress_p(double x, double z, double a, double nu, double s[6])
+{
+    double gp[MC_NSTRESS], gm[MC_NSTRESS];
+    corner_strip(x + a, z, nu, gp);
+    corner_strip(x - a, z, nu, gm);
+    for (int c = 0; c < MC_NSTRESS; c++)
+        s[c] = gp[c] - gm[c];
+}
+
 /* ---- point forces (theory.md §5.1, §5.2) --------------------------------------------------- */
 
 /* Boussinesq, per unit force. The (1 - 2nu) brackets are rewritten with 1 - z/rho =

@@ -48,6 +48,14 @@ void mc_rect_stress_p(double x, double y, double z, double a, double b, double n
 void mc_rect_stress_qx(double x, double y, double z, double a, double b, double nu, double s[6]);
 void mc_rect_stress_qy(double x, double y, double z, double a, double b, double nu, double s[6]);
 
+/* The strip limit b -> infinity of mc_rect_stress_p at y = 0: the plane-strain stresses at (x, z)
+ * under a unit uniform pressure on the strip |xi| <= a, uniform along y (Johnson 1985 §2.7;
+ * docs/theory.md §8.5). s = g(x + a) - g(x - a) with th = atan2(X, z), rho^2 = X^2 + z^2:
+ *   g_xx = (-th + z X / rho^2) / pi,  g_zz = -(th + z X / rho^2) / pi,  g_yy = -2 nu th / pi,
+ *   g_xz = z^2 / (pi rho^2),  g_xy = g_yz = 0  (so s_yy = nu (s_xx + s_zz): plane strain).
+ * Same conventions and validity as mc_rect_stress_p (z = 0 on an edge line x = +-a excluded). */
+void mc_strip_stress_p(double x, double z, double a, double nu, double s[6]);
+
 /* Corner (bracket) functions f[MC_NSTRESS] at the corner offset (X, Y, z), m, with the 1/2pi
  * folded in: the rectangle stresses are s = S[f] = f(x+a,y+b) - f(x+a,y-b) - f(x-a,y+b)
  * + f(x-a,y-b). Lets a table builder evaluate f once per lattice corner ((k-1/2)dx, (l-1/2)dy)

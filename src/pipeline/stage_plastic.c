@@ -15,6 +15,14 @@ static const char *const hardening_names[] = {"perfect", "linear", "swift", "tab
 /* History depth of the Anderson acceleration of a lubricated elastic-plastic run (loop.h). */
 #define MC_ANDERSON_LUBRICATED 4
 
+/* The load of the scene on the grid, N: force, or force_per_length times the period along y (a
+ * line contact: periodic y, ny = 1, as the elastic pipeline takes it). */
+static double stage_load(const mc_scene *sc, const mc_grid *g)
+{
+    return sc->load.kind == MC_LOAD_FORCE_PER_LENGTH ? sc->load.value * g->ny * g->dy
+                                                     : sc->load.value;
+}
+
 int mc_plastic_stage_law(const mc_scene *sc, mc_hardening *law, mc_error *err)
 {
     const double unit[] = {1.0, 1e6, 1e9};
@@ -180,7 +188,7 @@ static int run_cap(const mc_scene *sc, mc_contact_solver *solver, mc_results *re
                                .p_lub = fmax(sc->load.lubricant_pressure, 0.0),
                                .p_cap = sc->plasticity.hardness,
                                .control = MC_CONTROL_FORCE,
-                               .load = sc->load.value};
+                               .load = stage_load(sc, &res->grid)};
     int rc = mc_contact_solve(solver, &prob, res->pressure, res->displacement, res->gap,
                               &res->contact, err);
     if (rc != MC_OK && rc != MC_NOT_CONVERGED)
@@ -234,7 +242,7 @@ int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
                                    .p_lub = p_lub,
                                    .p_cap = INFINITY,
                                    .control = MC_CONTROL_FORCE,
-                                   .load = sc->load.value};
+                                   .load = stage_load(sc, &res->grid)};
         rc = mc_contact_solve(solver, &prob, res->pressure, res->displacement, res->gap,
                               &res->contact, err);
     }
@@ -260,7 +268,7 @@ int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
                           .h_target = res->lube.h_ehd,
                           .tolerance = sc->lubrication.tolerance};
     mc_plastic_problem pb = {.h = res->topography,
-                             .load = lubricated ? res->lube.patch_load : sc->load.value,
+                             .load = lubricated ? res->lube.patch_load : stage_load(sc, &res->grid),
                              .contact = lubricated ? mc_lube_contact_step : NULL,
                              .contact_ctx = &lc,
                              /* p_lub moves with every outer iteration: Anderson mixing keeps

@@ -15,10 +15,14 @@ int mc_eig_check(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backe
     int rc = mc_grid_check(g, err);
     if (rc)
         return mc_error_prefix(err, "%s: ", who);
-    if (g->periodic_x || g->periodic_y)
+    if (g->periodic_x)
         return mc_fail(err, MC_ERR_LIMIT,
-                       "%s: periodic axes are not supported (the residual field of a local plastic "
-                       "zone is not periodic)", who);
+                       "%s: a periodic x axis is not supported (the residual field of a local "
+                       "plastic zone is not periodic)", who);
+    if (g->periodic_y && g->ny != 1)
+        return mc_fail(err, MC_ERR_LIMIT,
+                       "%s: a periodic y axis is supported only with ny = 1 (a field uniform along "
+                       "y: plane strain), not ny = %d", who, g->ny);
     if (!v)
         return mc_fail(err, MC_ERR_INPUT, "%s: no volume given", who);
     if (v->nx < 1 || v->ny < 1 || v->i0 < 0 || v->j0 < 0 || v->nx > g->nx - v->i0 ||

@@ -46,12 +46,18 @@ struct disp_ops {
 typedef struct {
     double dx, dy, dz, nu;
     int k;
+    int line; /* bars along y (mc_eig_line); only dj = 0 is used */
 } disp_ctx;
 
 static void disp_kernel(int di, int dj, const void *ctx, double *out)
 {
     const disp_ctx *c = ctx;
     const double cx = -di * c->dx, cy = -dj * c->dy; /* cuboid centre relative to the field */
+    if (c->line) {
+        mc_eigen_surface_uz_bar(cx - 0.5 * c->dx, cx + 0.5 * c->dx, c->k * c->dz,
+                                (c->k + 1) * c->dz, c->nu, out);
+        return;
+    }
     mc_eigen_surface_uz(cx - 0.5 * c->dx, cx + 0.5 * c->dx, cy - 0.5 * c->dy, cy + 0.5 * c->dy,
                         c->k * c->dz, (c->k + 1) * c->dz, c->nu, out);
 }
@@ -62,7 +68,7 @@ static void build_tables(mc_eigen_disp *op)
     for (int c = 0; c < 6; c++)
         par[c] = mc_eig_par(c);
     for (int k = 0; k < op->v.nz; k++) {
-        const disp_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k};
+        const disp_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k, mc_eig_line(&op->g)};
         double *q[6];
         for (int c = 0; c < 6; c++)
             q[c] = op->tab + (size_t)(k * 6 + c) * op->qlen;

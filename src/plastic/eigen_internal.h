@@ -62,10 +62,16 @@ static inline double mc_eig_sym_factor(int i, int c)
     return i <= c ? 1.0 : mc_eig_weight(c) / mc_eig_weight(i);
 }
 
+/* The grid is a line contact (periodic along y with ny = 1): every source cell is a bar
+ * infinitely long along y and the tables hold the bar kernels of kernels/eigen.h (plane strain;
+ * eigen_op.h). */
+static inline int mc_eig_line(const mc_grid *g) { return g->periodic_y && g->ny == 1; }
+
 /* ---- validation ------------------------------------------------------------------------------ */
 
-/* MC_OK, or MC_ERR_INPUT (bad grid, volume, nu) / MC_ERR_LIMIT (a periodic axis, more cells or
- * transform sizes than int) with a message naming what (prefix `who`). */
+/* MC_OK, or MC_ERR_INPUT (bad grid, volume, nu) / MC_ERR_LIMIT (a periodic x axis, a periodic y
+ * axis with ny > 1, more cells or transform sizes than int) with a message naming what (prefix
+ * `who`). */
 int mc_eig_check(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
                  const char *who, mc_error *err);
 

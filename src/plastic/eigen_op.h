@@ -14,9 +14,14 @@
  * (i, j) window-local. Eigenstrains are tensor components (eps_xy = gamma_xy / 2),
  * dimensionless; the six arrays may be slices of one component-major block.
  *
- * Lateral axes must be free: a periodic axis is refused with MC_ERR_LIMIT (the residual fields of
- * a local plastic zone are not periodic; a periodic variant would have to treat the k = 0 mode
- * explicitly, theory.md §8.1 "pitfall").
+ * Lateral axes. The x axis must be free: periodic x is refused with MC_ERR_LIMIT (the residual
+ * fields of a local plastic zone are not periodic; a periodic variant would have to treat the
+ * k = 0 mode explicitly, theory.md §8.1 "pitfall"). The y axis is free, or periodic with ny = 1:
+ * a line contact (plane strain, as the elastic operator's y-periodic grid with one row). The
+ * eigenstrain is then uniform along y and every cuboid is a bar infinitely long along y: the
+ * tables hold the bar limits of kernels/eigen.h (mc_eigen_*_bar) and the strip limit of Love's
+ * stresses (kernels/kernel.h mc_strip_stress_p), and both backends run unchanged over them
+ * (theory.md §8.5). Periodic y with ny > 1 is refused with MC_ERR_LIMIT.
  *
  * Objects are planned once and applied many times; apply never allocates and cannot fail; one
  * thread at a time per object (it owns its workspace); create from one thread (FFTW's planner).

@@ -24,7 +24,8 @@
 
 typedef struct {
     double dx, dy, dz, nu;
-    int k; /* depth offset m (S1) or layer (P, L) */
+    int k;    /* depth offset m (S1) or layer (P, L) */
+    int line; /* bars along y (mc_eig_line): the bar kernels, only dj = 0 is used */
 } table_ctx;
 
 /* the 21 stored pairs of the infinite-space kernel at depth offset m dz */
@@ -32,8 +33,11 @@ static void s1_kernel(int di, int dj, const void *ctx, double *out)
 {
     const table_ctx *t = ctx;
     double S[6][6];
-    mc_eigen_stress1(di * t->dx, dj * t->dy, (t->k + 0.5) * t->dz, 0.5 * t->dx, 0.5 * t->dy, 0.0,
-                     t->dz, t->nu, S);
+    if (t->line)
+        mc_eigen_stress1_bar(di * t->dx, (t->k + 0.5) * t->dz, 0.5 * t->dx, 0.0, t->dz, t->nu, S);
+    else
+        mc_eigen_stress1(di * t->dx, dj * t->dy, (t->k + 0.5) * t->dz, 0.5 * t->dx, 0.5 * t->dy,
+                         0.0, t->dz, t->nu, S);
     for (int i = 0; i < 6; i++)
         for (int c = i; c < 6; c++)
             out[mc_eig_sym(i, c)] = S[i][c];
@@ -42,6 +46,11 @@ static void s1_kernel(int di, int dj, const void *ctx, double *out)
 static void p3_kernel(int di, int dj, const void *ctx, double *out)
 {
     const table_ctx *t = ctx;
+    if (t->line) {
+        mc_eigen_surface_szz12_bar(di * t->dx, 0.5 * t->dx, t->k * t->dz, (t->k + 1) * t->dz,
+                                   t->nu, out);
+        return;
+    }
     mc_eigen_surface_szz12(di * t->dx, dj * t->dy, 0.5 * t->dx, 0.5 * t->dy, t->k * t->dz,
                            (t->k + 1) * t->dz, t->nu, out);
 }
@@ -49,6 +58,10 @@ static void p3_kernel(int di, int dj, const void *ctx, double *out)
 static void love_kernel(int di, int dj, const void *ctx, double *out)
 {
     const table_ctx *t = ctx;
+    if (t->line) { /* a strip of pressure along y */
+        mc_strip_stress_p(di * t->dx, (t->k + 0.5) * t->dz, 0.5 * t->dx, t->nu, out);
+        return;
+    }
     mc_rect_stress_p(di * t->dx, dj * t->dy, (t->k + 0.5) * t->dz, 0.5 * t->dx, 0.5 * t->dy,
                      t->nu, out);
 }
@@ -64,7 +77,7 @@ void mc_eig_s1_fill(const mc_eigen_stress *op, int m, double *const q[MC_EIG_NSY
     for (int i = 0; i < 6; i++)
         for (int c = i; c < 6; c++)
             par[mc_eig_sym(i, c)] = mc_eig_pair_par(i, c);
-    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, m};
+    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, m, mc_eig_line(&op->g)};
     mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, MC_EIG_NSYM, par, s1_kernel, &ctx, q);
     /* pairs odd in z vanish at depth offset 0 (the fft backend's DST-I ignores that plane) */
     for (int i = 0; m == 0 && i < 6; i++)
@@ -78,7 +91,7 @@ void mc_eig_p3_fill(const mc_eigen_stress *op, int k, double *const q[6])
     int par[6];
     for (int c = 0; c < 6; c++)
         par[c] = mc_eig_par(c);
-    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k};
+    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k, mc_eig_line(&op->g)};
     mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, 6, par, p3_kernel, &ctx, q);
 }
 
@@ -87,7 +100,7 @@ void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6])
     int par[6];
     for (int c = 0; c < 6; c++)
         par[c] = mc_eig_par(c);
-    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k};
+    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k, mc_eig_line(&op->g)};
     mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, 6, par, love_kernel, &ctx, q);
 }
 
