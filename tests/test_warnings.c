@@ -105,6 +105,46 @@ START_TEST(flat_patch_edges_are_no_warning)
 }
 END_TEST
 
+/* An elastic-plastic line contact (periodic y, ny = 1): the residual stress operator's x-z
+ * checkerboard mode releases energy for 0.6 < dz/dx < 1.6 (docs/theory.md §8.5), so dz = dx is
+ * warned; the default there is dx / 2, which is not. */
+static const char *line_codes(const char *dz, char *buf, size_t len, double *dz_used)
+{
+    char text[700];
+    snprintf(text, sizeof text,
+             "[mesh]\nnx = 41\nny = 1\ndx = 20 um\nperiodic_y = yes\n[geometry]\nshape = "
+             "cylinder\nradius = 10 mm\n[body2]\nrigid = yes\n[load]\nforce_per_length = "
+             "550 kN/m\n[plasticity]\nyield_stress = 1 GPa\n%s[solver]\nthreads = 1\n",
+             dz);
+    mc_scene s;
+    mc_error err = {0};
+    ck_assert_msg(mc_case_parse_text(text, "w.ini", NULL, 0, NULL, &s, &err) == MC_OK, "%s",
+                  err.msg);
+    mc_results r;
+    ck_assert_msg(mc_pipeline_run(&s, &r, &err) == MC_OK, "%s", err.msg);
+    *dz_used = r.plastic.dz;
+    buf[0] = '\0';
+    for (int k = 0; k < r.nwarnings; k++)
+        snprintf(buf + strlen(buf), len - strlen(buf), "%s%s", k ? " " : "", r.warnings[k].code);
+    mc_results_free(&r);
+    return buf;
+}
+
+START_TEST(line_grid_checkerboard_band)
+{
+    char codes[256];
+    double dz;
+    const char *c = line_codes("dz = 20 um\n", codes, sizeof codes, &dz);
+    ck_assert_double_eq_tol(dz, 20e-6, 1e-12);
+    ck_assert_msg(strstr(c, "plastic_checkerboard") != NULL, "codes: %s", c);
+    c = line_codes("", codes, sizeof codes, &dz);
+    ck_assert_double_eq_tol(dz, 10e-6, 1e-12); /* the line grid's default: dx / 2 */
+    ck_assert_msg(strstr(c, "plastic_checkerboard") == NULL, "codes: %s", c);
+    c = line_codes("dz = 34 um\n", codes, sizeof codes, &dz); /* 1.7 dx: outside the band */
+    ck_assert_msg(strstr(c, "plastic_checkerboard") == NULL, "codes: %s", c);
+}
+END_TEST
+
 Suite *suite_warnings(void);
 Suite *suite_warnings(void)
 {
@@ -116,6 +156,7 @@ Suite *suite_warnings(void)
     tcase_add_test(t, contact_beyond_the_grid);
     tcase_add_test(t, pressure_above_moduli);
     tcase_add_test(t, flat_patch_edges_are_no_warning);
+    tcase_add_test(t, line_grid_checkerboard_band);
     suite_add_tcase(s, t);
     return s;
 }

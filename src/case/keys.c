@@ -431,7 +431,9 @@ const case_key mc_keys[] = {
     {.section = "plasticity", .name = "dz", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "min(dx, dy)", .def_rule = 1, .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.dz),
-     .doc = "Thickness of the volume cells."},
+     .doc = "Thickness of the volume cells; on a line grid (periodic_y, ny = 1) the default is "
+            "dx / 2, and 0.6 dx < dz < 1.6 dx gets the warning plastic_checkerboard (the "
+            "residual stress operator has an unstable x-z checkerboard mode there)."},
     {.section = "plasticity", .name = "depth", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "auto", .word = "auto", .word_value = 0, .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.depth),

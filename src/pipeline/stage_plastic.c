@@ -93,7 +93,11 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, doubl
 {
     const mc_grid *g = &res->grid;
     mc_plastic_summary *ps = &res->plastic;
-    const double dz = sc->plasticity.dz > 0 ? sc->plasticity.dz : fmin(g->dx, g->dy);
+    /* default min(dx, dy); dx / 2 on a line grid, away from its checkerboard mode (theory §8.5) */
+    const int line = g->periodic_y && g->ny == 1;
+    const double dz = sc->plasticity.dz > 0 ? sc->plasticity.dz
+                      : line                ? 0.5 * g->dx
+                                            : fmin(g->dx, g->dy);
     /* the contact's bounding box */
     int i0 = g->nx, i1 = -1, j0 = g->ny, j1 = -1;
     for (int j = 0; j < g->ny; j++)

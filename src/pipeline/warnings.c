@@ -102,6 +102,16 @@ void mc_results_warnings(const mc_scene *sc, mc_results *r)
                         "order one, outside linear elasticity; check the load, the moduli and the "
                         "roughness heights",
                         c->p_max * 1e-6, estar * 1e-6);
+    /* theory.md §8.5: on a line grid the x-z checkerboard of plastic strain releases energy for
+     * 0.6 < dz/dx < 1.6 (measured -0.10 .. -0.25 at 0.71 .. 1.41) */
+    if (r->plastic.nz > 0 && g->periodic_y && g->ny == 1 && r->plastic.dz > 0.6 * g->dx &&
+        r->plastic.dz < 1.6 * g->dx)
+        mc_results_warn(r, "plastic_checkerboard",
+                        "[plasticity] dz = %.4g um is %.2f dx on a line grid: the residual stress "
+                        "operator has an unstable x-z checkerboard mode for 0.6 < dz/dx < 1.6 "
+                        "(alternate cells yielding, too much plastic strain); use dz <= dx / 2 "
+                        "(the default there)",
+                        r->plastic.dz * 1e6, r->plastic.dz / g->dx);
     if (r->has_roughness && r->roughness_initial.warning[0])
         mc_results_warn(r, "roughness_cutoff", "roughness parameters: %s",
                         r->roughness_initial.warning);

@@ -20,6 +20,9 @@
  *                        linear elasticity the solve assumes.
  *   roughness_cutoff     the ISO roughness parameters deviate from the standard (cut-off clipped
  *                        on a short surface, short evaluation length; surface/roughness.h).
+ *   plastic_checkerboard  a line grid (periodic y, ny = 1) with [plasticity] dz between 0.6 and
+ *                        1.6 dx: the residual stress operator's x-z checkerboard mode releases
+ *                        energy there (docs/theory.md §8.5), and a plastic run can lock into it.
  *   wisdom_not_written   [solver] plans = wisdom: the wisdom file could not be written at the
  *                        end of the run (the results stand; the next run measures again).
  */
