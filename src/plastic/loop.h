@@ -50,6 +50,12 @@ typedef struct {
     int max_outer;             /* outer iterations per step */
     double tol_plastic;        /* relative change of d eps_p that ends the fixed point */
     int max_plastic;           /* fixed-point iterations per outer iteration */
+    int tight_inner;           /* 1: every fixed point to tol_plastic; 0 (default): inexact
+                                  inner solves, to max(tol_plastic, 0.05 x the last outer
+                                  iteration's relative change of u_r), tight from the outer
+                                  iteration after the one whose change met tol_outer; either way
+                                  an outer iteration is accepted only on a fixed point that met
+                                  tol_plastic (docs/theory.md §9.4) */
     int anderson;              /* > 0: Anderson acceleration with this history depth
                                   (plastic/anderson.h, <= MC_ANDERSON_MAX_DEPTH) of the plastic
                                   fixed point and of the outer iteration (on the relaxed map
@@ -95,6 +101,8 @@ typedef struct {
                                    (owned) */
     long nvol;
     long yield_skips;           /* outer iterations where nothing yielded (shortcut taken) */
+    double inner_change;        /* largest relative change of the plastic fixed point's last
+                                   sweep at an accepted outer iteration (<= tol_plastic) */
     double p_lub;               /* lubricant pressure of the last contact solve, Pa */
     int contact_solves;         /* step (a) calls */
 } mc_plastic_result;
