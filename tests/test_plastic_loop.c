@@ -1,7 +1,9 @@
 /* test_plastic_loop.c - the inexact inner solves of the elastic-plastic loop (plastic/loop.h,
  * docs/theory.md §9.4): the loop with inexact plastic fixed points converges to the state of the
  * loop that solves every fixed point to tol_plastic (within the outer tolerance), with fewer
- * sweeps; and an outer iteration is never accepted on a loosely solved fixed point. */
+ * sweeps; an outer iteration is never accepted on a loosely solved fixed point; and operators
+ * built once (mc_plastic_ops) and lent to several runs give the bits of a run that builds its
+ * own, and are refused by a problem they were not made for. */
 #include <math.h>
 #include <string.h>
 
@@ -176,6 +178,64 @@ START_TEST(accepts_only_tight)
 }
 END_TEST
 
+/* Operators lent to two runs in a row give each the bits of the run that builds its own (one
+ * thread: the residual displacement's partial spectra are summed over a dynamic schedule,
+ * plastic/eigen_disp_op.c); operators of another nu, volume or friction are refused. */
+START_TEST(shared_operators)
+{
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    sphere t;
+    sphere_init(&t);
+    const size_t n = mc_grid_cells(&t.g);
+    mc_plastic_problem pb = t.pb;
+    pb.anderson = 4;
+    mc_plastic_ops ops;
+    mc_error err = {0};
+    ck_assert_msg(mc_plastic_ops_create(&t.g, &pb.volume, pb.nu, pb.backend, 0, &ops, &err) ==
+                      MC_OK, "%s", err.msg);
+    mc_plastic_result r[3];
+    mc_contact_summary cs;
+    double *p[3];
+    for (int k = 0; k < 3; k++) {
+        pb.ops = k < 2 ? &ops : NULL; /* lent twice, then built by the run */
+        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &r[k], &err) ==
+                          MC_OK, "%s", err.msg);
+        ck_assert(p[k] = mc_malloc(n * sizeof *p[k]));
+        memcpy(p[k], t.p, n * sizeof *p[k]);
+    }
+    const size_t nv = (size_t)r[0].nvol;
+    for (int k = 0; k < 2; k++) {
+        ck_assert(memcmp(r[k].eps_p, r[2].eps_p, 6 * nv * sizeof(double)) == 0);
+        ck_assert(memcmp(r[k].peq, r[2].peq, nv * sizeof(double)) == 0);
+        ck_assert(memcmp(r[k].u_r, r[2].u_r, n * sizeof(double)) == 0);
+        ck_assert(memcmp(r[k].sig_r, r[2].sig_r, 6 * nv * sizeof(double)) == 0);
+        ck_assert(memcmp(p[k], p[2], n * sizeof(double)) == 0);
+    }
+    for (int k = 0; k < 3; k++) {
+        mc_plastic_result_free(&r[k]);
+        mc_free(p[k]);
+    }
+    /* another problem: nu, the volume's depth, friction */
+    pb.ops = &ops;
+    mc_plastic_problem other[3] = {pb, pb, pb};
+    other[0].nu = 0.25;
+    other[1].volume.dz *= 2;
+    other[2].friction = 0.1;
+    for (int k = 0; k < 3; k++) {
+        mc_plastic_result bad;
+        ck_assert_int_eq(mc_plastic_run(&t.g, t.K, t.s, &other[k], t.p, t.u, t.gap, &cs, &bad,
+                                        &err),
+                         MC_ERR_INPUT);
+        mc_plastic_result_free(&bad);
+    }
+    mc_plastic_ops_destroy(&ops);
+    mc_plastic_ops_destroy(&ops); /* zeroed: a second destroy is harmless */
+    sphere_free(&t);
+    mc_threads_end(&scope);
+}
+END_TEST
+
 Suite *suite_plastic_loop(void);
 Suite *suite_plastic_loop(void)
 {
@@ -184,6 +244,7 @@ Suite *suite_plastic_loop(void)
     tcase_set_timeout(t, 120);
     tcase_add_test(t, inexact_matches_tight);
     tcase_add_test(t, accepts_only_tight);
+    tcase_add_test(t, shared_operators);
     suite_add_tcase(s, t);
     return s;
 }

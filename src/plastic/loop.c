@@ -18,6 +18,7 @@ typedef struct {
     long nvol, nwx, nwy;
     size_t ncell;
     double G;
+    mc_plastic_ops own;          /* the operators when the problem brings none */
     mc_stress_plan *elastic;       /* Love-rectangle stresses at the cuboid centres */
     mc_eigen_disp *disp;      /* eigenstrain -> surface residual displacement */
     mc_eigen_stress *resid;   /* eigenstrain -> residual stress at the cuboid centres */
@@ -36,9 +37,7 @@ typedef struct {
 
 static void ctx_free(loop_ctx *c)
 {
-    mc_stress_destroy(&c->elastic);
-    mc_eigen_disp_destroy(&c->disp);
-    mc_eigen_stress_destroy(&c->resid);
+    mc_plastic_ops_destroy(&c->own); /* (borrowed operators are the caller's) */
     mc_anderson_destroy(&c->aa);
     mc_anderson_destroy(&c->aa_outer);
     for (int k = 0; k < 6; k++)
@@ -47,6 +46,49 @@ static void ctx_free(loop_ctx *c)
                         c->tot,    c->dp,  c->dp_new, c->u_r, c->u_new, c->h_extra};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         mc_free(arrays[k]);
+}
+
+int mc_plastic_ops_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                          int friction, mc_plastic_ops *ops, mc_error *err)
+{
+    memset(ops, 0, sizeof *ops);
+    if (v->nz < 1 || !(v->dz > 0))
+        return mc_fail(err, MC_ERR_INPUT, "plastic operators: nz = %d, dz = %g m", v->nz, v->dz);
+    double *depths = mc_zeros((size_t)v->nz);
+    if (!depths)
+        return mc_fail(err, MC_ERR_NOMEM, "plastic operators: out of memory");
+    for (int k = 0; k < v->nz; k++)
+        depths[k] = (k + 0.5) * v->dz;
+    mc_stress_options so = {.kernel = MC_STRESS_PATCH,
+                            .nu = nu,
+                            .nlayers = v->nz,
+                            .depths = depths,
+                            .backend = b,
+                            .loads = MC_TRACTION_P | (friction ? MC_TRACTION_QX : 0)};
+    int rc = mc_stress_create(g, &so, &ops->elastic, err);
+    mc_free(depths);
+    if (rc == MC_OK)
+        rc = mc_eigen_disp_create(g, v, nu, b, &ops->disp, err);
+    if (rc == MC_OK)
+        rc = mc_eigen_stress_create(g, v, nu, b, &ops->resid, err);
+    if (rc != MC_OK) {
+        mc_plastic_ops_destroy(ops);
+        return rc;
+    }
+    ops->g = *g;
+    ops->volume = *v;
+    ops->nu = nu;
+    ops->backend = b;
+    ops->friction = friction != 0;
+    return MC_OK;
+}
+
+void mc_plastic_ops_destroy(mc_plastic_ops *ops)
+{
+    mc_stress_destroy(&ops->elastic);
+    mc_eigen_disp_destroy(&ops->disp);
+    mc_eigen_stress_destroy(&ops->resid);
+    memset(ops, 0, sizeof *ops);
 }
 
 static int check_problem(const mc_grid *g, const mc_plastic_problem *pb, mc_error *err)
@@ -99,17 +141,25 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
                        c->nvol);
     for (int k = 0; k < pb->volume.nz; k++)
         c->depths[k] = (k + 0.5) * pb->volume.dz;
-    mc_stress_options so = {.kernel = MC_STRESS_PATCH,
-                            .nu = pb->nu,
-                            .nlayers = pb->volume.nz,
-                            .depths = c->depths,
-                            .backend = pb->backend,
-                            .loads = MC_TRACTION_P | (pb->friction > 0 ? MC_TRACTION_QX : 0)};
-    int rc = mc_stress_create(g, &so, &c->elastic, err);
-    if (rc == MC_OK)
-        rc = mc_eigen_disp_create(g, &pb->volume, pb->nu, pb->backend, &c->disp, err);
-    if (rc == MC_OK)
-        rc = mc_eigen_stress_create(g, &pb->volume, pb->nu, pb->backend, &c->resid, err);
+    const mc_plastic_ops *ops = pb->ops;
+    int rc = MC_OK;
+    if (ops) {
+        if (!ops->elastic || !ops->disp || !ops->resid || !(ops->g.nx == g->nx) ||
+            !(ops->g.ny == g->ny) || !(ops->g.dx == g->dx) || !(ops->g.dy == g->dy) ||
+            ops->g.periodic_x != g->periodic_x || ops->g.periodic_y != g->periodic_y ||
+            memcmp(&ops->volume, &pb->volume, sizeof ops->volume) != 0 ||
+            !(ops->nu == pb->nu) || ops->backend != pb->backend ||
+            ops->friction != (pb->friction > 0))
+            return mc_fail(err, MC_ERR_INPUT,
+                           "plastic loop: the operators given were made for another problem");
+    } else {
+        rc = mc_plastic_ops_create(g, &pb->volume, pb->nu, pb->backend, pb->friction > 0,
+                                   &c->own, err);
+        ops = &c->own;
+    }
+    c->elastic = ops->elastic;
+    c->disp = ops->disp;
+    c->resid = ops->resid;
     if (rc == MC_OK && pb->anderson > 0)
         rc = mc_anderson_create(c->nvol, 6, pb->anderson, &c->aa, err);
     if (rc == MC_OK && pb->anderson > 0)
