@@ -237,9 +237,9 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
  * tol_plastic). *sweeps receives the sweeps done; *converged 0 when the cap was hit; *tight 1
  * when the last sweep's change was also within tol_plastic, *rel_change that change (relative;
  * 0 when elastic); *diverged 1 when the increments blew up (non-finite trial stresses, or an
- * increment beyond DIVERGED_STRAIN): the caller splits the load step. The update is under-relaxed adaptively
- * (omega halves whenever the change grows, dossier §1.4), and the residual operator is skipped
- * while nothing has yielded (the elastic shortcut). */
+ * increment beyond DIVERGED_STRAIN): the caller splits the load step. The update is under-relaxed
+ * adaptively (omega halves whenever the change grows, dossier §1.4), and the residual operator is
+ * skipped while nothing has yielded (the elastic shortcut). */
 static int plastic_fixed_point(loop_ctx *c, const double *eps_p, const double *peq, double tol,
                                int *sweeps, int *converged, int *tight, double *rel_change,
                                int *yielded, int *diverged, mc_error *err)
