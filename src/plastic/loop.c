@@ -229,6 +229,13 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
  * 30 iterations without convergence). */
 #define INNER_FORCING 0.05
 
+/* The safeguard of the inexact solves: an increment solves every further fixed point to
+ * tol_plastic once its outer iteration stalls (a change of u_r not below the one two iterations
+ * before), once a fixed point hit max_plastic, and after INEXACT_OUTER outer iterations (the
+ * loop's usual 5-20, dossier §2.1). On the 256 x 128 x 16 step of the scene above the outer
+ * change stalls between 0.1 and 0.6 with loose fixed points from the 6th iteration on. */
+#define INEXACT_OUTER 10
+
 /* Plastic strain increments beyond this are taken as divergence (the step is split). */
 #define DIVERGED_STRAIN 0.5
 
@@ -376,7 +383,8 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
     memcpy(c->u_r, res->u_r, c->ncell * sizeof *c->u_r);
     int rc = MC_OK;
     double outer_rel = 1.0; /* relative change of u_r in the last outer iteration */
-    const double forcing = pb->tight_inner ? 0.0 : INNER_FORCING;
+    double rel_hist[2] = {INFINITY, INFINITY}; /* in the two before it, older first */
+    double forcing = pb->tight_inner ? 0.0 : INNER_FORCING;
     for (int k = 1; k <= pb->max_outer; k++) {
         if (pb->stop && pb->stop(pb->stop_ctx))
             return mc_fail(err, MC_ERR_INTERRUPTED, "plastic loop: stopped on request");
@@ -401,10 +409,14 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
             return rc;
         int sweeps = 0, fp_ok = 0, tight = 0, yielded = 0;
         double fp_change;
+        if (k > INEXACT_OUTER)
+            forcing = 0.0; /* the safeguard: tight from here on */
         const double tol_k = fmax(pb->tol_plastic, forcing * outer_rel);
         rc = plastic_fixed_point(c, res->eps_p, res->peq, tol_k, &sweeps, &fp_ok, &tight,
                                  &fp_change, &yielded, diverged, err);
         st->plastic_iterations += sweeps;
+        if (!fp_ok)
+            forcing = 0.0; /* the safeguard: a fixed point that hit its cap */
         if (rc != MC_OK || *diverged)
             return rc;
         int any = 0;
@@ -430,7 +442,12 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
             break;
         }
         /* the next inner tolerance; tight once this change is within tol_outer */
-        outer_rel = change <= pb->tol_outer * size ? 0.0 : fmin(1.0, change / size);
+        const double rel = size > 0 ? change / size : INFINITY;
+        if (k >= 3 && !(rel < rel_hist[0]))
+            forcing = 0.0; /* the safeguard: a stalled outer iteration */
+        rel_hist[0] = rel_hist[1];
+        rel_hist[1] = rel;
+        outer_rel = change <= pb->tol_outer * size ? 0.0 : fmin(1.0, rel);
         if (c->aa_outer) { /* Anderson mixing of the relaxed map: g = u + omega (u_new - u) */
             if (k == 1)
                 mc_anderson_restart(c->aa_outer);

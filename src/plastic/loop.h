@@ -82,7 +82,10 @@ typedef struct {
     int tight_inner;           /* 1: every fixed point to tol_plastic; 0 (default): inexact
                                   inner solves, to max(tol_plastic, 0.05 x the last outer
                                   iteration's relative change of u_r), tight from the outer
-                                  iteration after the one whose change met tol_outer; either way
+                                  iteration after the one whose change met tol_outer, and for
+                                  the rest of the increment once the outer iteration stalls,
+                                  a fixed point hits max_plastic, or after 10 outer iterations;
+                                  either way
                                   an outer iteration is accepted only on a fixed point that met
                                   tol_plastic (docs/theory.md §9.4) */
     int anderson;              /* > 0: Anderson acceleration with this history depth
