@@ -17,6 +17,8 @@ typedef struct {
     double *p, *u, *gap; /* the caller's outputs: always the state of the last evaluation */
     double *warm;        /* pressure of the last solve, the next one's start */
     int have_warm;
+    double last_x[2], last_v[2]; /* the last two contact solves (p_lub, V), newest first */
+    int nlast;
     mc_volume_result *res;
 } eval_ctx;
 
@@ -105,6 +107,11 @@ static int eval_volume(eval_ctx *c, double plub, double *v, mc_error *err)
     memcpy(c->warm, c->p, c->n * sizeof *c->warm);
     c->have_warm = 1;
     *v = gap_volume(c->gap, c->n, c->dA);
+    c->last_x[1] = c->last_x[0];
+    c->last_v[1] = c->last_v[0];
+    c->last_x[0] = plub;
+    c->last_v[0] = *v;
+    c->nlast++;
     return MC_OK;
 }
 
@@ -127,13 +134,13 @@ static int check_problem(const mc_volume_problem *pr, double *p, double *gap, mc
     return MC_OK;
 }
 
-/* Brent's zeroin on f(x) = V(x) - V*, bracket [0, p_nominal] with f(0) < 0 < f(p_nominal).
+/* Brent's zeroin on f(x) = V(x) - V*, bracket [a, b] with f(a) < 0 < f(b) (a < b).
  * Stops as soon as a freshly evaluated point meets |f| <= tol V* (so that the outputs, which hold
  * the last evaluation, belong to the returned p_lub). */
-static int brent(eval_ctx *c, double fa, double fb, double vstar, double tol, int cap,
-                 mc_error *err)
+static int brent(eval_ctx *c, double a, double fa, double b, double fb, double vstar, double tol,
+                 int cap, mc_error *err)
 {
-    double a = 0.0, b = c->pnom, cc = a, fc = fa, d = b - a, e = d;
+    double cc = a, fc = fa, d = b - a, e = d;
     double x_last = b, f_last = fb;
     for (;;) {
         if ((fb > 0) == (fc > 0)) { /* keep the root between b and cc */
@@ -211,6 +218,84 @@ static int brent(eval_ctx *c, double fa, double fb, double vstar, double tol, in
                                                 "contact tolerance is too coarse for this one");
 }
 
+/* The slope dV/dp_lub of the last two contact solves, for the next call's guess (volume.h); 0
+ * when there were fewer than two or they coincide. */
+static void record_slope(eval_ctx *c)
+{
+    c->res->slope = 0.0;
+    if (c->nlast >= 2 && c->last_x[0] != c->last_x[1]) {
+        const double sl = (c->last_v[0] - c->last_v[1]) / (c->last_x[0] - c->last_x[1]);
+        c->res->slope = sl > 0 && isfinite(sl) ? sl : 0.0;
+    }
+}
+
+/* The root from a guess g with slope s (volume.h): V(g), then steps of 1.25 times the secant
+ * correction -(V - V*) / s (a little beyond the root, to bracket it), doubled while V - V* keeps
+ * its sign, clamped to [0, p_nominal]; a bracket goes to Brent. Reaching 0 with V(0) >= V* is the
+ * dry regime (as the cold start's first test). *done 0 leaves the cold start to the caller (the
+ * outputs are then overwritten by it). */
+static int from_guess(eval_ctx *c, double vstar, double tol, int cap, int *done, mc_error *err)
+{
+    const mc_volume_problem *pr = c->prob;
+    mc_volume_result *res = c->res;
+    double x0 = pr->p_lub_guess, v;
+    int rc = eval_volume(c, x0, &v, err);
+    if (rc != MC_OK)
+        return rc;
+    double f0 = v - vstar;
+    if (fabs(f0) <= tol * vstar) {
+        res->regime = MC_REGIME_MIXED;
+        res->p_lub = x0;
+        res->volume = v;
+        res->rel_error = fabs(f0) / vstar;
+        res->converged = 1;
+        *done = 1;
+        return MC_OK;
+    }
+    double step = -1.25 * f0 / pr->slope_guess;
+    while (res->solves < cap) {
+        double x1 = fmin(fmax(x0 + step, 0.0), c->pnom), f1;
+        if (x1 == x0)
+            return MC_OK; /* no room: the cold start decides */
+        if (x1 >= c->pnom) {
+            f1 = res->v_onset - vstar; /* > 0: full film was ruled out before */
+        } else {
+            if ((rc = eval_volume(c, x1, &v, err)) != MC_OK)
+                return rc;
+            f1 = v - vstar;
+            if (x1 == 0.0) {
+                res->v_dry = v;
+                if (vstar <= v) { /* dry, as the cold start's first test */
+                    res->regime = MC_REGIME_DRY;
+                    res->p_lub = 0.0;
+                    res->volume = v;
+                    res->converged = 1;
+                    *done = 1;
+                    return MC_OK;
+                }
+            } else if (fabs(f1) <= tol * vstar) {
+                res->regime = MC_REGIME_MIXED;
+                res->p_lub = x1;
+                res->volume = v;
+                res->rel_error = fabs(f1) / vstar;
+                res->converged = 1;
+                *done = 1;
+                return MC_OK;
+            }
+        }
+        if ((f1 > 0) != (f0 > 0)) {
+            res->regime = MC_REGIME_MIXED;
+            *done = 1;
+            return x0 < x1 ? brent(c, x0, f0, x1, f1, vstar, tol, cap, err)
+                           : brent(c, x1, f1, x0, f0, vstar, tol, cap, err);
+        }
+        x0 = x1;
+        f0 = f1;
+        step *= 2.0;
+    }
+    return MC_OK; /* the cap: the cold start reports it */
+}
+
 int mc_volume_equilibrium(mc_contact_solver *s, mc_operator *K, const mc_volume_problem *prob,
                           double *p, double *u, double *gap, mc_volume_result *res,
                           mc_error *err)
@@ -245,6 +330,16 @@ int mc_volume_equilibrium(mc_contact_solver *s, mc_operator *K, const mc_volume_
 
     if (!(c.warm = mc_malloc(c.n * sizeof *c.warm)))
         return mc_fail(err, MC_ERR_NOMEM, "volume equilibrium: out of memory for %zu cells", c.n);
+    if (prob->p_lub_guess > 0 && prob->p_lub_guess < c.pnom && prob->slope_guess > 0 &&
+        isfinite(prob->slope_guess)) {
+        int done = 0;
+        rc = from_guess(&c, vstar, tol, cap, &done, err);
+        if (rc != MC_OK || done) {
+            record_slope(&c);
+            mc_free(c.warm);
+            return rc;
+        }
+    }
     double v0;
     rc = eval_volume(&c, 0.0, &v0, err);
     if (rc == MC_OK) {
@@ -256,9 +351,10 @@ int mc_volume_equilibrium(mc_contact_solver *s, mc_operator *K, const mc_volume_
             res->converged = 1;
         } else {
             res->regime = MC_REGIME_MIXED;
-            rc = brent(&c, v0 - vstar, res->v_onset - vstar, vstar, tol, cap, err);
+            rc = brent(&c, 0.0, v0 - vstar, c.pnom, res->v_onset - vstar, vstar, tol, cap, err);
         }
     }
+    record_slope(&c);
     mc_free(c.warm);
     return rc;
 }

@@ -56,6 +56,13 @@ typedef struct {
     double tolerance;      /* relative on V; <= 0: MC_VOLUME_TOL_DEFAULT; else in (0, 0.1] */
     int max_solves;        /* contact solves allowed; <= 0: MC_VOLUME_MAX_SOLVES */
     const double *p_start; /* warm start of the first solve (e.g. the previous step), or NULL */
+    /* a guess of the root (e.g. the last equilibrium of a slowly changing problem: the contact
+     * solves of the elastic-plastic loop) with the slope dV/dp_lub there (the last result's
+     * slope): when 0 < p_lub_guess < p_nominal and slope_guess > 0, V is evaluated at the guess
+     * first and the root bracketed outward from it by secant steps (V(0) only when a step reaches
+     * 0); otherwise (or when that finds no bracket) the cold start from V(0). Same regimes and
+     * tolerance either way. Pa and m^3/Pa; 0 = none. */
+    double p_lub_guess, slope_guess;
 } mc_volume_problem;
 
 typedef struct {
@@ -71,6 +78,7 @@ typedef struct {
     int solves;           /* contact solves done */
     long iterations;      /* contact solver iterations, summed over the solves */
     int converged;        /* 1: the returned state meets the tolerance (always in dry/full film) */
+    double slope;         /* dV/dp_lub from the last two contact solves, m^3/Pa (0: fewer) */
     mc_contact_summary contact; /* of the returned state; full film: filled here, solver
                                    "full-film", no iterations */
 } mc_volume_result;

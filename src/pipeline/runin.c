@@ -99,6 +99,8 @@ typedef struct {
     long nvol;
     double *eps_p, *peq, *sig_r, *u_r;
     mc_stress_plan *splan;    /* elastic stresses at the cuboid centres (the yield check) */
+    mc_plastic_ops ops;       /* the loop's operators, built at the first plastic step and kept
+                                 for the others (plastic/loop.h) */
     double *s_full[6], *qx;
     uint64_t hash;
     double seconds;           /* compute time of the steps done (also those of a checkpoint) */
@@ -115,6 +117,7 @@ static void ctx_free(runin_ctx *c)
     for (int k = 0; k < 6; k++)
         mc_free(c->s_full[k]);
     mc_stress_destroy(&c->splan);
+    mc_plastic_ops_destroy(&c->ops);
     mc_hardening_free(&c->law);
 }
 
@@ -200,6 +203,12 @@ static int plastic_step(runin_ctx *c, mc_plastic_step *record, mc_lube_contact *
 {
     const mc_scene *sc = c->sc;
     mc_results *r = c->res;
+    if (!c->ops.resid) {
+        int rc = mc_plastic_ops_create(&c->g, &c->vol, sc->body1.nu, sc->solver.backend,
+                                       sc->plasticity.friction > 0, &c->ops, err);
+        if (rc != MC_OK)
+            return rc;
+    }
     *lc = (mc_lube_contact){.solver = c->solver,
                             .K = c->K,
                             .h_target = r->lube.h_ehd,
@@ -225,6 +234,7 @@ static int plastic_step(runin_ctx *c, mc_plastic_step *record, mc_lube_contact *
                              .peq0 = c->peq,
                              .contact = mc_lube_contact_step,
                              .contact_ctx = lc,
+                             .ops = &c->ops,
                              .stop = stop_poll,
                              .stop_ctx = c};
     mc_plastic_result pr;

@@ -145,6 +145,10 @@ int mc_lube_contact_step(void *ctx, const mc_contact_problem *cp, double *p, dou
                               .h_target = lc->h_target,
                               .tolerance = lc->tolerance,
                               .p_start = cp->p_start};
+    if (lc->calls > 0 && lc->last.regime == MC_REGIME_MIXED) { /* the last root as the guess */
+        prob.p_lub_guess = lc->last.p_lub;
+        prob.slope_guess = lc->last.slope;
+    }
     int rc = mc_volume_equilibrium(lc->solver, lc->K, &prob, p, u, gap, &lc->last, err);
     lc->calls++;
     lc->solves += lc->last.solves;

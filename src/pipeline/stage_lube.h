@@ -35,8 +35,9 @@ int mc_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_results *
 /* The contact step of the elastic-plastic loop as a lubricant volume equilibrium: set
  * solver, K, h_target (h_EHD, m) and tolerance (relative on V; <= 0: the default), then pass
  * mc_lube_contact_step with a pointer to this as the loop's contact (plastic/loop.h). Each call
- * solves the equilibrium of the loop's problem (h, h_extra, its load, its warm start) and keeps
- * the figures of the last one in `last`. */
+ * solves the equilibrium of the loop's problem (h, h_extra, its load, its warm start; from the
+ * second call on, the last root and slope as the guess of lube/volume.h) and keeps the figures of
+ * the last one in `last`. */
 typedef struct {
     mc_contact_solver *solver;
     mc_operator *K;

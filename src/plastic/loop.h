@@ -21,6 +21,35 @@
 #include "operator/operator.h"
 #include "plastic/eigen_op.h"
 #include "plastic/hardening.h"
+#include "stress/stress.h"
+
+/* The operators of the loop - the elastic stresses of the surface tractions at the cuboid
+ * centres (stress/stress.h: patch kernels, p and, with friction, q_x), the residual surface
+ * displacement and the residual stress of the plastic strain (eigen_op.h) - for one grid, volume,
+ * nu and backend. Building them (the kernel tables) costs as much as tens of fixed-point sweeps;
+ * a caller that runs the loop many times on the same problem (the running-in: one run per
+ * run-down step) builds them once with mc_plastic_ops_create and passes them in
+ * mc_plastic_problem.ops. The fields besides the three operators record what they were made for
+ * (checked by mc_plastic_run). */
+typedef struct {
+    mc_stress_plan *elastic;
+    mc_eigen_disp *disp;
+    mc_eigen_stress *resid;
+    mc_grid g;
+    mc_eigen_volume volume;
+    double nu;
+    mc_backend backend;
+    int friction;              /* 1: the elastic plan takes the friction traction q_x too */
+} mc_plastic_ops;
+
+/* Build the operators for grid g, volume v, Poisson ratio nu, backend b, with the friction
+ * traction when friction != 0. *ops is zeroed on failure. MC_OK, MC_ERR_INPUT, MC_ERR_NOMEM or
+ * the operators' own errors (stress.h, eigen_op.h). */
+int mc_plastic_ops_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                          int friction, mc_plastic_ops *ops, mc_error *err);
+
+/* Free the operators and zero *ops (zeroed or partly built ops too). */
+void mc_plastic_ops_destroy(mc_plastic_ops *ops);
 
 /* Step (a) supplied by the caller: solve the contact problem cp (h, h_extra, load and warm start
  * as the loop sets them) into p, u, gap and sum as mc_contact_solve does, choosing the lubricant
@@ -50,6 +79,15 @@ typedef struct {
     int max_outer;             /* outer iterations per step */
     double tol_plastic;        /* relative change of d eps_p that ends the fixed point */
     int max_plastic;           /* fixed-point iterations per outer iteration */
+    int tight_inner;           /* 1: every fixed point to tol_plastic; 0 (default): inexact
+                                  inner solves, to max(tol_plastic, 0.05 x the last outer
+                                  iteration's relative change of u_r), tight from the outer
+                                  iteration after the one whose change met tol_outer, and for
+                                  the rest of the increment once the outer iteration stalls,
+                                  a fixed point hits max_plastic, or after 10 outer iterations;
+                                  either way
+                                  an outer iteration is accepted only on a fixed point that met
+                                  tol_plastic (docs/theory.md §9.4) */
     int anderson;              /* > 0: Anderson acceleration with this history depth
                                   (plastic/anderson.h, <= MC_ANDERSON_MAX_DEPTH) of the plastic
                                   fixed point and of the outer iteration (on the relaxed map
@@ -65,6 +103,10 @@ typedef struct {
      * traction then acts where p exceeds the p_lub the caller returned */
     mc_plastic_contact_fn contact;
     void *contact_ctx;
+    /* the operators, made by mc_plastic_ops_create for this grid, volume, nu, backend and
+     * friction (> 0 or not), borrowed for the run (NULL: the run builds its own and frees them;
+     * the results are the same bits either way). Another problem's: MC_ERR_INPUT. */
+    mc_plastic_ops *ops;
     /* polled before every outer iteration (NULL: never); non-zero abandons the run with
      * MC_ERR_INTERRUPTED (the result is then incomplete and only to be freed) */
     int (*stop)(void *ctx);
@@ -95,6 +137,8 @@ typedef struct {
                                    (owned) */
     long nvol;
     long yield_skips;           /* outer iterations where nothing yielded (shortcut taken) */
+    double inner_change;        /* largest relative change of the plastic fixed point's last
+                                   sweep at an accepted outer iteration (<= tol_plastic) */
     double p_lub;               /* lubricant pressure of the last contact solve, Pa */
     int contact_solves;         /* step (a) calls */
 } mc_plastic_result;

@@ -1,0 +1,250 @@
+/* test_plastic_loop.c - the inexact inner solves of the elastic-plastic loop (plastic/loop.h,
+ * docs/theory.md §9.4): the loop with inexact plastic fixed points converges to the state of the
+ * loop that solves every fixed point to tol_plastic (within the outer tolerance), with fewer
+ * sweeps; an outer iteration is never accepted on a loosely solved fixed point; and operators
+ * built once (mc_plastic_ops) and lent to several runs give the bits of a run that builds its
+ * own, and are refused by a problem they were not made for. */
+#include <math.h>
+#include <string.h>
+
+#include "contact/contact.h"
+#include "core/alloc.h"
+#include "core/threads.h"
+#include "kernels/kernel.h"
+#include "operator/operator.h"
+#include "plastic/hardening.h"
+#include "plastic/loop.h"
+#include "surface/surface.h"
+#include "test_util.h"
+
+/* Kogut-Etsion's sphere (R = 15 mm, E = 210 GPa, nu = 0.3, elastic-perfectly plastic Y = 1 GPa,
+ * P_c = 91.96 N; docs/theory.md §9.3) on a rigid flat at 4 P_c in two load steps, 16 x 16 cells
+ * of 40 um with 6 layers: small enough for a unit test, plastic enough (a_c ~ 165 um: the
+ * plastic zone spans a few cells and layers) that the fixed point takes tens of sweeps. */
+typedef struct {
+    mc_grid g;
+    double *h, *p, *u, *gap;
+    mc_operator *K;
+    mc_contact_solver *s;
+    mc_hardening law;
+    mc_plastic_problem pb;
+} sphere;
+
+static void sphere_init(sphere *t)
+{
+    memset(t, 0, sizeof *t);
+    t->g = (mc_grid){.nx = 16, .ny = 16, .dx = 40e-6, .dy = 40e-6};
+    const size_t n = mc_grid_cells(&t->g);
+    t->h = mc_zeros(n);
+    t->p = mc_zeros(n);
+    t->u = mc_zeros(n);
+    t->gap = mc_zeros(n);
+    ck_assert(t->h && t->p && t->u && t->gap);
+    mc_shape_spec shape = {.shape = MC_SHAPE_SPHERE, .radius = 15e-3};
+    mc_surface_shape(&t->g, &shape, t->h);
+    mc_error err = {0};
+    const double estar = mc_combined_modulus(210e9, 0.3, 0, 0, 1);
+    ck_assert_int_eq(mc_operator_plan_love(&t->g, estar, MC_BACKEND_FFT, &t->K, &err), MC_OK);
+    mc_contact_options o = {.method = MC_METHOD_CG, .tolerance = 1e-10, .max_iterations = 5000};
+    ck_assert_int_eq(mc_contact_create(t->K, &o, &t->s, &err), MC_OK);
+    ck_assert_int_eq(mc_hardening_perfect(1e9, &t->law, &err), MC_OK);
+    t->pb = (mc_plastic_problem){.h = t->h, .load = 4 * 91.96, .load_steps = 2, .E = 210e9,
+                                 .nu = 0.3, .law = &t->law,
+                                 .volume = mc_eigen_volume_full(&t->g, 6, 40e-6),
+                                 .backend = MC_BACKEND_FFT, .relaxation = 0.7, .tol_outer = 1e-3,
+                                 .max_outer = 30, .tol_plastic = 1e-4, .max_plastic = 200};
+}
+
+static void sphere_free(sphere *t)
+{
+    mc_hardening_free(&t->law);
+    mc_contact_destroy(&t->s);
+    mc_operator_destroy(&t->K);
+    mc_free(t->h);
+    mc_free(t->p);
+    mc_free(t->u);
+    mc_free(t->gap);
+}
+
+static int sweeps(const mc_plastic_result *r)
+{
+    int n = 0;
+    for (int k = 0; k < r->steps_done; k++)
+        n += r->steps[k].plastic_iterations;
+    return n;
+}
+
+static double maxabs(const double *a, size_t n)
+{
+    double m = 0;
+    for (size_t i = 0; i < n; i++)
+        m = fmax(m, fabs(a[i]));
+    return m;
+}
+
+/* max |a - b| / max |b| */
+static double rel_diff(const double *a, const double *b, size_t n)
+{
+    double d = 0;
+    for (size_t i = 0; i < n; i++)
+        d = fmax(d, fabs(a[i] - b[i]));
+    const double s = maxabs(b, n);
+    return s > 0 ? d / s : d;
+}
+
+/* Both states are fixed points of the outer map to within its stopping rule: the last change of
+ * u_r was at most tol_outer max|u_r| with the relaxed update (omega = 0.7). With the outer map
+ * contracting by rho per iteration, a state is within tol_outer rho / (1 - rho) of the fixed
+ * point; the loop's 5-20 iterations per step (dossier §2.1) put rho at 0.5-0.8, i.e. within
+ * 4 tol_outer each, 8 tol_outer apart; 10 tol_outer leaves a little room. The plastic strain and
+ * the pressure follow u_r with factors of order one (the same outer tolerance bounds them in the
+ * loop's own contract). */
+#define STATE_TOL_FACTOR 10.0
+
+/* The inexact loop and the tight one, with the adaptive under-relaxation of the fixed point and
+ * with Anderson mixing: converged, every accepted fixed point within tol_plastic, the same state
+ * within the outer tolerance, and fewer sweeps. */
+START_TEST(inexact_matches_tight)
+{
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    sphere t;
+    sphere_init(&t);
+    const size_t n = mc_grid_cells(&t.g);
+    double *p_tight = mc_zeros(n);
+    ck_assert(p_tight);
+    for (int aa = 0; aa <= 4; aa += 4) {
+        mc_plastic_problem pb = t.pb;
+        pb.anderson = aa;
+        mc_plastic_result tight, loose;
+        mc_contact_summary cs;
+        mc_error err = {0};
+        pb.tight_inner = 1;
+        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &tight, &err) ==
+                          MC_OK, "%s", err.msg);
+        memcpy(p_tight, t.p, n * sizeof *p_tight);
+        pb.tight_inner = 0;
+        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &loose, &err) ==
+                          MC_OK, "%s", err.msg);
+        ck_assert(tight.converged && loose.converged);
+        ck_assert_msg(tight.inner_change <= pb.tol_plastic && loose.inner_change <= pb.tol_plastic,
+                      "accepted fixed points: %g, %g > tol_plastic %g", tight.inner_change,
+                      loose.inner_change, pb.tol_plastic);
+        const size_t nv = (size_t)tight.nvol;
+        ck_assert(maxabs(tight.peq, nv) > 0); /* it did yield */
+        const double tol = STATE_TOL_FACTOR * pb.tol_outer;
+        const double du = rel_diff(loose.u_r, tight.u_r, n);
+        const double dpeq = rel_diff(loose.peq, tight.peq, nv);
+        const double deps = rel_diff(loose.eps_p, tight.eps_p, 6 * nv);
+        const double dp = rel_diff(t.p, p_tight, n);
+        ck_assert_msg(du <= tol && dpeq <= tol && deps <= tol && dp <= tol,
+                      "anderson %d: u_r %g, peq %g, eps_p %g, p %g apart (tolerance %g)", aa, du,
+                      dpeq, deps, dp, tol);
+        const int st = sweeps(&tight), sl = sweeps(&loose);
+        ck_assert_msg(sl < st, "anderson %d: %d sweeps inexact, %d tight", aa, sl, st);
+        mc_plastic_result_free(&tight);
+        mc_plastic_result_free(&loose);
+    }
+    mc_free(p_tight);
+    sphere_free(&t);
+    mc_threads_end(&scope);
+}
+END_TEST
+
+/* The contract under a loose outer tolerance and a very tight plastic one: the outer change
+ * meets tol_outer long before the inexact fixed points reach tol_plastic, yet the step is
+ * accepted only on a fixed point within tol_plastic. */
+START_TEST(accepts_only_tight)
+{
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    sphere t;
+    sphere_init(&t);
+    mc_plastic_problem pb = t.pb;
+    pb.tol_outer = 0.02;
+    pb.tol_plastic = 1e-9;
+    pb.max_plastic = 1000;
+    mc_plastic_result r;
+    mc_contact_summary cs;
+    mc_error err = {0};
+    ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &r, &err) == MC_OK,
+                  "%s", err.msg);
+    ck_assert(r.converged);
+    ck_assert_msg(r.inner_change <= pb.tol_plastic, "accepted on a fixed point at %g > %g",
+                  r.inner_change, pb.tol_plastic);
+    mc_plastic_result_free(&r);
+    sphere_free(&t);
+    mc_threads_end(&scope);
+}
+END_TEST
+
+/* Operators lent to two runs in a row give each the bits of the run that builds its own (one
+ * thread: the residual displacement's partial spectra are summed over a dynamic schedule,
+ * plastic/eigen_disp_op.c); operators of another nu, volume or friction are refused. */
+START_TEST(shared_operators)
+{
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    sphere t;
+    sphere_init(&t);
+    const size_t n = mc_grid_cells(&t.g);
+    mc_plastic_problem pb = t.pb;
+    pb.anderson = 4;
+    mc_plastic_ops ops;
+    mc_error err = {0};
+    ck_assert_msg(mc_plastic_ops_create(&t.g, &pb.volume, pb.nu, pb.backend, 0, &ops, &err) ==
+                      MC_OK, "%s", err.msg);
+    mc_plastic_result r[3];
+    mc_contact_summary cs;
+    double *p[3];
+    for (int k = 0; k < 3; k++) {
+        pb.ops = k < 2 ? &ops : NULL; /* lent twice, then built by the run */
+        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &r[k], &err) ==
+                          MC_OK, "%s", err.msg);
+        ck_assert(p[k] = mc_malloc(n * sizeof *p[k]));
+        memcpy(p[k], t.p, n * sizeof *p[k]);
+    }
+    const size_t nv = (size_t)r[0].nvol;
+    for (int k = 0; k < 2; k++) {
+        ck_assert(memcmp(r[k].eps_p, r[2].eps_p, 6 * nv * sizeof(double)) == 0);
+        ck_assert(memcmp(r[k].peq, r[2].peq, nv * sizeof(double)) == 0);
+        ck_assert(memcmp(r[k].u_r, r[2].u_r, n * sizeof(double)) == 0);
+        ck_assert(memcmp(r[k].sig_r, r[2].sig_r, 6 * nv * sizeof(double)) == 0);
+        ck_assert(memcmp(p[k], p[2], n * sizeof(double)) == 0);
+    }
+    for (int k = 0; k < 3; k++) {
+        mc_plastic_result_free(&r[k]);
+        mc_free(p[k]);
+    }
+    /* another problem: nu, the volume's depth, friction */
+    pb.ops = &ops;
+    mc_plastic_problem other[3] = {pb, pb, pb};
+    other[0].nu = 0.25;
+    other[1].volume.dz *= 2;
+    other[2].friction = 0.1;
+    for (int k = 0; k < 3; k++) {
+        mc_plastic_result bad;
+        ck_assert_int_eq(mc_plastic_run(&t.g, t.K, t.s, &other[k], t.p, t.u, t.gap, &cs, &bad,
+                                        &err),
+                         MC_ERR_INPUT);
+        mc_plastic_result_free(&bad);
+    }
+    mc_plastic_ops_destroy(&ops);
+    mc_plastic_ops_destroy(&ops); /* zeroed: a second destroy is harmless */
+    sphere_free(&t);
+    mc_threads_end(&scope);
+}
+END_TEST
+
+Suite *suite_plastic_loop(void);
+Suite *suite_plastic_loop(void)
+{
+    Suite *s = suite_create("plastic_loop");
+    TCase *t = tcase_create("inexact");
+    tcase_set_timeout(t, 120);
+    tcase_add_test(t, inexact_matches_tight);
+    tcase_add_test(t, accepts_only_tight);
+    tcase_add_test(t, shared_operators);
+    suite_add_tcase(s, t);
+    return s;
+}
