@@ -188,7 +188,9 @@ static void fft_apply(mc_eigen_disp *op, const double *const eps[6], double *uz)
         memset(acc, 0, sl * sizeof *acc);
 #pragma omp single
         team = omp_get_num_threads();
-#pragma omp for schedule(dynamic, 1)
+        /* static: each thread sums the same tasks in the same order on every run (a dynamic
+         * schedule made the sums, and so the bits, change from run to run) */
+#pragma omp for schedule(static)
         for (int t = 0; t < 6 * nz; t++) {
             const int k = t / 6, c = t % 6;
             mc_eig_fill_rows(rows, tx, eps[c] + k * wcells, op->v.nx, op->v.ny, op->v.i0);
