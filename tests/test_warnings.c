@@ -145,6 +145,47 @@ START_TEST(line_grid_checkerboard_band)
 }
 END_TEST
 
+/* The same band in 3-D (docs/theory.md §8.5; tests/test_eigen_checkerboard.c): a rigid sphere
+ * on a perfectly plastic half-space (about 2 P_c), 15 x 15 cells; dz = dx is warned, the default
+ * min(dx, dy) / 2 is not, nor is dz = 1.7 dy with dx = dy. */
+static const char *sphere_codes(const char *dz, char *buf, size_t len, double *dz_used)
+{
+    char text[700];
+    snprintf(text, sizeof text,
+             "[mesh]\nnx = 15\nny = 15\ndx = 40 um\n[geometry]\nshape = sphere\nradius = 15 mm\n"
+             "[body2]\nrigid = yes\n[load]\nforce = 200 N\n[plasticity]\nyield_stress = 1 GPa\n"
+             "load_steps = 1\ndepth = 240 um\n%s[solver]\nthreads = 1\n",
+             dz);
+    mc_scene s;
+    mc_error err = {0};
+    ck_assert_msg(mc_case_parse_text(text, "w.ini", NULL, 0, NULL, &s, &err) == MC_OK, "%s",
+                  err.msg);
+    mc_results r;
+    int rc = mc_pipeline_run(&s, &r, &err);
+    ck_assert_msg(rc == MC_OK || rc == MC_NOT_CONVERGED, "%s", err.msg);
+    ck_assert_msg(r.plastic.nz > 0 && !r.plastic.elastic_shortcut, "the sphere must yield");
+    *dz_used = r.plastic.dz;
+    buf[0] = '\0';
+    for (int k = 0; k < r.nwarnings; k++)
+        snprintf(buf + strlen(buf), len - strlen(buf), "%s%s", k ? " " : "", r.warnings[k].code);
+    mc_results_free(&r);
+    return buf;
+}
+
+START_TEST(sphere_checkerboard_band)
+{
+    char codes[256];
+    double dz;
+    const char *c = sphere_codes("dz = 40 um\n", codes, sizeof codes, &dz);
+    ck_assert_msg(strstr(c, "plastic_checkerboard") != NULL, "codes: %s", c);
+    c = sphere_codes("", codes, sizeof codes, &dz);
+    ck_assert_double_eq_tol(dz, 20e-6, 1e-12); /* the default: min(dx, dy) / 2 */
+    ck_assert_msg(strstr(c, "plastic_checkerboard") == NULL, "codes: %s", c);
+    c = sphere_codes("dz = 68 um\n", codes, sizeof codes, &dz); /* 1.7 dx: outside the band */
+    ck_assert_msg(strstr(c, "plastic_checkerboard") == NULL, "codes: %s", c);
+}
+END_TEST
+
 Suite *suite_warnings(void);
 Suite *suite_warnings(void)
 {
@@ -157,6 +198,7 @@ Suite *suite_warnings(void)
     tcase_add_test(t, pressure_above_moduli);
     tcase_add_test(t, flat_patch_edges_are_no_warning);
     tcase_add_test(t, line_grid_checkerboard_band);
+    tcase_add_test(t, sphere_checkerboard_band);
     suite_add_tcase(s, t);
     return s;
 }

@@ -13,7 +13,7 @@
  *
  * One run per load P/P_c = 2, 4, 6, 10, 14 (fast: 2, 6), each in load steps of 1 P_c, on a grid
  * scaled with the load: KE_CELLS cells per KE contact radius a_KE(P) (dx = a_KE / 6, odd n so a
- * cell sits on the axis) in a square of half-width 1.5 a_KE; dz = dx and depth = auto (the
+ * cell sits on the axis) in a square of half-width 1.5 a_KE; dz = dx / 2 and depth = auto (the
  * stage's defaults). Scaling the grid with the contact (instead of one dx for every load) is what
  * makes 10 and 14 P_c affordable: the volume grows with the load only through the layer count.
  * Compared: w/w_c with the KE fit (3 %), A/A_c (5 %), Hertz (P/P_c)^(2/3) beside both for
@@ -240,7 +240,7 @@ int vf_suite_kogut_etsion(vf_ctx *ctx, int fast)
             "[body2] rigid = yes (E* = E1/(1 - nu1^2), the KE E_H); the sphere's shape is the "
             "initial gap over the elastic-perfectly plastic half-space of body 1 ([plasticity] "
             "bodies = one). Grid per load: %d cells per KE contact radius a_KE(P), square of "
-            "half-width %.1f a_KE, dz = dx, depth auto; load steps of 1 P_c; [plasticity] "
+            "half-width %.1f a_KE, dz = dx / 2, depth auto; load steps of 1 P_c; [plasticity] "
             "tolerance = %g, max_outer = %d.",
             Pc, wc * 1e6, KE_CELLS, KE_HALF, OUTER_TOL, OUTER_MAX);
     vf_plot(ctx, "ke_interference.png",

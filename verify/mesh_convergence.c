@@ -499,7 +499,7 @@ int vf_suite_mesh_convergence(vf_ctx *ctx, int fast)
             "`surface.csv`; four of them are 4.0-4.8 um wide and 0.14-0.16 um high, and three "
             "of those touch), sampled at the cell centres of each mesh; a rigid flat presses it "
             "with %.2f N. Body 1: E = %.0f GPa, nu = %.2f, elastic-perfectly plastic with Y = %.0f "
-            "MPa; plastic volume down to %.1f um in layers dz = dx; 10 load steps, then "
+            "MPa; plastic volume down to %.1f um in layers dz = dx / 2; 10 load steps, then "
             "unloading. The stress-depth curves are taken under the point (%.2f, %.2f) um, the "
             "cell of the highest elastic pressure on the %.1f um mesh.\n\n",
             NASP, LOAD, E1 / 1e9, NU, YIELD / 1e6, DEPTH / UM, px / UM, py / UM, dxf);

@@ -731,7 +731,7 @@ int vf_suite_yield_criterion(vf_ctx *ctx, int fast)
             "(d = %d cells). Material: elastic-perfectly plastic, Y = %.0f MPa (the single "
             "asperity's elastic von Mises peak is %.2f Y); pressure cap H = %.0f MPa = %.2f Y "
             "(Tabor's 2.8 Y = %.0f MPa lies above p_H and would cap nothing). Plastic volume: "
-            "%d layers of dz = dx down to %.2f a; 10 load steps; the dent is the residual "
+            "%d layers of dz = dx / 2 down to %.2f a; 10 load steps; the dent is the residual "
             "displacement after unloading (von Mises) or the penetration of the capped cells "
             "(cap).\n\n",
             P_H / 1e6, A_HERTZ * 1e6, gm.R * 1e6, gm.P, D_OVER_A, E1 / 1e9, NU, super_err, gm.A,

@@ -429,11 +429,12 @@ const case_key mc_keys[] = {
      .def = "100", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
      .off = AT(plasticity.max_plastic), .doc = "Fixed-point sweeps per outer iteration."},
     {.section = "plasticity", .name = "dz", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
-     .lo_open = 1, .hi = 1, .def = "min(dx, dy)", .def_rule = 1, .use = USE_WHEN,
+     .lo_open = 1, .hi = 1, .def = "min(dx, dy) / 2", .def_rule = 1, .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.dz),
-     .doc = "Thickness of the volume cells; on a line grid (periodic_y, ny = 1) the default is "
-            "dx / 2, and 0.6 dx < dz < 1.6 dx gets the warning plastic_checkerboard (the "
-            "residual stress operator has an unstable x-z checkerboard mode there)."},
+     .doc = "Thickness of the volume cells (dx / 2 on a line grid: periodic_y, ny = 1). A dz "
+            "between 0.6 and 1.6 dx (or dy) gets the warning plastic_checkerboard: the "
+            "residual stress operator has an unstable x-z (y-z) checkerboard mode there, into "
+            "which a perfectly plastic run can lock."},
     {.section = "plasticity", .name = "depth", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "auto", .word = "auto", .word_value = 0, .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.depth),

@@ -135,7 +135,7 @@ typedef struct {
         int max_outer;
         double plastic_tolerance;     /* fixed point of the plastic strain increment */
         int max_plastic;
-        double dz;                    /* layer thickness, m; 0: min(dx, dy) */
+        double dz;                    /* layer thickness, m; 0: min(dx, dy) / 2 (line: dx / 2) */
         double depth;                 /* m; 0: auto */
         double margin;                /* columns around the contact's box, m; 0: auto */
         double friction;              /* q_x = friction (p - p_lub) in solid contact */

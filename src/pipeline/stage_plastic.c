@@ -93,11 +93,13 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, doubl
 {
     const mc_grid *g = &res->grid;
     mc_plastic_summary *ps = &res->plastic;
-    /* default min(dx, dy); dx / 2 on a line grid, away from its checkerboard mode (theory §8.5) */
+    /* default min(dx, dy) / 2 (dx / 2 on a line grid, whose dy is no cell size): below the band
+     * 0.6 < dz/dx < 1.6 where the residual stress operator's x-z (and y-z) checkerboard mode
+     * releases energy and a perfectly plastic run locks into it (theory §8.5) */
     const int line = g->periodic_y && g->ny == 1;
     const double dz = sc->plasticity.dz > 0 ? sc->plasticity.dz
                       : line                ? 0.5 * g->dx
-                                            : fmin(g->dx, g->dy);
+                                            : 0.5 * fmin(g->dx, g->dy);
     /* the contact's bounding box */
     int i0 = g->nx, i1 = -1, j0 = g->ny, j1 = -1;
     for (int j = 0; j < g->ny; j++)

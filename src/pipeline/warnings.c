@@ -102,16 +102,24 @@ void mc_results_warnings(const mc_scene *sc, mc_results *r)
                         "order one, outside linear elasticity; check the load, the moduli and the "
                         "roughness heights",
                         c->p_max * 1e-6, estar * 1e-6);
-    /* theory.md §8.5: on a line grid the x-z checkerboard of plastic strain releases energy for
-     * 0.6 < dz/dx < 1.6 (measured -0.10 .. -0.25 at 0.71 .. 1.41) */
-    if (r->plastic.nz > 0 && g->periodic_y && g->ny == 1 && r->plastic.dz > 0.6 * g->dx &&
-        r->plastic.dz < 1.6 * g->dx)
-        mc_results_warn(r, "plastic_checkerboard",
-                        "[plasticity] dz = %.4g um is %.2f dx on a line grid: the residual stress "
-                        "operator has an unstable x-z checkerboard mode for 0.6 < dz/dx < 1.6 "
-                        "(alternate cells yielding, too much plastic strain); use dz <= dx / 2 "
-                        "(the default there)",
-                        r->plastic.dz * 1e6, r->plastic.dz / g->dx);
+    /* theory.md §8.5: the x-z (y-z) checkerboard of plastic strain releases energy for
+     * 0.6 < dz/dx (dz/dy) < 1.6 (measured -0.10 .. -0.25 at 0.71 .. 1.41 on a line grid, down to
+     * -0.15 at dz = dx in finite 3-D blocks; a perfectly plastic rough sphere at dz = dx: twice
+     * the plastic strain, alternate cells yielding). dy is no cell size on a line grid. */
+    if (r->plastic.nz > 0 && r->plastic.dz > 0) {
+        const int line = g->periodic_y && g->ny == 1;
+        const double rx = r->plastic.dz / g->dx, ry = line ? 0 : r->plastic.dz / g->dy;
+        const int bx = rx > MC_WARN_CHECKER_LO && rx < MC_WARN_CHECKER_HI;
+        const int by = ry > MC_WARN_CHECKER_LO && ry < MC_WARN_CHECKER_HI;
+        if (bx || by)
+            mc_results_warn(r, "plastic_checkerboard",
+                            "[plasticity] dz = %.4g um is %.2f %s: the residual stress operator "
+                            "has an unstable checkerboard mode for %.1f < dz/d%s < %.1f "
+                            "(alternate cells yielding, too much plastic strain, most with "
+                            "perfect or weak hardening); use dz <= min(dx, dy) / 2 (the default)",
+                            r->plastic.dz * 1e6, bx ? rx : ry, bx ? "dx" : "dy",
+                            MC_WARN_CHECKER_LO, bx ? "x" : "y", MC_WARN_CHECKER_HI);
+    }
     if (r->has_roughness && r->roughness_initial.warning[0])
         mc_results_warn(r, "roughness_cutoff", "roughness parameters: %s",
                         r->roughness_initial.warning);

@@ -20,9 +20,10 @@
  *                        linear elasticity the solve assumes.
  *   roughness_cutoff     the ISO roughness parameters deviate from the standard (cut-off clipped
  *                        on a short surface, short evaluation length; surface/roughness.h).
- *   plastic_checkerboard  a line grid (periodic y, ny = 1) with [plasticity] dz between 0.6 and
- *                        1.6 dx: the residual stress operator's x-z checkerboard mode releases
- *                        energy there (docs/theory.md §8.5), and a plastic run can lock into it.
+ *   plastic_checkerboard  [plasticity] dz between 0.6 and 1.6 dx, or 0.6 and 1.6 dy (not on a
+ *                        line grid, periodic y with ny = 1, where dy is no cell size): the
+ *                        residual stress operator's x-z (y-z) checkerboard mode releases energy
+ *                        there (docs/theory.md §8.5), and a plastic run can lock into it.
  *   wisdom_not_written   [solver] plans = wisdom: the wisdom file could not be written at the
  *                        end of the run (the results stand; the next run measures again).
  */
@@ -34,6 +35,8 @@
 
 #define MC_WARN_CONTACT_RATIO 0.9 /* contact_ratio_high above this fraction */
 #define MC_WARN_CELLS_PER_RADIUS 10.0 /* coarse_contact below this many cells */
+#define MC_WARN_CHECKER_LO 0.6 /* plastic_checkerboard: dz/dx or dz/dy strictly between these */
+#define MC_WARN_CHECKER_HI 1.6
 
 /* Add one warning to r (dropped when MC_WARNINGS_MAX are there). */
 void mc_results_warn(mc_results *r, const char *code, const char *fmt, ...)
