@@ -140,10 +140,13 @@ static const vf_gallery_row manifest[] = {
              "largest plastic strain and plastic volume of the same surface after unloading, "
              "relative to the 0.4 um mesh.",
      .differ = "As the paper, the coarse meshes give too small a plastic deformation (largest "
-               "dent 0.76-0.92 of the finest on 2.0-1.2 um); 0.8 um is within 0.05 % in plastic "
-               "volume, 8-10 % in dent volume and integrated strain, 12 % in the largest dent: "
-               "comparable, not converged to the last per cent (the local maxima converge "
-               "slowest)."},
+               "dent {residual_max_rel_2.0|pct|%+.0f} %, {residual_max_rel_1.6|pct|%+.0f} %, "
+               "{residual_max_rel_1.2|pct|%+.0f} % on 2.0, 1.6, 1.2 um); 0.8 um is within "
+               "{residual_max_rel_0.8|pct|%+.1f} % in the largest dent, "
+               "{dent_volume_rel_0.8|pct|%+.1f} % in dent volume, "
+               "{peq_integral_rel_0.8|pct|%+.1f} % in integrated strain and "
+               "{plastic_volume_rel_0.8|pct|%+.1f} % in plastic volume: comparable, not "
+               "converged to the last per cent (the local maxima converge slowest)."},
 
     /* ---- benchmarks of the elastic-plastic method (no paper figure: its Section 2 cites
      * the validation of the method, dossier plastic-lubrication 2.5, 2.6) ---- */

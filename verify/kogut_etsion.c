@@ -226,7 +226,7 @@ int vf_suite_kogut_etsion(vf_ctx *ctx, int fast)
         vf_regress(ctx, id, VF_TIER_ROUNDOFF);
         vf_text(ctx, "P/P_c = %g: %d x %d cells of dx = dy = %.0f um (%.1f cells per a_c), %d "
                      "layers of dz = %.0f um to %.0f um (auto), %d load steps of 1 P_c, %d "
-                     "outer iterations, %.1f s.",
+                     "outer iterations, %.1f s.\n\n",
                 P, o.n, o.n, o.dx * 1e6, sqrt(Ac / M_PI) / o.dx, o.nz, o.dz * 1e6,
                 o.depth * 1e6, o.steps, o.outer, o.time);
     }
