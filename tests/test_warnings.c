@@ -4,6 +4,7 @@
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "case/case.h"
@@ -186,6 +187,37 @@ START_TEST(sphere_checkerboard_band)
 }
 END_TEST
 
+/* plastic_checkered: the detector on fields whose answer is known by construction. A smooth
+ * bump (a Gaussian in x, y, z) has local extrema only at its top: far below the threshold; the
+ * same bump times (1 + 0.5 (-1)^(i+k)) zigzags along x in every significant cell. Mutation tried:
+ * the opposite sign test in the detector counts the smooth bump's monotone slopes (0.93: red). */
+START_TEST(checkered_fraction_of_known_fields)
+{
+    const mc_grid g = {24, 20, 1e-6, 1e-6, 0, 0};
+    const int nz = 6;
+    const size_t n = (size_t)nz * 24 * 20;
+    double *smooth = malloc(n * sizeof *smooth), *checker = malloc(n * sizeof *checker);
+    ck_assert(smooth && checker);
+    for (int k = 0; k < nz; k++)
+        for (int j = 0; j < 20; j++)
+            for (int i = 0; i < 24; i++) {
+                const size_t v = ((size_t)k * 20 + j) * 24 + i;
+                const double r2 = (i - 11.5) * (i - 11.5) / 30.0 + (j - 9.5) * (j - 9.5) / 20.0 +
+                                  (k - 2.0) * (k - 2.0) / 4.0;
+                smooth[v] = 1e-3 * exp(-r2);
+                checker[v] = smooth[v] * (1.0 + 0.5 * (((i + k) % 2) ? -1.0 : 1.0));
+            }
+    const double fs = mc_plastic_checkered_fraction(&g, nz, smooth);
+    const double fc = mc_plastic_checkered_fraction(&g, nz, checker);
+    ck_assert_msg(fs < 0.1, "smooth bump: %g", fs);
+    ck_assert_msg(fc > MC_WARN_CHECKERED, "checkerboard: %g", fc);
+    for (size_t v = 0; v < n; v++)
+        smooth[v] = 0.0;
+    ck_assert_double_eq(mc_plastic_checkered_fraction(&g, nz, smooth), 0.0);
+    free(smooth), free(checker);
+}
+END_TEST
+
 Suite *suite_warnings(void);
 Suite *suite_warnings(void)
 {
@@ -198,6 +230,7 @@ Suite *suite_warnings(void)
     tcase_add_test(t, pressure_above_moduli);
     tcase_add_test(t, flat_patch_edges_are_no_warning);
     tcase_add_test(t, line_grid_checkerboard_band);
+    tcase_add_test(t, checkered_fraction_of_known_fields);
     tcase_add_test(t, sphere_checkerboard_band);
     suite_add_tcase(s, t);
     return s;

@@ -58,6 +58,38 @@ static double extent_radius(const mc_results *r, int line, double p_lub)
     return line ? ax : sqrt(ax * ay);
 }
 
+double mc_plastic_checkered_fraction(const mc_grid *g, int nz, const double *peq)
+{
+    const int nx = g->nx, ny = g->ny;
+    const size_t n = (size_t)nz * (size_t)nx * (size_t)ny;
+    double peak = 0;
+    for (size_t v = 0; v < n; v++)
+        peak = fmax(peak, peq[v]);
+    if (!(peak > 0))
+        return 0.0;
+    const double floor_ = MC_CHECKER_SIGNIFICANT * peak, step = MC_CHECKER_STEP * peak;
+    long significant = 0, checkered = 0;
+    for (int k = 0; k < nz; k++)
+        for (int j = 0; j < ny; j++)
+            for (int i = 0; i < nx; i++) {
+                const size_t v = ((size_t)k * ny + j) * nx + i;
+                if (!(peq[v] > floor_))
+                    continue;
+                significant++;
+                int alt = 0;
+                if (i > 0 && i < nx - 1) { /* a zigzag along x: both steps large, signs opposite */
+                    const double a = peq[v] - peq[v - 1], b = peq[v + 1] - peq[v];
+                    alt |= a * b < 0 && fabs(a) > step && fabs(b) > step;
+                }
+                if (j > 0 && j < ny - 1) {
+                    const double a = peq[v] - peq[v - nx], b = peq[v + nx] - peq[v];
+                    alt |= a * b < 0 && fabs(a) > step && fabs(b) > step;
+                }
+                checkered += alt;
+            }
+    return significant ? (double)checkered / (double)significant : 0.0;
+}
+
 void mc_results_warnings(const mc_scene *sc, mc_results *r)
 {
     const mc_contact_summary *c = &r->contact;
@@ -119,6 +151,18 @@ void mc_results_warnings(const mc_scene *sc, mc_results *r)
                             "perfect or weak hardening); use dz <= min(dx, dy) / 2 (the default)",
                             r->plastic.dz * 1e6, bx ? rx : ry, bx ? "dx" : "dy",
                             MC_WARN_CHECKER_LO, bx ? "x" : "y", MC_WARN_CHECKER_HI);
+    }
+    /* theory.md §8.5: the residual stress operator's checkerboard modes; whatever dz, a plastic
+     * strain field that zigzags from cell to cell is the discretisation's, not the material's */
+    if (r->plastic_strain && r->plastic.nz > 0) {
+        const double f = mc_plastic_checkered_fraction(g, r->plastic.nz, r->plastic_strain);
+        if (f > MC_WARN_CHECKERED)
+            mc_results_warn(r, "plastic_checkered",
+                            "%.0f %% of the cells with significant plastic strain zigzag from cell "
+                            "to cell (above %.0f %%): the residual stress operator's checkerboard "
+                            "mode (docs/theory.md §8.5), not the material's response; use a "
+                            "smaller dz (dx / 2), more hardening or finer cells",
+                            100.0 * f, 100.0 * MC_WARN_CHECKERED);
     }
     if (r->has_roughness && r->roughness_initial.warning[0])
         mc_results_warn(r, "roughness_cutoff", "roughness parameters: %s",
