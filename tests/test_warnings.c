@@ -22,15 +22,23 @@ static double hertz_radius(double force, double radius)
     return cbrt(3.0 * force * radius / (4.0 * estar));
 }
 
-/* Run the case text; returns the codes of its warnings joined by spaces into buf. */
-static const char *codes_of(const char *text, char *buf, size_t len)
+/* Run the case text; returns the codes of its warnings joined by spaces into buf, and the run's
+ * plastic layer thickness in *dz_used when not NULL. plastic: the scene must yield (the plastic
+ * loop ran), and a loop that stops short of its tolerance still counts. */
+static const char *run_codes(const char *text, int plastic, char *buf, size_t len,
+                             double *dz_used)
 {
     mc_scene s;
     mc_error err = {0};
     ck_assert_msg(mc_case_parse_text(text, "w.ini", NULL, 0, NULL, &s, &err) == MC_OK, "%s",
                   err.msg);
     mc_results r;
-    ck_assert_msg(mc_pipeline_run(&s, &r, &err) == MC_OK, "%s", err.msg);
+    const int rc = mc_pipeline_run(&s, &r, &err);
+    ck_assert_msg(rc == MC_OK || (plastic && rc == MC_NOT_CONVERGED), "%s", err.msg);
+    if (plastic)
+        ck_assert_msg(r.plastic.nz > 0 && !r.plastic.elastic_shortcut, "the scene must yield");
+    if (dz_used)
+        *dz_used = r.plastic.dz;
     buf[0] = '\0';
     for (int k = 0; k < r.nwarnings; k++) {
         ck_assert(r.warnings[k].message[0] != '\0');
@@ -38,6 +46,11 @@ static const char *codes_of(const char *text, char *buf, size_t len)
     }
     mc_results_free(&r);
     return buf;
+}
+
+static const char *codes_of(const char *text, char *buf, size_t len)
+{
+    return run_codes(text, 0, buf, len, NULL);
 }
 
 static void sphere(char *text, size_t len, int n, double dx_um, double force, const char *extra)
@@ -117,18 +130,7 @@ static const char *line_codes(const char *dz, char *buf, size_t len, double *dz_
              "cylinder\nradius = 10 mm\n[body2]\nrigid = yes\n[load]\nforce_per_length = "
              "550 kN/m\n[plasticity]\nyield_stress = 1 GPa\n%s[solver]\nthreads = 1\n",
              dz);
-    mc_scene s;
-    mc_error err = {0};
-    ck_assert_msg(mc_case_parse_text(text, "w.ini", NULL, 0, NULL, &s, &err) == MC_OK, "%s",
-                  err.msg);
-    mc_results r;
-    ck_assert_msg(mc_pipeline_run(&s, &r, &err) == MC_OK, "%s", err.msg);
-    *dz_used = r.plastic.dz;
-    buf[0] = '\0';
-    for (int k = 0; k < r.nwarnings; k++)
-        snprintf(buf + strlen(buf), len - strlen(buf), "%s%s", k ? " " : "", r.warnings[k].code);
-    mc_results_free(&r);
-    return buf;
+    return run_codes(text, 0, buf, len, dz_used);
 }
 
 START_TEST(line_grid_checkerboard_band)
@@ -157,20 +159,7 @@ static const char *sphere_codes(const char *dz, char *buf, size_t len, double *d
              "[body2]\nrigid = yes\n[load]\nforce = 200 N\n[plasticity]\nyield_stress = 1 GPa\n"
              "load_steps = 1\ndepth = 240 um\n%s[solver]\nthreads = 1\n",
              dz);
-    mc_scene s;
-    mc_error err = {0};
-    ck_assert_msg(mc_case_parse_text(text, "w.ini", NULL, 0, NULL, &s, &err) == MC_OK, "%s",
-                  err.msg);
-    mc_results r;
-    int rc = mc_pipeline_run(&s, &r, &err);
-    ck_assert_msg(rc == MC_OK || rc == MC_NOT_CONVERGED, "%s", err.msg);
-    ck_assert_msg(r.plastic.nz > 0 && !r.plastic.elastic_shortcut, "the sphere must yield");
-    *dz_used = r.plastic.dz;
-    buf[0] = '\0';
-    for (int k = 0; k < r.nwarnings; k++)
-        snprintf(buf + strlen(buf), len - strlen(buf), "%s%s", k ? " " : "", r.warnings[k].code);
-    mc_results_free(&r);
-    return buf;
+    return run_codes(text, 1, buf, len, dz_used);
 }
 
 START_TEST(sphere_checkerboard_band)
