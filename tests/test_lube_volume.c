@@ -43,28 +43,9 @@ static void make_patch(patch *pt, int n, int periodic, mc_contact_method m)
     mc_grid g = {n, n, DX, DX, periodic, periodic};
     pt->g = g;
     pt->n = mc_grid_cells(&g);
-    double *z = mc_zeros(pt->n), *t = mc_zeros(pt->n);
     pt->h = mc_zeros(pt->n);
-    test_random_field(z, pt->n, 20251124ULL);
-    for (int pass = 0; pass < 4; pass++) {
-        for (int j = 0; j < n; j++)
-            for (int i = 0; i < n; i++)
-                t[j * n + i] = 0.25 * z[j * n + (i + n - 1) % n] + 0.5 * z[j * n + i] +
-                               0.25 * z[j * n + (i + 1) % n];
-        for (int j = 0; j < n; j++)
-            for (int i = 0; i < n; i++)
-                z[j * n + i] = 0.25 * t[((j + n - 1) % n) * n + i] + 0.5 * t[j * n + i] +
-                               0.25 * t[((j + 1) % n) * n + i];
-    }
-    double mean = 0, var = 0;
-    for (size_t i = 0; i < pt->n; i++)
-        mean += z[i] / (double)pt->n;
-    for (size_t i = 0; i < pt->n; i++)
-        var += (z[i] - mean) * (z[i] - mean) / (double)pt->n;
-    for (size_t i = 0; i < pt->n; i++)
-        pt->h[i] = -(z[i] - mean) * SQ / sqrt(var);
-    mc_free(z);
-    mc_free(t);
+    ck_assert_ptr_nonnull(pt->h);
+    test_smooth_rough_gap(pt->h, n, SQ, 20251124ULL);
     pt->a_nom = (double)pt->n * DX * DX;
     pt->load = P_NOM * pt->a_nom;
     mc_error err = {0};

@@ -85,6 +85,33 @@ void test_random_field(double *f, size_t n, unsigned long long seed)
     }
 }
 
+void test_smooth_rough_gap(double *h, int n, double sq, unsigned long long seed)
+{
+    const size_t nc = (size_t)n * (size_t)n;
+    double *z = malloc(nc * sizeof *z), *t = malloc(nc * sizeof *t);
+    ck_assert(z && t);
+    test_random_field(z, nc, seed);
+    for (int pass = 0; pass < 4; pass++) {
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++)
+                t[j * n + i] = 0.25 * z[j * n + (i + n - 1) % n] + 0.5 * z[j * n + i] +
+                               0.25 * z[j * n + (i + 1) % n];
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++)
+                z[j * n + i] = 0.25 * t[((j + n - 1) % n) * n + i] + 0.5 * t[j * n + i] +
+                               0.25 * t[((j + 1) % n) * n + i];
+    }
+    double mean = 0, var = 0;
+    for (size_t i = 0; i < nc; i++)
+        mean += z[i] / (double)nc;
+    for (size_t i = 0; i < nc; i++)
+        var += (z[i] - mean) * (z[i] - mean) / (double)nc;
+    for (size_t i = 0; i < nc; i++)
+        h[i] = -(z[i] - mean) * sq / sqrt(var);
+    free(z);
+    free(t);
+}
+
 /* The directories test_tmpdir made in this process, removed at its exit. Check runs each test
  * in a forked child: a directory belongs to the process that made it (a child inherits the
  * parent's list and handler, and must not remove the parent's directories). */

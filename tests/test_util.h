@@ -28,6 +28,11 @@ double test_rel_maxdiff(const double *a, const double *b, size_t n);
 /* Deterministic pseudo-random values in [-1, 1) (splitmix64), for property tests. */
 void test_random_field(double *f, size_t n, unsigned long long seed);
 
+/* A rough gap of n x n cells into h: test_random_field(seed) smoothed by 4 passes of a periodic
+ * binomial filter along x and y (correlation over a few cells; periodic by construction, usable on
+ * free grids too), mean removed, scaled to rms sq, negated (gap = - heights). */
+void test_smooth_rough_gap(double *h, int n, double sq, unsigned long long seed);
+
 /* A fresh empty temporary directory (mkdtemp); the path is valid until the next call (a static
  * buffer); the directory and its contents are removed when the process that made it exits. */
 const char *test_tmpdir(void);

@@ -35,28 +35,10 @@ static void make_patch(patch *pt)
 {
     pt->g = (mc_grid){N, N, DX, DX, 0, 0};
     pt->n = mc_grid_cells(&pt->g);
-    double *z = mc_zeros(pt->n), *t = mc_zeros(pt->n);
     pt->h = mc_zeros(pt->n);
     pt->bump = mc_zeros(pt->n);
-    ck_assert(z && t && pt->h && pt->bump);
-    test_random_field(z, pt->n, 20261124ULL);
-    for (int pass = 0; pass < 4; pass++) { /* periodic binomial smoothing */
-        for (int j = 0; j < N; j++)
-            for (int i = 0; i < N; i++)
-                t[j * N + i] = 0.25 * z[j * N + (i + N - 1) % N] + 0.5 * z[j * N + i] +
-                               0.25 * z[j * N + (i + 1) % N];
-        for (int j = 0; j < N; j++)
-            for (int i = 0; i < N; i++)
-                z[j * N + i] = 0.25 * t[((j + N - 1) % N) * N + i] + 0.5 * t[j * N + i] +
-                               0.25 * t[((j + 1) % N) * N + i];
-    }
-    double mean = 0, var = 0;
-    for (size_t i = 0; i < pt->n; i++)
-        mean += z[i] / (double)pt->n;
-    for (size_t i = 0; i < pt->n; i++)
-        var += (z[i] - mean) * (z[i] - mean) / (double)pt->n;
-    for (size_t i = 0; i < pt->n; i++)
-        pt->h[i] = -(z[i] - mean) * SQ / sqrt(var);
+    ck_assert(pt->h && pt->bump);
+    test_smooth_rough_gap(pt->h, N, SQ, 20261124ULL);
     /* a residual dent of up to 5 nm under the highest asperities: the change between two outer
      * iterations of the elastic-plastic loop */
     double hmin = INFINITY;
@@ -64,8 +46,6 @@ static void make_patch(patch *pt)
         hmin = fmin(hmin, pt->h[i]);
     for (size_t i = 0; i < pt->n; i++)
         pt->bump[i] = 5e-9 * exp(-(pt->h[i] - hmin) / (0.2 * SQ));
-    mc_free(z);
-    mc_free(t);
     pt->load = P_NOM * (double)pt->n * DX * DX;
     mc_error err = {0};
     ck_assert_msg(mc_operator_plan_love(&pt->g, E_STAR, MC_BACKEND_FFT, &pt->K, &err) == MC_OK,
