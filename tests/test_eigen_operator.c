@@ -629,19 +629,19 @@ START_TEST(test_bad_input)
     const mc_grid g = {8, 6, 1e-6, 1e-6, 0, 0};
     const mc_eigen_volume ok = {1, 1, 4, 3, 2, 1e-6};
     mc_eigen_volume v = ok;
-    /* periodic x, and periodic y with ny > 1, are refused: the residual field of a local
-     * plastic zone is not periodic (periodic y with ny = 1 is a line contact: accepted) */
+    /* periodic axes (tests/test_eigen_periodic.c): a volume that does not span the period of a
+     * periodic axis, and x periodic alone, are refused */
     const mc_grid gp = {8, 6, 1e-6, 1e-6, 0, 1}, gx = {8, 1, 1e-6, 1e-6, 1, 0};
     const mc_grid gxy = {8, 1, 1e-6, 1e-6, 1, 1};
-    ck_assert_int_eq(mc_eigen_disp_create(&gp, &v, NU, MC_BACKEND_FFT, &od, &err), MC_ERR_LIMIT);
-    ck_assert_ptr_nonnull(strstr(err.msg, "ny = 1"));
+    ck_assert_int_eq(mc_eigen_disp_create(&gp, &v, NU, MC_BACKEND_FFT, &od, &err), MC_ERR_INPUT);
+    ck_assert_ptr_nonnull(strstr(err.msg, "whole period"));
     ck_assert_int_eq(mc_eigen_stress_create(&gp, &v, NU, MC_BACKEND_DIRECT, &os, &err),
-                     MC_ERR_LIMIT);
+                     MC_ERR_INPUT);
     const mc_eigen_volume v1 = {1, 0, 4, 1, 2, 1e-6};
     ck_assert_int_eq(mc_eigen_disp_create(&gx, &v1, NU, MC_BACKEND_FFT, &od, &err), MC_ERR_LIMIT);
-    ck_assert_ptr_nonnull(strstr(err.msg, "periodic x"));
+    ck_assert_ptr_nonnull(strstr(err.msg, "periodic along x alone"));
     ck_assert_int_eq(mc_eigen_stress_create(&gxy, &v1, NU, MC_BACKEND_FFT, &os, &err),
-                     MC_ERR_LIMIT);
+                     MC_ERR_INPUT);
     const mc_eigen_volume bad[] = {
         {5, 1, 4, 3, 2, 1e-6},  /* window beyond x */
         {1, 4, 4, 3, 2, 1e-6},  /* beyond y */

@@ -109,15 +109,12 @@ static int plasticity_rules(const mc_scene *s, mc_error *err, const char **secti
         BLAME("load", "force",
               "[plasticity] needs [load] force or force_per_length (the load rises in steps to "
               "it); approach and pressure_file are not supported by the elastic-plastic stage");
-    if (s->grid.periodic_x)
+    /* the eigenstrain operators take x free (y free, a strip periodic along y, or a line grid)
+     * or both axes periodic (docs/theory.md §8.6) */
+    if (s->grid.periodic_x && !s->grid.periodic_y)
         BLAME("mesh", "periodic_x",
-              "[plasticity] with [mesh] periodic_x = yes: the x axis must be free (the residual "
-              "fields of a local plastic zone are not periodic)");
-    if (s->grid.periodic_y && s->grid.ny != 1)
-        BLAME("mesh", "periodic_y",
-              "[plasticity] with [mesh] periodic_y = yes needs ny = 1 (a line contact, uniform "
-              "along y: plane strain), not ny = %d; accepted: periodic_y = no, or ny = 1",
-              s->grid.ny);
+              "[plasticity] with [mesh] periodic_x = yes needs periodic_y = yes too (a doubly "
+              "periodic patch); accepted: x free, or x and y periodic");
     if (isfinite(s->load.pressure_cap))
         BLAME("load", "pressure_cap",
               "[load] pressure_cap cannot be combined with [plasticity] (criterion = "

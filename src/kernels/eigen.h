@@ -91,4 +91,17 @@ void mc_eigen_stress12_bar(double x, double z, double hx, double z1, double z2, 
                            double S[6][6]);
 void mc_eigen_surface_szz12_bar(double x, double hx, double z1, double z2, double nu, double s[6]);
 
+/* ---- the layer limit: a layer unbounded in x and y (docs/theory.md §8.6) -------------------------
+ *
+ * The sum of the cuboid kernels over every lateral position, i.e. the Fourier mode k = 0 of a doubly
+ * periodic eigenstrain field, in closed form (eigen_layer.c): in-plane total strains 0 and
+ * sigma_zz = sigma_xz = sigma_yz = 0. S1 of the layer z1 <= z' < z2 seen at depth z: the local stress
+ * -C:eps* restricted to the in-plane rows inside the layer, 0 outside; S2 (the mirror layer lies
+ * above the surface) and the surface traction p3 are 0. The surface displacement (a length, u_z > 0
+ * into the body) per unit eigenstrain: -(z2 - z1) [eps*_zz + nu/(1 - nu)(eps*_xx + eps*_yy)]. Unlike
+ * the sum over a growing finite patch (whose rim forces do not fade, theory.md §8.1), this is the
+ * periodic field's own mean: the sum of D over a patch converges only conditionally. */
+void mc_eigen_stress1_layer(double z, double z1, double z2, double nu, double S[6][6]);
+void mc_eigen_surface_uz_layer(double z1, double z2, double nu, double D[6]);
+
 #endif

@@ -150,6 +150,11 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, doubl
     j0 = j0 - my < 0 ? 0 : j0 - my;
     i1 = i1 + mx >= g->nx ? g->nx - 1 : i1 + mx;
     j1 = j1 + my >= g->ny ? g->ny - 1 : j1 + my;
+    /* along a periodic axis the volume is the whole period (theory.md §8.6) */
+    if (g->periodic_x)
+        i0 = 0, i1 = g->nx - 1;
+    if (g->periodic_y)
+        j0 = 0, j1 = g->ny - 1;
     *v = (mc_eigen_volume){i0, j0, i1 - i0 + 1, j1 - j0 + 1, nz, dz};
     ps->depth = nz * dz;
     ps->dz = dz;

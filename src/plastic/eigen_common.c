@@ -15,16 +15,20 @@ int mc_eig_check(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backe
     int rc = mc_grid_check(g, err);
     if (rc)
         return mc_error_prefix(err, "%s: ", who);
-    if (g->periodic_x)
+    /* a periodic x axis comes with a periodic y axis (a doubly periodic patch, or a line grid
+     * periodic along x): the limits of the image sums are the layer and the bar along y */
+    if (g->periodic_x && !g->periodic_y)
         return mc_fail(err, MC_ERR_LIMIT,
-                       "%s: a periodic x axis is not supported (the residual field of a local "
-                       "plastic zone is not periodic)", who);
-    if (g->periodic_y && g->ny != 1)
-        return mc_fail(err, MC_ERR_LIMIT,
-                       "%s: a periodic y axis is supported only with ny = 1 (a field uniform along "
-                       "y: plane strain), not ny = %d", who, g->ny);
+                       "%s: a grid periodic along x alone is not supported (accepted: x free, or "
+                       "x and y periodic)", who);
     if (!v)
         return mc_fail(err, MC_ERR_INPUT, "%s: no volume given", who);
+    if ((mc_eig_per_x(g) && (v->i0 != 0 || v->nx != g->nx)) ||
+        (mc_eig_per_y(g) && (v->j0 != 0 || v->ny != g->ny)))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "%s: along a periodic axis the volume must span the whole period (window "
+                       "%d x %d at (%d, %d) on the %d x %d grid)", who, v->nx, v->ny, v->i0, v->j0,
+                       g->nx, g->ny);
     if (v->nx < 1 || v->ny < 1 || v->i0 < 0 || v->j0 < 0 || v->nx > g->nx - v->i0 ||
         v->ny > g->ny - v->j0)
         return mc_fail(err, MC_ERR_INPUT,
@@ -79,6 +83,7 @@ void mc_eig_fill(int qx, int qy, int ux, int uy, int ncomp, const int *par, mc_e
 
 void mc_eig_quad_destroy(mc_eig_quad *t)
 {
+    mc_eig_quad_full_destroy(t);
     for (int p = 0; p < 4; p++)
         if (t->plan[p])
             fftw_destroy_plan(t->plan[p]);
@@ -123,6 +128,10 @@ int mc_eig_quad_create(mc_eig_quad *t, int mx, int my, mc_error *err)
 
 void mc_eig_quad_transform(const mc_eig_quad *t, int par, double *quad)
 {
+    if (t->full) {
+        mc_eig_quad_full_transform(t, par, quad);
+        return;
+    }
     double *at = quad + ((par & 2) ? t->qx : 0) + ((par & 1) ? 1 : 0);
     fftw_execute_r2r(t->plan[par & 3], at, at);
 }

@@ -46,7 +46,8 @@ struct disp_ops {
 typedef struct {
     double dx, dy, dz, nu;
     int k;
-    int line; /* bars along y (mc_eig_line); only dj = 0 is used */
+    int line;  /* bars along y (mc_eig_line); only dj = 0 is used */
+    int layer; /* periodic grids: the image sum's limit is the layer (x periodic), else the bar */
 } disp_ctx;
 
 static void disp_kernel(int di, int dj, const void *ctx, double *out)
@@ -62,17 +63,39 @@ static void disp_kernel(int di, int dj, const void *ctx, double *out)
                         c->k * c->dz, (c->k + 1) * c->dz, c->nu, out);
 }
 
+/* the limit of the image sums on periodic grids (mc_eig_fill_images; theory.md §8.6) */
+static void disp_limit(int di, int dj, const void *ctx, double *out)
+{
+    (void)dj;
+    const disp_ctx *c = ctx;
+    if (c->layer) {
+        mc_eigen_surface_uz_layer(c->k * c->dz, (c->k + 1) * c->dz, c->nu, out);
+        return;
+    }
+    const double cx = -di * c->dx;
+    mc_eigen_surface_uz_bar(cx - 0.5 * c->dx, cx + 0.5 * c->dx, c->k * c->dz, (c->k + 1) * c->dz,
+                            c->nu, out);
+}
+
 static void build_tables(mc_eigen_disp *op)
 {
+    const mc_grid *g = &op->g;
+    const int px = mc_eig_per_x(g), py = mc_eig_per_y(g);
+    const int period[2] = {px ? g->nx : 0, py ? g->ny : 0};
+    const int images[2] = {px ? mc_eig_images(g->nx) : 0, py ? mc_eig_images(g->ny) : 0};
     int par[6];
     for (int c = 0; c < 6; c++)
         par[c] = mc_eig_par(c);
     for (int k = 0; k < op->v.nz; k++) {
-        const disp_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k, mc_eig_line(&op->g)};
+        const disp_ctx ctx = {g->dx, g->dy, op->v.dz, op->nu, k, mc_eig_line(g), px};
         double *q[6];
         for (int c = 0; c < 6; c++)
             q[c] = op->tab + (size_t)(k * 6 + c) * op->qlen;
-        mc_eig_fill(op->qx, op->qy, op->ux, op->uy, 6, par, disp_kernel, &ctx, q);
+        if (mc_eig_periodic(g))
+            mc_eig_fill_images(op->qx, op->qy, op->ux, op->uy, 6, par, disp_kernel, disp_limit,
+                               &ctx, period, images, q);
+        else
+            mc_eig_fill(op->qx, op->qy, op->ux, op->uy, 6, par, disp_kernel, &ctx, q);
     }
 }
 
@@ -90,6 +113,7 @@ static void direct_apply(mc_eigen_disp *op, const double *const eps[6], double *
 {
     const int nx = op->g.nx, ny = op->g.ny, wx = op->v.nx, wy = op->v.ny, nz = op->v.nz;
     const int i0 = op->v.i0, j0 = op->v.j0, qx = op->qx;
+    const int px = mc_eig_per_x(&op->g), py = mc_eig_per_y(&op->g);
     const size_t wcells = (size_t)wx * wy;
 #pragma omp parallel for schedule(static)
     for (int j = 0; j < ny; j++)
@@ -101,11 +125,11 @@ static void direct_apply(mc_eigen_disp *op, const double *const eps[6], double *
                     const double *e = eps[c] + k * wcells;
                     const int ox = mc_eig_odd_x(c), oy = mc_eig_odd_y(c);
                     for (int js = 0; js < wy; js++) {
-                        const int dj = j - (j0 + js);
+                        const int dj = mc_eig_wrap(j - (j0 + js), ny, py);
                         const double sy = (oy && dj < 0) ? -1.0 : 1.0;
                         const double *trow = t + (size_t)(dj < 0 ? -dj : dj) * qx;
                         for (int is = 0; is < wx; is++) {
-                            const int di = i - (i0 + is);
+                            const int di = mc_eig_wrap(i - (i0 + is), nx, px);
                             const double s = (ox && di < 0) ? -sy : sy;
                             u += s * trow[di < 0 ? -di : di] * e[(size_t)js * wx + is];
                         }
@@ -121,11 +145,14 @@ static int fft_create(mc_eigen_disp *op, mc_error *err)
 {
     /* half periods: offsets |d| < u stay below m, and the window (at i0) and the field (at 0)
      * both fit in the cyclic length 2m */
-    const int mx = mc_fft_good_size(op->ux < 2 ? 2 : op->ux);
-    const int my = mc_fft_good_size(op->uy < 2 ? 2 : op->uy);
+    const int px = mc_eig_per_x(&op->g), py = mc_eig_per_y(&op->g);
+    /* a periodic axis is transformed over its period, unpadded (theory.md §8.6) */
+    const int mx = px ? op->g.nx / 2 : mc_fft_good_size(op->ux < 2 ? 2 : op->ux);
+    const int my = py ? op->g.ny / 2 : mc_fft_good_size(op->uy < 2 ? 2 : op->uy);
     op->qx = mx + 1;
     op->qy = my + 1;
-    int rc = mc_eig_fft_create(&op->fft, 2 * mx, 2 * my, op->v.j0, op->v.ny, op->g.ny, err);
+    int rc = mc_eig_fft_create(&op->fft, px ? op->g.nx : 2 * mx, py ? op->g.ny : 2 * my,
+                               op->v.j0, op->v.ny, op->g.ny, err);
     if (rc)
         return rc;
     op->nthr = mc_eig_threads(6 * (size_t)op->v.nz * (size_t)op->fft.tx * (size_t)op->fft.ty);
@@ -142,9 +169,13 @@ static int fft_create(mc_eigen_disp *op, mc_error *err)
 static int fft_transform_tables(mc_eigen_disp *op, mc_error *err)
 {
     mc_eig_quad quad;
-    int rc = mc_eig_quad_create(&quad, op->qx - 1, op->qy - 1, err);
-    if (rc)
+    int rc = mc_eig_periodic(&op->g)
+                 ? mc_eig_quad_create_full(&quad, op->fft.tx, op->fft.ty, op->qx, op->qy, err)
+                 : mc_eig_quad_create(&quad, op->qx - 1, op->qy - 1, err);
+    if (rc) {
+        mc_eig_quad_destroy(&quad);
         return rc;
+    }
     const int n = 6 * op->v.nz;
 #pragma omp parallel for schedule(dynamic, 1)
     for (int t = 0; t < n; t++)
@@ -249,9 +280,14 @@ int mc_eigen_disp_create(const mc_grid *g, const mc_eigen_volume *v, double nu, 
     for (size_t r = 0; r < sizeof backends / sizeof backends[0]; r++)
         if (backends[r].id == b)
             op->ops = &backends[r];
-    /* field minus source along x: from -(i0 + wx - 1) to nx - 1 - i0 */
+    /* field minus source along x: from -(i0 + wx - 1) to nx - 1 - i0; a periodic axis: the
+     * periodic kernel's offsets 0 .. n/2 */
     op->ux = v->i0 + v->nx > g->nx - v->i0 ? v->i0 + v->nx : g->nx - v->i0;
     op->uy = v->j0 + v->ny > g->ny - v->j0 ? v->j0 + v->ny : g->ny - v->j0;
+    if (mc_eig_per_x(g))
+        op->ux = g->nx / 2 + 1;
+    if (mc_eig_per_y(g))
+        op->uy = g->ny / 2 + 1;
     op->bytes = sizeof *op;
     if ((rc = op->ops->create(op, err)) == MC_OK) {
         op->qlen = ((size_t)op->qx * op->qy + 7) / 8 * 8;

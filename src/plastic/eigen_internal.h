@@ -67,6 +67,28 @@ static inline double mc_eig_sym_factor(int i, int c)
  * eigen_op.h). */
 static inline int mc_eig_line(const mc_grid *g) { return g->periodic_y && g->ny == 1; }
 
+/* Periodic axes with images (docs/theory.md §8.6): a periodic x axis, and a periodic y axis of more
+ * than one row (the line grid's one row is a bar instead). Along such an axis the window is the
+ * whole period, the tables hold the periodic kernel (the sum over the images) at the offsets
+ * 0 .. n/2, and the fft backends transform over the period itself, unpadded. */
+static inline int mc_eig_per_x(const mc_grid *g) { return g->periodic_x; }
+static inline int mc_eig_per_y(const mc_grid *g) { return g->periodic_y && g->ny > 1; }
+static inline int mc_eig_periodic(const mc_grid *g) { return mc_eig_per_x(g) || mc_eig_per_y(g); }
+
+/* Offset d (field minus source, |d| < n) along an axis of n cells, wrapped into -n/2 .. n/2 when
+ * the axis is periodic (the periodic table holds offsets 0 .. n/2 by parity). */
+static inline int mc_eig_wrap(int d, int n, int periodic)
+{
+    if (!periodic)
+        return d;
+    d %= n;
+    if (d > n / 2)
+        d -= n;
+    else if (d < -(n / 2))
+        d += n;
+    return d;
+}
+
 /* ---- validation ------------------------------------------------------------------------------ */
 
 /* MC_OK, or MC_ERR_INPUT (bad grid, volume, nu) / MC_ERR_LIMIT (a periodic x axis, a periodic y
@@ -93,16 +115,45 @@ typedef void (*mc_eig_kfn)(int di, int dj, const void *ctx, double *out);
 void mc_eig_fill(int qx, int qy, int ux, int uy, int ncomp, const int *par, mc_eig_kfn fn,
                  const void *ctx, double *const *q);
 
-/* In-place real-to-real transforms of quadrants of half periods mx, my (>= 2). */
+/* The periodic kernel on a grid with periodic axes (mc_eig_per_x / _y; theory.md §8.6): like
+ * mc_eig_fill, but entry (di, dj) is the sum of fn over the images of the offset along the
+ * periodic axes (period nx or ny cells) out to the reach of a box of 2 M + 1 periods, plus the
+ * rest of the infinite sum as the kernel smeared over the period: (limit - box sum) / cells of a
+ * period, where limit(di, dj) is the sum of fn over EVERY position along the periodic axes (the
+ * bar kernel when y alone is periodic, the layer kernel when both are; the box sum runs over the
+ * same cells as the images, so the period's sum of the table is exactly the limit). Components
+ * odd along a periodic axis have no smeared part (their limit is 0) and exact zeros at the
+ * offsets 0 and n/2 of that axis. images[a] = M along axis a (0 on a free axis). OpenMP over
+ * rows. */
+void mc_eig_fill_images(int qx, int qy, int ux, int uy, int ncomp, const int *par, mc_eig_kfn fn,
+                        mc_eig_kfn limit, const void *ctx, const int period[2],
+                        const int images[2], double *const *q);
+
+/* Images per side M of a periodic axis of n cells: the box of 2 M + 1 periods reaches at least
+ * MC_EIG_IMAGE_REACH cells on each side (theory.md §8.6: the smeared rest then errs by ~1e-9 of the
+ * near field). */
+#define MC_EIG_IMAGE_REACH 48
+int mc_eig_images(int n);
+
+/* In-place real-to-real transforms of quadrants of half periods mx, my (>= 2); or, built by
+ * mc_eig_quad_create_full, the same quadrant spectra R of a table of any transform size tx x ty
+ * (a periodic axis of odd length included) through one full real 2-D FFT of the table unfolded
+ * by parity, R = i^(ox + oy) K^ (the imaginary part is round-off and dropped). */
 typedef struct {
     int mx, my, qx, qy;
     fftw_plan plan[4]; /* by parity (bit 0 odd in x, bit 1 odd in y) */
+    int full;          /* 1: the full-FFT path below */
+    void *fw;          /* full path: the transform and one workspace per thread */
 } mc_eig_quad;
 
 int mc_eig_quad_create(mc_eig_quad *t, int mx, int my, mc_error *err);
+int mc_eig_quad_create_full(mc_eig_quad *t, int tx, int ty, int qx, int qy, mc_error *err);
 /* quad (qy * qx) -> R of the header comment, in place. */
 void mc_eig_quad_transform(const mc_eig_quad *t, int par, double *quad);
 void mc_eig_quad_destroy(mc_eig_quad *t); /* NULL-safe on a zeroed struct */
+/* the full path's parts (eigen_periodic.c), called by the two above */
+void mc_eig_quad_full_transform(const mc_eig_quad *t, int par, double *quad);
+void mc_eig_quad_full_destroy(mc_eig_quad *t);
 
 /* ---- the zero-padded real 2-D FFT, pruned of all-zero rows ----------------------------------- */
 

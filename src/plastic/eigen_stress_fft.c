@@ -61,12 +61,29 @@ typedef struct {
     fftw_plan zf, zi;     /* depth DFTs of length L, cs sequences at a time */
 } sfft;
 
+/* Half the lateral transform sizes: a free axis padded to 2 m >= 2 window; a periodic axis
+ * (mc_eig_per_x / _y) transformed over its period n, unpadded, m = n / 2. */
+static int half_x(const mc_eigen_stress *op)
+{
+    return mc_eig_per_x(&op->g) ? op->g.nx / 2 : mc_fft_good_size(op->v.nx < 2 ? 2 : op->v.nx);
+}
+static int half_y(const mc_eigen_stress *op)
+{
+    return mc_eig_per_y(&op->g) ? op->g.ny / 2 : mc_fft_good_size(op->v.ny < 2 ? 2 : op->v.ny);
+}
+static int size_x(const mc_eigen_stress *op)
+{
+    return mc_eig_per_x(&op->g) ? op->g.nx : 2 * half_x(op);
+}
+static int size_y(const mc_eigen_stress *op)
+{
+    return mc_eig_per_y(&op->g) ? op->g.ny : 2 * half_y(op);
+}
+
 void mc_eig_stress_fft_size(mc_eigen_stress *op)
 {
-    const int mx = mc_fft_good_size(op->v.nx < 2 ? 2 : op->v.nx);
-    const int my = mc_fft_good_size(op->v.ny < 2 ? 2 : op->v.ny);
-    op->qx = mx + 1;
-    op->qy = my + 1;
+    op->qx = half_x(op) + 1;
+    op->qy = half_y(op) + 1;
 }
 
 /* the sign (-1)^(a b) of the parities in z of the pair (i, c) */
@@ -105,9 +122,13 @@ static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
     const int nz = op->v.nz, Nz = f->Nz, ch = f->ch, np = (Nz + 1) * MC_EIG_NSYM;
     const size_t ql = op->qlen, nblk = (size_t)op->qy * f->nch;
     mc_eig_quad quad;
-    int rc = mc_eig_quad_create(&quad, op->qx - 1, op->qy - 1, err);
-    if (rc)
+    int rc = mc_eig_periodic(&op->g)
+                 ? mc_eig_quad_create_full(&quad, size_x(op), size_y(op), op->qx, op->qy, err)
+                 : mc_eig_quad_create(&quad, op->qx - 1, op->qy - 1, err);
+    if (rc) {
+        mc_eig_quad_destroy(&quad);
         return rc;
+    }
     double *scr = mc_malloc((size_t)MC_EIG_NSYM * ql * sizeof *scr);
     if (!scr) {
         mc_eig_quad_destroy(&quad);
@@ -190,11 +211,11 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     if (!f)
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory");
     op->fft = f;
-    const int nz = op->v.nz, wy = op->v.ny, mx = op->qx - 1, my = op->qy - 1;
+    const int nz = op->v.nz, wy = op->v.ny;
     /* depth half period: offsets up to 2 nz - 1 must not meet their images (file comment) */
     f->Nz = mc_fft_good_size(2 * nz);
     f->L = 2 * f->Nz;
-    int rc = mc_eig_fft_create(&f->fft, 2 * mx, 2 * my, 0, wy, wy, err);
+    int rc = mc_eig_fft_create(&f->fft, size_x(op), size_y(op), 0, wy, wy, err);
     if (rc)
         return rc;
     const int hx = f->fft.hx; /* = qx */
@@ -422,7 +443,7 @@ void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], do
                 continue;
             fftw_complex *zb = f->zb + (size_t)me * f->zlen;
             depth_step(op, f, ky, chunk, zb);
-            if (ky > 0 && ky < my)
+            if (ky > 0 && ty - ky > my) /* its mirror row (an odd period has no Nyquist row) */
                 depth_step(op, f, ty - ky, chunk, zb);
         }
 #pragma omp single

@@ -19,13 +19,16 @@
 #include "kernels/eigen.h"
 #include "kernels/kernel.h"
 #include "plastic/eigen_internal.h"
+#include "stress/stress.h"
 
 /* ---- kernel tables --------------------------------------------------------------------------- */
 
 typedef struct {
     double dx, dy, dz, nu;
-    int k;    /* depth offset m (S1) or layer (P, L) */
-    int line; /* bars along y (mc_eig_line): the bar kernels, only dj = 0 is used */
+    int k;     /* depth offset m (S1) or layer (P, L) */
+    int line;  /* bars along y (mc_eig_line): the bar kernels, only dj = 0 is used */
+    int layer; /* periodic grids: the limit of the image sum is the layer (x periodic), else the
+                * bar (y alone periodic; theory.md §8.6) */
 } table_ctx;
 
 /* the 21 stored pairs of the infinite-space kernel at depth offset m dz */
@@ -55,6 +58,51 @@ static void p3_kernel(int di, int dj, const void *ctx, double *out)
                            (t->k + 1) * t->dz, t->nu, out);
 }
 
+/* the limits of the image sums on periodic grids (mc_eig_fill_images) */
+static void s1_limit(int di, int dj, const void *ctx, double *out)
+{
+    (void)dj;
+    const table_ctx *t = ctx;
+    double S[6][6];
+    if (t->layer)
+        mc_eigen_stress1_layer((t->k + 0.5) * t->dz, 0.0, t->dz, t->nu, S);
+    else
+        mc_eigen_stress1_bar(di * t->dx, (t->k + 0.5) * t->dz, 0.5 * t->dx, 0.0, t->dz, t->nu, S);
+    for (int i = 0; i < 6; i++)
+        for (int c = i; c < 6; c++)
+            out[mc_eig_sym(i, c)] = S[i][c];
+}
+
+static void p3_limit(int di, int dj, const void *ctx, double *out)
+{
+    (void)dj;
+    const table_ctx *t = ctx;
+    if (t->layer) { /* a laterally uniform layer leaves no surface traction */
+        memset(out, 0, 6 * sizeof *out);
+        return;
+    }
+    mc_eigen_surface_szz12_bar(di * t->dx, 0.5 * t->dx, t->k * t->dz, (t->k + 1) * t->dz, t->nu,
+                               out);
+}
+
+/* the image sums of a periodic grid, or the plain table */
+static void fill_table(const mc_eigen_stress *op, int k, int ncomp, const int *par, mc_eig_kfn fn,
+                       mc_eig_kfn limit, double *const *q)
+{
+    const mc_grid *g = &op->g;
+    const table_ctx ctx = {g->dx, g->dy, op->v.dz, op->nu, k, mc_eig_line(g), mc_eig_per_x(g)};
+    if (!mc_eig_periodic(g)) {
+        mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, ncomp, par, fn, &ctx, q);
+        return;
+    }
+    const int px = mc_eig_per_x(g), py = mc_eig_per_y(g);
+    const int period[2] = {px ? g->nx : 0, py ? g->ny : 0};
+    const int images[2] = {px ? mc_eig_images(g->nx) : 0, py ? mc_eig_images(g->ny) : 0};
+    mc_eig_fill_images(op->qx, op->qy, px ? g->nx / 2 + 1 : op->v.nx,
+                       py ? g->ny / 2 + 1 : op->v.ny, ncomp, par, fn, limit, &ctx, period, images,
+                       q);
+}
+
 static void love_kernel(int di, int dj, const void *ctx, double *out)
 {
     const table_ctx *t = ctx;
@@ -77,8 +125,7 @@ void mc_eig_s1_fill(const mc_eigen_stress *op, int m, double *const q[MC_EIG_NSY
     for (int i = 0; i < 6; i++)
         for (int c = i; c < 6; c++)
             par[mc_eig_sym(i, c)] = mc_eig_pair_par(i, c);
-    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, m, mc_eig_line(&op->g)};
-    mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, MC_EIG_NSYM, par, s1_kernel, &ctx, q);
+    fill_table(op, m, MC_EIG_NSYM, par, s1_kernel, s1_limit, q);
     /* pairs odd in z vanish at depth offset 0 (the fft backend's DST-I ignores that plane) */
     for (int i = 0; m == 0 && i < 6; i++)
         for (int c = i; c < 6; c++)
@@ -91,8 +138,7 @@ void mc_eig_p3_fill(const mc_eigen_stress *op, int k, double *const q[6])
     int par[6];
     for (int c = 0; c < 6; c++)
         par[c] = mc_eig_par(c);
-    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k, mc_eig_line(&op->g)};
-    mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, 6, par, p3_kernel, &ctx, q);
+    fill_table(op, k, 6, par, p3_kernel, p3_limit, q);
 }
 
 void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6])
@@ -100,8 +146,46 @@ void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6])
     int par[6];
     for (int c = 0; c < 6; c++)
         par[c] = mc_eig_par(c);
-    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k, mc_eig_line(&op->g)};
+    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k, mc_eig_line(&op->g), 0};
     mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, 6, par, love_kernel, &ctx, q);
+}
+
+/* Love's stresses on a grid with periodic axes: the periodic tables of the stress module (images
+ * and smeared strips, theory.md §3.5) over the window, cut to the quadrant, for every layer. */
+static int love_fill_periodic(mc_eigen_stress *op, mc_error *err)
+{
+    const mc_grid *g = &op->g;
+    const mc_grid gw = {op->v.nx, op->v.ny, g->dx, g->dy, g->periodic_x, g->periodic_y};
+    const int tx = gw.periodic_x ? gw.nx : 2 * gw.nx - 1 > 1 ? 2 * gw.nx - 1 : 1;
+    const int ty = gw.periodic_y ? gw.ny : 2 * gw.ny - 1 > 1 ? 2 * gw.ny - 1 : 1;
+    const int ux = gw.periodic_x ? gw.nx / 2 + 1 : gw.nx, uy = gw.periodic_y ? gw.ny / 2 + 1 : gw.ny;
+    mc_stress_tables *tb = NULL;
+    double *tab = mc_malloc(6 * (size_t)tx * ty * sizeof *tab);
+    int rc = tab ? mc_stress_tables_create(&gw, tx, ty, MC_STRESS_PATCH, op->nu, 0, &tb, err)
+                 : mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for Love's tables");
+    for (int k = 0; rc == MC_OK && k < op->v.nz; k++) {
+        double *t6[6];
+        for (int c = 0; c < 6; c++)
+            t6[c] = tab + (size_t)c * tx * ty;
+        rc = mc_stress_tables_build(tb, MC_TRACTION_P, (k + 0.5) * op->v.dz, t6, err);
+        for (int c = 0; rc == MC_OK && c < 6; c++) {
+            double *q = op->love + (size_t)(k * 6 + c) * op->qlen;
+            /* exact zeros where the kernel is odd: offset 0, and n/2 of an even period (the
+             * image sums there cancel only to round-off, which the fft path's real spectra
+             * would drop and the direct sums keep) */
+            const int ox = mc_eig_odd_x(c), oy = mc_eig_odd_y(c);
+            for (int dj = 0; dj < op->qy; dj++)
+                for (int di = 0; di < op->qx; di++) {
+                    const int zero = (ox && (di == 0 || (gw.periodic_x && 2 * di == gw.nx))) ||
+                                     (oy && (dj == 0 || (gw.periodic_y && 2 * dj == gw.ny)));
+                    q[(size_t)dj * op->qx + di] =
+                        di < ux && dj < uy && !zero ? t6[c][(size_t)dj * tx + di] : 0.0;
+                }
+        }
+    }
+    mc_stress_tables_destroy(&tb);
+    mc_free(tab);
+    return rc ? mc_error_prefix(err, "eigen stress: ") : MC_OK;
 }
 
 /* ---- direct: the O(N^2) reference ------------------------------------------------------------ */
@@ -116,6 +200,7 @@ static inline double par_sign(int par, int di, int dj)
 static void direct_p3(const mc_eigen_stress *op, const double *const eps[6], double *p3)
 {
     const int wx = op->v.nx, wy = op->v.ny, nz = op->v.nz, qx = op->qx;
+    const int px = mc_eig_per_x(&op->g), py = mc_eig_per_y(&op->g);
     const size_t wc = (size_t)wx * wy, ql = op->qlen;
 #pragma omp parallel for schedule(static)
     for (int j = 0; j < wy; j++)
@@ -126,7 +211,8 @@ static void direct_p3(const mc_eigen_stress *op, const double *const eps[6], dou
                     const double *P = op->p3k + (size_t)(k * 6 + c) * ql;
                     for (int js = 0; js < wy; js++)
                         for (int is = 0; is < wx; is++) {
-                            const int di = i - is, dj = j - js;
+                            const int di = mc_eig_wrap(i - is, wx, px);
+                            const int dj = mc_eig_wrap(j - js, wy, py);
                             s += par_sign(mc_eig_par(c), di, dj) *
                                  P[(size_t)(dj < 0 ? -dj : dj) * qx + (di < 0 ? -di : di)] *
                                  eps[c][k * wc + (size_t)js * wx + is];
@@ -140,6 +226,7 @@ static void direct_apply(mc_eigen_stress *op, const double *const eps[6], double
                          double *const sig[6])
 {
     const int wx = op->v.nx, wy = op->v.ny, nz = op->v.nz, qx = op->qx;
+    const int px = mc_eig_per_x(&op->g), py = mc_eig_per_y(&op->g);
     const size_t wc = (size_t)wx * wy, ql = op->qlen;
     direct_p3(op, eps, op->work);
     for (size_t s = 0; s < wc; s++)
@@ -153,7 +240,8 @@ static void direct_apply(mc_eigen_stress *op, const double *const eps[6], double
                 const int m1 = k >= kp ? k - kp : kp - k, m2 = k + kp + 1;
                 for (int js = 0; js < wy; js++)
                     for (int is = 0; is < wx; is++) {
-                        const int di = i - is, dj = j - js;
+                        const int di = mc_eig_wrap(i - is, wx, px);
+                        const int dj = mc_eig_wrap(j - js, wy, py);
                         const size_t at = (size_t)(dj < 0 ? -dj : dj) * qx + (di < 0 ? -di : di);
                         for (int c = 0; c < 6; c++) {
                             const double e = eps[c][kp * wc + (size_t)js * wx + is];
@@ -181,7 +269,8 @@ static void direct_apply(mc_eigen_stress *op, const double *const eps[6], double
                 double s3 = 0.0;
                 for (int js = 0; js < wy; js++)
                     for (int is = 0; is < wx; is++) {
-                        const int di = i - is, dj = j - js;
+                        const int di = mc_eig_wrap(i - is, wx, px);
+                        const int dj = mc_eig_wrap(j - js, wy, py);
                         s3 += par_sign(par, di, dj) *
                               L[(size_t)(dj < 0 ? -dj : dj) * qx + (di < 0 ? -di : di)] *
                               op->work[(size_t)js * wx + is];
@@ -206,8 +295,9 @@ struct mc_eig_stress_ops {
 
 static void direct_size(mc_eigen_stress *op)
 {
-    op->qx = op->v.nx;
-    op->qy = op->v.ny;
+    /* a periodic axis: offsets 0 .. n/2 of the periodic kernel */
+    op->qx = mc_eig_per_x(&op->g) ? op->g.nx / 2 + 1 : op->v.nx;
+    op->qy = mc_eig_per_y(&op->g) ? op->g.ny / 2 + 1 : op->v.ny;
 }
 
 /* the tables in space: S1 at depth offsets 0 .. 2 nz - 1 and p3 per source layer */
@@ -287,13 +377,14 @@ int mc_eigen_stress_create(const mc_grid *g, const mc_eigen_volume *v, double nu
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for its tables");
     }
     op->bytes = sizeof *op + (nl + 2 * wc) * sizeof(double);
-    for (int k = 0; k < v->nz; k++) {
+    for (int k = 0; k < v->nz && !mc_eig_periodic(g); k++) {
         double *q[6];
         for (int i = 0; i < 6; i++)
             q[i] = op->love + (size_t)(k * 6 + i) * op->qlen;
         mc_eig_love_fill(op, k, q);
     }
-    if ((rc = op->ops->prepare(op, err))) {
+    if ((mc_eig_periodic(g) && (rc = love_fill_periodic(op, err))) ||
+        (rc = op->ops->prepare(op, err))) {
         mc_eigen_stress_destroy(&op);
         return rc;
     }
