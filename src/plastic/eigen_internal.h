@@ -91,9 +91,9 @@ static inline int mc_eig_wrap(int d, int n, int periodic)
 
 /* ---- validation ------------------------------------------------------------------------------ */
 
-/* MC_OK, or MC_ERR_INPUT (bad grid, volume, nu) / MC_ERR_LIMIT (a periodic x axis, a periodic y
- * axis with ny > 1, more cells or transform sizes than int) with a message naming what (prefix
- * `who`). */
+/* MC_OK, or MC_ERR_INPUT (bad grid, volume, nu; a volume not spanning a periodic axis) /
+ * MC_ERR_LIMIT (x periodic alone, more cells or transform sizes than int) with a message naming
+ * what (prefix `who`). */
 int mc_eig_check(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
                  const char *who, mc_error *err);
 

@@ -14,14 +14,15 @@
  * (i, j) window-local. Eigenstrains are tensor components (eps_xy = gamma_xy / 2),
  * dimensionless; the six arrays may be slices of one component-major block.
  *
- * Lateral axes. The x axis must be free: periodic x is refused with MC_ERR_LIMIT (the residual
- * fields of a local plastic zone are not periodic; a periodic variant would have to treat the
- * k = 0 mode explicitly, theory.md §8.1 "pitfall"). The y axis is free, or periodic with ny = 1:
- * a line contact (plane strain, as the elastic operator's y-periodic grid with one row). The
- * eigenstrain is then uniform along y and every cuboid is a bar infinitely long along y: the
- * tables hold the bar limits of kernels/eigen.h (mc_eigen_*_bar) and the strip limit of Love's
- * stresses (kernels/kernel.h mc_strip_stress_p), and both backends run unchanged over them
- * (theory.md §8.5). Periodic y with ny > 1 is refused with MC_ERR_LIMIT.
+ * Lateral axes (theory.md §8.5, §8.6). x free with y free, y periodic with ny = 1 (a line
+ * contact: every cuboid is a bar infinitely long along y, the tables hold the bar limits of
+ * kernels/eigen.h and the strip limit of Love's stresses), or y periodic with any ny (a strip: the
+ * whole width of a line contact across x, a length of its face along y); or both axes periodic (a
+ * doubly periodic patch; with ny = 1 a line grid periodic along x). x periodic alone is refused
+ * (MC_ERR_LIMIT). Along a periodic axis the volume must span the whole period (i0 = 0, nx = grid
+ * nx; MC_ERR_INPUT otherwise), the tables hold the periodic kernel (image sums whose smeared rest
+ * makes the period's sum exactly the bar or layer limit: a laterally uniform field gets its closed
+ * form, eigen.h mc_eigen_*_layer) and the fft backend transforms over the period, unpadded.
  *
  * Objects are planned once and applied many times; apply never allocates and cannot fail; one
  * thread at a time per object (it owns its workspace); create from one thread (FFTW's planner).
@@ -72,8 +73,8 @@ typedef struct mc_eigen_disp mc_eigen_disp;
  *   u_z(X) = sum over cuboids s and columns c of D_c(s - X) eps_c(s),
  * D_c = mc_eigen_surface_uz of kernels/eigen.h (a length: u_z is independent of E). The tables
  * hold D at every offset (field minus source) in cells, for each source layer and column.
- * *out is NULL on failure. MC_OK, MC_ERR_INPUT (bad grid, volume, nu or backend), MC_ERR_LIMIT (a
- * periodic axis, or sizes beyond int), MC_ERR_NOMEM (an allocation, or FFTW could not plan),
+ * *out is NULL on failure. MC_OK, MC_ERR_INPUT (bad grid, volume, nu or backend; a volume not
+ * spanning a periodic axis), MC_ERR_LIMIT (x periodic alone, or sizes beyond int), MC_ERR_NOMEM (an allocation, or FFTW could not plan),
  * MC_ERR_INTERNAL (FFTW threads). */
 int mc_eigen_disp_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
                          mc_eigen_disp **out, mc_error *err);
