@@ -431,10 +431,17 @@ const case_key mc_keys[] = {
     {.section = "plasticity", .name = "dz", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "min(dx, dy) / 2", .def_rule = 1, .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.dz),
-     .doc = "Thickness of the volume cells (dx / 2 on a line grid: periodic_y, ny = 1). A dz "
-            "between 0.6 and 1.6 dx (or dy) gets the warning plastic_checkerboard: the "
-            "residual stress operator has an unstable x-z (y-z) checkerboard mode there, into "
-            "which a perfectly plastic run can lock."},
+     .doc = "Thickness of the volume cells (dx / 2 on a line grid: periodic_y, ny = 1). With "
+            "stress_points = centre a dz between 0.6 and 1.6 dx (or dy) gets the warning "
+            "plastic_checkerboard: the centre values have an unstable x-z (y-z) checkerboard "
+            "mode there, into which a perfectly plastic run can lock."},
+    {.section = "plasticity", .name = "stress_points", .kind = K_ENUM,
+     .choices = "cell_average centre", .def = "cell_average", .use = USE_WHEN,
+     .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.stress_points),
+     .doc = "Where a volume cell's residual stress is taken: cell_average, the infinite-space "
+            "part averaged over the cell near the source (Galerkin-like: no unstable "
+            "checkerboard mode); centre, the cell-centre values (the earlier collocation, whose "
+            "operator has energy-releasing checkerboard modes; docs/theory.md §8.5, §8.7)."},
     {.section = "plasticity", .name = "depth", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "auto", .word = "auto", .word_value = 0, .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.depth),

@@ -20,6 +20,7 @@
 #include "contact/contact.h"
 #include "lube/film.h"
 #include "lube/friction.h"
+#include "plastic/eigen_op.h"
 #include "plastic/hardening.h"
 #include "stress/stress.h"
 #include "surface/surface.h"
@@ -136,6 +137,7 @@ typedef struct {
         double plastic_tolerance;     /* fixed point of the plastic strain increment */
         int max_plastic;
         double dz;                    /* layer thickness, m; 0: min(dx, dy) / 2 (line: dx / 2) */
+        mc_eig_stress_points stress_points; /* cell_average (default) or centre */
         double depth;                 /* m; 0: auto */
         double margin;                /* columns around the contact's box, m; 0: auto */
         double friction;              /* q_x = friction (p - p_lub) in solid contact */

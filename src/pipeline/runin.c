@@ -368,6 +368,7 @@ static int plan_volume(runin_ctx *c, mc_error *err)
     }
     int nz = (int)ceil(depth / dz - 1e-9);
     c->vol = mc_eigen_volume_full(&c->g, nz < 1 ? 1 : nz, dz);
+    c->vol.stress_points = sc->plasticity.stress_points;
     c->nvol = (long)c->vol.nz * c->g.nx * c->g.ny;
     return MC_OK;
 }
@@ -553,6 +554,7 @@ static int plastic_results(runin_ctx *c, const mc_plastic_step *records, int nre
     ps->criterion = "von_mises";
     static const char *const names[] = {"perfect", "linear", "swift", "table"};
     ps->hardening = names[sc->plasticity.hardening];
+    ps->stress_points = mc_eig_stress_points_name(sc->plasticity.stress_points);
     ps->yield_initial = mc_hardening_initial(&c->law);
     ps->load_steps = nrec;
     ps->steps_done = nrec;

@@ -155,7 +155,7 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, doubl
         i0 = 0, i1 = g->nx - 1;
     if (g->periodic_y)
         j0 = 0, j1 = g->ny - 1;
-    *v = (mc_eigen_volume){i0, j0, i1 - i0 + 1, j1 - j0 + 1, nz, dz};
+    *v = (mc_eigen_volume){i0, j0, i1 - i0 + 1, j1 - j0 + 1, nz, dz, sc->plasticity.stress_points};
     ps->depth = nz * dz;
     ps->dz = dz;
     ps->nz = nz;
@@ -232,6 +232,7 @@ int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
         return run_cap(sc, solver, res, err);
     ps->criterion = "von_mises";
     ps->hardening = hardening_names[sc->plasticity.hardening];
+    ps->stress_points = mc_eig_stress_points_name(sc->plasticity.stress_points);
     ps->load_steps = sc->plasticity.load_steps;
     mc_hardening law;
     memset(&law, 0, sizeof law);

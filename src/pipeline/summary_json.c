@@ -376,6 +376,8 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
         jset(b, o, "criterion", jstr(q->criterion));
         if (q->hardening[0])
             jset(b, o, "hardening", jstr(q->hardening));
+        if (q->stress_points)
+            jset(b, o, "stress_points", jstr(q->stress_points));
         jset(b, o, "yield_initial", jnum(q->yield_initial));
         jset(b, o, "vm_elastic_max", jnum(q->vm_elastic_max));
         jset(b, o, "elastic_shortcut", json_boolean(q->elastic_shortcut));

@@ -2,6 +2,7 @@
 #include "pipeline/warnings.h"
 
 #include <math.h>
+#include <string.h>
 #include <stdarg.h>
 #include <stdio.h>
 
@@ -138,7 +139,8 @@ void mc_results_warnings(const mc_scene *sc, mc_results *r)
      * 0.6 < dz/dx (dz/dy) < 1.6 (measured -0.10 .. -0.25 at 0.71 .. 1.41 on a line grid, down to
      * -0.15 at dz = dx in finite 3-D blocks; a perfectly plastic rough sphere at dz = dx: twice
      * the plastic strain, alternate cells yielding). dy is no cell size on a line grid. */
-    if (r->plastic.nz > 0 && r->plastic.dz > 0) {
+    if (r->plastic.nz > 0 && r->plastic.dz > 0 && r->plastic.stress_points &&
+        strcmp(r->plastic.stress_points, "centre") == 0) { /* cell averages have no such mode */
         const int line = g->periodic_y && g->ny == 1;
         const double rx = r->plastic.dz / g->dx, ry = line ? 0 : r->plastic.dz / g->dy;
         const int bx = rx > MC_WARN_CHECKER_LO && rx < MC_WARN_CHECKER_HI;
@@ -148,7 +150,8 @@ void mc_results_warnings(const mc_scene *sc, mc_results *r)
                             "[plasticity] dz = %.4g um is %.2f %s: the residual stress operator "
                             "has an unstable checkerboard mode for %.1f < dz/d%s < %.1f "
                             "(alternate cells yielding, too much plastic strain, most with "
-                            "perfect or weak hardening); use dz <= min(dx, dy) / 2 (the default)",
+                            "perfect or weak hardening); use stress_points = cell_average (the "
+                            "default) or dz <= min(dx, dy) / 2",
                             r->plastic.dz * 1e6, bx ? rx : ry, bx ? "dx" : "dy",
                             MC_WARN_CHECKER_LO, bx ? "x" : "y", MC_WARN_CHECKER_HI);
     }

@@ -20,7 +20,8 @@
  *                        linear elasticity the solve assumes.
  *   roughness_cutoff     the ISO roughness parameters deviate from the standard (cut-off clipped
  *                        on a short surface, short evaluation length; surface/roughness.h).
- *   plastic_checkerboard  [plasticity] dz between 0.6 and 1.6 dx, or 0.6 and 1.6 dy (not on a
+ *   plastic_checkerboard  [plasticity] stress_points = centre with dz between 0.6 and 1.6 dx, or
+ *                        0.6 and 1.6 dy (not on a
  *                        line grid, periodic y with ny = 1, where dy is no cell size): the
  *                        residual stress operator's x-z (y-z) checkerboard mode releases energy
  *                        there (docs/theory.md §8.5), and a plastic run can lock into it.

@@ -49,18 +49,38 @@
 #include "core/grid.h"
 #include "operator/operator.h"
 
+/* Where the residual stress of a cell is taken (theory.md §8.7). */
+typedef enum {
+    MC_EIG_CELL_AVERAGE = 0, /* the default: the infinite-space part averaged over the observation
+                              * cell (3-point Gauss-Legendre per axis) within
+                              * MC_EIG_AVERAGE_REACH cells of the source, the centre value
+                              * beyond: Galerkin-like, no unstable checkerboard mode */
+    MC_EIG_CELL_CENTRE = 1   /* every value at the cell centre (collocation): the operator has
+                              * energy-releasing checkerboard modes (theory.md §8.5) */
+} mc_eig_stress_points;
+
+/* The key word of each evaluation ([plasticity] stress_points, summary.json). */
+static inline const char *mc_eig_stress_points_name(mc_eig_stress_points s)
+{
+    return s == MC_EIG_CELL_CENTRE ? "centre" : "cell_average";
+}
+
+/* Cells (of the larger lateral size) from the source within which MC_EIG_CELL_AVERAGE averages. */
+#define MC_EIG_AVERAGE_REACH 3
+
 /* The volume grid under a window of the surface grid. */
 typedef struct {
     int i0, j0; /* first column of the window along x and y (surface grid indices, >= 0) */
     int nx, ny; /* columns of the window along x and y (>= 1, i0 + nx <= grid nx, ...) */
     int nz;     /* layers (>= 1) */
     double dz;  /* layer thickness, m (finite, > 0) */
+    mc_eig_stress_points stress_points; /* the residual stress operator's evaluation (default 0) */
 } mc_eigen_volume;
 
 /* The volume of nz layers of thickness dz under the whole surface grid g. */
 static inline mc_eigen_volume mc_eigen_volume_full(const mc_grid *g, int nz, double dz)
 {
-    mc_eigen_volume v = {0, 0, g->nx, g->ny, nz, dz};
+    mc_eigen_volume v = {0, 0, g->nx, g->ny, nz, dz, MC_EIG_CELL_AVERAGE};
     return v;
 }
 

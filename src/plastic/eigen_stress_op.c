@@ -29,18 +29,52 @@ typedef struct {
     int line;  /* bars along y (mc_eig_line): the bar kernels, only dj = 0 is used */
     int layer; /* periodic grids: the limit of the image sum is the layer (x periodic), else the
                 * bar (y alone periodic; theory.md §8.6) */
+    int average; /* S1 averaged over the observation cell near the source (s1_cell) */
 } table_ctx;
 
 /* the 21 stored pairs of the infinite-space kernel at depth offset m dz */
+static void s1_point(const table_ctx *t, double x, double y, double z, double S[6][6])
+{
+    if (t->line)
+        mc_eigen_stress1_bar(x, z, 0.5 * t->dx, 0.0, t->dz, t->nu, S);
+    else
+        mc_eigen_stress1(x, y, z, 0.5 * t->dx, 0.5 * t->dy, 0.0, t->dz, t->nu, S);
+}
+
+/* The infinite-space kernel seen by the observation cell at (di, dj) cells and depth offset k dz:
+ * its value at the cell centre, or (MC_EIG_CELL_AVERAGE, the default) its average over the cell
+ * by 3-point Gauss-Legendre per axis while the cell is within MC_EIG_AVERAGE_REACH cells of the
+ * source (theory.md §8.7: the average makes the operator Galerkin-like and removes the unstable
+ * checkerboard modes of the centre values; farther out the field is smooth and centre and
+ * average differ by O((h / distance)^2) of a kernel falling like distance^-3). */
+static void s1_cell(const table_ctx *t, int di, int dj, double S[6][6])
+{
+    const double x = di * t->dx, y = dj * t->dy, z = (t->k + 0.5) * t->dz;
+    const double reach = MC_EIG_AVERAGE_REACH * fmax(t->dx, t->line ? t->dx : t->dy);
+    if (!t->average || fabs(x) > reach || fabs(y) > reach || t->k * t->dz > reach) {
+        s1_point(t, x, y, z, S);
+        return;
+    }
+    static const double gp[3] = {-0.38729833462074170, 0.0, 0.38729833462074170}; /* sqrt(3/5)/2 */
+    static const double gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+    memset(S, 0, 36 * sizeof S[0][0]);
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < (t->line ? 1 : 3); b++)
+            for (int c = 0; c < 3; c++) {
+                double T[6][6];
+                const double w = gw[a] * (t->line ? 1.0 : gw[b]) * gw[c];
+                s1_point(t, x + gp[a] * t->dx, t->line ? 0.0 : y + gp[b] * t->dy,
+                         z + gp[c] * t->dz, T);
+                for (int i = 0; i < 6; i++)
+                    for (int e = 0; e < 6; e++)
+                        S[i][e] += w * T[i][e];
+            }
+}
+
 static void s1_kernel(int di, int dj, const void *ctx, double *out)
 {
-    const table_ctx *t = ctx;
     double S[6][6];
-    if (t->line)
-        mc_eigen_stress1_bar(di * t->dx, (t->k + 0.5) * t->dz, 0.5 * t->dx, 0.0, t->dz, t->nu, S);
-    else
-        mc_eigen_stress1(di * t->dx, dj * t->dy, (t->k + 0.5) * t->dz, 0.5 * t->dx, 0.5 * t->dy,
-                         0.0, t->dz, t->nu, S);
+    s1_cell(ctx, di, dj, S);
     for (int i = 0; i < 6; i++)
         for (int c = i; c < 6; c++)
             out[mc_eig_sym(i, c)] = S[i][c];
@@ -64,10 +98,13 @@ static void s1_limit(int di, int dj, const void *ctx, double *out)
     (void)dj;
     const table_ctx *t = ctx;
     double S[6][6];
-    if (t->layer)
+    if (t->layer) { /* constant inside the layer, 0 outside: the cell average is the centre value */
         mc_eigen_stress1_layer((t->k + 0.5) * t->dz, 0.0, t->dz, t->nu, S);
-    else
-        mc_eigen_stress1_bar(di * t->dx, (t->k + 0.5) * t->dz, 0.5 * t->dx, 0.0, t->dz, t->nu, S);
+    } else { /* the sum of the (averaged) cuboid kernel along y: the (averaged) bar */
+        table_ctx bar = *t;
+        bar.line = 1;
+        s1_cell(&bar, di, 0, S);
+    }
     for (int i = 0; i < 6; i++)
         for (int c = i; c < 6; c++)
             out[mc_eig_sym(i, c)] = S[i][c];
@@ -90,7 +127,8 @@ static void fill_table(const mc_eigen_stress *op, int k, int ncomp, const int *p
                        mc_eig_kfn limit, double *const *q)
 {
     const mc_grid *g = &op->g;
-    const table_ctx ctx = {g->dx, g->dy, op->v.dz, op->nu, k, mc_eig_line(g), mc_eig_per_x(g)};
+    const table_ctx ctx = {g->dx, g->dy, op->v.dz, op->nu, k, mc_eig_line(g), mc_eig_per_x(g),
+                           op->v.stress_points == MC_EIG_CELL_AVERAGE};
     if (!mc_eig_periodic(g)) {
         mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, ncomp, par, fn, &ctx, q);
         return;
@@ -103,15 +141,38 @@ static void fill_table(const mc_eigen_stress *op, int k, int ncomp, const int *p
                        q);
 }
 
+/* Love's stresses at the observation cell (di, dj) of layer k per unit pressure on one surface
+ * cell: the centre value, or the cell average near the loaded cell as s1_cell does (the S3 part
+ * of the residual stress is then evaluated like S1 + S2, theory.md §8.7). */
 static void love_kernel(int di, int dj, const void *ctx, double *out)
 {
     const table_ctx *t = ctx;
-    if (t->line) { /* a strip of pressure along y */
-        mc_strip_stress_p(di * t->dx, (t->k + 0.5) * t->dz, 0.5 * t->dx, t->nu, out);
+    const double x = di * t->dx, y = dj * t->dy, z = (t->k + 0.5) * t->dz;
+    const double reach = MC_EIG_AVERAGE_REACH * fmax(t->dx, t->line ? t->dx : t->dy);
+    if (!t->average || fabs(x) > reach || fabs(y) > reach || t->k * t->dz > reach) {
+        if (t->line) /* a strip of pressure along y */
+            mc_strip_stress_p(x, z, 0.5 * t->dx, t->nu, out);
+        else
+            mc_rect_stress_p(x, y, z, 0.5 * t->dx, 0.5 * t->dy, t->nu, out);
         return;
     }
-    mc_rect_stress_p(di * t->dx, dj * t->dy, (t->k + 0.5) * t->dz, 0.5 * t->dx, 0.5 * t->dy,
-                     t->nu, out);
+    static const double gp[3] = {-0.38729833462074170, 0.0, 0.38729833462074170};
+    static const double gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+    for (int i = 0; i < 6; i++)
+        out[i] = 0.0;
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < (t->line ? 1 : 3); b++)
+            for (int c = 0; c < 3; c++) {
+                double v[6];
+                const double w = gw[a] * (t->line ? 1.0 : gw[b]) * gw[c];
+                if (t->line)
+                    mc_strip_stress_p(x + gp[a] * t->dx, z + gp[c] * t->dz, 0.5 * t->dx, t->nu, v);
+                else
+                    mc_rect_stress_p(x + gp[a] * t->dx, y + gp[b] * t->dy, z + gp[c] * t->dz,
+                                     0.5 * t->dx, 0.5 * t->dy, t->nu, v);
+                for (int i = 0; i < 6; i++)
+                    out[i] += w * v[i];
+            }
 }
 
 int mc_eig_pair_par(int i, int c)
@@ -146,7 +207,8 @@ void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6])
     int par[6];
     for (int c = 0; c < 6; c++)
         par[c] = mc_eig_par(c);
-    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k, mc_eig_line(&op->g), 0};
+    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k, mc_eig_line(&op->g), 0,
+                           op->v.stress_points == MC_EIG_CELL_AVERAGE};
     mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, 6, par, love_kernel, &ctx, q);
 }
 
