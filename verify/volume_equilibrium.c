@@ -166,7 +166,7 @@ static int sweep_and_limits(vf_ctx *ctx, patch *pt, double *slope_at, double roo
         }
         nonmono += !(v > vprev);
         vprev = v;
-        worst_split = fmax(worst_split, split);
+        worst_split = vf_worst(worst_split, split);
         if (k == 0)
             v0 = v;
         if (k == np)
@@ -246,7 +246,7 @@ static int roots(vf_ctx *ctx, patch *pt, double slope)
         mc_lube_split_of(pt->p, pt->gap, pt->n, pt->dA, vr.p_lub, pt->load, &sp, &err);
         if (vr.regime == MC_REGIME_MIXED) { /* V = V* there: h_pocket = V* / (A_nom - A_C) */
             double pocket_id = h / (1 - sp.psi_area); /* dossier §5.2 */
-            worst_pocket = fmax(worst_pocket, fabs(sp.pocket_height - pocket_id) / pocket_id);
+            worst_pocket = vf_worst(worst_pocket, fabs(sp.pocket_height - pocket_id) / pocket_id);
         }
         double pb = NAN;
         int sb = 0;
@@ -256,11 +256,11 @@ static int roots(vf_ctx *ctx, patch *pt, double slope)
                 continue;
             }
             /* |dp| allowed: ROOT_CMP_TOL V* over the local slope dV/dp */
-            worst_cmp = fmax(worst_cmp, fabs(vr.p_lub - pb) * slope / (ROOT_CMP_TOL * vr.v_target));
+            worst_cmp = vf_worst(worst_cmp, fabs(vr.p_lub - pb) * slope / (ROOT_CMP_TOL * vr.v_target));
             total_solves += vr.solves;
             max_solves = vr.solves > max_solves ? vr.solves : max_solves;
             nroots++;
-            worst_err = fmax(worst_err, vr.rel_error);
+            worst_err = vf_worst(worst_err, vr.rel_error);
         }
         if (f)
             fprintf(f, "%.4g,%s,%.6f,%.6f,%.3e,%d,%ld,%.6f,%.6f,%.6f\n", h * 1e6,
@@ -317,7 +317,7 @@ static int active_set(vf_ctx *ctx)
             break;
         }
         for (size_t i = 0; i < a.n; i++)
-            worst = fmax(worst, fabs(a.p[i] - c.p[i]) / P_NOM);
+            worst = vf_worst(worst, fabs(a.p[i] - c.p[i]) / P_NOM);
     }
     vf_check(ctx, "active_set_vs_cg", "max |p_active-set - p_cg| / p_nom at p_lub = 0, 300, 700 "
              "MPa (24 x 24)", "dossier §5.2: agree to 1e-10", 0, worst, AS_TOL, VF_MAX);
@@ -332,7 +332,7 @@ static int active_set(vf_ctx *ctx)
             a.p[i] -= c.p[i];
         double d = 0;
         for (size_t i = 0; i < a.n; i++)
-            d = fmax(d, fabs(a.p[i]) / P_NOM);
+            d = vf_worst(d, fabs(a.p[i]) / P_NOM);
         vf_info(ctx, "active_set_root_p", "max |p_as - p_cg| / p_nom at the two roots",
                 "differ by the roots' own tolerance", NAN, d);
     } else
