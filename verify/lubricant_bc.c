@@ -394,15 +394,20 @@ int vf_suite_lubricant_bc(vf_ctx *ctx, int fast)
         if (lub.gap[i] > GAP_OPEN * AMPLITUDE)
             off_floor = vf_worst(off_floor, fabs(lub.p[i] - p_lub) / p_lub);
     }
-    vf_check(ctx, "floor_min", "max (p_lub - p) / p_lub over all cells (p never below the floor)",
-             "p >= p_lub", 0, vf_worst(below, 0), ROUNDOFF, VF_MAX);
-    vf_check(ctx, "floor_outside",
-             "max |p - p_lub| / p_lub over the cells with an open gap (the floor outside contact)",
-             "p = p_lub where g > 0", 0, off_floor, ROUNDOFF, VF_MAX);
+    /* information, not checks: the solver projects every iterate onto p >= p_lub (so the floor
+     * holds exactly by construction), and a force-controlled solve enforces the load (so the
+     * split is its own stopping test); none of the three can fail. What tests the floor is the
+     * independent solve below: rigid_shift (p_lub + the dry solve at load - p_lub L) and
+     * active_vs_cg (another solver). */
+    vf_info(ctx, "floor_min", "max (p_lub - p) / p_lub over all cells (p never below the floor)",
+            "by construction: the solver projects onto p >= p_lub", NAN, vf_worst(below, 0));
+    vf_info(ctx, "floor_outside",
+            "max |p - p_lub| / p_lub over the cells with an open gap (the floor outside contact)",
+            "by construction: the solver's complementarity", NAN, off_floor);
     double W = s.pbar * WAVELENGTH, split = fabs((lub.solid_load + p_lub * lub.free_len) / W - 1);
-    vf_check(ctx, "load_split",
-             "(F_solid + p_lub L_free) / F - 1 (F_solid: the pressure of the contact cells)",
-             "plastic-lubrication.md 5.2", 0, split, LOAD, VF_MAX);
+    vf_info(ctx, "load_split",
+            "(F_solid + p_lub L_free) / F - 1 (F_solid: the pressure of the contact cells)",
+            "by construction: the load a force-controlled solve enforces", NAN, split);
     vf_regress(ctx, "load_split", VF_TIER_PLAN);
     rc = solve(&s, 0, s.pbar - p_lub, MC_METHOD_CG, &shift, &err);
     if (rc == MC_OK)

@@ -159,8 +159,10 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
         if (ri->rows[k].plastic)
             plastic_seconds += ri->rows[k].seconds;
     }
-    vf_check(ctx, "root_error", "max |V - V*| / V* of the rows' equilibria",
-             "[lubrication] tolerance 1e-6", 0, worst_root, 1e-6, VF_MAX);
+    /* information: the volume solver's own stopping test (it fails the run when it cannot meet
+     * it), so it cannot fail here; volume_equilibrium recomputes V from the returned gap */
+    vf_info(ctx, "root_error", "max |V - V*| / V* of the rows' equilibria",
+            "by construction: the solver's stopping test, 1e-6", NAN, worst_root);
     vf_info(ctx, "solves_per_root", "contact solves per volume equilibrium (mean)", "", NAN,
             roots ? (double)solves / roots : NAN);
     vf_info(ctx, "plastic_steps", "elastic-plastic steps", "", NAN, plastic);
