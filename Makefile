@@ -114,7 +114,7 @@ check: deps
 _check: $(PROGRAM) $(TESTS)
 	tools/check_includes.sh
 	CK_DEFAULT_TIMEOUT=600 ./$(TESTS)
-	./$(PROGRAM) verify --fast --reports $(BUILD)/reports-fast
+	./$(PROGRAM) verify --fast --baselines verify/baselines --reports $(BUILD)/reports-fast
 	tests/cli/bad_input.sh ./$(PROGRAM)
 	tests/cli/cases.sh ./$(PROGRAM)
 	tests/cli/robustness.sh ./$(PROGRAM)

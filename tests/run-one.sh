@@ -1,16 +1,18 @@
 #!/bin/sh
-# Build and run ONE Check suite against an explicit list of library sources, without building the
-# whole library (lets several people work on different modules at once).
-#   tests/run-one.sh <suite> [src/x.c ...]      e.g. tests/run-one.sh kernel src/kernel.c
-# Always links src/error.c and src/alloc.c; suite <name> lives in tests/test_<name>.c.
+# Build the unit tests (make, the library as usual) and run ONE Check suite, or one test case
+# (TCase) of it:
+#   tests/run-one.sh <suite> [<tcase>]     e.g. tests/run-one.sh roughness core
+# <suite> is the name of tests/test_<suite>.c (suite_<suite>() there); the tcase names are the
+# tcase_create() names in that file. The same without this script:
+#   make build/tests/run_tests && CK_RUN_SUITE=<suite> [CK_RUN_CASE=<tcase>] build/tests/run_tests
+# BUILD=<dir> (as for make) selects another build, e.g. BUILD=build/san SAN=1 OPT=-O1.
 set -e
-name=$1; shift
-out=build/one/$name
-mkdir -p "$out"
-echo "SUITE($name)" > "$out/suites.inc"
-${CC:-gcc} -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -O2 -g -fopenmp \
-  -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes ${EXTRA_CFLAGS:-} \
-  -Isrc -Itests -Iverify -I"$out" tests/run_tests.c tests/test_util.c "tests/test_$name.c" \
-  src/error.c src/alloc.c "$@" -o "$out/run" \
-  -lcheck_pic -lsubunit -lrt -lpthread -linih -ljansson -lgsl -lgslcblas -lfftw3_omp -lfftw3 -lm
-exec "$out/run"
+[ $# -ge 1 ] || { sed -n '2,9p' "$0" >&2; exit 2; }
+b=${BUILD:-build}
+make --no-print-directory -j2 BUILD="$b" "$b/tests/run_tests" >/dev/null
+CK_RUN_SUITE=$1
+export CK_RUN_SUITE
+if [ -n "${2:-}" ]; then CK_RUN_CASE=$2; export CK_RUN_CASE; fi
+CK_DEFAULT_TIMEOUT=${CK_DEFAULT_TIMEOUT:-600}
+export CK_DEFAULT_TIMEOUT
+exec "$b/tests/run_tests"

@@ -27,6 +27,7 @@ static double g_value = 1.0;  /* the measured value of check "value_a" */
 static double g_iters = 12;   /* an iteration count (information row) */
 static double g_resid = 5e-9; /* a stopping residual (tolerance 2e-8): noise */
 static int g_extra = 0;       /* 1: record one more check, "extra" */
+static double g_errs[3] = {1e-9, 2e-9, 3e-9}; /* errors accumulated into check "worst_c" */
 
 static int toy_run(vf_ctx *ctx, int fast)
 {
@@ -38,6 +39,11 @@ static int toy_run(vf_ctx *ctx, int fast)
     vf_check(ctx, "solve_residual", "where a solve stopped", "<= 2 tol", 0, g_resid, 2e-8, VF_MAX);
     if (g_extra)
         vf_check(ctx, "extra", "a check added later", "one", 1.0, 1.0, 0.1, VF_REL);
+    /* the suites' accumulation of a worst error over many values */
+    double worst = 0;
+    for (int k = 0; k < 3; k++)
+        worst = vf_worst(worst, g_errs[k]);
+    vf_check(ctx, "worst_c", "worst of three errors", "zero", 0, worst, 1e-6, VF_MAX);
     return 0;
 }
 
@@ -72,6 +78,9 @@ static void make_dirs(dirs_t *d)
     g_iters = 12;
     g_resid = 5e-9;
     g_extra = 0;
+    g_errs[0] = 1e-9;
+    g_errs[1] = 2e-9;
+    g_errs[2] = 3e-9;
 }
 
 /* Run the toy suite (fast variant) with stdout captured into d->out; returns the failures. */
@@ -346,6 +355,76 @@ START_TEST(test_tiers)
 }
 END_TEST
 
+/* The gate cannot be skipped: a suite run against a baselines directory that has no file for it
+ * fails (check "baseline", naming the file and how to bless it); the explicit bless creates the
+ * file, and then the suite passes. */
+START_TEST(test_missing_baseline_fails)
+{
+    dirs_t d;
+    make_dirs(&d);
+    ck_assert_int_ge(run_toy(&d, d.bl, 0), 1);
+    const char *out = slurp(d.out);
+    ck_assert_msg(strstr(out, "FAIL toy.baseline:"), "no FAIL line for the missing file:\n%s", out);
+    ck_assert_msg(strstr(out, "toy.fast.json"), "the message names no file:\n%s", out);
+    char path[600];
+    vf_baseline_path(path, sizeof path, d.bl, "toy", 1);
+    ck_assert_int_ne(access(path, F_OK), 0); /* a plain run creates nothing */
+    ck_assert_int_eq(run_toy(&d, d.bl, 1), 0);
+    ck_assert_int_eq(access(path, F_OK), 0);
+    ck_assert_msg(strstr(slurp(d.out), "created"), "%s", slurp(d.out));
+    ck_assert_int_eq(run_toy(&d, d.bl, 0), 0);
+    /* without a gate (no baselines directory, --no-baselines) nothing is required */
+    ck_assert_int_eq(run_toy(&d, NULL, 0), 0);
+}
+END_TEST
+
+/* A NaN anywhere fails the check that holds it: one NaN among the accumulated errors (vf_worst,
+ * where fmax would drop it and pass), a NaN reference, a NaN measured value. */
+START_TEST(test_nan_fails_its_check)
+{
+    ck_assert(isnan(vf_worst(0, NAN)));
+    ck_assert(isnan(vf_worst(NAN, 1)));
+    ck_assert(isnan(vf_least(INFINITY, NAN)));
+    ck_assert(isnan(vf_least(NAN, -1)));
+    ck_assert_double_eq(vf_worst(1, 2), 2);
+    ck_assert_double_eq(vf_worst(2, 1), 2);
+    ck_assert_double_eq(vf_least(1, 2), 1);
+    ck_assert_double_eq(vf_worst(-INFINITY, -3), -3);
+    dirs_t d;
+    make_dirs(&d);
+    ck_assert_int_eq(run_toy(&d, d.bl, 1), 0);
+    g_errs[1] = NAN; /* the middle one: neither the first nor the last value of the sweep */
+    ck_assert_int_eq(run_toy(&d, d.bl, 0), 1);
+    ck_assert_msg(strstr(slurp(d.out), "FAIL toy.worst_c:"), "%s", slurp(d.out));
+    /* a blessed NaN would match a NaN on the gate, but the physics check still fails */
+    ck_assert_int_ge(run_toy(&d, d.bl, 1), 1);
+    ck_assert_msg(strstr(slurp(d.out), "bless toy: refused"), "%s", slurp(d.out));
+    vf_options opt = {.reports_dir = d.reports};
+    vf_ctx *ctx = calloc(1, sizeof *ctx);
+    ck_assert_ptr_nonnull(ctx);
+    ctx->suite = &toy;
+    ctx->opt = &opt;
+    /* the FAIL lines go to a file, not to the test log (tools/mutate.sh reads FAIL lines there) */
+    fflush(stdout);
+    int saved = dup(STDOUT_FILENO);
+    FILE *f = fopen(d.out, "w");
+    ck_assert_ptr_nonnull(f);
+    dup2(fileno(f), STDOUT_FILENO);
+    ck_assert_int_eq(vf_check(ctx, "nan_ref", "NaN reference", "-", NAN, 1.0, 0.1, VF_REL), 0);
+    ck_assert_int_eq(vf_check(ctx, "nan_ref_abs", "NaN reference", "-", NAN, 1.0, 0.1, VF_ABS), 0);
+    ck_assert_int_eq(vf_check(ctx, "nan_value", "NaN value", "-", 0, NAN, 0.1, VF_MAX), 0);
+    ck_assert_int_eq(vf_check(ctx, "nan_tol", "NaN tolerance", "-", 0, 0, NAN, VF_MAX), 0);
+    ck_assert_int_eq(vf_check(ctx, "finite", "a passing row", "-", 1, 1.0, 0.1, VF_REL), 1);
+    fflush(stdout);
+    dup2(saved, STDOUT_FILENO);
+    close(saved);
+    fclose(f);
+    ck_assert_int_eq(ctx->nfail, 4);
+    free(ctx->rows);
+    free(ctx);
+}
+END_TEST
+
 /* The configuration: this process against itself, another thread count, another FFTW. */
 START_TEST(test_configuration)
 {
@@ -376,6 +455,8 @@ Suite *suite_baselines(void)
     tcase_add_test(tc, test_variant_files);
     tcase_add_test(tc, test_tiers);
     tcase_add_test(tc, test_configuration);
+    tcase_add_test(tc, test_missing_baseline_fails);
+    tcase_add_test(tc, test_nan_fails_its_check);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -279,6 +279,157 @@ START_TEST(test_rk_gaussian)
 }
 END_TEST
 
+/* ---- skewed, asymmetric surfaces: every signed parameter against a computation from its
+ * definition (a symmetric profile cannot tell Rp from Rv or see the sign of Rsk) ----------- */
+
+/* The ISO 13565-2 family of n heights written here from the contract in roughness.h: the k-th
+ * highest at Mr = 100 (k + 1/2) / n, the secant over round(0.4 n) samples with the smallest
+ * |slope|, c0 and c100 its heights at 0 and 100 %, Mr1 = share above c0, Mr2 = share at or
+ * above c100, Rpk = 2 A1 / Mr1, Rvk = 2 A2 / (100 - Mr2). */
+static int desc(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x < y) - (x > y);
+}
+
+static mc_material_ratio rk_by_hand(const double *h, size_t n)
+{
+    double *s = malloc(sizeof(double) * n);
+    ck_assert(s != NULL);
+    memcpy(s, h, sizeof(double) * n);
+    qsort(s, n, sizeof(double), desc);
+    size_t w = (size_t)lround(0.4 * (double)n), best = 0;
+    double bslope = INFINITY;
+    for (size_t a = 0; a + w < n; a++) {
+        double slope = (s[a + w] - s[a]) / (100.0 * (double)w / (double)n);
+        if (fabs(slope) < fabs(bslope)) {
+            bslope = slope;
+            best = a;
+        }
+    }
+    double mra = 100.0 * ((double)best + 0.5) / (double)n;
+    double c0 = s[best] - bslope * mra, c100 = c0 + 100 * bslope, a1 = 0, a2 = 0;
+    size_t above = 0, atleast = 0;
+    for (size_t k = 0; k < n; k++) {
+        above += h[k] > c0;
+        atleast += h[k] >= c100;
+        a1 += h[k] > c0 ? (h[k] - c0) * 100.0 / (double)n : 0;
+        a2 += h[k] < c100 ? (c100 - h[k]) * 100.0 / (double)n : 0;
+    }
+    mc_material_ratio m = {.k = c0 - c100,
+                           .mr1 = 100.0 * (double)above / (double)n,
+                           .mr2 = 100.0 * (double)atleast / (double)n};
+    m.pk = m.mr1 > 0 ? 2 * a1 / m.mr1 : 0;
+    m.vk = m.mr2 < 100 ? 2 * a2 / (100 - m.mr2) : 0;
+    free(s);
+    return m;
+}
+
+/* Two rows (the second twice the first, offset) of five sampling lengths of M samples: a ramp
+ * (distinct values everywhere) with one tall narrow peak per sampling length: positively skewed,
+ * Rp > Rv, Rpk > Rvk; and the same surface upside down (sign = -1), where each pair swaps and
+ * the skewness changes sign. No filter, periodic rows: the roughness profile is the row minus its
+ * mean, nothing discarded, the sampling lengths are the five blocks of M samples. */
+START_TEST(test_skewed_signed_parameters)
+{
+    enum { M = 40, NS = 5, NX = M * NS, NY = 2 };
+    const double sign = _i ? -1.0 : 1.0, dx = 1e-6, u = 1e-7; /* heights in units of 0.1 um */
+    double z[NX * NY], hrow[NX], hmap[NX * NY];
+    for (int j = 0; j < NY; j++)
+        for (int i = 0; i < NX; i++) {
+            int k = i % M, c = i / M;
+            double v = k == 7 ? 5.0 + c : -1.0 + 0.05 * k + 0.01 * c;
+            z[j * NX + i] = sign * u * ((1.0 + j) * v + 3.0 * j);
+        }
+    mc_roughness_params p = compute(z, NULL, NX, NY, dx, dx, M * dx, 1, 0);
+    ck_assert_int_eq(p.n_sampling, NS);
+    /* profile parameters: per row, then the mean over the rows */
+    double ra = 0, rq = 0, rsk = 0, rp = 0, rv = 0, rt = 0, rk = 0, rpk = 0, rvk = 0, mr1 = 0,
+           mr2 = 0;
+    for (int j = 0; j < NY; j++) {
+        double mean = 0, s1 = 0, s2 = 0, s3 = 0, hi = -INFINITY, lo = INFINITY;
+        for (int i = 0; i < NX; i++)
+            mean += z[j * NX + i] / NX;
+        for (int i = 0; i < NX; i++) {
+            double h = hrow[i] = z[j * NX + i] - mean;
+            s1 += fabs(h) / NX;
+            s2 += h * h / NX;
+            s3 += h * h * h / NX;
+            hi = fmax(hi, h);
+            lo = fmin(lo, h);
+        }
+        double q = sqrt(s2), pk = 0, vl = 0;
+        for (int c = 0; c < NS; c++) {
+            double bh = -INFINITY, bl = INFINITY;
+            for (int i = c * M; i < (c + 1) * M; i++) {
+                bh = fmax(bh, hrow[i]);
+                bl = fmin(bl, hrow[i]);
+            }
+            pk += bh / NS;
+            vl += -bl / NS;
+        }
+        mc_material_ratio m = rk_by_hand(hrow, NX);
+        ra += s1 / NY;
+        rq += q / NY;
+        rsk += s3 / (q * q * q) / NY;
+        rp += pk / NY;
+        rv += vl / NY;
+        rt += (hi - lo) / NY;
+        rk += m.k / NY;
+        rpk += m.pk / NY;
+        rvk += m.vk / NY;
+        mr1 += m.mr1 / NY;
+        mr2 += m.mr2 / NY;
+    }
+    /* areal: the whole map about its mean */
+    double mean = 0, s2 = 0, s3 = 0, hi = -INFINITY, lo = INFINITY;
+    for (int k = 0; k < NX * NY; k++)
+        mean += z[k] / (NX * NY);
+    for (int k = 0; k < NX * NY; k++) {
+        double h = hmap[k] = z[k] - mean;
+        s2 += h * h / (NX * NY);
+        s3 += h * h * h / (NX * NY);
+        hi = fmax(hi, h);
+        lo = fmin(lo, h);
+    }
+    double sq = sqrt(s2);
+    mc_material_ratio am = rk_by_hand(hmap, NX * NY);
+    const double t = 1e-9 * u; /* heights: round-off of sums of a few hundred terms */
+    printf("skewed (sign %+.0f): Rsk %.4f Rp %.3g Rv %.3g Rpk %.3g Rvk %.3g Ssk %.4f Sp %.3g "
+           "Sv %.3g Spk %.3g Svk %.3g\n", sign, p.Rsk, p.Rp, p.Rv, p.Rpk, p.Rvk, p.Ssk, p.Sp,
+           p.Sv, p.Spk, p.Svk);
+    ck_assert_double_eq_tol(p.Ra, ra, t);
+    ck_assert_double_eq_tol(p.Rq, rq, t);
+    ck_assert_double_eq_tol(p.Rsk, rsk, 1e-9);
+    ck_assert_double_eq_tol(p.Rp, rp, t);
+    ck_assert_double_eq_tol(p.Rv, rv, t);
+    ck_assert_double_eq_tol(p.Rz, rp + rv, t);
+    ck_assert_double_eq_tol(p.Rt, rt, t);
+    ck_assert_double_eq_tol(p.Rk, rk, t);
+    ck_assert_double_eq_tol(p.Rpk, rpk, t);
+    ck_assert_double_eq_tol(p.Rvk, rvk, t);
+    ck_assert_double_eq_tol(p.Mr1, mr1, 1e-9);
+    ck_assert_double_eq_tol(p.Mr2, mr2, 1e-9);
+    ck_assert_double_eq_tol(p.Sq, sq, t);
+    ck_assert_double_eq_tol(p.Ssk, s3 / (sq * sq * sq), 1e-9);
+    ck_assert_double_eq_tol(p.Sp, hi, t);
+    ck_assert_double_eq_tol(p.Sv, -lo, t);
+    ck_assert_double_eq_tol(p.Sz, hi - lo, t);
+    ck_assert_double_eq_tol(p.Sk, am.k, t);
+    ck_assert_double_eq_tol(p.Spk, am.pk, t);
+    ck_assert_double_eq_tol(p.Svk, am.vk, t);
+    ck_assert_double_eq_tol(p.Smr1, am.mr1, 1e-9);
+    ck_assert_double_eq_tol(p.Smr2, am.mr2, 1e-9);
+    /* the asymmetry is large, so the computation above is not trivially symmetric: peaks up
+     * (sign +1) give Rsk > 0.5, Rp > 1.5 Rv, Rpk > 1.5 Rvk; upside down the reverse */
+    ck_assert(sign * p.Rsk > 0.5 && sign * p.Ssk > 0.5);
+    ck_assert(sign > 0 ? p.Rp > 1.5 * p.Rv : p.Rv > 1.5 * p.Rp);
+    ck_assert(sign > 0 ? p.Rpk > 1.5 * p.Rvk : p.Rvk > 1.5 * p.Rpk);
+    ck_assert(sign > 0 ? p.Sp > 1.5 * p.Sv : p.Sv > 1.5 * p.Sp);
+    ck_assert(sign > 0 ? p.Spk > 1.5 * p.Svk : p.Svk > 1.5 * p.Spk);
+}
+END_TEST
+
 /* ---- areal slopes: Sdq, Sdr of sines with the central-difference factor ------------------ */
 
 /* Complete elliptic integral of the second kind E(m), by the arithmetic-geometric mean. */
@@ -512,6 +663,7 @@ Suite *suite_roughness(void)
     tcase_add_test(tc, test_gaussian_heights);
     tcase_add_test(tc, test_rk_triangle);
     tcase_add_test(tc, test_rk_gaussian);
+    tcase_add_loop_test(tc, test_skewed_signed_parameters, 0, 2);
     tcase_add_test(tc, test_areal_slopes);
     tcase_add_test(tc, test_iso4288_table);
     tcase_add_test(tc, test_iso4288_iteration);

@@ -45,6 +45,45 @@ START_TEST(macro_contact_of_the_disc_case)
 }
 END_TEST
 
+/* Unequal disc radii, rolling and rolling-sliding, against a hand computation: R1 = 30 mm,
+ * R2 = 50 mm at 500 rpm. Without rpm2 disc 2 turns at the same surface speed
+ * (u2 = u1 = 2 pi 500 0.03 / 60 m/s: pure rolling, SRR 0); with rpm2 = 700 rpm, u2 =
+ * 2 pi 700 0.05 / 60, u = (u1 + u2) / 2, SRR = 2 |u1 - u2| / (u1 + u2). The macro contact against
+ * the equal-disc case (R = 40 mm: R_x = 20 mm): b ~ sqrt(R_x), R_x = 1 / (1/R1 + 1/R2) = 18.75 mm;
+ * the Pan-Hamrock central film at a fixed load per length, H = 2.922 U^0.692 G^0.470 W'^-0.166
+ * (Pan & Hamrock 1989) with U ~ u / R_x and W' ~ 1 / R_x: h ~ u^0.692 R_x^0.474. */
+START_TEST(unequal_discs_rolling_sliding)
+{
+    mc_scene s;
+    mc_error err = {0};
+    mc_lube_summary l0, la, lb;
+    load_case(&s, 0, NULL);
+    ck_assert_int_eq(mc_lube_macro(&s, &s.grid, &l0, &err), MC_OK);
+    s.lubrication.radius1 = 0.030;
+    s.lubrication.radius2 = 0.050;
+    ck_assert_msg(mc_lube_macro(&s, &s.grid, &la, &err) == MC_OK, "%s", err.msg);
+    const double u0 = 2 * M_PI * 500 / 60 * 0.04, u1 = 2 * M_PI * 500 / 60 * 0.03;
+    const double rx0 = 0.02, rx = 1 / (1 / 0.03 + 1 / 0.05);
+    ck_assert_msg(fabs(la.entrainment - u1) <= 1e-12 * u1, "u = %.17g, want %.17g", la.entrainment,
+                  u1);
+    ck_assert_msg(la.srr <= 1e-12, "SRR = %g, want 0 (equal surface speeds)", la.srr);
+    ck_assert_msg(fabs(la.hertz_half_width / l0.hertz_half_width - sqrt(rx / rx0)) <= 1e-12,
+                  "b ratio %.17g", la.hertz_half_width / l0.hertz_half_width);
+    double want = pow(u1 / u0, 0.692) * pow(rx / rx0, 0.474);
+    ck_assert_msg(fabs(la.h_ehd / l0.h_ehd - want) <= 1e-12 * want, "h ratio %.17g, want %.17g",
+                  la.h_ehd / l0.h_ehd, want);
+    s.lubrication.rpm2 = 700 * s.lubrication.rpm / 500; /* the same unit as rpm */
+    ck_assert_msg(mc_lube_macro(&s, &s.grid, &lb, &err) == MC_OK, "%s", err.msg);
+    const double u2 = 2 * M_PI * 700 / 60 * 0.05, u = (u1 + u2) / 2;
+    ck_assert_msg(fabs(lb.entrainment - u) <= 1e-12 * u, "u = %.17g, want %.17g", lb.entrainment,
+                  u);
+    ck_assert_msg(fabs(lb.srr - 2 * fabs(u1 - u2) / (u1 + u2)) <= 1e-12, "SRR = %.17g", lb.srr);
+    want = pow(u / u0, 0.692) * pow(rx / rx0, 0.474);
+    ck_assert_msg(fabs(lb.h_ehd / l0.h_ehd - want) <= 1e-12 * want, "h ratio %.17g, want %.17g",
+                  lb.h_ehd / l0.h_ehd, want);
+}
+END_TEST
+
 /* The whole run: the root holds on the output gap (V = dA sum g = h_EHD A_nom to the root
  * tolerance 1e-6 plus the contact tolerance's share), the load splits into solid and fluid parts
  * (F_solid + p_lub A_free = patch load, to the contact tolerance), mu is the mix of its psi. */
@@ -112,6 +151,7 @@ Suite *suite_stage_lube(void)
     TCase *t = tcase_create("stage");
     tcase_set_timeout(t, 120);
     tcase_add_test(t, macro_contact_of_the_disc_case);
+    tcase_add_test(t, unequal_discs_rolling_sliding);
     tcase_add_test(t, equilibrium_from_the_fields);
     tcase_add_test(t, regimes);
     suite_add_tcase(s, t);

@@ -276,7 +276,7 @@ END_TEST
 START_TEST(test_gsf)
 {
     const char *head = "Gwyddion Simple Field 1.0\nXRes = 3\nYRes = 2\n  XReal = 6 \n"
-                       "YReal=4\nXOffset = -1\nYOffset = 2.5\nXYUnits = um\nZUnits = nm\n"
+                       "YReal=5\nXOffset = -1\nYOffset = 2.5\nXYUnits = um\nZUnits = nm\n"
                        "Title = hand made\n";
     unsigned char img[256];
     size_t h = strlen(head), p = (h / 4 + 1) * 4; /* one to four NULs, data 4-byte aligned */
@@ -288,9 +288,10 @@ START_TEST(test_gsf)
     mc_surface_data r;
     mc_error err = {0};
     ck_assert_msg(tk_parse("gsf", img, p, &r, &err) == MC_OK, "%s", err.msg);
-    /* spacing = XReal / XRes in the XY unit (um); heights in the Z unit (nm) */
+    /* spacing = XReal / XRes in the XY unit (um); heights in the Z unit (nm); dx = 2 um != dy =
+     * 2.5 um (and XRes != YRes), so a reader that swaps the axes is seen */
     ck_assert(r.nx == 3 && r.ny == 2 && r.missing == 1);
-    ck_assert(r.dx == 6 * 1e-6 / 3 && r.dy == 4 * 1e-6 / 2);
+    ck_assert_msg(r.dx == 6 * 1e-6 / 3 && r.dy == 5 * 1e-6 / 2, "dx %g, dy %g", r.dx, r.dy);
     ck_assert(r.x0 == -1 * 1e-6 && r.y0 == 2.5 * 1e-6);
     double want[6];
     for (int k = 0; k < 6; k++)

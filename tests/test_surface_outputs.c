@@ -91,6 +91,37 @@ static void check_x3p(const char *dir, const char *stem, const double *want, con
     mc_free(a);
 }
 
+/* The written topography_final.npy read back against its definition (README, results.h): the
+ * unloaded gap the next load sees = topography.npy (the initial gap) + residual_displacement.npy
+ * (the permanent displacement, positive into the body: a dent opens the gap). The residual must
+ * be a dent somewhere (positive, not zero) for the sign to be seen. */
+static void check_final_is_topography_plus_residual(const char *dir)
+{
+    mc_error err = {0};
+    double *t = NULL, *u = NULL, *tf = NULL;
+    int r1, c1, r2, c2, r3, c3;
+    ck_assert_msg(mc_npy_read(in(dir, "topography.npy"), &t, &r1, &c1, &err) == MC_OK, "%s",
+                  err.msg);
+    ck_assert_msg(mc_npy_read(in(dir, "residual_displacement.npy"), &u, &r2, &c2, &err) == MC_OK,
+                  "%s", err.msg);
+    ck_assert_msg(mc_npy_read(in(dir, "topography_final.npy"), &tf, &r3, &c3, &err) == MC_OK,
+                  "%s", err.msg);
+    ck_assert(r1 == r2 && r2 == r3 && c1 == c2 && c2 == c3);
+    double umax = 0, scale = 0;
+    for (size_t k = 0; k < (size_t)r1 * (size_t)c1; k++) {
+        umax = fmax(umax, u[k]);
+        scale = fmax(scale, fabs(t[k]));
+    }
+    ck_assert_msg(umax > 1e-3 * scale, "no dent to see the sign by (max residual %g m)", umax);
+    for (size_t k = 0; k < (size_t)r1 * (size_t)c1; k++)
+        ck_assert_msg(fabs(tf[k] - (t[k] + u[k])) <= 1e-12 * scale,
+                      "cell %zu: topography_final %.17g != topography %.17g + residual %.17g", k,
+                      tf[k], t[k], u[k]);
+    mc_free(t);
+    mc_free(u);
+    mc_free(tf);
+}
+
 /* Elastic-plastic run with x3p = yes: topography.x3p and topography_final.x3p as the .npy; no
  * running-in file. roughness.final = the roughness of (shape - topography_final.npy), computed
  * here with the case's cut-off rule, equal to the last bit (same arithmetic on the same numbers);
@@ -109,6 +140,7 @@ START_TEST(x3p_and_final_roughness_of_an_elastic_plastic_run)
     check_x3p(dir, "topography_final", r.topography_final, &r.grid);
     ck_assert(!tk_exists(in(dir, "surface_final.x3p")));
     ck_assert(!tk_exists(in(dir, "surface_initial.x3p")));
+    check_final_is_topography_plus_residual(dir);
 
     /* the final roughness, independently from the written file */
     double *tf = NULL;

@@ -102,10 +102,10 @@ static int csv_table(vf_ctx *ctx, double ep, double rx, FILE *out)
                             .rx = rx, .load = FORCE / WIDTH};
         mc_film_groups g;
         mc_film_groups_of(MC_FILM_PAN_HAMROCK_CENTRAL, &in, &g, &err);
-        worst_groups = fmax(worst_groups, fabs(k.v_sum - row[c_v]) / half_unit_5(row[c_v]));
-        worst_groups = fmax(worst_groups, fabs(g.U - row[c_U]) / half_unit_5(row[c_U]));
-        worst_groups = fmax(worst_groups, fabs(g.G - row[c_G]) / half_unit_5(row[c_G]));
-        worst_groups = fmax(worst_groups, fabs(g.W - row[c_W]) / half_unit_5(row[c_W]));
+        worst_groups = vf_worst(worst_groups, fabs(k.v_sum - row[c_v]) / half_unit_5(row[c_v]));
+        worst_groups = vf_worst(worst_groups, fabs(g.U - row[c_U]) / half_unit_5(row[c_U]));
+        worst_groups = vf_worst(worst_groups, fabs(g.G - row[c_G]) / half_unit_5(row[c_G]));
+        worst_groups = vf_worst(worst_groups, fabs(g.W - row[c_W]) / half_unit_5(row[c_W]));
         for (int f = 0; f < 4; f++) {
             int c = column(hdr, cols, cmp[f].col);
             double h = NAN;
@@ -114,7 +114,7 @@ static int csv_table(vf_ctx *ctx, double ep, double rx, FILE *out)
                 continue;
             }
             double e = fabs(h * 1e6 - row[c]);
-            worst[f] = fmax(worst[f], e);
+            worst[f] = vf_worst(worst[f], e);
             fprintf(out, "%g,%g,%s,%.4f,%.6f,%.2e\n", row[c_eta], row[c_n],
                     mc_film_formula_name(cmp[f].f), row[c], h * 1e6, e);
         }
@@ -155,7 +155,7 @@ static void text_table(vf_ctx *ctx, double ep, double rx)
             double hc, hm;
             mc_film_thickness(MC_FILM_PAN_HAMROCK_CENTRAL, &in, &hc, &err);
             mc_film_thickness(MC_FILM_DOWSON_HIGGINSON, &in, &hm, &err);
-            worst = fmax(worst, fmax(fabs(hc * 1e6 - t[r].phc[e]), fabs(hm * 1e6 - t[r].dh[e])));
+            worst = vf_worst(worst, vf_worst(fabs(hc * 1e6 - t[r].phc[e]), fabs(hm * 1e6 - t[r].dh[e])));
         }
     vf_check(ctx, "text_table", "h_c Pan-Hamrock and h_min Dowson-Higginson, 16 entries: max "
              "|h - printed| in um", "dossier §4.4 table (2 decimals)", 0, worst, TOL_TEXT_UM,
@@ -194,7 +194,7 @@ static void expressions(vf_ctx *ctx, double ep, double rx, FILE *out)
                    W = point ? in.load / (ep * in.rx * in.rx) : in.load / (ep * in.rx);
             double Hd = dossier_H((mc_film_formula)f, U, G, W, in.k), H = h / in.rx;
             double e = fabs(H - Hd) / Hd;
-            worst = fmax(worst, e);
+            worst = vf_worst(worst, e);
             fprintf(out, "%s,%s,%.17g,%.17g,%.3e\n", mc_film_formula_name((mc_film_formula)f),
                     c ? "fast" : "slow", Hd, H, e);
         }

@@ -179,6 +179,16 @@ static int add_row(vf_ctx *ctx, const char *id, const char *quantity, const char
     return 1;
 }
 
+double vf_worst(double worst, double v)
+{
+    return isnan(worst) || isnan(v) ? NAN : v > worst ? v : worst;
+}
+
+double vf_least(double least, double v)
+{
+    return isnan(least) || isnan(v) ? NAN : v < least ? v : least;
+}
+
 int vf_check(vf_ctx *ctx, const char *id, const char *quantity, const char *reference,
              double expected, double measured, double tol, vf_kind kind)
 {
@@ -374,8 +384,9 @@ static void write_gate_summary(vf_ctx *ctx, FILE *f)
         return;
     }
     if (!ctx->has_base) {
-        fprintf(f, "Regression gate: no baseline `%s` yet, so this run is not compared with "
-                   "blessed values (`microcontact verify %s--bless %s` writes one).\n\n",
+        fprintf(f, "Regression gate: **no baseline `%s`**: the suite fails (check `baseline`) "
+                   "until one is blessed deliberately (`microcontact verify %s--bless %s` "
+                   "writes one).\n\n",
                 ctx->base_path, ctx->fast ? "--fast " : "", ctx->suite->name);
         return;
     }
@@ -709,6 +720,13 @@ int vf_run_suite_opts(const vf_suite *suite, const vf_options *opt)
         vf_fail(ctx, "suite", "the suite stopped early (status %d)", rc);
     double dt = mc_clock() - t0;
     add_missing_rows(ctx);
+    /* the gate cannot be skipped: a gated run of a suite without its baseline file fails; the
+     * bless below is the explicit act that creates the file */
+    if (opt->baselines && !ctx->has_base && !opt->bless)
+        vf_fail(ctx, "baseline",
+                "no baseline file %s: the suite is not gated; create it deliberately with "
+                "make bless SUITES=%s",
+                ctx->base_path, suite->name);
     int failures = ctx->nfail + ctx->lost_rows;
     if (ctx->lost_rows)
         fprintf(stderr, "microcontact: out of memory: %d rows of suite %s are missing from its "
@@ -727,7 +745,7 @@ int vf_run_suite_opts(const vf_suite *suite, const vf_options *opt)
     if (opt->baselines && !ctx->has_base && ctx->blessed_now)
         snprintf(gate, sizeof gate, ", baseline %s created", ctx->base_path);
     else if (opt->baselines && !ctx->has_base)
-        snprintf(gate, sizeof gate, ", not gated (no %s)", ctx->base_path);
+        snprintf(gate, sizeof gate, ", FAILED: no baseline %s", ctx->base_path);
     else if (opt->baselines)
         snprintf(gate, sizeof gate, ", %d drifted from the baseline, %d not blessed, %d missing",
                  ctx->ndrift, ctx->nnew, ctx->nmissing);

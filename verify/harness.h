@@ -11,8 +11,13 @@
  * (checks and information rows) is also compared with its blessed value in
  * <baselines>/<suite>[.fast].json; a drift beyond the row's regression tolerance fails the row
  * and the message names the check, the blessed and the new value. A blessed id that the run does
- * not produce fails too. A suite without a baseline file is not gated (said in its report).
- * Blessing (vf_options.bless) rewrites the file from the run and prints the diff.
+ * not produce fails too. A suite without a baseline file fails (check id "baseline"): the gate
+ * cannot be skipped by deleting a file; blessing (vf_options.bless, `make bless`) is the explicit
+ * act that creates or rewrites the file from the run and prints the diff.
+ *
+ * NaN: a check fails when its measured value, its reference (VF_REL, VF_ABS) or its tolerance is
+ * NaN. Suites accumulate the worst error of many values with vf_worst (vf_least for a minimum),
+ * never with fmax/fmin, which drop a NaN argument and so would hide it from the check.
  */
 #ifndef MC_VERIFY_HARNESS_H
 #define MC_VERIFY_HARNESS_H
@@ -53,6 +58,13 @@ const char *vf_suite_tiers(const char *suite);
  * note to record the value with vf_info instead. */
 int vf_check(vf_ctx *ctx, const char *id, const char *quantity, const char *reference,
              double expected, double measured, double tol, vf_kind kind);
+
+/* The larger of worst and v, NaN when either is NaN: `worst = vf_worst(worst, err)` carries a
+ * NaN anywhere in an accumulation to the check that holds it (fmax(worst, NaN) returns worst). */
+double vf_worst(double worst, double v);
+
+/* The smaller of least and v, NaN when either is NaN (fmin drops a NaN the same way). */
+double vf_least(double least, double v);
 
 /* Record an information row: a measured value (and, if not NaN, the value it is read against,
  * e.g. a target that binds only elsewhere) shown in the checks table with the result "info".

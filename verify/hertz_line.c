@@ -70,7 +70,7 @@ static int run_mesh(const mc_hertz_line *hz, int N, int ny, row_t *row, mc_resul
         for (int i = 0; i < nx; i++) {
             double x = mc_grid_x(&res.grid, i);
             if (fabs(x) < 0.9 * hz->b)
-                worst = fmax(worst, fabs(res.pressure[(size_t)j * nx + i] -
+                worst = vf_worst(worst, fabs(res.pressure[(size_t)j * nx + i] -
                                          mc_hertz_line_pressure(hz, x)));
         }
     row->prof_err = worst / hz->p0;

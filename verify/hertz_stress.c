@@ -500,7 +500,7 @@ static int run_part(vf_ctx *ctx, int fast, int line)
             double ref[3] = {row[1], line ? row[2] : row[1], line ? row[3] : row[2]};
             for (int c = 0; c < 3; c++)
                 r->axis_err[c] =
-                    fmax(r->axis_err[c], fabs(res.stress[c][(size_t)k * n + ic] / p0 - ref[c]));
+                    vf_worst(r->axis_err[c], fabs(res.stress[c][(size_t)k * n + ic] / p0 - ref[c]));
         }
         peak3_t pv = volume_peak(&res, res.von_mises), pt = volume_peak(&res, res.tresca);
         r->vm = pv.value / p0;
@@ -553,7 +553,7 @@ static int run_part(vf_ctx *ctx, int fast, int line)
         vf_check(ctx, "axis_order",
                  "convergence order of the axis errors (min of sigma_xx, "
                  "sigma_zz; log-log slope)",
-                 "O(h^2)", 2.0, fmin(s0, s2), 2.0 - ORDER_MIN, VF_ABS);
+                 "O(h^2)", 2.0, vf_least(s0, s2), 2.0 - ORDER_MIN, VF_ABS);
     }
 
     /* axis profile of the finest mesh: CSV and figure */
@@ -626,9 +626,9 @@ static int run_part(vf_ctx *ctx, int fast, int line)
         for (int m = 0; m < nN; m++) {
             double s2 = (double)rows[m].N * rows[m].N;
             for (int c = 0; c < 3; c++)
-                ca = fmax(ca, rows[m].axis_err[c] * s2);
-            cm = fmax(cm, fmax(fabs(rows[m].vm - ref_vm), fabs(rows[m].tr - ref_tr)) * s2);
-            cz = fmax(cz, fmax(fabs(rows[m].vm_z - ref_vz), fabs(rows[m].tr_z - ref_tz)));
+                ca = vf_worst(ca, rows[m].axis_err[c] * s2);
+            cm = vf_worst(cm, vf_worst(fabs(rows[m].vm - ref_vm), fabs(rows[m].tr - ref_tr)) * s2);
+            cz = vf_worst(cz, vf_worst(fabs(rows[m].vm_z - ref_vz), fabs(rows[m].tr_z - ref_tz)));
         }
         vf_text(ctx,
                 "Measured (largest over the meshes): axis stresses %.3f h^2 p0 (tolerance "

@@ -169,9 +169,9 @@ static double profile_error(const setup_t *s, const run_t *r, double pb, double 
     double a, worst = 0, q0 = westergaard(s, pb, 0, &a);
     *pmax = 0;
     for (int i = 0; i < r->nx; i++) {
-        *pmax = fmax(*pmax, r->p[i]);
+        *pmax = vf_worst(*pmax, r->p[i]);
         if (fabs(r->x[i]) < 0.8 * a)
-            worst = fmax(worst, fabs(r->p[i] - r->p_lub - westergaard(s, pb, r->x[i], NULL)));
+            worst = vf_worst(worst, fabs(r->p[i] - r->p_lub - westergaard(s, pb, r->x[i], NULL)));
     }
     return worst / q0;
 }
@@ -390,19 +390,24 @@ int vf_suite_lubricant_bc(vf_ctx *ctx, int fast)
     double al, q0l = westergaard(&s, s.pbar - p_lub, 0, &al);
     double below = 0, off_floor = 0;
     for (int i = 0; i < lub.nx; i++) {
-        below = fmax(below, (p_lub - lub.p[i]) / p_lub);
+        below = vf_worst(below, (p_lub - lub.p[i]) / p_lub);
         if (lub.gap[i] > GAP_OPEN * AMPLITUDE)
-            off_floor = fmax(off_floor, fabs(lub.p[i] - p_lub) / p_lub);
+            off_floor = vf_worst(off_floor, fabs(lub.p[i] - p_lub) / p_lub);
     }
-    vf_check(ctx, "floor_min", "max (p_lub - p) / p_lub over all cells (p never below the floor)",
-             "p >= p_lub", 0, fmax(below, 0), ROUNDOFF, VF_MAX);
-    vf_check(ctx, "floor_outside",
-             "max |p - p_lub| / p_lub over the cells with an open gap (the floor outside contact)",
-             "p = p_lub where g > 0", 0, off_floor, ROUNDOFF, VF_MAX);
+    /* information, not checks: the solver projects every iterate onto p >= p_lub (so the floor
+     * holds exactly by construction), and a force-controlled solve enforces the load (so the
+     * split is its own stopping test); none of the three can fail. What tests the floor is the
+     * independent solve below: rigid_shift (p_lub + the dry solve at load - p_lub L) and
+     * active_vs_cg (another solver). */
+    vf_info(ctx, "floor_min", "max (p_lub - p) / p_lub over all cells (p never below the floor)",
+            "by construction: the solver projects onto p >= p_lub", NAN, vf_worst(below, 0));
+    vf_info(ctx, "floor_outside",
+            "max |p - p_lub| / p_lub over the cells with an open gap (the floor outside contact)",
+            "by construction: the solver's complementarity", NAN, off_floor);
     double W = s.pbar * WAVELENGTH, split = fabs((lub.solid_load + p_lub * lub.free_len) / W - 1);
-    vf_check(ctx, "load_split",
-             "(F_solid + p_lub L_free) / F - 1 (F_solid: the pressure of the contact cells)",
-             "plastic-lubrication.md 5.2", 0, split, LOAD, VF_MAX);
+    vf_info(ctx, "load_split",
+            "(F_solid + p_lub L_free) / F - 1 (F_solid: the pressure of the contact cells)",
+            "by construction: the load a force-controlled solve enforces", NAN, split);
     vf_regress(ctx, "load_split", VF_TIER_PLAN);
     rc = solve(&s, 0, s.pbar - p_lub, MC_METHOD_CG, &shift, &err);
     if (rc == MC_OK)
@@ -415,13 +420,13 @@ int vf_suite_lubricant_bc(vf_ctx *ctx, int fast)
         double dshift = 0, dact = 0, dmin = INFINITY, dmax = -INFINITY, umin = INFINITY,
                umax = -INFINITY;
         for (int i = 0; i < lub.nx; i++) {
-            dshift = fmax(dshift, fabs(lub.p[i] - p_lub - shift.p[i]));
-            dact = fmax(dact, fabs(act.p[i] - lub.p[i]));
+            dshift = vf_worst(dshift, fabs(lub.p[i] - p_lub - shift.p[i]));
+            dact = vf_worst(dact, fabs(act.p[i] - lub.p[i]));
             double du = lub.u[i] - shift.u[i];
-            dmin = fmin(dmin, du);
-            dmax = fmax(dmax, du);
-            umin = fmin(umin, shift.u[i]);
-            umax = fmax(umax, shift.u[i]);
+            dmin = vf_least(dmin, du);
+            dmax = vf_worst(dmax, du);
+            umin = vf_least(umin, shift.u[i]);
+            umax = vf_worst(umax, shift.u[i]);
         }
         vf_check(ctx, "shift_principle",
                  "max |p(p_lub) - p_lub - p(0; load - p_lub L)| / q0 (the excess pressure is "

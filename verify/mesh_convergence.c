@@ -157,7 +157,7 @@ static double zmin_scan(const double *err, double eps, double dx)
 {
     int last = -1;
     for (int k = 0; k < NZP; k++)
-        if (fabs(err[k]) > eps)
+        if (!(fabs(err[k]) <= eps)) /* a NaN error is not inside eps */
             last = k;
     if (last == NZP - 1)
         return NAN;
@@ -277,7 +277,7 @@ static int run_mesh(mesh_t *m, int have_point, double *px, double *py, mc_error 
         for (int k = 0; k < NZP; k++) {
             art[k] = 0.5 * (en[k] - ec[k]);
             if (zp(k, g->dx) >= 1.5 * g->dx)
-                m->smooth = fmax(m->smooth, fabs(0.5 * (en[k] + ec[k])));
+                m->smooth = vf_worst(m->smooth, fabs(0.5 * (en[k] + ec[k])));
         }
         for (int e = 0; e < NEPS; e++) {
             m->zmin[0][e] = zmin_scan(art, eps_list[e], g->dx);
@@ -290,18 +290,18 @@ static int run_mesh(mesh_t *m, int have_point, double *px, double *py, mc_error 
     m->q[Q_URMAX] = m->q[Q_DENTVOL] = m->q[Q_PEQ] = m->q[Q_PEQINT] = m->q[Q_VP] = 0;
     for (size_t s = 0; s < cells; s++) {
         double u = res.residual_displacement[s];
-        m->q[Q_URMAX] = fmax(m->q[Q_URMAX], u);
+        m->q[Q_URMAX] = vf_worst(m->q[Q_URMAX], u);
         m->q[Q_DENTVOL] += fmax(u, 0.0) * g->dx * g->dy;
     }
     m->bottom = 0;
     for (int l = 0; l < nz && res.plastic_strain; l++)
         for (size_t s = 0; s < cells; s++) {
             double e = res.plastic_strain[(size_t)l * cells + s];
-            m->q[Q_PEQ] = fmax(m->q[Q_PEQ], e);
+            m->q[Q_PEQ] = vf_worst(m->q[Q_PEQ], e);
             m->q[Q_PEQINT] += e * dV;
             m->q[Q_VP] += e > 0 ? dV : 0;
             if (l == nz - 1)
-                m->bottom = fmax(m->bottom, e);
+                m->bottom = vf_worst(m->bottom, e);
         }
     int jrow = (int)floor(*py / g->dy + 0.5 * n);
     jrow = jrow < 0 ? 0 : jrow >= n ? n - 1 : jrow;
@@ -353,7 +353,7 @@ int vf_suite_mesh_convergence(vf_ctx *ctx, int fast)
     for (int q = 0; q < nm; q++) {
         notconv += !m[q].converged;
         patch_bad += m[q].patches != fine->patches;
-        bottom = fmax(bottom, m[q].bottom);
+        bottom = vf_worst(bottom, m[q].bottom);
     }
     vf_check(ctx, "converged", "meshes whose elastic-plastic run did not converge",
              "stage_plastic: converged", 0, notconv, 0, VF_MAX);
@@ -413,7 +413,7 @@ int vf_suite_mesh_convergence(vf_ctx *ctx, int fast)
             double worst = 0;
             for (int k = 0; k < NZC; k++)
                 if (zc(k) >= Z_CURVE)
-                    worst = fmax(worst, fabs(m[q].vm[k] - fine->vm[k]));
+                    worst = vf_worst(worst, fabs(m[q].vm[k] - fine->vm[k]));
             curve[q] = worst / fine->q[Q_VM];
             char id[64], qn[240];
             snprintf(id, sizeof id, "curve_%.1f", m[q].dx);
@@ -467,7 +467,7 @@ int vf_suite_mesh_convergence(vf_ctx *ctx, int fast)
                     m[q].zmin[1][e]);
             if (m[q].dx <= 0.8 + 1e-9) {
                 double d = fabs(m[q].zmin[0][e] - lattice[e]);
-                zworst = isnan(d) ? INFINITY : fmax(zworst, d);
+                zworst = vf_worst(zworst, d);
             }
         }
         char id[64], qn[200];

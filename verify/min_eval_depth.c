@@ -209,7 +209,7 @@ static double zmin_of(const double *err, double eps)
 {
     int last = -1;
     for (int k = 0; k < NZ; k++)
-        if (fabs(err[k]) > eps)
+        if (!(fabs(err[k]) <= eps)) /* a NaN error is not inside eps */
             last = k;
     if (last < 0)
         return zdx(0);
@@ -265,7 +265,7 @@ static int run_mesh(const mesh_t *m, run_t *r, mc_error *err)
             for (int patch = 0; patch < 2; patch++) {
                 double d = direct_szz(p, n, col_x[COL_NODE], col_y[COL_NODE], zdx(k), patch);
                 double o = patch ? r->patch[COL_NODE][k] : r->point[COL_NODE][k];
-                r->op_vs_direct = fmax(r->op_vs_direct, fabs(d - o) / fmax(1.0, fabs(o)));
+                r->op_vs_direct = vf_worst(r->op_vs_direct, fabs(d - o) / fmax(1.0, fabs(o)));
             }
         for (int c = COL_CORNER; c < NCOL; c++) {
             r->point[c][k] = direct_szz(p, n, col_x[c], col_y[c], zdx(k), 0);
@@ -283,7 +283,7 @@ static int run_mesh(const mesh_t *m, run_t *r, mc_error *err)
             r->exact[c][k] = s[MC_SZZ];
             perr[c][k] = r->point[c][k] / s[MC_SZZ] - 1;
             double pe = fabs(r->patch[c][k] - s[MC_SZZ]);
-            r->patch_max[c] = fmax(r->patch_max[c], pe);
+            r->patch_max[c] = vf_worst(r->patch_max[c], pe);
         }
         r->patch_surf[c] = fabs(r->patch[c][0] - r->exact[c][0]);
         for (int e = 0; e < NEPS; e++)
@@ -331,7 +331,7 @@ static double fine_grid_check(const run_t *r, mc_error *err, int *rc)
         int ic = n + (int)lround(2 * col_x[c]), jc = n + (int)lround(2 * col_y[c]);
         *rc = operator_column(&g, MC_STRESS_POINT, p, z, nk, ic, jc, out, err);
         for (int q = 0; q < nk && *rc == MC_OK; q++)
-            worst = fmax(worst, fabs(out[q] - r->point[c][ks[q]]) / fmax(1.0, fabs(out[q])));
+            worst = vf_worst(worst, fabs(out[q] - r->point[c][ks[q]]) / fmax(1.0, fabs(out[q])));
     }
     free(p);
     return worst;
@@ -362,8 +362,8 @@ int vf_suite_min_eval_depth(vf_ctx *ctx, int fast)
         return 1;
     double amin = INFINITY, amax = 0;
     for (int i = 0; i < nm; i++) {
-        amin = fmin(amin, ms[i].a_dx);
-        amax = fmax(amax, ms[i].a_dx);
+        amin = vf_least(amin, ms[i].a_dx);
+        amax = vf_worst(amax, ms[i].a_dx);
     }
 
     /* reference tables */
@@ -391,7 +391,7 @@ int vf_suite_min_eval_depth(vf_ctx *ctx, int fast)
                     double v = tz[(size_t)rI * 8 + 2 + e];
                     if (isnan(tab[c][e]))
                         tab[c][e] = v;
-                    tab_spread = fmax(tab_spread, fabs(v - tab[c][e]));
+                    tab_spread = vf_worst(tab_spread, fabs(v - tab[c][e]));
                 }
 
     vf_text(
@@ -458,7 +458,7 @@ int vf_suite_min_eval_depth(vf_ctx *ctx, int fast)
     /* ---- checks: the machinery ---- */
     double odw = 0;
     for (int i = 0; i < nm; i++)
-        odw = fmax(odw, runs[i].op_vs_direct);
+        odw = vf_worst(odw, runs[i].op_vs_direct);
     vf_check(ctx, "direct_vs_operator",
              "node column, point and patch: max |direct sum - operator| / max(1, |value|), all "
              "meshes",
@@ -495,7 +495,7 @@ int vf_suite_min_eval_depth(vf_ctx *ctx, int fast)
                                    r->exact[cols[q]][k]};
                     for (int t = 0; t < 3; t++)
                         worst[t] =
-                            fmax(worst[t], fabs(v[t] - ref[q][t]) / fmax(1.0, fabs(ref[q][t])));
+                            vf_worst(worst[t], fabs(v[t] - ref[q][t]) / fmax(1.0, fabs(ref[q][t])));
                 }
                 break;
             }
@@ -528,8 +528,8 @@ int vf_suite_min_eval_depth(vf_ctx *ctx, int fast)
             for (int i = 0; i < nm; i++) {
                 double z = runs[i].zmin[c][e];
                 unresolved |= isnan(z);
-                lo = fmin(lo, z);
-                hi = fmax(hi, z);
+                lo = vf_least(lo, z);
+                hi = vf_worst(hi, z);
             }
             if (unresolved)
                 lo = hi = NAN;
@@ -567,7 +567,7 @@ int vf_suite_min_eval_depth(vf_ctx *ctx, int fast)
     /* ---- linear fit of z_min against the mesh size, node column ---- */
     double fit_c0[NEPS], fit_c1[NEPS], dxs[16], zs[16], dxmax = 0;
     for (int i = 0; i < nm; i++)
-        dxmax = fmax(dxmax, ms[i].dx_um);
+        dxmax = vf_worst(dxmax, ms[i].dx_um);
     for (int e = 0; e < NEPS; e++) {
         for (int i = 0; i < nm; i++) {
             dxs[i] = ms[i].dx_um;
@@ -593,8 +593,8 @@ int vf_suite_min_eval_depth(vf_ctx *ctx, int fast)
     double eps_p = 0, eps_lo = INFINITY, eps_hi = 0;
     for (int i = 0; i < nm; i++) {
         eps_p += runs[i].eps_paper / nm;
-        eps_lo = fmin(eps_lo, runs[i].eps_paper);
-        eps_hi = fmax(eps_hi, runs[i].eps_paper);
+        eps_lo = vf_least(eps_lo, runs[i].eps_paper);
+        eps_hi = vf_worst(eps_hi, runs[i].eps_paper);
     }
     const double t_p = 2 * M_PI * PAPER_RATIO;
     const double eps_lead = leading_term(t_p, 0, 0), eps_pois = poisson_sum(t_p, 0, 0);
@@ -622,9 +622,9 @@ int vf_suite_min_eval_depth(vf_ctx *ctx, int fast)
         double ws = 0, wm = 0, raw = 0;
         for (int i = 0; i < nm; i++) {
             double s2 = ms[i].a_dx * ms[i].a_dx;
-            ws = fmax(ws, runs[i].patch_surf[c] * s2);
-            wm = fmax(wm, runs[i].patch_max[c] * s2);
-            raw = fmax(raw, runs[i].patch_surf[c]);
+            ws = vf_worst(ws, runs[i].patch_surf[c] * s2);
+            wm = vf_worst(wm, runs[i].patch_max[c] * s2);
+            raw = vf_worst(raw, runs[i].patch_surf[c]);
         }
         char id[64], q[200];
         snprintf(id, sizeof id, "patch_surface_%s", col_name[c]);

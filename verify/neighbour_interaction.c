@@ -150,7 +150,9 @@ static peak_t hamilton_peak(int pat, int N, double d)
     int nz = 0, kb = 0;
     for (double z = 0.2; z <= 0.7 + 1e-9; z += 0.01, nz++) {
         vm[nz] = hamilton_vm(pat, N, d, z, NULL);
-        if (vm[nz] > best) {
+        if (isnan(vm[nz]))
+            best = INFINITY, kb = 0; /* a NaN anywhere: no peak (pk.vm NaN fails its check) */
+        else if (vm[nz] > best) {
             best = vm[nz];
             kb = nz;
         }
@@ -462,7 +464,7 @@ static double run_direct(const study_t *st, int pat, int q, mc_error *err, int *
                 size_t idx = (size_t)(c + wy) * n + (size_t)(c + wx);
                 for (int cc = 0; cc < 6; cc++)
                     worst =
-                        fmax(worst, fabs(s[cc][idx] - st->val[((size_t)cc * st->nz + k) * nw + w]));
+                        vf_worst(worst, fabs(s[cc][idx] - st->val[((size_t)cc * st->nz + k) * nw + w]));
             }
     }
     mc_stress_destroy(&op);
@@ -750,8 +752,8 @@ int vf_suite_neighbour_interaction(vf_ctx *ctx, int fast)
     for (int pat = 0; pat < NPAT; pat++) {
         double w = 0, wh = 0;
         for (int q = 0; q < ND; q++) {
-            w = fmax(w, fabs(ratio[pat][q] - rref[pat][q]));
-            wh = fmax(wh, fabs(hratio[pat][q] - hrref[pat][q]));
+            w = vf_worst(w, fabs(ratio[pat][q] - rref[pat][q]));
+            wh = vf_worst(wh, fabs(hratio[pat][q] - hrref[pat][q]));
         }
         char id[64], q[160];
         snprintf(id, sizeof id, "ratio_%s", pat_name[pat]);
@@ -812,8 +814,8 @@ int vf_suite_neighbour_interaction(vf_ctx *ctx, int fast)
         for (int k = 0; k < 3; k++)
             rN[k] = hamilton_peak(0, Nfull[k], d_list[q]).vm / st.ref[NCASE].vm;
         rinf_ref[q] = extrapolate(Nfull, rN, &rinf_two[q]);
-        worst_inf = fmax(worst_inf, fabs(rinf[q] - rinf_ref[q]));
-        worst_extrap = fmax(worst_extrap, fabs(rinf_two[q] - rinf_ref[q]));
+        worst_inf = vf_worst(worst_inf, fabs(rinf[q] - rinf_ref[q]));
+        worst_extrap = vf_worst(worst_extrap, fabs(rinf_two[q] - rinf_ref[q]));
         /* the squares approach the limit: |r_7 - r_inf| < |r_5 - r_inf| < |r_3 - r_inf| */
         double e3 = fabs(ratio[PAT_SQ3][q] - rinf[q]), e5 = fabs(ratio[PAT_SQ5][q] - rinf[q]),
                e7 = fabs(ratio[PAT_SQ7][q] - rinf[q]);

@@ -115,11 +115,11 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
         int rises = 0;
         double prev = ra_before, up_dev = 0;
         for (int k = 0; k < m; k++) {
-            rises += first[k].ra > prev;
+            rises += !(first[k].ra <= prev); /* a NaN Ra counts as a rise */
             prev = first[k].ra;
         }
         for (int k = m; k < 2 * m; k++)
-            up_dev = fmax(up_dev, fabs(first[k].ra - last->ra));
+            up_dev = vf_worst(up_dev, fabs(first[k].ra - last->ra));
         snprintf(id, sizeof id, "ra_never_rises_F%d", f + 1);
         snprintf(q, sizeof q, "F_N = %.0f N: run-down steps where Ra rose", first->force);
         vf_check(ctx, id, q, "plastic smoothing only lowers the surface", 0, rises, 0, VF_MAX);
@@ -136,7 +136,7 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
         snprintf(q, sizeof q, "F_N = %.0f N: hysteresis H (mu x decades of speed)", first->force);
         vf_info(ctx, id, q, "paper Fig. 4-3 (shape only)", NAN, ri->hysteresis[f]);
         if (f > 0)
-            hmax_other = fmax(hmax_other, ri->hysteresis[f]);
+            hmax_other = vf_worst(hmax_other, ri->hysteresis[f]);
     }
     vf_check(ctx, "hysteresis_positive", "-H at 1086 N (passes when H > 1e-6)",
              "paper: mu_up below mu_down", 0, -h1, -1e-6, VF_MAX);
@@ -154,13 +154,15 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
         roots += ri->rows[k].roots;
         solves += ri->rows[k].solves;
         plastic += ri->rows[k].plastic;
-        worst_root = fmax(worst_root, ri->rows[k].root_error);
+        worst_root = vf_worst(worst_root, ri->rows[k].root_error);
         seconds += ri->rows[k].seconds;
         if (ri->rows[k].plastic)
             plastic_seconds += ri->rows[k].seconds;
     }
-    vf_check(ctx, "root_error", "max |V - V*| / V* of the rows' equilibria",
-             "[lubrication] tolerance 1e-6", 0, worst_root, 1e-6, VF_MAX);
+    /* information: the volume solver's own stopping test (it fails the run when it cannot meet
+     * it), so it cannot fail here; volume_equilibrium recomputes V from the returned gap */
+    vf_info(ctx, "root_error", "max |V - V*| / V* of the rows' equilibria",
+            "by construction: the solver's stopping test, 1e-6", NAN, worst_root);
     vf_info(ctx, "solves_per_root", "contact solves per volume equilibrium (mean)", "", NAN,
             roots ? (double)solves / roots : NAN);
     vf_info(ctx, "plastic_steps", "elastic-plastic steps", "", NAN, plastic);
@@ -187,9 +189,9 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
         double dev = 0, hmax = 0;
         for (int ff = 0; ff < ei->nforces; ff++) {
             for (int k = 0; k < m; k++)
-                dev = fmax(dev, fabs(ei->rows[2 * m * ff + k].mu -
+                dev = vf_worst(dev, fabs(ei->rows[2 * m * ff + k].mu -
                                      ei->rows[2 * m * ff + 2 * m - 1 - k].mu));
-            hmax = fmax(hmax, fabs(ei->hysteresis[ff]));
+            hmax = vf_worst(hmax, fabs(ei->hysteresis[ff]));
         }
         vf_check(ctx, "elastic_identity", "elastic material: max |mu_down - mu_up| at equal speed",
                  "nothing runs in: identical solves", 0, dev, 0, VF_MAX);

@@ -533,7 +533,7 @@ static double max_abs(const double *f, size_t n)
 {
     double m = 0;
     for (size_t i = 0; i < n; i++)
-        m = fmax(m, fabs(f[i]));
+        m = vf_worst(m, fabs(f[i]));
     return m;
 }
 
@@ -543,10 +543,10 @@ static double gap_scale(const double *ht, size_t n, double delta)
 {
     double hmin = INFINITY, hmax = -INFINITY;
     for (size_t i = 0; i < n; i++) {
-        hmin = fmin(hmin, ht[i]);
-        hmax = fmax(hmax, ht[i]);
+        hmin = vf_least(hmin, ht[i]);
+        hmax = vf_worst(hmax, ht[i]);
     }
-    double s = delta - hmin, fl = 1e-6 * (hmax - hmin), mag = fmax(fabs(hmin), fabs(hmax));
+    double s = delta - hmin, fl = 1e-6 * (hmax - hmin), mag = vf_worst(fabs(hmin), fabs(hmax));
     if (fl < 1e-12 * mag)
         fl = 1e-12 * mag;
     if (!(s > fl))
@@ -605,20 +605,20 @@ static void measure(const mc_scene *sc, const mc_results *res, st_record *rec)
             v = gi;
         else
             v = fabs(gi);
-        compl = fmax(compl, v);
+        compl = vf_worst(compl, v);
         sum += p[i];
         solid += p[i] - plub;
         ncontact += p[i] > plub;
-        bnd = fmax(bnd, fmax(plub - p[i], p[i] - pcap));
-        gid = fmax(gid, fabs(gap[i] - (h[i] + u[i] - delta)));
-        gid = fmax(gid, fabs(u[i] - Kp[i]));
-        mag = fmax(mag, fmax(fabs(ht[i]), fabs(Kp[i])));
+        bnd = vf_worst(bnd, vf_worst(plub - p[i], p[i] - pcap));
+        gid = vf_worst(gid, fabs(gap[i] - (h[i] + u[i] - delta)));
+        gid = vf_worst(gid, fabs(u[i] - Kp[i]));
+        mag = vf_worst(mag, vf_worst(fabs(ht[i]), fabs(Kp[i])));
     }
     rec->scale = s;
     rec->compl = compl / s;
     rec->kkt_floor = 16 * DBL_EPSILON * (mag + fabs(delta)) / s;
     rec->ncontact = ncontact;
-    rec->bounds = fmax(bnd, 0) / fmax(fmax(c->p_max, plub), DBL_MIN);
+    rec->bounds = vf_worst(bnd, 0) / fmax(fmax(c->p_max, plub), DBL_MIN);
     rec->gapid = M > 0 ? gid / M : gid;
     rec->force = sc->load.kind == MC_LOAD_FORCE || sc->load.kind == MC_LOAD_FORCE_PER_LENGTH;
     rec->load_err = 0;
@@ -631,15 +631,15 @@ static void measure(const mc_scene *sc, const mc_results *res, st_record *rec)
         /* the lubricant alone carries more than W: then no solid load may remain */
         rec->load_err = rec->lub_all ? fabs(A * solid) / W : fabs(A * sum - W) / W;
     }
-    rec->kkt = fmax(rec->compl, rec->load_err);
+    rec->kkt = vf_worst(rec->compl, rec->load_err);
     /* the summary against the arrays: load, p_max, solid contact area */
     double pmax = -INFINITY;
     for (size_t i = 0; i < n; i++)
-        pmax = fmax(pmax, p[i]);
-    rec->summary_err = fmax(fabs(c->load - A * sum) / fmax(fabs(A * sum), DBL_MIN),
+        pmax = vf_worst(pmax, p[i]);
+    rec->summary_err = vf_worst(fabs(c->load - A * sum) / fmax(fabs(A * sum), DBL_MIN),
                             fabs(c->p_max - pmax) / fmax(fabs(pmax), DBL_MIN));
     rec->summary_err =
-        fmax(rec->summary_err, fabs(c->area - A * (double)ncontact) / (A * (double)n));
+        vf_worst(rec->summary_err, fabs(c->area - A * (double)ncontact) / (A * (double)n));
     mc_free(Kp);
     mc_free(ht);
 
@@ -661,7 +661,7 @@ static void measure(const mc_scene *sc, const mc_results *res, st_record *rec)
         double e = 0;
         if (!bad && res->stress[2])
             for (size_t i = 0; i < n; i++)
-                e = fmax(e, fabs(res->stress[2][i] + p[i]));
+                e = vf_worst(e, fabs(res->stress[2][i] + p[i]));
         rec->szz_err = e / fmax(c->p_max, DBL_MIN);
     }
 }
@@ -811,7 +811,7 @@ static void check_run(vf_ctx *ctx, int scene, int combo, const st_record *r, con
     vf_check(ctx, ID("consistent"),
              "bounds p_lub <= p <= p_cap (/p_max); gap = h + u - approach, u = K p (/magnitudes); "
              "summary vs arrays",
-             "round-off", 0, fmax(r->bounds, fmax(r->gapid, r->summary_err)), CONSISTENT_TOL,
+             "round-off", 0, vf_worst(r->bounds, vf_worst(r->gapid, r->summary_err)), CONSISTENT_TOL,
              VF_MAX);
     if (s->extra == X_ONE_CELL && ok) {
         vf_check(ctx, ID("cells"), "cells in contact", "the apex cell alone", 1,
@@ -832,7 +832,7 @@ static void check_run(vf_ctx *ctx, int scene, int combo, const st_record *r, con
             double L = scene_scale(s);
             double e = fabs(r->p_max / base->p_max - 1);
             if (s->extra == X_SIMILAR)
-                e = fmax(e, fabs(r->approach / (L * base->approach) - 1));
+                e = vf_worst(e, fabs(r->approach / (L * base->approach) - 1));
             snprintf(q, sizeof q, "%s against the unscaled scene (L = %.3g)",
                      s->extra == X_SIMILAR ? "p_max and approach / L" : "p_max", L);
             vf_check(ctx, ID("similar"), q, ref, 0, e, SIMILAR_TOL, VF_MAX);

@@ -166,7 +166,7 @@ static int sweep_and_limits(vf_ctx *ctx, patch *pt, double *slope_at, double roo
         }
         nonmono += !(v > vprev);
         vprev = v;
-        worst_split = fmax(worst_split, split);
+        worst_split = vf_worst(worst_split, split);
         if (k == 0)
             v0 = v;
         if (k == np)
@@ -188,8 +188,10 @@ static int sweep_and_limits(vf_ctx *ctx, patch *pt, double *slope_at, double roo
     snprintf(q, sizeof q, "V(p_lub) on %d points from 0 to 0.95 p_nom: steps that do not rise",
              np + 1);
     vf_check(ctx, "monotone_V", q, "dossier §5.1: V strictly increasing", 0, nonmono, 0, VF_MAX);
-    vf_check(ctx, "load_split", "max |F_solid + p_lub A_free - F_N| / F_N over the sweep",
-             "dossier §5.2: an identity at equilibrium", 0, worst_split, SPLIT_TOL, VF_MAX);
+    /* information: a force-controlled solve enforces F_N (its stopping test), so the split
+     * F_solid + p_lub A_free = F_N cannot fail here */
+    vf_info(ctx, "load_split", "max |F_solid + p_lub A_free - F_N| / F_N over the sweep",
+            "by construction: the load a force-controlled solve enforces", NAN, worst_split);
     vf_info(ctx, "V0", "V(0) / A_nom, um (dry contact)", "dossier 96 x 96 patch: 0.204 um",
             0.204, v0 / pt->a_nom * 1e6);
     vf_info(ctx, "V95", "V(0.95 p_nom) / A_nom, um", "dossier 96 x 96 patch: 0.636 um", 0.636,
@@ -233,7 +235,7 @@ static int roots(vf_ctx *ctx, patch *pt, double slope)
     if (f)
         fprintf(f, "h_ehd_um,regime,p_lub_MPa,p_lub_bisect_MPa,rel_error,solves,iterations,"
                    "psi_load,psi_area,pocket_um\n");
-    double worst_cmp = 0, worst_err = 0, worst_pocket = 0;
+    double worst_cmp = 0, worst_err = 0, worst_pocket = 0, worst_vol = 0, worst_pfield = 0;
     int total_solves = 0, nroots = 0, max_solves = 0;
     for (int k = 0; k < nf; k++) {
         const double h = films_um[vf_fast(ctx) ? 2 * k + 1 : k] * 1e-6;
@@ -246,7 +248,20 @@ static int roots(vf_ctx *ctx, patch *pt, double slope)
         mc_lube_split_of(pt->p, pt->gap, pt->n, pt->dA, vr.p_lub, pt->load, &sp, &err);
         if (vr.regime == MC_REGIME_MIXED) { /* V = V* there: h_pocket = V* / (A_nom - A_C) */
             double pocket_id = h / (1 - sp.psi_area); /* dossier §5.2 */
-            worst_pocket = fmax(worst_pocket, fabs(sp.pocket_height - pocket_id) / pocket_id);
+            worst_pocket = vf_worst(worst_pocket, fabs(sp.pocket_height - pocket_id) / pocket_id);
+            /* independent of the solver and of the split: the returned fields summed here, V
+             * against V* = h_EHD A_nom (volume.h), and the pocket height V / (A_nom - A_C) with
+             * A_C the cells above the lubricant pressure */
+            double sum_g = 0;
+            size_t free_cells = 0;
+            for (size_t i = 0; i < pt->n; i++) {
+                sum_g += pt->gap[i];
+                free_cells += !(pt->p[i] > vr.p_lub);
+            }
+            double vstar = h * pt->a_nom, vol = pt->dA * sum_g;
+            worst_vol = vf_worst(worst_vol, fabs(vol - vstar) / vstar);
+            double pocket = free_cells ? vol / (pt->dA * (double)free_cells) : 0;
+            worst_pfield = vf_worst(worst_pfield, fabs(sp.pocket_height - pocket) / pocket);
         }
         double pb = NAN;
         int sb = 0;
@@ -256,11 +271,11 @@ static int roots(vf_ctx *ctx, patch *pt, double slope)
                 continue;
             }
             /* |dp| allowed: ROOT_CMP_TOL V* over the local slope dV/dp */
-            worst_cmp = fmax(worst_cmp, fabs(vr.p_lub - pb) * slope / (ROOT_CMP_TOL * vr.v_target));
+            worst_cmp = vf_worst(worst_cmp, fabs(vr.p_lub - pb) * slope / (ROOT_CMP_TOL * vr.v_target));
             total_solves += vr.solves;
             max_solves = vr.solves > max_solves ? vr.solves : max_solves;
             nroots++;
-            worst_err = fmax(worst_err, vr.rel_error);
+            worst_err = vf_worst(worst_err, vr.rel_error);
         }
         if (f)
             fprintf(f, "%.4g,%s,%.6f,%.6f,%.3e,%d,%ld,%.6f,%.6f,%.6f\n", h * 1e6,
@@ -282,10 +297,20 @@ static int roots(vf_ctx *ctx, patch *pt, double slope)
     vf_check(ctx, "root_vs_bisection",
              "max |p_lub(Brent, cg) - p_lub(bisection, pk)| in units of 3e-6 V* / (dV/dp)",
              "an independent solve of V(p_lub) = V*", 0, worst_cmp, 1.0, VF_MAX);
-    vf_check(ctx, "root_error", "max |V - V*| / V* of the returned states",
-             "the root tolerance 1e-6", 0, worst_err, ROOT_TOL, VF_MAX);
-    vf_check(ctx, "pocket_height", "max |h_pocket - h_EHD / (1 - psi_A)| / h_pocket (mixed)",
-             "dossier §5.2 (V = V* at the root)", 0, worst_pocket, 2 * ROOT_TOL, VF_MAX);
+    /* information: the solver's own stopping test, and the same number again through the split
+     * (h_pocket = V / (A_nom - A_C) equals h_EHD / (1 - psi_A) exactly when V = V*) */
+    vf_info(ctx, "root_error", "max |V - V*| / V* of the returned states",
+            "by construction: the solver's stopping test, 1e-6", NAN, worst_err);
+    vf_info(ctx, "pocket_height", "max |h_pocket - h_EHD / (1 - psi_A)| / h_pocket (mixed)",
+            "by construction: root_error again through the split", NAN, worst_pocket);
+    vf_check(ctx, "root_volume_fields",
+             "max |dA sum(gap) - h_EHD A_nom| / (h_EHD A_nom) of the returned fields (mixed)",
+             "V* = h_EHD A_nom (dossier §5.1), V summed here from the gap", 0, worst_vol,
+             ROOT_TOL * (1 + 1e-6), VF_MAX);
+    vf_check(ctx, "pocket_fields",
+             "max |h_pocket - V / (A_nom - A_C)| / h_pocket, V and A_C (p > p_lub) summed here "
+             "from the fields (mixed)",
+             "dossier §5.2 definition", 0, worst_pfield, 1e-12, VF_MAX);
     if (nroots > 0) {
         vf_info(ctx, "solves_per_root", "contact solves per root (mean, mixed regime)",
                 "volume.h: Brent, warm-started", NAN, (double)total_solves / nroots);
@@ -317,7 +342,7 @@ static int active_set(vf_ctx *ctx)
             break;
         }
         for (size_t i = 0; i < a.n; i++)
-            worst = fmax(worst, fabs(a.p[i] - c.p[i]) / P_NOM);
+            worst = vf_worst(worst, fabs(a.p[i] - c.p[i]) / P_NOM);
     }
     vf_check(ctx, "active_set_vs_cg", "max |p_active-set - p_cg| / p_nom at p_lub = 0, 300, 700 "
              "MPa (24 x 24)", "dossier §5.2: agree to 1e-10", 0, worst, AS_TOL, VF_MAX);
@@ -332,7 +357,7 @@ static int active_set(vf_ctx *ctx)
             a.p[i] -= c.p[i];
         double d = 0;
         for (size_t i = 0; i < a.n; i++)
-            d = fmax(d, fabs(a.p[i]) / P_NOM);
+            d = vf_worst(d, fabs(a.p[i]) / P_NOM);
         vf_info(ctx, "active_set_root_p", "max |p_as - p_cg| / p_nom at the two roots",
                 "differ by the roots' own tolerance", NAN, d);
     } else

@@ -186,7 +186,7 @@ static void engineered_topography(const geo_t *gm, const pat_t *pt, int n, doubl
                     if (q != k)
                         hk -= single_at(gm, gm->us, i - c - pt->oi[q] * gm->D,
                                         j - c - pt->oj[q] * gm->D);
-                v = fmin(v, hk);
+                v = vf_least(v, hk);
             }
             h[(size_t)j * n + i] = v;
         }
@@ -202,7 +202,7 @@ static void sphere_topography(const geo_t *gm, const pat_t *pt, int n, double *h
             for (int q = 0; q < pt->n; q++) {
                 double x = (i - c - pt->oi[q] * gm->D) * gm->dx,
                        y = (j - c - pt->oj[q] * gm->D) * gm->dx;
-                v = fmin(v, (x * x + y * y) / (2 * gm->R) - pt->c[q]);
+                v = vf_least(v, (x * x + y * y) / (2 * gm->R) - pt->c[q]);
             }
             h[(size_t)j * n + i] = v;
         }
@@ -235,7 +235,7 @@ static void elastic_measures(const geo_t *gm, const pat_t *pt, const mc_grid *g,
                 double w = voronoi_w(gm, pt, n, i, j, k);
                 load[k] += w * v * gm->dx * gm->dx;
                 if (w > 0)
-                    pmax[k] = fmax(pmax[k], v);
+                    pmax[k] = vf_worst(pmax[k], v);
             }
         }
     enum { NZS = 51 };
@@ -307,7 +307,7 @@ static int elastic_engineered(const geo_t *gm, pat_t *pt, mc_error *err)
                     e += single_at(gm, gm->ps, i - c - pt->oi[k] * gm->D,
                                    j - c - pt->oj[k] * gm->D);
                 pt->super_err =
-                    fmax(pt->super_err, fabs(res.pressure[(size_t)j * n + i] - e) / P_H);
+                    vf_worst(pt->super_err, fabs(res.pressure[(size_t)j * n + i] - e) / P_H);
             }
         pt->patches_el = vt_count_patches(&sc.grid, res.pressure);
         elastic_measures(gm, pt, &sc.grid, res.pressure, pt->load, pt->pmax, pt->vm, pt->zvm);
@@ -338,7 +338,7 @@ static int plain_spheres(const geo_t *gm, pat_t *pt, mc_error *err)
                          pt->pl_zvm);
         double worst = 0;
         for (int k = 0; k < pt->n; k++)
-            worst = fmax(worst, fabs(pt->pl_load[k] / gm->P - 1));
+            worst = vf_worst(worst, fabs(pt->pl_load[k] / gm->P - 1));
         pt->pl_corrections = it;
         if (worst <= LOAD_TOL || it == MAX_CORRECTIONS)
             break;
@@ -358,7 +358,7 @@ static int plain_spheres(const geo_t *gm, pat_t *pt, mc_error *err)
                 for (int j = 0; j < n; j++)
                     for (int i = 0; i < n; i++)
                         if (voronoi_w(gm, pt, n, i, j, k) > 0)
-                            pt->pl_dent[k] = fmax(pt->pl_dent[k],
+                            pt->pl_dent[k] = vf_worst(pt->pl_dent[k],
                                                   res.residual_displacement[(size_t)j * n + i]);
             }
             rc = MC_OK;
@@ -386,14 +386,14 @@ static void plastic_measures(const geo_t *gm, pat_t *pt, const mc_results *res, 
                     continue;
                 size_t s = (size_t)j * n + i;
                 double u = res->residual_displacement[s];
-                dent = fmax(dent, u);
+                dent = vf_worst(dent, u);
                 dvol += w * u * dA;
                 if (cap && res->pressure[s] >= HARDNESS * (1 - 1e-12))
                     area += w * dA;
                 if (!cap)
                     for (int l = 0; l < nz; l++) {
                         double e = res->plastic_strain[((size_t)l * n + j) * n + i];
-                        peq = fmax(peq, e);
+                        peq = vf_worst(peq, e);
                         if (e > 0)
                             vp += w * dA * dz;
                     }
@@ -412,7 +412,7 @@ static void plastic_measures(const geo_t *gm, pat_t *pt, const mc_results *res, 
     if (!cap) {
         pt->vm_bottom = 0;
         for (size_t s = 0; s < (size_t)n * n; s++)
-            pt->vm_bottom = fmax(pt->vm_bottom, res->plastic_strain[(size_t)(nz - 1) * n * n + s]);
+            pt->vm_bottom = vf_worst(pt->vm_bottom, res->plastic_strain[(size_t)(nz - 1) * n * n + s]);
     }
     const int c = n / 2; /* the row through the pattern's centre asperity */
     for (int i = 0; i < n; i++) {
@@ -478,7 +478,7 @@ static double hamilton_vm(int pat, double d)
                 for (int c = 0; c < 6; c++)
                     s[c] += t[c];
             }
-        best = fmax(best, mc_von_mises(s));
+        best = vf_worst(best, mc_von_mises(s));
     }
     return best;
 }
@@ -588,11 +588,11 @@ int vf_suite_yield_criterion(vf_ctx *ctx, int fast)
     int patch_bad = 0, notconv = 0;
     for (int q = 0; q < npat; q++) {
         const pat_t *pt = &pats[list[q]];
-        super_err = fmax(super_err, pt->super_err);
+        super_err = vf_worst(super_err, pt->super_err);
         patch_bad += (pt->patches_el != pt->n) + (pt->patches_cap != pt->n);
         notconv += !pt->vm_converged + !pt->cap_converged + (pt->n > 1 && !pt->pl_converged);
         for (int k = 0; k < pt->n && pt->n > 1; k++)
-            worst_pl = fmax(worst_pl, fabs(pt->pl_load[k] / gm.P - 1));
+            worst_pl = vf_worst(worst_pl, fabs(pt->pl_load[k] / gm.P - 1));
     }
     vf_check(ctx, "superposition",
              "elastic pressure of every pattern against the sum of the shifted single-asperity "
@@ -608,7 +608,7 @@ int vf_suite_yield_criterion(vf_ctx *ctx, int fast)
     vf_check(ctx, "converged", q1, "stage_plastic: converged", 0, notconv, 0, VF_MAX);
     double bottom = 0;
     for (int q = 0; q < npat; q++)
-        bottom = fmax(bottom, pats[list[q]].vm_bottom);
+        bottom = vf_worst(bottom, pats[list[q]].vm_bottom);
     vf_check(ctx, "depth_sufficient",
              "largest plastic strain in the deepest layer of the plastic volume (depth 1.75 a)",
              "the plastic zone ends above it", 0, bottom, 0, VF_MAX);
@@ -694,15 +694,15 @@ int vf_suite_yield_criterion(vf_ctx *ctx, int fast)
     }
     double cap_worst = 0, cap_spread, vm_spread;
     for (int q = 1; q < npat; q++)
-        cap_worst = fmax(cap_worst, fabs(dent_cap[list[q]] - 1));
+        cap_worst = vf_worst(cap_worst, fabs(dent_cap[list[q]] - 1));
     {
         const pat_t *sq = &pats[PAT_SQ3];
         double lo = INFINITY, hi = 0, vlo = INFINITY, vhi = 0;
         for (int k = 0; k < sq->n; k++) {
-            lo = fmin(lo, sq->cap_dent[k]);
-            hi = fmax(hi, sq->cap_dent[k]);
-            vlo = fmin(vlo, sq->vm_dent[k]);
-            vhi = fmax(vhi, sq->vm_dent[k]);
+            lo = vf_least(lo, sq->cap_dent[k]);
+            hi = vf_worst(hi, sq->cap_dent[k]);
+            vlo = vf_least(vlo, sq->vm_dent[k]);
+            vhi = vf_worst(vhi, sq->vm_dent[k]);
         }
         cap_spread = hi / lo - 1;
         vm_spread = vhi / vlo - 1;
