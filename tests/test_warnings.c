@@ -205,6 +205,18 @@ START_TEST(checkered_fraction_of_known_fields)
     const double fc = mc_plastic_checkered_fraction(&g, nz, checker);
     ck_assert_msg(fs < 0.1, "smooth bump: %g", fs);
     ck_assert_msg(fc > MC_WARN_CHECKERED, "checkerboard: %g", fc);
+    /* isolated one-cell spikes (asperity tips under a rough load), three cells apart: every
+     * significant cell is an extremum, none has an extremum beside it: not a checkerboard
+     * (counted 100 % before the neighbour rule; a rough line contact was flagged so) */
+    double *spikes = calloc(n, sizeof *spikes);
+    ck_assert(spikes);
+    for (int k = 0; k < nz; k++)
+        for (int j = 1; j < 19; j += 3)
+            for (int i = 1; i < 23; i += 3)
+                spikes[((size_t)k * 20 + j) * 24 + i] = 1e-3 * (1.0 + 0.1 * k);
+    const double fp = mc_plastic_checkered_fraction(&g, nz, spikes);
+    ck_assert_msg(fp < 0.1, "isolated spikes: %g", fp);
+    free(spikes);
     for (size_t v = 0; v < n; v++)
         smooth[v] = 0.0;
     ck_assert_double_eq(mc_plastic_checkered_fraction(&g, nz, smooth), 0.0);

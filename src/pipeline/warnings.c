@@ -59,6 +59,25 @@ static double extent_radius(const mc_results *r, int line, double p_lub)
     return line ? ax : sqrt(ax * ay);
 }
 
+/* Cell v is a local extremum along the axis of stride st (it has both neighbours): both steps
+ * larger than `step`, of opposite signs. */
+static int extremum(const double *peq, size_t v, size_t st, double step)
+{
+    const double a = peq[v] - peq[v - st], b = peq[v + st] - peq[v];
+    return a * b < 0 && fabs(a) > step && fabs(b) > step;
+}
+
+/* A zigzag along an axis: v and a neighbour along it are both extrema (up-down-up over at least
+ * three steps). An isolated spike, e.g. an asperity tip of one cell, is one extremum whose
+ * neighbours are not: the material's response to a sharp load, not the operator's mode. */
+static int zigzag(const double *peq, size_t v, int i, int n, size_t st, double step)
+{
+    if (i < 1 || i > n - 2 || !extremum(peq, v, st, step))
+        return 0;
+    return (i >= 2 && extremum(peq, v - st, st, step)) ||
+           (i <= n - 3 && extremum(peq, v + st, st, step));
+}
+
 double mc_plastic_checkered_fraction(const mc_grid *g, int nz, const double *peq)
 {
     const int nx = g->nx, ny = g->ny;
@@ -77,16 +96,7 @@ double mc_plastic_checkered_fraction(const mc_grid *g, int nz, const double *peq
                 if (!(peq[v] > floor_))
                     continue;
                 significant++;
-                int alt = 0;
-                if (i > 0 && i < nx - 1) { /* a zigzag along x: both steps large, signs opposite */
-                    const double a = peq[v] - peq[v - 1], b = peq[v + 1] - peq[v];
-                    alt |= a * b < 0 && fabs(a) > step && fabs(b) > step;
-                }
-                if (j > 0 && j < ny - 1) {
-                    const double a = peq[v] - peq[v - nx], b = peq[v + nx] - peq[v];
-                    alt |= a * b < 0 && fabs(a) > step && fabs(b) > step;
-                }
-                checkered += alt;
+                checkered += zigzag(peq, v, i, nx, 1, step) || zigzag(peq, v, j, ny, nx, step);
             }
     return significant ? (double)checkered / (double)significant : 0.0;
 }
