@@ -41,4 +41,8 @@ int mc_cli_signal_caught(void);
 /* End the process by signal sig, as its default action does (the shell shows 128 + sig). */
 _Noreturn void mc_cli_signal_exit(int sig);
 
+/* Set OMP_WAIT_POLICY=passive and execute the program again when the variable is unset (its
+ * runtime reads it before main; wait_policy.c). Returns only when nothing was done or exec failed. */
+void mc_cli_wait_policy(char **argv);
+
 #endif

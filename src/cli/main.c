@@ -59,6 +59,7 @@ static int no_arguments(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+    mc_cli_wait_policy(argv); /* before any OpenMP: may execute the program again */
     if (argc < 2) {
         usage(stderr);
         return 2;
