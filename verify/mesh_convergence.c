@@ -81,7 +81,10 @@ static double surface_height(double x, double y)
  *   first-order effect that fades with depth): measured 0.6 % of the maximum; allowed 3 %. The
  *   fast variant compares 1.2 um with 0.8 um: measured 5.1 %, allowed TOL_CURVE_FAST = 10 %.
  * TOL_VP: the plastic volume (cells that yielded): its boundary follows the elastic stress and is
- *   quantised by one layer of cells; measured 0.05 % (0.8 um), 2.6 % (1.2 and 1.6 um); 5 %.
+ *   quantised by one layer of cells; measured 0.05 % (0.8 um), 2.6 % (1.2 and 1.6 um); 5 %, and
+ *   never below TOL_VP_CELLS cells of the coarser mesh (the fast variant's volume is ~18 cells of
+ *   1.2 um: one cell is 5.6 %, measured 4.2 % with centre values and 5.6 % with cell averages,
+ *   theory.md §8.7).
  * TOL_PLASTIC: the deformation measures (largest residual displacement, dent volume, int p dV)
  *   do not converge with a clear order on these meshes: between 1.6, 1.2, 0.8 and 0.4 um they
  *   scatter by up to 12 % (0.8 against 0.4 um: 8-12 %; fast variant, 1.2 against 0.8 um: 3-13 %),
@@ -103,6 +106,7 @@ static double surface_height(double x, double y)
 #define TOL_CURVE_FAST 0.10
 #define Z_CURVE (0.2 * UM)
 #define TOL_VP 0.05
+#define TOL_VP_CELLS 1.5
 #define TOL_PLASTIC 0.20
 #define TOL_PEQ 0.30
 #define Z_LATTICE 0.1
@@ -396,7 +400,11 @@ int vf_suite_mesh_convergence(vf_ctx *ctx, int fast)
             snprintf(qn, sizeof qn, "%s: %s um mesh against %s um, relative difference",
                      q_label[k], mname, fname);
             snprintf(ref, sizeof ref, "the %s um mesh", fname);
-            vf_check(ctx, id, qn, ref, 0, fabs(rel[k][imid]), tol[a], VF_MAX);
+            /* the plastic volume is a count of cells: no finer than one cell of the coarser
+             * mesh (dz = dx / 2) against the finest mesh's volume (TOL_VP) */
+            const double cell = m[imid].dx * m[imid].dx * 0.5 * m[imid].dx;
+            const double t = k == Q_VP ? fmax(tol[a], TOL_VP_CELLS * cell / fine->q[Q_VP]) : tol[a];
+            vf_check(ctx, id, qn, ref, 0, fabs(rel[k][imid]), t, VF_MAX);
             if (!coarse[a])
                 continue;
             snprintf(id, sizeof id, "%s_coarse_farther", q_id[k]);
