@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "case/datafiles.h"
 #include "case/keys.h"
 #include "core/alloc.h"
 #include "io/file.h"
@@ -706,7 +707,8 @@ static int parse_and_check(ctx *c, int noverrides, const char *const *overrides)
     }
 
     const char *sec = NULL, *key = NULL;
-    if ((rc = mc_scene_check_key(&c->sc, c->err, &sec, &key))) {
+    if ((rc = mc_scene_check_key(&c->sc, c->err, &sec, &key)) ||
+        (rc = mc_case_check_datafiles(&c->sc, c->err, &sec, &key))) {
         int k = sec && key ? mc_key_find(sec, key) : -1;
         const entry *e = k >= 0 && c->slot[k] >= 0 ? &c->e[c->slot[k]] : NULL;
         char head[MC_ERROR_MSG_MAX];

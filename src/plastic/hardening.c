@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/fileguard.h"
 
 #define SWIFT_MICRO 1e6     /* p in micro-strain in the Swift law (theory.md §7.2) */
 #define LINE_MAX_CHARS 1024 /* longest line of a table file */
@@ -259,6 +260,9 @@ int mc_hardening_table_read(const char *path, double stress_unit, mc_hardening *
         return mc_fail(err, MC_ERR_INPUT,
                        "%s: stress unit = %g Pa must be finite and > 0 (1 for Pa, 1e6 for MPa)",
                        path, stress_unit);
+    int guard = mc_file_guard(path, MC_FILE_MAX_TABLE, "a hardening table", err);
+    if (guard != MC_OK)
+        return guard;
     FILE *f = fopen(path, "r");
     if (!f)
         return mc_fail(err, MC_ERR_IO, "%s: cannot open hardening table: %s", path,

@@ -68,6 +68,7 @@ lines16() { j=0; while [ $j -lt "$1" ]; do echo "$line16"; j=$((j + 1)); done; }
 echo "1 2 3" > not_wisdom.txt  # [solver] wisdom_file that is not FFTW wisdom
 mkdir a_directory
 : > regular_file
+mkfifo a_fifo.x3p  # a FIFO without writer: an open for reading would block for ever
 
 # ---- the harness -------------------------------------------------------------------------------
 pass=0 fail=0 xfail=0
@@ -86,7 +87,7 @@ row() {
     done
     shift
     snapshot > before
-    "$PROG" run "$@" > stdout 2> stderr
+    timeout 120 "$PROG" run "$@" > stdout 2> stderr
     status=$?
     why=""
     want=2
@@ -324,6 +325,20 @@ control control_wisdom o 0 wisdom_bad.ini --out o --set solver.wisdom_file=fresh
 if head -c 6 fresh.wisdom 2> /dev/null | grep -q '^(fftw-'; then pass=$((pass + 1)); else
     fail=$((fail + 1)); echo "FAIL  control_wisdom: no FFTW wisdom in fresh.wisdom"; fi
 rm -f fresh.wisdom
+# nothing reads forever: a device or FIFO given as any file the run reads is refused before it
+# is opened, naming the file and what it should be (the case file: its size limit, above)
+row surface_device     o 1 "/dev/zero: not a regular file (a character device)" \
+    "a surface file must be a regular file" "[roughness] file" \
+    -- surf_good.ini --out o --set roughness.file=/dev/zero --set roughness.format=x3p
+row surface_fifo       o 1 "a_fifo.x3p: not a regular file (a FIFO or pipe)" "[roughness] file" \
+    -- surf_good.ini --out o --set roughness.file=a_fifo.x3p
+row pressure_device    o 1 "/dev/zero: not a regular file" "[load] pressure_file" \
+    -- good.ini --out o --set load.force= --set load.pressure_file=/dev/zero
+row table_device       o 1 "/dev/zero: not a regular file" "a hardening table must be a regular file" \
+    -- plastic_line.ini --out o --set plasticity.hardening=table --set plasticity.yield_stress= \
+    --set plasticity.table=/dev/zero
+row wisdom_device      o 1 "/dev/zero: not a regular file" "an FFTW wisdom file must be a regular file" \
+    -- wisdom_bad.ini --out o --set solver.wisdom_file=/dev/zero
 # a pressure_file given by --set is relative to the current directory, not to the case file
 row pressure_override  o 1 "--set load.pressure_file=nan.npy" "[load] pressure_file" \
     "give exactly one of force, force_per_length, approach, pressure_file" \
