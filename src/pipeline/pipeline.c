@@ -203,6 +203,8 @@ static int roughness_parameters(const mc_scene *sc, mc_results *res, mc_error *e
             res->surface_missing = m.missing;
             res->surface_filled = m.filled;
             memcpy(res->surface_format, m.format, sizeof res->surface_format);
+            if (m.warning[0])
+                mc_results_warn(res, "surface_file", "[roughness] file: %s", m.warning);
         }
         mc_measured_free(&m);
     } else
