@@ -65,6 +65,13 @@ nanline='1e-6 1e-6 1e-6 1e-6 1e-6 nan 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e
 lines16() { j=0; while [ $j -lt "$1" ]; do echo "$line16"; j=$((j + 1)); done; }
 { echo "# 16 x 16 heights"; lines16 16; } > micro_16x16.txt
 { echo "# 16 x 16 heights"; lines16 2; echo "$nanline"; lines16 13; } > nan_16x16.txt
+# text inputs as other tools write them: a header line of words, one of the sizes, and 'x z'
+# profiles (line scans) given as a surface
+{ echo "h=16 w=16"; lines16 16; } > header_words.txt
+{ echo "16 16"; lines16 16; } > header_sizes.txt
+printf '0 1e-6\n4e-6 2e-6\n8e-6 1e-6\n12e-6 0\n' > profile.txt
+cp profile.txt profile.xyz
+{ echo "h=16 w=16"; echo "0 0 1e-6"; } > header_words.xyz
 echo "1 2 3" > not_wisdom.txt  # [solver] wisdom_file that is not FFTW wisdom
 mkdir a_directory
 : > regular_file
@@ -314,6 +321,17 @@ row roughness_nan_text o 1 "nan_16x16.txt: 1 of 256 points are missing" \
     "set [roughness] missing = fill" "[roughness] file" -- roughness_nan_text.ini --out o
 row roughness_missing  o 1 "does_not_exist.txt" "cannot open: No such file or directory" \
     "[roughness] file" -- roughness_missing.ini --out o
+# text and profile inputs: a header is named as a header, a profile as a profile
+row text_header_words  o 1 "header_words.txt:1: 'h=16 w=16' is a header line" "[roughness] file" \
+    -- roughness_ok_text.ini --out o --set roughness.file=header_words.txt
+row text_header_sizes  o 1 "header_sizes.txt:2: 16 values, but the first data row (line 1) has 2" \
+    "if that line is a header" -- roughness_ok_text.ini --out o --set roughness.file=header_sizes.txt
+row text_profile       o 1 "profile.txt: 2 columns of 4 rows" "a profile (a line scan), not a surface" \
+    -- roughness_ok_text.ini --out o --set roughness.file=profile.txt
+row xyz_profile        o 1 "profile.xyz:1: 2 values: 'x z' pairs are a profile" \
+    -- roughness_ok_text.ini --out o --set roughness.file=profile.xyz
+row xyz_header_words   o 1 "header_words.xyz:1: 'h=16 w=16' is a header line" \
+    -- roughness_ok_text.ini --out o --set roughness.file=header_words.xyz
 # [solver] plans = wisdom: the file is required; one that is not FFTW wisdom is refused before
 # any output (and left as it was); a fresh name is valid (the run writes the wisdom there)
 row wisdom_no_file     o 1 "wisdom_no_file.ini:" "[solver] wisdom_file is required for plans = wisdom" \
