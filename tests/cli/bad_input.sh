@@ -332,6 +332,10 @@ row xyz_profile        o 1 "profile.xyz:1: 2 values: 'x z' pairs are a profile" 
     -- roughness_ok_text.ini --out o --set roughness.file=profile.xyz
 row xyz_header_words   o 1 "header_words.xyz:1: 'h=16 w=16' is a header line" \
     -- roughness_ok_text.ini --out o --set roughness.file=header_words.xyz
+# roughness parameters that cannot be computed: a cut-off of fewer than 4 sampling intervals
+row roughness_cutoff_short o 1 "--set roughness.cutoff" "[roughness] cutoff" \
+    "spans fewer than 4 sampling intervals" "accepted: cutoff >= 4 dx = 1.6e-05 m" \
+    -- roughness_ok_text.ini --out o --set roughness.cutoff=10um
 # [solver] plans = wisdom: the file is required; one that is not FFTW wisdom is refused before
 # any output (and left as it was); a fresh name is valid (the run writes the wisdom there)
 row wisdom_no_file     o 1 "wisdom_no_file.ini:" "[solver] wisdom_file is required for plans = wisdom" \
