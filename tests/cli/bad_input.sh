@@ -72,6 +72,10 @@ lines16() { j=0; while [ $j -lt "$1" ]; do echo "$line16"; j=$((j + 1)); done; }
 printf '0 1e-6\n4e-6 2e-6\n8e-6 1e-6\n12e-6 0\n' > profile.txt
 cp profile.txt profile.xyz
 { echo "h=16 w=16"; echo "0 0 1e-6"; } > header_words.xyz
+# hardening tables breaking a documented rule
+printf 'eps_p, sigma_y\n0, 0x10\n0.1, 1200\n' > table_hex.csv
+printf '0, 2e6\n0.1, 3e6\n' > table_huge.csv  # MPa: 2e12 Pa, beyond yield_stress <= 1e12 Pa
+printf '0.01, 1000\n0.1, 1200\n' > table_start.csv
 echo "1 2 3" > not_wisdom.txt  # [solver] wisdom_file that is not FFTW wisdom
 mkdir a_directory
 : > regular_file
@@ -347,6 +351,38 @@ control control_wisdom o 0 wisdom_bad.ini --out o --set solver.wisdom_file=fresh
 if head -c 6 fresh.wisdom 2> /dev/null | grep -q '^(fftw-'; then pass=$((pass + 1)); else
     fail=$((fail + 1)); echo "FAIL  control_wisdom: no FFTW wisdom in fresh.wisdom"; fi
 rm -f fresh.wisdom
+# every documented rule, in every reader: hardening tables as the key they stand for
+TAB="--set plasticity.hardening=table --set plasticity.yield_stress="
+# shellcheck disable=SC2086 # $TAB is split into its options on purpose
+row table_hex          o 1 "--set plasticity.table=table_hex.csv" "[plasticity] table" "table_hex.csv:2" \
+    "expected a row 'eps_p, sigma_y' of two finite numbers" \
+    -- plastic_line.ini --out o $TAB --set plasticity.table=table_hex.csv
+# shellcheck disable=SC2086
+row table_huge         o 1 "table_huge.csv:1" "must be <= 1e+12 Pa (the bound of [plasticity] yield_stress)" \
+    -- plastic_line.ini --out o $TAB --set plasticity.table=table_huge.csv
+# shellcheck disable=SC2086
+row table_first_strain o 1 "table_start.csv:1" "the first plastic strain eps_p = 0.01 must be 0" \
+    -- plastic_line.ini --out o $TAB --set plasticity.table=table_start.csv
+row scale_zero         o 1 "[roughness] scale = 0: must not be 0" \
+    -- surf_good.ini --out o --set roughness.scale=0 --set roughness.resample=linear --set mesh.dx=0.7um
+row scale_minus_zero   o 1 "[roughness] scale = 0: must not be 0" \
+    -- surf_good.ini --out o --set roughness.scale=-0 --set roughness.resample=linear --set mesh.dx=0.7um
+row plastic_depth_dz   o 1 "[plasticity] depth = 5e-06 m is below dz = 1e-05 m" "accepted: depth >= dz" \
+    -- plastic_line.ini --out o --set plasticity.dz=10um --set plasticity.depth=5um
+# keys without effect in their scene are refused
+row units_own_file     o 1 "--set roughness.units" "[roughness] units has no effect with a x3p file" \
+    -- surf_good.ini --out o --set roughness.units=um
+row checksum_not_x3p   o 1 "[roughness] verify_checksum has no effect with a txt file" \
+    -- roughness_ok_text.ini --out o --set roughness.verify_checksum=no
+row resample_mesh_file o 1 "[roughness] resample has no effect when the mesh comes from the file" \
+    -- surf_good.ini --out o --set mesh.nx= --set mesh.ny= --set mesh.dx= --set roughness.resample=linear
+row deflection_periodic o 1 "[runin] nominal_deflection has no effect on a grid periodic along x and y" \
+    -- runin_ok.ini --out o --set runin.nominal_deflection=keep
+# [runin] lists continue on indented lines up to their maximum count
+printf '  500, 200 rpm\n' > cont.txt
+sed 's/^speeds = 1000, 500, 200 rpm$/speeds = 1000,/' runin_ok.ini > runin_cont.ini
+cat cont.txt >> runin_cont.ini
+control control_runin_continued o 0 runin_cont.ini --out o --quiet
 # nothing reads forever: a device or FIFO given as any file the run reads is refused before it
 # is opened, naming the file and what it should be (the case file: its size limit, above)
 row surface_device     o 1 "/dev/zero: not a regular file (a character device)" \
