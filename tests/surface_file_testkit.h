@@ -182,12 +182,13 @@ typedef struct {
     const char *data_member;  /* the member's name in the zip */
     const char *xml;          /* main.xml to use verbatim, or NULL */
     int bad_data_md5, bad_xml_md5, no_main;
+    const char *folder;       /* NULL, or every member under this top-level folder ("scan/") */
 } tk_x3p;
 
 static inline tk_x3p tk_x3p_default(char type, int nx, int ny)
 {
     tk_x3p s = {type, nx, ny, 2.5e-7, 4e-7, 1e-3, -2e-3, 1.0, 0.0, "SUR", NULL, NULL,
-                "bindata/data.bin", "bindata/data.bin", NULL, 0, 0, 0};
+                "bindata/data.bin", "bindata/data.bin", NULL, 0, 0, 0, NULL};
     return s;
 }
 
@@ -249,6 +250,11 @@ static inline void tk_make_x3p(const char *path, const tk_x3p *sp, const unsigne
     const void *bufs[4] = {xml, data, sum, mask};
     const size_t lens[4] = {n, data_len, 33, mask_len};
     int count = mask ? 4 : 3;
+    char full[4][256];
+    for (int k = 0; sp->folder && k < 4; k++) { /* as x3ptools writes them: NAME/main.xml, ... */
+        snprintf(full[k], sizeof full[k], "%s%s", sp->folder, names[k]);
+        names[k] = full[k];
+    }
     if (sp->no_main)
         tk_zip(path, count - 1, names + 1, bufs + 1, lens + 1);
     else

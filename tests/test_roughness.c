@@ -650,6 +650,37 @@ START_TEST(test_entries)
 }
 END_TEST
 
+/* A cut-off spanning fewer than MC_ROUGHNESS_MIN_SAMPLES sampling intervals (issue 23: a
+ * 27.5 mm-spaced scan with the ISO 4288 cut-off of 0.8 mm gave Ra ~ 1e-18 m, negative Rp, Rz = 0
+ * < Rt): chosen by ISO 4288, the profile parameters are left out with the reason; given, it is
+ * refused naming the accepted minimum. The areal ones stay. */
+START_TEST(test_cutoff_below_sampling)
+{
+    enum { NX = 64, NY = 8 };
+    static double z[NX * NY];
+    test_random_field(z, NX * NY, 23);
+    for (int k = 0; k < NX * NY; k++)
+        z[k] *= 1e-6;
+    const double dx = 27.5e-3;
+    mc_roughness_options o;
+    mc_roughness_options_default(&o);
+    mc_roughness_params p;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_roughness_compute(z, NULL, NX, NY, dx, dx, &o, &p, &err), MC_OK);
+    ck_assert(p.cutoff_auto && p.profile_not_computable);
+    ck_assert_ptr_nonnull(strstr(p.warning, "profile parameters (Ra, Rq, Rz, ...) not computable"));
+    mc_roughness_entry e[MC_ROUGHNESS_NENTRIES];
+    int n = mc_roughness_entries(&p, e);
+    ck_assert_int_eq(n, MC_ROUGHNESS_NENTRIES - 13);
+    for (int k = 0; k < n; k++)
+        ck_assert_msg(e[k].name[0] != 'R', "%s printed", e[k].name);
+    ck_assert(p.Sq > 0);
+    o.cutoff = 0.8e-3;
+    ck_assert_int_eq(mc_roughness_compute(z, NULL, NX, NY, dx, dx, &o, &p, &err), MC_ERR_INPUT);
+    ck_assert_ptr_nonnull(strstr(err.msg, "accepted: cutoff >= 4 dx = 0.11 m"));
+}
+END_TEST
+
 Suite *suite_roughness(void);
 Suite *suite_roughness(void)
 {
@@ -665,6 +696,7 @@ Suite *suite_roughness(void)
     tcase_add_test(tc, test_rk_gaussian);
     tcase_add_loop_test(tc, test_skewed_signed_parameters, 0, 2);
     tcase_add_test(tc, test_areal_slopes);
+    tcase_add_test(tc, test_cutoff_below_sampling);
     tcase_add_test(tc, test_iso4288_table);
     tcase_add_test(tc, test_iso4288_iteration);
     tcase_add_test(tc, test_short_profile);

@@ -124,7 +124,7 @@ END_TEST
 START_TEST(test_x3p_write_refusals)
 {
     double z[4] = {0, 1, 2, 3};
-    mc_surface_data s = {2, 2, 0.0, 1e-6, 0, 0, z, NULL, 0, ""};
+    mc_surface_data s = {2, 2, 0.0, 1e-6, 0, 0, z, NULL, 0, "", ""};
     mc_error err = {0};
     const char *path = tk_path("refused.x3p");
     ck_assert_int_eq(mc_x3p_write(path, &s, NULL, &err), MC_ERR_INPUT); /* dx unknown */
@@ -407,7 +407,7 @@ END_TEST
 START_TEST(test_fault_injection)
 {
     static double z[12] = {1, 2, NAN, 4, 5, 6, 7, 8, 9, 10, 11, 12};
-    mc_surface_data s = {4, 3, 1e-6, 1e-6, 0, 0, z, NULL, 0, ""}, r;
+    mc_surface_data s = {4, 3, 1e-6, 1e-6, 0, 0, z, NULL, 0, "", ""}, r;
     mc_error err = {0};
     const char *files[3] = {tk_path("fault.x3p"), tk_path("fault.xyz"), tk_path("fault.txt")};
     ck_assert_int_eq(mc_x3p_write(files[0], &s, NULL, &err), MC_OK);

@@ -754,7 +754,40 @@ static void trimmed(const char *p, size_t n, char *buf, size_t len)
 
 /* K_LIST: comma-separated quantities, e.g. "1086 N, 1500 N" or "3000, 2000, 500 rpm": a unit
  * written after the last number applies to the bare numbers before it. */
+static int convert_list_items(const case_key *k, const char *v, mc_scene *sc, char *why,
+                              size_t wl);
+
+/* A list continued on indented lines (the reader joins them with '\n'): a line end separates
+ * items as a comma does, so "1086 N, 2172 N" + "3258 N" and "1086 N," + "2172 N" both read. */
 static int convert_list(const case_key *k, const char *v, mc_scene *sc, char *why, size_t wl)
+{
+    if (!strchr(v, '\n'))
+        return convert_list_items(k, v, sc, why, wl);
+    size_t n = strlen(v);
+    char *j = mc_malloc(n + 1);
+    if (!j) {
+        mc_key_fmt(why, wl, "out of memory");
+        return 1;
+    }
+    size_t m = 0;
+    for (size_t q = 0; q < n; q++) {
+        if (v[q] != '\n') {
+            j[m++] = v[q];
+            continue;
+        }
+        size_t b = m;
+        while (b > 0 && isspace((unsigned char)j[b - 1]))
+            b--;
+        j[m++] = b > 0 && j[b - 1] == ',' ? ' ' : ',';
+    }
+    j[m] = '\0';
+    int rc = convert_list_items(k, j, sc, why, wl);
+    mc_free(j);
+    return rc;
+}
+
+static int convert_list_items(const case_key *k, const char *v, mc_scene *sc, char *why,
+                              size_t wl)
 {
     double x[MC_RUNIN_MAX > MC_MAX_DEPTHS ? MC_RUNIN_MAX : MC_MAX_DEPTHS];
     const int cap = k->list_max < (int)(sizeof x / sizeof x[0]) ? k->list_max

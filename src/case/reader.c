@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "case/datafiles.h"
 #include "case/keys.h"
 #include "core/alloc.h"
 #include "io/file.h"
@@ -423,7 +424,7 @@ static int convert_entries(ctx *c)
             continue;
         const case_key *key = &mc_keys[k];
         mc_key_show(e->value, qv, sizeof qv);
-        if (e->cont_line && key->kind != K_LENGTHS)
+        if (e->cont_line && key->kind != K_LENGTHS && key->kind != K_LIST) /* lists continue */
             return fail_at(c, e, e->cont_line,
                            "[%s] %s: this line starts with whitespace, so it continues %s from "
                            "line %d, but %s takes a single value (remove the indentation)",
@@ -555,6 +556,12 @@ static int mesh_from_file(ctx *c)
     }
     mc_measured_free(&m);
     c->mesh_from_file = 1;
+    const int kres = mc_key_find("roughness", "resample");
+    if (c->slot[kdx] < 0 && c->slot[kdy] < 0 && c->slot[kres] >= 0 &&
+        c->sc.roughness.resample != MC_RESAMPLE_NONE) /* the mesh is the file's own grid */
+        return fail_at(c, &c->e[c->slot[kres]], c->e[c->slot[kres]].line,
+                       "[roughness] resample has no effect when the mesh comes from the file "
+                       "(no nx, ny, dx, dy in [mesh]: nothing to resample onto): remove it");
     return MC_OK;
 }
 
@@ -706,7 +713,8 @@ static int parse_and_check(ctx *c, int noverrides, const char *const *overrides)
     }
 
     const char *sec = NULL, *key = NULL;
-    if ((rc = mc_scene_check_key(&c->sc, c->err, &sec, &key))) {
+    if ((rc = mc_scene_check_key(&c->sc, c->err, &sec, &key)) ||
+        (rc = mc_case_check_datafiles(&c->sc, c->err, &sec, &key))) {
         int k = sec && key ? mc_key_find(sec, key) : -1;
         const entry *e = k >= 0 && c->slot[k] >= 0 ? &c->e[c->slot[k]] : NULL;
         char head[MC_ERROR_MSG_MAX];

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "case/keys.h"
+#include "case/scene_effect.h"
 #include "kernels/kernel.h"
 
 void mc_scene_defaults(mc_scene *s)
@@ -328,6 +329,8 @@ int mc_scene_check_key(const mc_scene *s, mc_error *err, const char **section, c
     int rc = mc_keys_check_scene(s, NULL, err, section, keyname);
     if (rc == MC_OK)
         rc = scene_rules(s, err, section, keyname);
+    if (rc == MC_OK)
+        rc = mc_scene_effect_rules(s, err, section, keyname);
     return rc;
 }
 

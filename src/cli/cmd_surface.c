@@ -139,11 +139,14 @@ static void print_report(const char *path, const mc_measured *m, const mc_grid *
            rp->rows, rp->points);
     if (rp->warning[0])
         printf("warning: %s\n", rp->warning);
+    if (m->warning[0])
+        printf("warning: %s\n", m->warning);
 }
 
 /* surface.npy and surface.x3p into DIR: staged in DIR/.staging-XXXXXX, renamed into DIR; on
  * failure nothing stays (the directories created here are removed). */
-static int write_out(const char *dir, const mc_grid *g, const double *z, mc_error *err)
+static int write_out(const char *dir, const mc_grid *g, const mc_measured *m, const double *z,
+                     mc_error *err)
 {
     static const char *const names[] = {"surface.npy", "surface.x3p"};
     mc_outdir od;
@@ -169,8 +172,22 @@ static int write_out(const char *dir, const mc_grid *g, const double *z, mc_erro
         st = mc_npy_write(from, z, 2, shape, err);
     }
     if (st == MC_OK) {
+        /* the file's coordinates: the mesh is centred on the map (measured.h), so its first
+         * point lies half the mesh before the map's centre; a region given on the original
+         * then selects the same points of the written file */
+        double cx = 0, cy = 0;
+        if (m->grid.dx > 0 && m->grid.dy > 0) {
+            cx = m->grid.x0 + (m->grid.nx - 1) * m->grid.dx / 2;
+            cy = m->grid.y0 + (m->grid.ny - 1) * m->grid.dy / 2;
+        }
         mc_surface_data s = {.nx = g->nx, .ny = g->ny, .dx = g->dx, .dy = g->dy,
-                             .x0 = mc_grid_x(g, 0), .y0 = mc_grid_y(g, 0), .z = (double *)z};
+                             .x0 = cx + mc_grid_x(g, 0), .y0 = cy + mc_grid_y(g, 0),
+                             .z = (double *)z};
+        if (g->nx == m->grid.nx && g->ny == m->grid.ny && g->dx == m->grid.dx &&
+            g->dy == m->grid.dy) { /* not resampled: the file's own offsets, bit for bit */
+            s.x0 = m->grid.x0;
+            s.y0 = m->grid.y0;
+        }
         snprintf(from, sizeof from, "%s/%s", stage, names[1]);
         st = mc_x3p_write(from, &s, "microcontact surface", err);
     }
@@ -279,7 +296,7 @@ int mc_cli_surface(int argc, char **argv)
             mc_error_prefix(&err, "%s: roughness parameters: ", path);
     }
     if (st == MC_OK && out)
-        st = write_out(out, g, z, &err);
+        st = write_out(out, g, &m, z, &err);
     if (st == MC_OK) {
         print_report(path, &m, g, z, &rp);
         if (out)

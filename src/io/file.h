@@ -7,11 +7,17 @@
 
 #include "core/error.h"
 
-/* Read a whole file into memory. *buf is mc_malloc'ed with len + 1 bytes, the last one a NUL not
- * counted in *len. MC_ERR_IO naming path and strerror, or MC_ERR_NOMEM. */
+/* Read a whole data file into memory. *buf is mc_malloc'ed with len + 1 bytes, the last one a NUL
+ * not counted in *len. MC_ERR_IO naming path and strerror, or MC_ERR_NOMEM; MC_ERR_INPUT for a
+ * device, FIFO or socket, or a file beyond MC_FILE_MAX_SURFACE (core/fileguard.h): nothing reads
+ * forever. */
 int mc_file_read(const char *path, unsigned char **buf, size_t *len, mc_error *err);
 
-/* The same with a size limit (0 = none): a larger file, or a device that never ends, is
+/* The same, naming what the file should be ("a surface file") and with its own limit. */
+int mc_file_read_data(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
+                      size_t *len, mc_error *err);
+
+/* Any file, a stream too (the case file may come through a pipe), with a size limit (0 = none): a larger file, or a device that never ends, is
  * MC_ERR_INPUT "PATH: larger than N MiB; not WHAT" (what, e.g. "a case file"). */
 int mc_file_read_limited(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
                          size_t *len, mc_error *err);

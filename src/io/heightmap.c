@@ -142,19 +142,48 @@ static int text_matrix(const char *text, size_t len, const char *what, int finit
     long first_line = 0;
     while (next_line(&r, &b, &e)) {
         size_t n = 0;
-        const char *p = b;
-        while (next_token(&p, e, &tb, &tl))
+        const char *p = b, *word = NULL;
+        size_t word_len = 0;
+        int lead_word = 0; /* the line starts with a word (a letter, not nan or inf) */
+        while (next_token(&p, e, &tb, &tl)) {
+            if (n == 0)
+                lead_word = ((*tb | 0x20) >= 'a' && (*tb | 0x20) <= 'z') &&
+                            strncasecmp(tb, "nan", 3) != 0 && strncasecmp(tb, "inf", 3) != 0;
             n++;
+            if (!word && !mc_text_is_decimal(tb, tl) &&
+                !(tl == 3 && strncasecmp(tb, "nan", 3) == 0)) {
+                word = tb;
+                word_len = tl;
+            }
+        }
         if (n == 0)
             continue;
+        if (lead_word && nrows == 0) { /* words before the first row: "h=650 w=650" */
+            char show[64];
+            size_t ll = (size_t)(e - b);
+            while (ll > 0 && is_blank((unsigned char)b[ll - 1]))
+                ll--;
+            shown(show, sizeof show, b, ll);
+            return mc_fail(err, MC_ERR_INPUT,
+                           "%s:%ld: '%s' is a header line, not a row of numbers: a text matrix "
+                           "holds numbers only (remove the line or start it with '#')",
+                           what, r.lineno, show);
+        }
+        if (word) /* the message of the number parser, with its accepted forms */
+            return parse_number(word, word_len, what, r.lineno, finite_only, &(double){0}, err);
         if (nrows == 0) {
             ncols = n;
             first_line = r.lineno;
         } else if (n != ncols) {
+            /* a short first row of numbers may be a header too (the sizes, "650 650") */
+            const int header_like = nrows == 1 && ncols < n && ncols <= 3;
             return mc_fail(err, MC_ERR_INPUT,
                            "%s:%ld: %zu values, but the first data row (line %ld) has %zu; every "
-                           "row needs the same number of columns",
-                           what, r.lineno, n, first_line, ncols);
+                           "row needs the same number of columns%s",
+                           what, r.lineno, n, first_line, ncols,
+                           header_like ? " (if that line is a header, such as the sizes, remove "
+                                         "it or start it with '#')"
+                                       : "");
         }
         if (ncols > INT_MAX || ++nrows > INT_MAX)
             return mc_fail(err, MC_ERR_INPUT, "%s:%ld: matrix too large (more than %d rows or "

@@ -9,6 +9,8 @@
 #include <strings.h>
 
 #include "core/alloc.h"
+#include "core/fileguard.h"
+#include "io/file.h"
 #include "io/heightmap.h"
 #include "io/npy.h"
 #include "io/surface_formats.h"
@@ -182,12 +184,35 @@ static int from_matrix(double *d, int rows, int cols, double units, mc_surface_d
     return MC_OK;
 }
 
+/* Two columns whose first rises or falls steadily are 'x z' pairs: a profile (line scan), not
+ * a 2 x n surface (issue 23: a line scan read as a surface two points wide). */
+static int refuse_profile(double *d, int rows, int cols, const char *what, mc_error *err)
+{
+    if (cols != 2 || rows < 3)
+        return MC_OK;
+    const double s = d[2] - d[0];
+    for (int j = 1; j + 1 < rows; j++) {
+        double t = d[2 * (j + 1)] - d[2 * j];
+        if (!(s > 0 ? t > 0 : s < 0 && t < 0))
+            return MC_OK;
+    }
+    const double x0 = d[0], x1 = d[2 * (rows - 1)];
+    mc_free(d);
+    return mc_fail(err, MC_ERR_INPUT,
+                   "%s: 2 columns of %d rows whose first column is monotonic (x from %g to %g): "
+                   "'x z' pairs of a profile (a line scan), not a surface; microcontact needs an "
+                   "areal map (a matrix of heights, or x y z triplets)",
+                   what, rows, x0, x1);
+}
+
 static int parse_txt(const unsigned char *buf, size_t len, const char *what, double units,
                      mc_surface_data *out, mc_error *err)
 {
     double *d = NULL;
     int rows = 0, cols = 0;
     int st = mc_text_matrix_parse_any((const char *)buf, len, what, &d, &rows, &cols, err);
+    if (st == MC_OK)
+        st = refuse_profile(d, rows, cols, what, err);
     if (st != MC_OK)
         return st;
     if ((long long)rows * cols > MC_SURFACE_MAX_POINTS) {
@@ -203,6 +228,8 @@ static int parse_npy(const unsigned char *buf, size_t len, const char *what, dou
     double *d = NULL;
     int rows = 0, cols = 0;
     int st = mc_npy_parse_any(buf, len, what, &d, &rows, &cols, err);
+    if (st == MC_OK)
+        st = refuse_profile(d, rows, cols, what, err);
     if (st != MC_OK)
         return st;
     if ((long long)rows * cols > MC_SURFACE_MAX_POINTS) {
@@ -276,7 +303,7 @@ int mc_surface_file_read(const char *path, const mc_surface_read_options *opt,
     }
     unsigned char *buf;
     size_t len;
-    int st = mc_file_read(path, &buf, &len, err);
+    int st = mc_file_read_data(path, MC_FILE_MAX_SURFACE, "a surface file", &buf, &len, err);
     if (st != MC_OK)
         return st;
     st = mc_surface_parse_buffer(format, buf, len, path, opt, out, err);

@@ -39,6 +39,8 @@ typedef struct {
     unsigned char *valid; /* ny*nx flags, 1 = measured; NULL = all valid; owned */
     long missing;         /* number of points with valid == 0 */
     char format[16];      /* "x3p", "sdf", "gsf", "txt", "xyz" or "npy" */
+    char warning[320];    /* "" or one line naming what the reader read in a way another reader
+                             may not (an X3P's CZ Increment ignored for float heights) */
 } mc_surface_data;
 
 typedef struct {

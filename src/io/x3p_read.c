@@ -5,13 +5,18 @@
  *   Record1: FeatureType SUR; Axes CX, CY incremental (AxisType I, Increment = spacing [m],
  *            Offset [m]); CZ absolute (AxisType A) with DataType I (int16), L (int32),
  *            F (float32) or D (float64), Increment and Offset: z = Offset + Increment * stored
- *            value (both optional, 1 and 0);
+ *            value (both optional, 1 and 0) for the integer types, z = Offset + stored value
+ *            for F and D (the reference implementation, openGPS, and x3ptools ignore the
+ *            Increment of float heights; another one is reported in out->warning);
  *   Record3: MatrixDimension SizeX SizeY SizeZ (= 1); DataLink with PointDataLink (the binary
  *            member, little-endian, x fastest), MD5ChecksumPointData, and optionally
  *            ValidPointsLink (one bit per point, least significant bit first, 1 = valid) and
- *            MD5ChecksumValidPoints;
+ *            MD5ChecksumValidPoints; or DataList, the points inside main.xml, one Datum element
+ *            each (x fastest; an empty Datum is a point not measured);
  *   Record4: ChecksumFile, a member whose first token is the MD5 of main.xml (md5sum style).
- * Record2 (date, creator, instrument, calibration) is not needed to read the heights.
+ * Record2 (date, creator, instrument, calibration) is not needed to read the heights. The members
+ * may sit at the archive's root or under one top-level folder (NAME/main.xml, NAME/bindata/...,
+ * as x3ptools writes them); links are looked up beside main.xml first.
  *
  * Checksums that the file declares are verified when opt->verify_checksum is set (MD5 by
  * nettle); absent ones are not required. The zip's own CRC-32 of every member is always checked
@@ -135,6 +140,51 @@ static int member(const archive *a, const char *name, size_t expect, int exact,
     *data = b;
     *len = n;
     return MC_OK;
+}
+
+/* The folder prefix of main.xml: "" when the archive has main.xml at its root, "NAME/" when its
+ * members sit under one top-level folder (NAME/main.xml, as x3ptools writes them). Returns
+ * MC_OK, -1 (no main.xml anywhere) or an error (several folders hold one). */
+static int find_main(const archive *a, char prefix[TEXT_MAX], mc_error *err)
+{
+    prefix[0] = '\0';
+    if (zip_name_locate(a->za, "main.xml", 0) >= 0)
+        return MC_OK;
+    static const char tail[] = "/main.xml";
+    const size_t nt = sizeof tail - 1;
+    zip_int64_t n = zip_get_num_entries(a->za, 0);
+    int found = 0;
+    for (zip_int64_t k = 0; k < n; k++) {
+        const char *name = zip_get_name(a->za, (zip_uint64_t)k, 0);
+        size_t len = name ? strlen(name) : 0;
+        if (len <= nt || len - nt + 1 >= TEXT_MAX || strcmp(name + len - nt, tail) != 0 ||
+            memchr(name, '/', len - nt) != NULL)
+            continue; /* only FOLDER/main.xml, one level down */
+        if (found++) {
+            char q1[SHOWN_MAX], q2[SHOWN_MAX];
+            return mc_fail(err, MC_ERR_INPUT,
+                           "%s: main.xml in two folders of the zip archive (%s and %s): not one "
+                           "X3P surface",
+                           a->what, shown(prefix, q1), shown(name, q2));
+        }
+        memcpy(prefix, name, len - nt + 1);
+        prefix[len - nt + 1] = '\0';
+    }
+    return found ? MC_OK : -1;
+}
+
+/* member() of a name main.xml gives (a link), looked up beside main.xml first. */
+static int member_at(const archive *a, const char *prefix, const char *name, size_t expect,
+                     int exact, unsigned char **data, size_t *len, mc_error *err)
+{
+    if (prefix[0]) {
+        char full[2 * TEXT_MAX];
+        snprintf(full, sizeof full, "%s%s", prefix, name);
+        int st = member(a, full, expect, exact, data, len, err);
+        if (st != -1)
+            return st;
+    }
+    return member(a, name, expect, exact, data, len, err);
 }
 
 /* ---- main.xml ---------------------------------------------------------------------------- */
@@ -353,6 +403,7 @@ typedef struct {
     long long nx, ny;
     char data_link[TEXT_MAX], data_md5[TEXT_MAX], valid_link[TEXT_MAX], valid_md5[TEXT_MAX];
     int have_data_md5, have_valid, have_valid_md5;
+    xmlNodePtr data_list; /* Record3/DataList: the points inside main.xml (no binary member) */
 } x3p_layout;
 
 static int read_layout(const xml_ctx *x, x3p_layout *L)
@@ -429,11 +480,16 @@ static int read_layout(const xml_ctx *x, x3p_layout *L)
         return st;
     L->nx = size[0];
     L->ny = size[1];
-    if (!at(x->root, "Record3/DataLink"))
-        return mc_fail(x->err, MC_ERR_INPUT,
-                       "%s: X3P without Record3/DataLink (points listed inside main.xml) not "
-                       "supported; need binary point data",
-                       what);
+    if (!at(x->root, "Record3/DataLink")) {
+        /* ISO 5436-2 allows the points inside main.xml, one Datum each (openGPS's samples) */
+        L->data_list = at(x->root, "Record3/DataList");
+        if (!L->data_list)
+            return mc_fail(x->err, MC_ERR_INPUT,
+                           "%s: main.xml has neither Record3/DataLink (binary points) nor "
+                           "Record3/DataList (points in main.xml): no heights",
+                           what);
+        return MC_OK;
+    }
     if ((st = need_text(x, "Record3/DataLink/PointDataLink", L->data_link)) != MC_OK)
         return st;
     L->have_data_md5 = text_at(x->root, "Record3/DataLink/MD5ChecksumPointData", L->data_md5) == 1;
@@ -470,6 +526,58 @@ static double stored_value(const unsigned char *b, char type)
     }
 }
 
+/* The points of Record3/DataList: one Datum element per point, x fastest, holding the stored z
+ * value (an empty Datum is a point not measured). */
+static int read_data_list(const x3p_layout *L, double zinc, const char *what,
+                          mc_surface_data *out, mc_error *err)
+{
+    const size_t n = (size_t)(L->nx * L->ny);
+    size_t count = 0;
+    for (xmlNodePtr c = L->data_list->children; c; c = c->next)
+        count += c->type == XML_ELEMENT_NODE && strcmp((const char *)c->name, "Datum") == 0;
+    if (count != n)
+        return mc_fail(err, MC_ERR_INPUT,
+                       "%s: main.xml: Record3/DataList has %zu Datum elements, MatrixDimension "
+                       "%lld x %lld needs %zu (sizes do not match the data)",
+                       what, count, L->nx, L->ny, n);
+    int st = mc_surface_alloc(out, L->nx, L->ny, what, err);
+    if (st != MC_OK)
+        return st;
+    size_t k = 0;
+    for (xmlNodePtr c = L->data_list->children; c; c = c->next) {
+        if (c->type != XML_ELEMENT_NODE || strcmp((const char *)c->name, "Datum") != 0)
+            continue;
+        xmlChar *t = xmlNodeGetContent(c);
+        const char *s = t ? (const char *)t : "";
+        size_t len = strlen(s), b = strspn(s, " \t\r\n");
+        double v = NAN;
+        int ok = b == len || mc_surface_number(s, len, &v);
+        if (!ok) {
+            char q[SHOWN_MAX];
+            mc_surface_quote(q, sizeof q, (const unsigned char *)s, len);
+            xmlFree(t);
+            return mc_fail(err, MC_ERR_INPUT,
+                           "%s: main.xml: Record3/DataList Datum %zu (row %zu, column %zu) is "
+                           "'%s', not a number",
+                           what, k + 1, k / (size_t)L->nx, k % (size_t)L->nx, q);
+        }
+        xmlFree(t);
+        if (L->type == 'F')
+            v = (double)(float)v; /* the stored type's precision */
+        else if ((L->type == 'I' || L->type == 'L') && isfinite(v) && v != nearbyint(v))
+            return mc_fail(err, MC_ERR_INPUT,
+                           "%s: main.xml: Record3/DataList Datum %zu is %g, not an integer "
+                           "(DataType %c)",
+                           what, k + 1, v, L->type);
+        out->z[k++] = isfinite(v) && !(zinc == 1.0 && L->zoff == 0.0) ? L->zoff + zinc * v : v;
+    }
+    out->dx = L->dx;
+    out->dy = L->dy;
+    out->x0 = L->x0;
+    out->y0 = L->y0;
+    return MC_OK;
+}
+
 /* Everything after the archive is open; frees what it takes except *out. */
 static int read_x3p(const archive *a, const mc_surface_read_options *opt, mc_surface_data *out,
                     mc_error *err)
@@ -479,9 +587,14 @@ static int read_x3p(const archive *a, const mc_surface_read_options *opt, mc_sur
     size_t xml_len, sum_len, data_len, mask_len;
     xmlDocPtr doc = NULL;
     char q[SHOWN_MAX];
-    int st = member(a, "main.xml", 0, 0, &xml, &xml_len, err);
+    char prefix[TEXT_MAX];
+    int st = find_main(a, prefix, err);
+    if (st == MC_OK)
+        st = member_at(a, prefix, "main.xml", 0, 0, &xml, &xml_len, err);
     if (st == -1)
-        return mc_fail(err, MC_ERR_INPUT, "%s: no main.xml in the zip archive (not an X3P file)",
+        return mc_fail(err, MC_ERR_INPUT,
+                       "%s: no main.xml in the zip archive, neither at its root nor in one "
+                       "top-level folder (not an X3P file)",
                        what);
     if (st != MC_OK)
         return st;
@@ -500,7 +613,7 @@ static int read_x3p(const archive *a, const mc_surface_read_options *opt, mc_sur
     char sum_name[TEXT_MAX];
     if (opt->verify_checksum && text_at(x.root, "Record4/ChecksumFile", sum_name) == 1 &&
         sum_name[0]) {
-        st = member(a, sum_name, 0, 0, &sum, &sum_len, err);
+        st = member_at(a, prefix, sum_name, 0, 0, &sum, &sum_len, err);
         if (st == -1)
             st = mc_fail(err, MC_ERR_INPUT,
                          "%s: checksum file %s named in Record4 is not in the archive", what,
@@ -518,7 +631,23 @@ static int read_x3p(const archive *a, const mc_surface_read_options *opt, mc_sur
     }
 
     size_t n = (size_t)(L.nx * L.ny), elem = L.type == 'I' ? 2 : L.type == 'D' ? 8 : 4;
-    st = member(a, L.data_link, n * elem, 1, &data, &data_len, err);
+    /* Float heights are the heights: ISO 5436-2's reference implementation (openGPS) and
+     * x3ptools use the CZ Increment only to scale integer types; a file that states another one
+     * for F or D is read that way too, with a warning naming it (a factor of 1e6 between two
+     * readers must not pass silently). */
+    const int is_float = L.type == 'F' || L.type == 'D';
+    if (is_float && L.zinc != 1.0)
+        snprintf(out->warning, sizeof out->warning,
+                 "%s: main.xml: CZ Increment = %g with float heights (DataType %c) ignored, as "
+                 "ISO 5436-2's reference reader does; if the heights need it, give [roughness] "
+                 "scale = %g",
+                 what, L.zinc, L.type, L.zinc);
+    const double zinc = is_float ? 1.0 : L.zinc;
+    if (L.data_list) {
+        st = read_data_list(&L, zinc, what, out, err);
+        goto done;
+    }
+    st = member_at(a, prefix, L.data_link, n * elem, 1, &data, &data_len, err);
     if (st == -1)
         st = mc_fail(err, MC_ERR_INPUT, "%s: point data %s named in Record3 is not in the "
                      "archive", what, shown(L.data_link, q));
@@ -529,7 +658,7 @@ static int read_x3p(const archive *a, const mc_surface_read_options *opt, mc_sur
                         err)) != MC_OK)
         goto done;
     if (L.have_valid) {
-        st = member(a, L.valid_link, (n + 7) / 8, 0, &mask, &mask_len, err);
+        st = member_at(a, prefix, L.valid_link, (n + 7) / 8, 0, &mask, &mask_len, err);
         if (st == -1)
             st = mc_fail(err, MC_ERR_INPUT, "%s: valid-points mask %s named in Record3 is not "
                          "in the archive", what, shown(L.valid_link, q));
@@ -553,10 +682,10 @@ static int read_x3p(const archive *a, const mc_surface_read_options *opt, mc_sur
             out->valid[k] = (mask[k >> 3] >> (k & 7)) & 1;
     }
     /* Increment 1, offset 0 (what the writer uses): the stored double itself, bit for bit. */
-    int identity = L.zinc == 1.0 && L.zoff == 0.0;
+    int identity = zinc == 1.0 && L.zoff == 0.0;
     for (size_t k = 0; k < n; k++) {
         double v = stored_value(data + k * elem, L.type);
-        out->z[k] = identity || !isfinite(v) ? v : L.zoff + L.zinc * v;
+        out->z[k] = identity || !isfinite(v) ? v : L.zoff + zinc * v;
     }
     out->dx = L.dx;
     out->dy = L.dy;

@@ -140,6 +140,24 @@ static int scan(const char *text, size_t len, const char *what, xyz_work *w, siz
         int nt = tokens(b, e, tb, tl);
         if (nt == 0)
             continue;
+        int numeric = 1;
+        for (int q = 0; q < nt && q < 4; q++) {
+            double v;
+            numeric &= number(tb[q], tl[q], &v);
+        }
+        if (!numeric && k == 0) { /* words before the first point: a header such as "h=650" */
+            char s[64];
+            mc_surface_quote(s, sizeof s, (const unsigned char *)b, (size_t)(e - b));
+            return mc_fail(err, MC_ERR_INPUT,
+                           "%s:%ld: '%s' is a header line, not 'x y z' numbers: an xyz file holds "
+                           "numbers only (remove the line or start it with '#')",
+                           what, line, s);
+        }
+        if (nt == 2 && numeric)
+            return mc_fail(err, MC_ERR_INPUT,
+                           "%s:%ld: 2 values: 'x z' pairs are a profile (a line scan), not a "
+                           "surface; need 'x y z' on each line (an areal map)",
+                           what, line);
         if (nt != 3)
             return mc_fail(err, MC_ERR_INPUT, "%s:%ld: %s values; need 'x y z' on each line",
                            what, line, nt > 3 ? "more than 3" : nt == 2 ? "2" : "1");

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "core/fileguard.h"
 #include "core/threads.h"
 #include "operator/operator.h"
 
@@ -49,6 +50,10 @@ int mc_fft_plans_begin(mc_plan_rigor r, const char *wisdom_file, mc_fft_plans_sc
         /* FFTW's threads first: wisdom imported before fftw_init_threads would not be matched
          * by the threaded planner */
         int rc = mc_fftw_prepare(err);
+        if (rc != MC_OK)
+            return rc;
+        /* FFTW reads the file itself, to its end: a device or FIFO is refused first */
+        rc = mc_file_guard(wisdom_file, MC_FILE_MAX_WISDOM, "an FFTW wisdom file", err);
         if (rc != MC_OK)
             return rc;
         if (access(wisdom_file, F_OK) == 0 && !fftw_import_wisdom_from_filename(wisdom_file)) {

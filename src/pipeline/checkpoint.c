@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "core/alloc.h"
+#include "core/fileguard.h"
 
 #define MAGIC "MCRUNIN"  /* 8 bytes with its NUL */
 #define VERSION 1u
@@ -185,6 +186,9 @@ int mc_checkpoint_read(const char *dir, mc_checkpoint *c, mc_error *err)
     char path[PATH_MAX_CK];
     int rc = path_of(path, dir, MC_CHECKPOINT_FILE, err);
     if (rc != MC_OK)
+        return rc;
+    /* a device or FIFO in its place would be read forever or block the open */
+    if ((rc = mc_file_guard(path, MC_FILE_MAX_CHECKPOINT, "a checkpoint", err)) != MC_OK)
         return rc;
     FILE *f = fopen(path, "rb");
     if (!f)

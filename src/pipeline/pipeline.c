@@ -203,6 +203,8 @@ static int roughness_parameters(const mc_scene *sc, mc_results *res, mc_error *e
             res->surface_missing = m.missing;
             res->surface_filled = m.filled;
             memcpy(res->surface_format, m.format, sizeof res->surface_format);
+            if (m.warning[0])
+                mc_results_warn(res, "surface_file", "[roughness] file: %s", m.warning);
         }
         mc_measured_free(&m);
     } else
@@ -210,6 +212,10 @@ static int roughness_parameters(const mc_scene *sc, mc_results *res, mc_error *e
     if (rc == MC_OK) {
         rc = roughness_of(sc, heights, &res->roughness_initial, err);
         res->has_roughness = rc == MC_OK;
+        /* a cut-off given too short for the grid: the key to name is [roughness] cutoff
+         * (MC_ERR_LIMIT, also exit 2, tells run_stages the message names its key already) */
+        if (rc == MC_ERR_INPUT && err && strstr(err->msg, "cut-off lambda_c"))
+            rc = blame_key(sc, "roughness", "cutoff", MC_ERR_LIMIT, err);
     }
     mc_free(heights);
     return rc;
@@ -255,6 +261,8 @@ static int run_stages(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_resul
     rc = mc_surface_topography(&sc->grid, &sc->geometry, &sc->roughness, res->topography, err);
     if (rc == MC_OK && sc->roughness.type != MC_ROUGH_NONE)
         rc = roughness_parameters(sc, res, err);
+    if (rc == MC_ERR_LIMIT) /* named its key already ([roughness] cutoff) */
+        return rc;
     if (rc != MC_OK && rc != MC_ERR_NOMEM && sc->roughness.type != MC_ROUGH_NONE)
         return blame_key(sc, "roughness", sc->roughness.type == MC_ROUGH_FILE ? "file" : "type",
                          rc, err);

@@ -33,6 +33,9 @@
  *                        perfectly plastic rough sphere of cases/elastic_plastic.ini at dz = dx
  *                        (locked in), 16 % at dz = dx/2; 35 % for the final state of the default
  *                        running-in scene (sharp asperity-scale fields, not locked in).
+ *   surface_file         the [roughness] file was read in a way another reader may not: an X3P
+ *                        with float heights and a CZ Increment other than 1 (ignored, as the
+ *                        ISO 5436-2 reference reader does; the message names the value).
  *   wisdom_not_written   [solver] plans = wisdom: the wisdom file could not be written at the
  *                        end of the run (the results stand; the next run measures again).
  */

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/fileguard.h"
 
 #define SWIFT_MICRO 1e6     /* p in micro-strain in the Swift law (theory.md §7.2) */
 #define LINE_MAX_CHARS 1024 /* longest line of a table file */
@@ -55,9 +56,19 @@ static int check_table(const double *e, const double *s, size_t n, const long *l
         if (!(s[i] > 0))
             return mc_fail(err, MC_ERR_INPUT, "%s: yield stress sigma_y = %g Pa must be > 0",
                            where, s[i]);
+        if (i == 0 && lines && e[0] != 0) /* a file: the documented "eps_p from 0" */
+            return mc_fail(err, MC_ERR_INPUT,
+                           "%s: the first plastic strain eps_p = %g must be 0 (the initial yield "
+                           "stress; the table starts at yield)",
+                           where, e[0]);
         if (i == 0 && !(e[0] >= 0))
             return mc_fail(err, MC_ERR_INPUT, "%s: plastic strain eps_p = %g must be >= 0",
                            where, e[0]);
+        if (!(s[i] <= MC_HARDENING_STRESS_MAX))
+            return mc_fail(err, MC_ERR_INPUT,
+                           "%s: yield stress sigma_y = %g Pa must be <= %g Pa (the bound of "
+                           "[plasticity] yield_stress)",
+                           where, s[i], MC_HARDENING_STRESS_MAX);
         if (i > 0 && !(e[i] > e[i - 1]))
             return mc_fail(err, MC_ERR_INPUT,
                            "%s: plastic strain eps_p = %g is not larger than the previous row's "
@@ -175,6 +186,8 @@ static int parse_field(const char *b, const char *e, double *v)
     char tok[128];
     memcpy(tok, b, (size_t)(e - b));
     tok[e - b] = '\0';
+    if (strpbrk(tok, "xXpP")) /* decimal only, as everywhere else: no hexadecimal (0x10) */
+        return 1;
     char *end;
     *v = strtod(tok, &end);
     return (end != tok + (e - b) || !isfinite(*v)) ? 1 : 0;
@@ -259,6 +272,9 @@ int mc_hardening_table_read(const char *path, double stress_unit, mc_hardening *
         return mc_fail(err, MC_ERR_INPUT,
                        "%s: stress unit = %g Pa must be finite and > 0 (1 for Pa, 1e6 for MPa)",
                        path, stress_unit);
+    int guard = mc_file_guard(path, MC_FILE_MAX_TABLE, "a hardening table", err);
+    if (guard != MC_OK)
+        return guard;
     FILE *f = fopen(path, "r");
     if (!f)
         return mc_fail(err, MC_ERR_IO, "%s: cannot open hardening table: %s", path,

@@ -67,9 +67,13 @@ int mc_hardening_swift(double B, double C, double n, mc_hardening *h, mc_error *
 int mc_hardening_table(const double *eps_p, const double *sigma_y, size_t n_rows,
                        mc_hardening *h, mc_error *err);
 
+/* Largest yield stress of any law, Pa: the bound of the [plasticity] yield_stress key. */
+#define MC_HARDENING_STRESS_MAX 1e12
+
 /* TABLE law from a text file of "eps_p, sigma_y" rows (comma separated, blanks around fields
  * allowed). '#' starts a comment (whole line or trailing); blank lines are skipped; one header
- * line (a first field that is not a number) is allowed before the first data row. stress_unit is
+ * line (a first field that is not a number) is allowed before the first data row. Numbers are
+ * decimal (no hexadecimal); the first row's eps_p is 0; sigma_y <= MC_HARDENING_STRESS_MAX. stress_unit is
  * the value in Pa of one unit of the file's sigma_y column (1 for Pa, 1e6 for MPa; > 0). Each
  * error names "path:line" (table rules as mc_hardening_table). Returns MC_OK, MC_ERR_IO (cannot
  * open/read), MC_ERR_INPUT (syntax, values) or MC_ERR_NOMEM. */

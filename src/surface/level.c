@@ -224,7 +224,11 @@ int mc_level_crop(const mc_level_grid *g, double rx, double ry, double w, double
                        "is empty: width and height must be finite and > 0 (grid extent "
                        "x [%g, %g] m, y [%g, %g] m)", rx, ry, w, h, xlo, xhi, ylo, yhi);
     double tx = EDGE_TOL * g->dx, ty = EDGE_TOL * g->dy;
-    if (rx < xlo - tx || rx + w > xhi + tx || ry < ylo - ty || ry + h > yhi + ty)
+    /* the far edge may be the cell edge (x0 + (n - 1/2) dx) or, for a region aligned with the
+     * samples, the sample after the last (x0 + n dx): a region that selected a map selects all
+     * of it again in the map written with its offsets (surface --out) */
+    const double xend = fmax(xhi, g->x0 + g->nx * g->dx), yend = fmax(yhi, g->y0 + g->ny * g->dy);
+    if (rx < xlo - tx || rx + w > xend + tx || ry < ylo - ty || ry + h > yend + ty)
         return mc_fail(err, MC_ERR_INPUT, "region x [%g, %g] m, y [%g, %g] m reaches outside "
                        "the grid extent x [%g, %g] m, y [%g, %g] m", rx, rx + w, ry, ry + h,
                        xlo, xhi, ylo, yhi);

@@ -80,7 +80,9 @@ int mc_level_grid_check(const mc_level_grid *g, const char *what, mc_error *err)
  * included (to 1e-6 of a spacing), so a region of k cells aligned with cell edges or samples
  * holds k samples per axis. Errors (MC_ERR_INPUT, naming the region and the grid extent): a
  * region with no positive, finite width or height, one reaching beyond the grid extent (see
- * mc_level_grid), one that holds no sample. */
+ * mc_level_grid; the far edge may also be the sample after the last, x0 + n dx, so that a
+ * region aligned with the samples selects the whole map it cut before), one that holds no
+ * sample. */
 int mc_level_crop(const mc_level_grid *g, double rx, double ry, double w, double h,
                   mc_level_grid *sub, int *i0, int *j0, mc_error *err);
 

@@ -109,6 +109,7 @@ int mc_measured_load(const mc_measured_spec *spec, mc_measured *out, mc_error *e
         d.z = NULL;
         out->missing = d.missing;
         memcpy(out->format, d.format, sizeof out->format);
+        memcpy(out->warning, d.warning, sizeof out->warning);
         out->path = spec->path;
     }
     mc_surface_data_free(&d);

@@ -40,6 +40,7 @@ typedef struct {
     long filled;        /* of which filled (missing = fill) */
     char format[16];    /* the format read */
     const char *path;   /* the file (the spec's), for messages */
+    char warning[320];  /* "" or the reader's warning (io/surface_file.h), for the user */
 } mc_measured;
 
 /* Read and prepare the map of spec into *out (free with mc_measured_free). Errors name the file:

@@ -92,6 +92,20 @@ int mc_roughness_compute(const double *z, const unsigned char *valid, int nx, in
             break; /* Ra falls in the row of the cut-off used (or the choice would cycle) */
         nominal = next;
     }
+    /* A Gaussian mean line of a cut-off spanning a few samples is no mean line: a 0.8 mm cut-off
+     * on a 27.5 mm grid gave Ra ~ 1e-18 m, negative Rp and Rz = 0 < Rt. Below
+     * MC_ROUGHNESS_MIN_SAMPLES sampling intervals a given cut-off is refused; an ISO 4288
+     * choice, or one clipped on a short profile, leaves the profile parameters out, saying why. */
+    if (filter && used < MC_ROUGHNESS_MIN_SAMPLES * dx) {
+        if (!out->cutoff_auto && !clipped)
+            return mc_fail(err, MC_ERR_INPUT,
+                           "roughness: cut-off lambda_c = %g m spans fewer than %d sampling "
+                           "intervals (dx = %g m): the profile parameters cannot be computed; "
+                           "accepted: cutoff >= %d dx = %g m",
+                           used, MC_ROUGHNESS_MIN_SAMPLES, dx, MC_ROUGHNESS_MIN_SAMPLES,
+                           MC_ROUGHNESS_MIN_SAMPLES * dx);
+        out->profile_not_computable = 1;
+    }
     out->cutoff_nominal = nominal;
     out->cutoff = used;
     out->cutoff_clipped = clipped;
@@ -113,7 +127,13 @@ int mc_roughness_compute(const double *z, const unsigned char *valid, int nx, in
                      "%.4g m: cut-off clipped to %.4g m", len, nominal, used);
         append(out->warning, sizeof out->warning, msg);
     }
-    if (out->short_evaluation) {
+    if (out->profile_not_computable) {
+        snprintf(msg, sizeof msg, "profile parameters (Ra, Rq, Rz, ...) not computable: the "
+                 "cut-off %.4g m spans fewer than %d sampling intervals (dx = %.4g m); give "
+                 "[roughness] cutoff >= %.4g m to have them",
+                 used, MC_ROUGHNESS_MIN_SAMPLES, dx, MC_ROUGHNESS_MIN_SAMPLES * dx);
+        append(out->warning, sizeof out->warning, msg);
+    } else if (out->short_evaluation) {
         snprintf(msg, sizeof msg, "evaluation length %.4g m holds %d sampling length%s of "
                  "%.4g m, not the 5 of ISO 4288", out->evaluation_length, out->n_sampling,
                  out->n_sampling == 1 ? "" : "s", used);
@@ -135,6 +155,13 @@ int mc_roughness_entries(const mc_roughness_params *p, mc_roughness_entry out[])
         {"Sdr", "%", p->Sdr},   {"Sk", "m", p->Sk},     {"Spk", "m", p->Spk},
         {"Svk", "m", p->Svk},   {"Smr1", "%", p->Smr1}, {"Smr2", "%", p->Smr2},
         {"lambda_c", "m", p->cutoff}};
-    memcpy(out, e, sizeof e);
-    return MC_ROUGHNESS_NENTRIES;
+    if (!p->profile_not_computable) {
+        memcpy(out, e, sizeof e);
+        return MC_ROUGHNESS_NENTRIES;
+    }
+    int n = 0; /* the profile family (R..., Mr1, Mr2) has no meaning: not printed */
+    for (int k = 0; k < MC_ROUGHNESS_NENTRIES; k++)
+        if (e[k].name[0] != 'R' && strncmp(e[k].name, "Mr", 2) != 0)
+            out[n++] = e[k];
+    return n;
 }

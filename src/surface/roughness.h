@@ -104,8 +104,14 @@ typedef struct {
     int cutoff_auto;          /* lambda_c came from ISO 4288 */
     int cutoff_clipped;       /* the profile was too short for lambda_c: reduced */
     int short_evaluation;     /* fewer than 5 sampling lengths were available */
+    int profile_not_computable; /* lambda_c < MC_ROUGHNESS_MIN_SAMPLES dx (ISO 4288 choice):
+                                   the profile family is left out (mc_roughness_entries) */
     char warning[512];        /* "" or one line saying what deviates from the standard */
 } mc_roughness_params;
+
+/* Fewest sampling intervals a Gaussian cut-off must span for the profile parameters to mean
+ * anything (a mean line of a few samples follows the heights themselves). */
+#define MC_ROUGHNESS_MIN_SAMPLES 4
 
 /* Every parameter of a height map (contract above; theory.md §13).
  *
@@ -131,6 +137,9 @@ typedef struct {
  * central differences (wrapped on periodic axes; on free axes only interior points whose
  * neighbours are valid; an axis of fewer than 3 free points contributes no slope). Central
  * differences see a mode of wavenumber k with the factor sin(k d)/(k d).
+ * A cut-off (after clipping) below MC_ROUGHNESS_MIN_SAMPLES dx with the filter: a given one is
+ * MC_ERR_INPUT naming it and the accepted minimum; one chosen by ISO 4288, or clipped, sets
+ * profile_not_computable and a warning, and the areal parameters are still computed.
  * opt NULL means the defaults. Errors: MC_ERR_INPUT (sizes, spacings, cut-off < 0 or not finite,
  * no valid point, a non-finite valid height), MC_ERR_NOMEM, MC_ERR_INTERNAL (FFTW). */
 int mc_roughness_compute(const double *z, const unsigned char *valid, int nx, int ny, double dx,
@@ -148,7 +157,8 @@ typedef struct {
 
 /* Fill out[] with every parameter in a fixed order (Ra Rq Rz Rp Rv Rt Rsk Rku Rk Rpk Rvk Mr1
  * Mr2 Sa Sq Sz Sp Sv Ssk Sku Sdq Sdr Sk Spk Svk Smr1 Smr2 lambda_c); returns the count,
- * MC_ROUGHNESS_NENTRIES. */
+ * MC_ROUGHNESS_NENTRIES; without the profile family (R..., Mr1, Mr2) when
+ * profile_not_computable (fewer). */
 int mc_roughness_entries(const mc_roughness_params *p, mc_roughness_entry out[]);
 
 #endif

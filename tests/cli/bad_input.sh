@@ -65,9 +65,21 @@ nanline='1e-6 1e-6 1e-6 1e-6 1e-6 nan 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e-6 1e
 lines16() { j=0; while [ $j -lt "$1" ]; do echo "$line16"; j=$((j + 1)); done; }
 { echo "# 16 x 16 heights"; lines16 16; } > micro_16x16.txt
 { echo "# 16 x 16 heights"; lines16 2; echo "$nanline"; lines16 13; } > nan_16x16.txt
+# text inputs as other tools write them: a header line of words, one of the sizes, and 'x z'
+# profiles (line scans) given as a surface
+{ echo "h=16 w=16"; lines16 16; } > header_words.txt
+{ echo "16 16"; lines16 16; } > header_sizes.txt
+printf '0 1e-6\n4e-6 2e-6\n8e-6 1e-6\n12e-6 0\n' > profile.txt
+cp profile.txt profile.xyz
+{ echo "h=16 w=16"; echo "0 0 1e-6"; } > header_words.xyz
+# hardening tables breaking a documented rule
+printf 'eps_p, sigma_y\n0, 0x10\n0.1, 1200\n' > table_hex.csv
+printf '0, 2e6\n0.1, 3e6\n' > table_huge.csv  # MPa: 2e12 Pa, beyond yield_stress <= 1e12 Pa
+printf '0.01, 1000\n0.1, 1200\n' > table_start.csv
 echo "1 2 3" > not_wisdom.txt  # [solver] wisdom_file that is not FFTW wisdom
 mkdir a_directory
 : > regular_file
+mkfifo a_fifo.x3p  # a FIFO without writer: an open for reading would block for ever
 
 # ---- the harness -------------------------------------------------------------------------------
 pass=0 fail=0 xfail=0
@@ -86,7 +98,7 @@ row() {
     done
     shift
     snapshot > before
-    "$PROG" run "$@" > stdout 2> stderr
+    timeout 120 "$PROG" run "$@" > stdout 2> stderr
     status=$?
     why=""
     want=2
@@ -314,6 +326,21 @@ row roughness_nan_text o 1 "nan_16x16.txt: 1 of 256 points are missing" \
     "set [roughness] missing = fill" "[roughness] file" -- roughness_nan_text.ini --out o
 row roughness_missing  o 1 "does_not_exist.txt" "cannot open: No such file or directory" \
     "[roughness] file" -- roughness_missing.ini --out o
+# text and profile inputs: a header is named as a header, a profile as a profile
+row text_header_words  o 1 "header_words.txt:1: 'h=16 w=16' is a header line" "[roughness] file" \
+    -- roughness_ok_text.ini --out o --set roughness.file=header_words.txt
+row text_header_sizes  o 1 "header_sizes.txt:2: 16 values, but the first data row (line 1) has 2" \
+    "if that line is a header" -- roughness_ok_text.ini --out o --set roughness.file=header_sizes.txt
+row text_profile       o 1 "profile.txt: 2 columns of 4 rows" "a profile (a line scan), not a surface" \
+    -- roughness_ok_text.ini --out o --set roughness.file=profile.txt
+row xyz_profile        o 1 "profile.xyz:1: 2 values: 'x z' pairs are a profile" \
+    -- roughness_ok_text.ini --out o --set roughness.file=profile.xyz
+row xyz_header_words   o 1 "header_words.xyz:1: 'h=16 w=16' is a header line" \
+    -- roughness_ok_text.ini --out o --set roughness.file=header_words.xyz
+# roughness parameters that cannot be computed: a cut-off of fewer than 4 sampling intervals
+row roughness_cutoff_short o 1 "--set roughness.cutoff" "[roughness] cutoff" \
+    "spans fewer than 4 sampling intervals" "accepted: cutoff >= 4 dx = 1.6e-05 m" \
+    -- roughness_ok_text.ini --out o --set roughness.cutoff=10um
 # [solver] plans = wisdom: the file is required; one that is not FFTW wisdom is refused before
 # any output (and left as it was); a fresh name is valid (the run writes the wisdom there)
 row wisdom_no_file     o 1 "wisdom_no_file.ini:" "[solver] wisdom_file is required for plans = wisdom" \
@@ -325,6 +352,52 @@ control control_wisdom o 0 wisdom_bad.ini --out o --set solver.wisdom_file=fresh
 if head -c 6 fresh.wisdom 2> /dev/null | grep -q '^(fftw-'; then pass=$((pass + 1)); else
     fail=$((fail + 1)); echo "FAIL  control_wisdom: no FFTW wisdom in fresh.wisdom"; fi
 rm -f fresh.wisdom
+# every documented rule, in every reader: hardening tables as the key they stand for
+TAB="--set plasticity.hardening=table --set plasticity.yield_stress="
+# shellcheck disable=SC2086 # $TAB is split into its options on purpose
+row table_hex          o 1 "--set plasticity.table=table_hex.csv" "[plasticity] table" "table_hex.csv:2" \
+    "expected a row 'eps_p, sigma_y' of two finite numbers" \
+    -- plastic_line.ini --out o $TAB --set plasticity.table=table_hex.csv
+# shellcheck disable=SC2086
+row table_huge         o 1 "table_huge.csv:1" "must be <= 1e+12 Pa (the bound of [plasticity] yield_stress)" \
+    -- plastic_line.ini --out o $TAB --set plasticity.table=table_huge.csv
+# shellcheck disable=SC2086
+row table_first_strain o 1 "table_start.csv:1" "the first plastic strain eps_p = 0.01 must be 0" \
+    -- plastic_line.ini --out o $TAB --set plasticity.table=table_start.csv
+row scale_zero         o 1 "[roughness] scale = 0: must not be 0" \
+    -- surf_good.ini --out o --set roughness.scale=0 --set roughness.resample=linear --set mesh.dx=0.7um
+row scale_minus_zero   o 1 "[roughness] scale = 0: must not be 0" \
+    -- surf_good.ini --out o --set roughness.scale=-0 --set roughness.resample=linear --set mesh.dx=0.7um
+row plastic_depth_dz   o 1 "[plasticity] depth = 5e-06 m is below dz = 1e-05 m" "accepted: depth >= dz" \
+    -- plastic_line.ini --out o --set plasticity.dz=10um --set plasticity.depth=5um
+# keys without effect in their scene are refused
+row units_own_file     o 1 "--set roughness.units" "[roughness] units has no effect with a x3p file" \
+    -- surf_good.ini --out o --set roughness.units=um
+row checksum_not_x3p   o 1 "[roughness] verify_checksum has no effect with a txt file" \
+    -- roughness_ok_text.ini --out o --set roughness.verify_checksum=no
+row resample_mesh_file o 1 "[roughness] resample has no effect when the mesh comes from the file" \
+    -- surf_good.ini --out o --set mesh.nx= --set mesh.ny= --set mesh.dx= --set roughness.resample=linear
+row deflection_periodic o 1 "[runin] nominal_deflection has no effect on a grid periodic along x and y" \
+    -- runin_ok.ini --out o --set runin.nominal_deflection=keep
+# [runin] lists continue on indented lines up to their maximum count
+printf '  500, 200 rpm\n' > cont.txt
+sed 's/^speeds = 1000, 500, 200 rpm$/speeds = 1000,/' runin_ok.ini > runin_cont.ini
+cat cont.txt >> runin_cont.ini
+control control_runin_continued o 0 runin_cont.ini --out o --quiet
+# nothing reads forever: a device or FIFO given as any file the run reads is refused before it
+# is opened, naming the file and what it should be (the case file: its size limit, above)
+row surface_device     o 1 "/dev/zero: not a regular file (a character device)" \
+    "a surface file must be a regular file" "[roughness] file" \
+    -- surf_good.ini --out o --set roughness.file=/dev/zero --set roughness.format=x3p
+row surface_fifo       o 1 "a_fifo.x3p: not a regular file (a FIFO or pipe)" "[roughness] file" \
+    -- surf_good.ini --out o --set roughness.file=a_fifo.x3p
+row pressure_device    o 1 "/dev/zero: not a regular file" "[load] pressure_file" \
+    -- good.ini --out o --set load.force= --set load.pressure_file=/dev/zero
+row table_device       o 1 "/dev/zero: not a regular file" "a hardening table must be a regular file" \
+    -- plastic_line.ini --out o --set plasticity.hardening=table --set plasticity.yield_stress= \
+    --set plasticity.table=/dev/zero
+row wisdom_device      o 1 "/dev/zero: not a regular file" "an FFTW wisdom file must be a regular file" \
+    -- wisdom_bad.ini --out o --set solver.wisdom_file=/dev/zero
 # a pressure_file given by --set is relative to the current directory, not to the case file
 row pressure_override  o 1 "--set load.pressure_file=nan.npy" "[load] pressure_file" \
     "give exactly one of force, force_per_length, approach, pressure_file" \

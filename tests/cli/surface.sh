@@ -88,6 +88,16 @@ if [ $rc -eq 0 ] && [ -f "$T/lev/el/surface.npy" ] && [ -f "$T/lev/el/surface.x3
     else bad "--out: read-back parameters differ"; diff "$T/p0" "$T/p1"; diff "$T/p0" "$T/p2"; fi
 else bad "--out: exit $rc"; cat "$T/e"; ls -la "$T/lev/el" 2>&1; fi
 
+# --out keeps the file's x/y offsets: a region that works on the original selects the same points
+# of the written file, to the same parameters (before, the writer re-centred on zero)
+R="roughness.region=20um, 10um, 60um, 40um"
+"$PROG" surface "$X3P" --set roughness.missing=fill --set "$R" --out "$T/reg" > "$T/r0" 2> "$T/e" \
+    && "$PROG" surface "$T/reg/surface.x3p" --set "$R" > "$T/r1" 2>> "$T/e" \
+    && sed -n '/^roughness/,/^  sampling/p' "$T/r0" > "$T/q0" && sed -n '/^roughness/,/^  sampling/p' "$T/r1" > "$T/q1" \
+    && [ -s "$T/q0" ] && cmp -s "$T/q0" "$T/q1" \
+    && pass "--out keeps the offsets: the same region reads the written file" \
+    || { bad "--out offsets: $(cat "$T/e")"; diff "$T/q0" "$T/q1" 2> /dev/null; }
+
 # ---- bad files -----------------------------------------------------------------------------------
 for f in tests/bad_input/surfaces/*; do
     case $f in */good.*) continue ;; esac
