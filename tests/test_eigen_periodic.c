@@ -196,12 +196,21 @@ END_TEST
 
 /* ---- a y-uniform field on a strip is the line grid's bar field -------------------------------- */
 
+/* _i bit 0: ny = 7 or 8; bit 1: cell averages (the default) or centre values. With centre values
+ * the strip's mode 0 is the bar exactly (TOL_MEAN). With cell averages Love's stresses (S3) of a
+ * strip are the stress module's periodic centre values corrected to cell averages within the
+ * averaging reach (3 cells) of each loaded cell, while the line grid averages its strip kernel at
+ * every y: beyond the reach the two differ by the (x, z) average's O((h / d)^2) of Love's field,
+ * measured 3.4e-5 of the largest stress; bound TOL_STRIP_AVERAGE. */
+#define TOL_STRIP_AVERAGE 2e-4
+
 START_TEST(test_strip_uniform_is_line)
 {
-    const int ny = _i ? 7 : 8, nx = 9, nz = 3;
+    const int ny = (_i & 1) ? 7 : 8, nx = 9, nz = 3;
+    const mc_eig_stress_points sp = (_i & 2) ? MC_EIG_CELL_CENTRE : MC_EIG_CELL_AVERAGE;
     const mc_backend b = MC_BACKEND_FFT;
     const mc_grid gs = {nx, ny, 1e-6, 1.2e-6, 0, 1}, gl = {nx, 1, 1e-6, 1.2e-6, 0, 1};
-    const mc_eigen_volume vs = {0, 0, nx, ny, nz, 0.5e-6, MC_EIG_CELL_AVERAGE}, vl = {0, 0, nx, 1, nz, 0.5e-6, MC_EIG_CELL_AVERAGE};
+    const mc_eigen_volume vs = {0, 0, nx, ny, nz, 0.5e-6, sp}, vl = {0, 0, nx, 1, nz, 0.5e-6, sp};
     const size_t nl = (size_t)nx * nz, ns = nl * ny;
     double *el[6], *es[6], *sl[6], *ss[6];
     double *b1 = fields(nl, el), *b2 = fields(ns, es), *b3 = fields(nl, sl), *b4 = fields(ns, ss);
@@ -237,7 +246,8 @@ START_TEST(test_strip_uniform_is_line)
     if (getenv("MC_TEST_VERBOSE"))
         fprintf(stderr, "strip ny %d vs line: u_z %.3g, stress %.3g\n", ny, du / umax, dsg / smax);
     ck_assert_msg(du <= TOL_MEAN * umax, "u_z strip vs line %.3g of %.3g", du, umax);
-    ck_assert_msg(dsg <= TOL_MEAN * smax, "stress strip vs line %.3g of %.3g", dsg, smax);
+    const double tol = sp == MC_EIG_CELL_CENTRE ? TOL_MEAN : TOL_STRIP_AVERAGE;
+    ck_assert_msg(dsg <= tol * smax, "stress strip vs line %.3g of %.3g", dsg, smax);
     mc_eigen_disp_destroy(&dl);
     mc_eigen_disp_destroy(&ds);
     mc_eigen_stress_destroy(&ol);
@@ -334,7 +344,7 @@ Suite *suite_eigen_periodic(void)
     tcase_set_timeout(tc, 300);
     tcase_add_loop_test(tc, test_backends, 0, N_CASES);
     tcase_add_loop_test(tc, test_uniform_closed_form, 0, 4);
-    tcase_add_loop_test(tc, test_strip_uniform_is_line, 0, 2);
+    tcase_add_loop_test(tc, test_strip_uniform_is_line, 0, 4);
     tcase_add_loop_test(tc, test_tiled, 0, 2);
     tcase_add_test(tc, test_refused);
     suite_add_tcase(s, tc);

@@ -212,6 +212,50 @@ void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6])
     mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, 6, par, love_kernel, &ctx, q);
 }
 
+/* The cell average of Love's stresses on a periodic grid: the stress module's periodic table
+ * holds centre values; near the loaded cell (love_kernel's reach) the average differs, so the
+ * difference average - centre of every image of an entry within the reach is added (beyond it
+ * the two agree to O((h / d)^2), as on free grids). */
+static void love_average_periodic(mc_eigen_stress *op, int k, int ux, int uy)
+{
+    const mc_grid *g = &op->g;
+    const table_ctx avg = {g->dx, g->dy, op->v.dz, op->nu, k, mc_eig_line(g), 0, 1};
+    table_ctx ctr = avg;
+    ctr.average = 0;
+    const double reach = MC_EIG_AVERAGE_REACH * fmax(g->dx, mc_eig_line(g) ? g->dx : g->dy);
+    if (k * op->v.dz > reach)
+        return;
+    const int rx = (int)(reach / g->dx) + 1, ry = mc_eig_line(g) ? 0 : (int)(reach / g->dy) + 1;
+    const int px = mc_eig_per_x(g), py = mc_eig_per_y(g);
+    for (int lj = -ry; lj <= ry; lj++)
+        for (int li = -rx; li <= rx; li++) {
+            double a[6], b[6];
+            love_kernel(li, lj, &avg, a);
+            love_kernel(li, lj, &ctr, b);
+            /* the quadrant entry this offset lands on, and the parity sign there */
+            int wi = mc_eig_wrap(li, g->nx, px), wj = mc_eig_wrap(lj, g->ny, py);
+            if (px && 2 * wi == -g->nx) /* -n/2 and n/2 are one residue of an even period */
+                wi = -wi;
+            if (py && 2 * wj == -g->ny)
+                wj = -wj;
+            const int di = wi < 0 ? -wi : wi, dj = wj < 0 ? -wj : wj;
+            if (di >= ux || dj >= uy)
+                continue;
+            for (int c = 0; c < 6; c++) {
+                const int ox = mc_eig_odd_x(c), oy = mc_eig_odd_y(c);
+                if ((ox && (di == 0 || (px && 2 * di == g->nx))) ||
+                    (oy && (dj == 0 || (py && 2 * dj == g->ny))))
+                    continue;
+                /* an offset congruent to a negative one belongs to the mirror entry, which the
+                 * quadrant's parity derives from this one (the correction has the kernel's
+                 * parity: the Gauss points are symmetric) */
+                const double w = (wi < 0 || wj < 0) ? 0.0 : 1.0;
+                op->love[(size_t)(k * 6 + c) * op->qlen + (size_t)dj * op->qx + di] +=
+                    w * (a[c] - b[c]);
+            }
+        }
+}
+
 /* Love's stresses on a grid with periodic axes: the periodic tables of the stress module (images
  * and smeared strips, theory.md §3.5) over the window, cut to the quadrant, for every layer. */
 static int love_fill_periodic(mc_eigen_stress *op, mc_error *err)
@@ -244,6 +288,8 @@ static int love_fill_periodic(mc_eigen_stress *op, mc_error *err)
                         di < ux && dj < uy && !zero ? t6[c][(size_t)dj * tx + di] : 0.0;
                 }
         }
+        if (rc == MC_OK && op->v.stress_points == MC_EIG_CELL_AVERAGE)
+            love_average_periodic(op, k, ux, uy);
     }
     mc_stress_tables_destroy(&tb);
     mc_free(tab);
