@@ -5,6 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "bench.h"
@@ -55,6 +57,64 @@ static int whole_runs(const char *self, const char *dir, int N, int rounds, doub
     return 0;
 }
 
+/* ---- the default thread count against one thread, quiet and beside a busy process ----------- */
+
+/* A process that spins on one core until killed: another user's job on a shared machine. */
+static pid_t start_spinner(void)
+{
+    fflush(NULL);
+    const pid_t pid = fork();
+    if (pid == 0) {
+        volatile unsigned long x = 0;
+        for (;;)
+            x++;
+    }
+    return pid;
+}
+
+static void stop_spinner(pid_t pid)
+{
+    if (pid > 0) {
+        kill(pid, SIGKILL);
+        waitpid(pid, NULL, 0);
+    }
+}
+
+/* The least wall time of `rounds` whole Hertz runs of case ini for each variant, alternating:
+ * v = 0 one thread; 1 the default (no thread count, OMP_WAIT_POLICY unset: the program sets
+ * passive itself, cli/wait_policy.c); 2 the default count with spinning waits (active, the
+ * OpenMP runtime's own default before). */
+#define NVAR 3
+static void policy_runs(const char *self, const char *dir, const char *ini, int rounds,
+                        double w[NVAR])
+{
+    static const char *const policy[NVAR] = {NULL, NULL, "active"};
+    const char *saved = getenv("OMP_WAIT_POLICY");
+    char keep[64] = "";
+    if (saved)
+        snprintf(keep, sizeof keep, "%s", saved);
+    for (int v = 0; v < NVAR; v++)
+        w[v] = INFINITY;
+    for (int r = 0; r < rounds; r++)
+        for (int v = 0; v < NVAR; v++) {
+            char out[1100];
+            snprintf(out, sizeof out, "%s/pol%d_%d", dir, v, r);
+            if (policy[v])
+                setenv("OMP_WAIT_POLICY", policy[v], 1);
+            else
+                unsetenv("OMP_WAIT_POLICY");
+            const char *one[] = {self, "run", ini, "--out", out, "--set", "solver.threads=1", NULL};
+            const char *dflt[] = {self, "run", ini, "--out", out, NULL};
+            const double t = mc_bench_run_child(v == 0 ? one : dflt);
+            w[v] = t < w[v] ? t : w[v];
+            mc_bench_remove_tree(out);
+        }
+    if (saved)
+        setenv("OMP_WAIT_POLICY", keep, 1);
+    else
+        unsetenv("OMP_WAIT_POLICY");
+}
+
 /* One stress layer of the Hertz solve on N x N (the stage's time / layers), on T threads. */
 static double layer_time(int N, int threads)
 {
@@ -87,6 +147,18 @@ int mc_bench_threads(vf_ctx *ctx, int quick)
     self[sl] = '\0';
     double st[2][NST];
     const int bad = whole_runs(self, dir, N, quick ? 2 : 3, st);
+    /* the default thread count, quiet and beside a spinning process (issue 22 item 5) */
+    const int NP = quick ? 256 : 512;
+    char pini[1100];
+    snprintf(pini, sizeof pini, "%s/hertz%d.ini", dir, NP);
+    double wq[NVAR], wb[NVAR];
+    const int pbad = mc_bench_hertz_case(pini, NP);
+    if (!pbad) {
+        policy_runs(self, dir, pini, 3, wq);
+        const pid_t spin = start_spinner();
+        policy_runs(self, dir, pini, 3, wb);
+        stop_spinner(spin);
+    }
     mc_bench_remove_tree(dir);
     const int SN = quick ? 256 : 512;
     const double s1 = layer_time(SN, 1), s2 = layer_time(SN, 2);
@@ -114,6 +186,31 @@ int mc_bench_threads(vf_ctx *ctx, int quick)
     vf_text(ctx, "| running-in step, elastic-plastic%s (default scene, 128 x 64 x 8, 350 rpm) | "
                  "%.2f | %.2f | %.2f |\n\n",
             plastic ? "" : " (NOTHING YIELDED)", r1, r2, r1 / r2);
+    if (!pbad) {
+        vf_text(ctx, "A user's run started directly (no `solver.threads`, no OMP_WAIT_POLICY: "
+                     "the program sets passive waits itself and executes again, "
+                     "cli/wait_policy.c) against one thread and against the default count with "
+                     "spinning waits (OMP_WAIT_POLICY=active, the OpenMP runtime's default), "
+                     "the Hertz case at %d² as a child process, least of 3 alternating runs; "
+                     "quiet, and beside a process that spins on one core (another job on a "
+                     "shared machine).\n\n"
+                     "| machine | 1 thread (s) | default, passive (s) | default, active (s) |\n"
+                     "|---|---|---|---|\n"
+                     "| quiet | %.3f | %.3f | %.3f |\n| one core busy | %.3f | %.3f | %.3f |\n\n",
+                NP, wq[0], wq[1], wq[2], wb[0], wb[1], wb[2]);
+        char q[200];
+        snprintf(q, sizeof q, "Hertz %d², one core busy: default run time / one thread", NP);
+        vf_check(ctx, "threads_default_busy", q, "target <= 1 (issue 22: never slower than one "
+                 "thread)", 1.0, wb[1] / wb[0], 1.0, VF_MAX);
+        vf_regress(ctx, "threads_default_busy", VF_TIER_NONE);
+        snprintf(q, sizeof q, "Hertz %d², quiet: default run time / one thread", NP);
+        vf_check(ctx, "threads_default_quiet", q, "target <= 1", 1.0, wq[1] / wq[0], 1.0, VF_MAX);
+        vf_regress(ctx, "threads_default_quiet", VF_TIER_NONE);
+        snprintf(q, sizeof q, "Hertz %d², one core busy: spinning (active) / passive waits", NP);
+        vf_info(ctx, "threads_active_busy", q, "what the passive default saves", NAN,
+                wb[2] / wb[1]);
+        vf_regress(ctx, "threads_active_busy", VF_TIER_NONE);
+    }
     if (bad) {
         vf_fail(ctx, "threads_whole", "the whole Hertz run at %d² failed", N);
         return 0;
