@@ -16,6 +16,9 @@
 #include "vutil.h"
 
 #define WHOLE_MIN_SPEEDUP 1.8 /* issue 13 item 2: the whole 1024^2 run, 1 -> 2 threads */
+/* issue 22 item 5: the default thread count never slower than one thread; the least of three
+ * whole runs of 0.2-0.5 s scatters by a few per cent between rounds (measured), hence 1.05 */
+#define DEFAULT_MAX_RATIO 1.05
 
 /* the stages of a whole run: summary.json timings, and the process around them */
 enum { ST_SETUP, ST_CONTACT, ST_OTHER, ST_OUTSIDE, ST_WHOLE, NST };
@@ -201,10 +204,12 @@ int mc_bench_threads(vf_ctx *ctx, int quick)
         char q[200];
         snprintf(q, sizeof q, "Hertz %d², one core busy: default run time / one thread", NP);
         vf_check(ctx, "threads_default_busy", q, "target <= 1 (issue 22: never slower than one "
-                 "thread)", 1.0, wb[1] / wb[0], 1.0, VF_MAX);
+                 "thread), within the 5 % the least of 3 sub-second runs scatters",
+                 1.0, wb[1] / wb[0], DEFAULT_MAX_RATIO, VF_MAX);
         vf_regress(ctx, "threads_default_busy", VF_TIER_NONE);
         snprintf(q, sizeof q, "Hertz %d², quiet: default run time / one thread", NP);
-        vf_check(ctx, "threads_default_quiet", q, "target <= 1", 1.0, wq[1] / wq[0], 1.0, VF_MAX);
+        vf_check(ctx, "threads_default_quiet", q, "target <= 1, within the same 5 %", 1.0,
+                 wq[1] / wq[0], DEFAULT_MAX_RATIO, VF_MAX);
         vf_regress(ctx, "threads_default_quiet", VF_TIER_NONE);
         snprintf(q, sizeof q, "Hertz %d², one core busy: spinning (active) / passive waits", NP);
         vf_info(ctx, "threads_active_busy", q, "what the passive default saves", NAN,
