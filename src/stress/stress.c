@@ -65,6 +65,13 @@ struct mc_stress_plan {
     int *cells; /* loaded cells (indices into nx*ny) */
     long ncells;
     int sparse; /* 1: the sparse sum over the loaded cells */
+    /* kernel spectra of every (layer, load) once built, on the general engine of a grid with a
+     * periodic axis (its image sums make a table ~100x a free one's quadrant; a plan is applied
+     * to the same layers many times in the plastic loop: 85 % of a doubly periodic running-in
+     * step rebuilt them, measured); NULL when it would exceed MC_STRESS_CACHE_BYTES */
+    double *kcache;
+    unsigned char *kcached; /* [layer * NLOADS + load] */
+    size_t klen;
     mc_stress_timing timing;
 };
 
@@ -78,6 +85,8 @@ void mc_stress_destroy(mc_stress_plan **planp)
     mc_stress_sym_destroy(&plan->sym);
     mc_free(plan->tables);
     mc_free(plan->spectra);
+    mc_free(plan->kcache);
+    mc_free(plan->kcached);
     mc_free(plan->cells);
     mc_free(plan->depths);
     mc_free(plan);
@@ -203,6 +212,19 @@ int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
         plan->lspec[li] = sp;
         sp += llen;
     }
+    /* the spectra cache (see the struct), where it fits; without it the tables are rebuilt */
+    const size_t ncache = (size_t)opt->nlayers * NLOADS * MC_NSTRESS * klen;
+    if (!plan->sym && (g->periodic_x || g->periodic_y) &&
+        ncache <= MC_STRESS_CACHE_BYTES / sizeof(double)) {
+        plan->kcache = mc_malloc(ncache * sizeof *plan->kcache);
+        plan->kcached = mc_calloc((size_t)opt->nlayers * NLOADS, 1);
+        plan->klen = klen;
+        if (!plan->kcache || !plan->kcached) {
+            mc_stress_destroy(&plan);
+            return mc_fail(err, MC_ERR_NOMEM, "stress: out of memory for the kernel spectra of "
+                           "%d layers", opt->nlayers);
+        }
+    }
     *out = plan;
     return MC_OK;
 }
@@ -305,7 +327,15 @@ static int build_tables(mc_stress_plan *plan, int li, double z, mc_error *err)
 static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[NLOADS],
                          const int li[], int ng, double *const out[6], mc_error *err)
 {
+    double *kuse[NLOADS][MC_NSTRESS]; /* the kernel arrays of this layer, per load */
     for (int i = 0; i < ng; i++) {
+        const int cache = plan->kcache && !plan->sparse;
+        for (int c = 0; c < MC_NSTRESS; c++)
+            kuse[i][c] = cache ? plan->kcache + (((size_t)k * NLOADS + li[i]) * MC_NSTRESS + c) *
+                                                    plan->klen
+                               : plan->kspec[li[i]][c];
+        if (cache && plan->kcached[(size_t)k * NLOADS + li[i]])
+            continue;
         const double t0 = omp_get_wtime();
         int rc = build_tables(plan, li[i], plan->depths[k], err);
         const double t1 = omp_get_wtime();
@@ -319,11 +349,13 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
                 mc_stress_sym_kernel(plan->sym, mc_stress_parity(load_bit[li[i]], c),
                                      plan->kspec[li[i]][c]);
             else
-                rc = mc_conv_kernel(plan->conv, &plan->tab[c], plan->kspec[li[i]][c], err);
+                rc = mc_conv_kernel(plan->conv, &plan->tab[c], kuse[i][c], err);
         }
         plan->timing.kernels += omp_get_wtime() - t1;
         if (rc)
             return rc;
+        if (cache)
+            plan->kcached[(size_t)k * NLOADS + li[i]] = 1;
     }
     const double t0 = omp_get_wtime();
     for (int c = 0; c < MC_NSTRESS; c++) {
@@ -331,7 +363,7 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
         int par[NLOADS];
         mc_stress_term terms[NLOADS];
         for (int i = 0; i < ng; i++) {
-            ks[i] = plan->kspec[li[i]][c];
+            ks[i] = kuse[i][c];
             ls[i] = plan->lspec[li[i]];
             par[i] = mc_stress_parity(load_bit[li[i]], c);
             terms[i] = (mc_stress_term){loads[li[i]], plan->sym ? ks[i] : NULL, plan->qx, par[i],

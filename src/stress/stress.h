@@ -53,6 +53,10 @@ enum { MC_TRACTION_P = 1, MC_TRACTION_QX = 2, MC_TRACTION_QY = 4 };
 
 /* Far edge of the smeared strips of periodic axes, in units of max(Lx, Ly). */
 #define MC_STRESS_FAR_EDGE 1e12
+/* A plan on a grid with a periodic axis keeps the kernel spectra of its layers once built, up to
+ * this many bytes (stress.c). */
+#define MC_STRESS_CACHE_BYTES ((size_t)256 << 20)
+
 /* Depth (in periods of an axis) from which the image sum along that axis is the smeared load. */
 #define MC_STRESS_SMEAR_DEPTH 4.5
 
