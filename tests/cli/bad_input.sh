@@ -404,6 +404,11 @@ row lube_radii_macro     o 1 "lube_ok.ini:19:" \
 row margin_doubly_periodic o 1 "--set plasticity.margin" \
     "[plasticity] margin has no effect on a grid periodic along x and y" \
     -- plastic_line.ini --out o --set mesh.periodic_x=yes --set mesh.ny=2 --set plasticity.margin=40um
+# messages name what the user wrote: heights that would overflow the solve name the data file
+printf '1 2 3\n4 5 6\n7 8 1e300\n' > huge_heights.txt
+row huge_heights o 1 "[roughness] file: huge_heights.txt: the height 1e+300 m at row 2, column 2" \
+    "not a surface height" \
+    -- roughness_ok_text.ini --out o --set roughness.file=huge_heights.txt --set mesh.nx=3 --set mesh.ny=3
 # [runin] lists continue on indented lines up to their maximum count
 printf '  500, 200 rpm\n' > cont.txt
 sed 's/^speeds = 1000, 500, 200 rpm$/speeds = 1000,/' runin_ok.ini > runin_cont.ini
