@@ -609,6 +609,36 @@ START_TEST(checkpoint_round_trip)
 }
 END_TEST
 
+/* A checkpoint whose fields are not finite (a run gone wrong, or a file altered with its checksum
+ * recomputed) is refused at read time, naming the checkpoint and the field (issue 23, class 6). */
+START_TEST(checkpoint_nonfinite)
+{
+    char dir[512];
+    snprintf(dir, sizeof dir, "%s/ckn%d", test_tmpdir(), _i);
+    enum { NX = 4, NY = 2, NZ = 2, NV = NX * NY * NZ };
+    double eps[6 * NV] = {0}, peq[NV] = {0}, sig[6 * NV] = {0}, ur[NX * NY] = {0};
+    mc_runin_row rows[1];
+    memset(rows, 0, sizeof rows);
+    mc_checkpoint w = {.case_hash = 1, .nx = NX, .ny = NY, .nz = NZ, .nvol = NV, .nsteps = 4,
+                       .done = 1, .seconds = 1.0, .rows = rows, .eps_p = eps, .peq = peq,
+                       .sig_r = sig, .u_r = ur};
+    static const char *const names[] = {"plastic strain", "accumulated plastic strain",
+                                        "residual stress", "residual displacement",
+                                        "elapsed seconds"};
+    double *bad[] = {&eps[7], &peq[3], &sig[6 * NV - 1], &ur[5], &w.seconds};
+    *bad[_i] = _i % 2 ? INFINITY : NAN;
+    mc_error err = {0};
+    ck_assert_msg(mc_checkpoint_write(dir, &w, &err) == MC_OK, "%s", err.msg);
+    mc_checkpoint c;
+    ck_assert_int_eq(mc_checkpoint_read(dir, &c, &err), MC_ERR_INPUT);
+    ck_assert_msg(strstr(err.msg, MC_CHECKPOINT_FILE) && strstr(err.msg, names[_i]) &&
+                      strstr(err.msg, "not finite"),
+                  "%s", err.msg);
+    mc_checkpoint_free(&c);
+    mc_checkpoint_remove(dir);
+}
+END_TEST
+
 /* Computed once, before the tests of the case fork (unchecked fixture): they share it. */
 static void setup(void) { (void)plastic_reference(); }
 
@@ -629,6 +659,7 @@ Suite *suite_runin(void)
     tcase_add_test(t, rules);
     tcase_add_test(t, hysteresis_measure);
     tcase_add_test(t, checkpoint_round_trip);
+    tcase_add_loop_test(t, checkpoint_nonfinite, 0, 5);
     suite_add_tcase(s, t);
     t = tcase_create("runs");
     tcase_set_timeout(t, 600);

@@ -1,7 +1,62 @@
 /* scene_effect.c - keys given with a value that has no effect in their scene, and documented
  * rules the key table's bounds cannot state (issue 23, classes 4 and 5): refused by
  * mc_scene_effect_rules, named as mc_scene_check_key names a key. Values are compared with the
- * defaults (scene.h: a key not given holds its documented default). */
+ * defaults (scene.h: a key not given holds its documented default).
+ *
+ * The systematic pass (issue 23, class 5): every key of the table (keys.c, 104 keys) against the
+ * scene classes it can meet, 23 in all: the grid (free; periodic x; a strip periodic in y; doubly
+ * periodic; one row, ny = 1, a line grid or a free row), the load (force, force_per_length,
+ * approach, pressure_file), the roughness (none; gaussian or self_affine; a file with its own
+ * units, x3p sdf gsf; a file of plain numbers, txt xyz npy; the mesh taken from the file),
+ * [lubrication] on/off, [plasticity] von_mises / pressure_cap / off, [runin] on/off, [stress]
+ * on/off. A pair with no effect is refused (exit 2, file:line: [section] key ... has no effect
+ * ...) by the layer named below; every other pair was traced to the code that reads the field.
+ *
+ *  key                            scene class without effect                  refused by
+ *  ----------------------------   ------------------------------------------  ----------------
+ *  any key of another selector    type/shape/film/criterion/hardening/rigid/  key table (use =
+ *   value (radius, rq, hurst,      plans value that does not use it (e.g.      USE_WHEN):
+ *   film_thickness, hardness,      radius with shape = flat, hardness with     "is not used by"
+ *   table_unit, wisdom_file, ...)  von_mises, body2 E with rigid = yes)
+ *  solver method, tolerance,      load = pressure_file (no contact solve)      key table
+ *   max_iterations; load                                                       (USE_UNLESS)
+ *   lubricant_pressure, cap
+ *  stress depth_min, layers,      depths given                                key table
+ *   spacing                                                                    (USE_UNLESS)
+ *  stress depth_max               layers = 1 (the one layer is depth_min)     here (new)
+ *  stress spacing = geometric     layers = 1                                  here (new)
+ *  stress window = full           grid periodic along x or y (auto is full)   here (new)
+ *  geometry radius_y (ellipsoid)  one row, ny = 1 (y = 0 on every cell)       here (new)
+ *  roughness correlation_y        gaussian on one row, ny = 1 (no y waves)    here (new)
+ *  roughness units                file with its own units (x3p, sdf, gsf)     here
+ *  roughness verify_checksum      file that is not X3P                        here
+ *  roughness resample             mesh from the file (nothing to resample)    reader.c
+ *  roughness scale = 0            (a documented rule, not a pair)             here
+ *  lubrication radius1, radius2   film = ehl by speed with macro_radius (R_x  here (new)
+ *                                  given; the radii only convert rpm)
+ *  lubrication rpm2               without rpm                                 scene.c
+ *  lubrication width              film = given without macro_radius           scene.c
+ *  lubrication (section)          lubricant_pressure not auto                 scene.c
+ *  plasticity margin              a running-in (whole-grid columns)           here
+ *  plasticity margin              doubly periodic grid (the volume spans the  here (new)
+ *                                  whole period along x and y)
+ *  runin nominal_deflection       doubly periodic grid (no bowl)              here
+ *  stress / lubrication /         the section's enabled = no                  accepted: the
+ *   plasticity / runin keys                                                    switch keeps a
+ *                                                                              section for later
+ *                                                                              (--set ...=no)
+ *
+ * Pairs examined and found to have an effect (not refused), with the code that reads them:
+ * [mesh] dy on a line grid (cell area: forces, areas, pressures of a force load; dz default);
+ * shape = sphere on one row (= a cylinder, but the shape differs from flat); [solver] plans with
+ * operator = direct (roughness synthesis, stress and eigen tables still use FFTW); [stress]
+ * window, kernel, friction with pressure_file (the prescribed load is stressed); [plasticity]
+ * margin on a strip or line grid (bounds the columns along x); stress_points on every grid
+ * (docs/theory.md §8.7); load_steps, depth, dz in a running-in (runin.c); [lubrication]
+ * mu_solid, mu_fluid, psi (the friction mix of summary.json); [runin] forces without
+ * [plasticity] (elastic steps at each force); [geometry] and [roughness] with pressure_file
+ * (topography, gap and stresses written); [roughness] cutoff on every type (summary.json).
+ */
 #include "case/scene_effect.h"
 
 #include <string.h>
@@ -54,6 +109,47 @@ static int roughness_file_rules(const mc_scene *s, mc_error *err, const char **s
     return MC_OK;
 }
 
+/* Keys of the grid's shape, the stress layers and the film (the "new" rows of the table). */
+static int grid_stress_lube_rules(const mc_scene *s, mc_error *err, const char **section,
+                                  const char **keyname)
+{
+    const mc_grid *g = &s->grid;
+    if (s->geometry.shape == MC_SHAPE_ELLIPSOID && g->ny == 1)
+        BLAME("geometry", "radius_y",
+              "[geometry] radius_y has no effect on a grid of one row (ny = 1: y = 0 on every "
+              "cell): use shape = cylinder with radius = radius_x");
+    if (s->roughness.type == MC_ROUGH_GAUSSIAN && g->ny == 1 &&
+        s->roughness.correlation_y != s->roughness.correlation_x)
+        BLAME("roughness", "correlation_y",
+              "[roughness] correlation_y has no effect on a grid of one row (ny = 1: the heights "
+              "have no wavelengths along y): remove it");
+    if (s->stress.enabled) {
+        if (s->stress.window == MC_STRESS_WINDOW_FULL && (g->periodic_x || g->periodic_y))
+            BLAME("stress", "window",
+                  "[stress] window = full has no effect on a grid periodic along %s (window = "
+                  "auto stresses every cell there: a periodic load is never compact): remove it",
+                  g->periodic_x && g->periodic_y ? "x and y" : g->periodic_x ? "x" : "y");
+        if (s->stress.spacing != MC_SPACING_LIST && s->stress.layers == 1) {
+            if (s->stress.depth_max != MC_STRESS_DEPTH_AUTO)
+                BLAME("stress", "depth_max",
+                      "[stress] depth_max has no effect with layers = 1 (the one layer is at "
+                      "depth_min): remove it, or raise layers");
+            if (s->stress.spacing == MC_SPACING_GEOMETRIC)
+                BLAME("stress", "spacing",
+                      "[stress] spacing = geometric has no effect with layers = 1 (the one layer "
+                      "is at depth_min): remove it, or raise layers");
+        }
+    }
+    if (s->lubrication.enabled && s->load.lubricant_pressure == MC_LUBRICANT_AUTO && s->lubrication.film == MC_FILM_EHL &&
+        !(s->lubrication.rpm > 0) && s->lubrication.macro_radius > 0 && (s->lubrication.radius1 > 0 || s->lubrication.radius2 > 0))
+        BLAME("lubrication", s->lubrication.radius1 > 0 ? "radius1" : "radius2",
+              "[lubrication] %s has no effect with speed and macro_radius (the disc radii give "
+              "R_x only without macro_radius, and convert rpm to a speed only with rpm): remove "
+              "radius1 and radius2",
+              s->lubrication.radius1 > 0 ? "radius1" : "radius2");
+    return MC_OK;
+}
+
 static int plastic_runin_rules(const mc_scene *s, mc_error *err, const char **section,
                                const char **keyname)
 {
@@ -64,6 +160,11 @@ static int plastic_runin_rules(const mc_scene *s, mc_error *err, const char **se
               "[plasticity] depth = %g m is below dz = %g m: the plastic volume holds no layer; "
               "accepted: depth >= dz (or depth = auto)",
               s->plasticity.depth, s->plasticity.dz);
+    if (vm && s->plasticity.margin > 0 && s->grid.periodic_x && s->grid.periodic_y &&
+        !s->runin.enabled)
+        BLAME("plasticity", "margin",
+              "[plasticity] margin has no effect on a grid periodic along x and y (the plastic "
+              "volume spans the whole period along both axes): remove it");
     if (!s->runin.enabled)
         return MC_OK;
     if (vm && s->plasticity.margin > 0)
@@ -81,5 +182,7 @@ int mc_scene_effect_rules(const mc_scene *s, mc_error *err, const char **section
                           const char **keyname)
 {
     int rc = roughness_file_rules(s, err, section, keyname);
+    if (rc == MC_OK)
+        rc = grid_stress_lube_rules(s, err, section, keyname);
     return rc != MC_OK ? rc : plastic_runin_rules(s, err, section, keyname);
 }

@@ -239,6 +239,50 @@ static int parse_npy(const unsigned char *buf, size_t len, const char *what, dou
     return from_matrix(d, rows, cols, units, out);
 }
 
+/* What in a file of this format states the lateral spacing. */
+static const char *spacing_source(const char *format)
+{
+    if (strcmp(format, "x3p") == 0)
+        return "the CX/CY increment";
+    if (strcmp(format, "sdf") == 0)
+        return "Xscale/Yscale";
+    if (strcmp(format, "gsf") == 0)
+        return "XReal/YReal divided by XRes/YRes";
+    if (strcmp(format, "xyz") == 0)
+        return "the step of the x/y coordinates";
+    return "its header";
+}
+
+/* Every reader's spacing and heights, named by the file (not by [mesh] dx, which the user did not
+ * write): a spacing stated by the file is finite, > 0 and <= 1 m (the bounds of [mesh] dx, dy;
+ * 0 along both axes means "not stated", along an axis of one point "no step"); a height is at most
+ * 1000 times the map's size or 1 km (with no spacing, 1000 times the largest grid, 65536 x 1 m):
+ * heights of 1e300 m overflowed the solve. */
+static int check_scales(const char *format, const mc_surface_data *d, const char *what,
+                        mc_error *err)
+{
+    const double sp[2] = {d->dx, d->dy};
+    if (d->dx != 0.0 || d->dy != 0.0)
+        for (int a = 0; a < 2; a++)
+            if (!(sp[a] == 0.0 && (a ? d->ny : d->nx) == 1) && /* one point: no step */
+                !(isfinite(sp[a]) && sp[a] > 0.0 && sp[a] <= 1.0 && sp[a] >= 1e-150))
+                return mc_fail(err, MC_ERR_INPUT,
+                               "%s: this %s file states a lateral spacing d%c = %g m (%s): it "
+                               "must be finite, > 0 and <= 1 m",
+                               what, format, a ? 'y' : 'x', sp[a], spacing_source(format));
+    const double size = d->dx > 0.0 || d->dy > 0.0 ? fmax(d->nx * d->dx, d->ny * d->dy) : 65536.0;
+    const double hmax = 1e3 * fmax(size, 1.0);
+    const size_t n = (size_t)d->nx * (size_t)d->ny;
+    for (size_t k = 0; k < n; k++)
+        if (isfinite(d->z[k]) && !(fabs(d->z[k]) <= hmax))
+            return mc_fail(err, MC_ERR_INPUT,
+                           "%s: the height %g m at row %zu, column %zu is more than 1000 times "
+                           "the map's size (%g m) or 1 km: not a surface height (check the file's height "
+                           "unit or Z increment)",
+                           what, d->z[k], k / (size_t)d->nx, k % (size_t)d->nx, size);
+    return MC_OK;
+}
+
 /* ---- dispatch ----------------------------------------------------------------------------- */
 
 int mc_surface_parse_buffer(const char *format, const unsigned char *buf, size_t len,
@@ -280,6 +324,8 @@ int mc_surface_parse_buffer(const char *format, const unsigned char *buf, size_t
     }
     if (st == MC_OK)
         st = mc_surface_finish(out, what, err);
+    if (st == MC_OK)
+        st = check_scales(format, out, what, err);
     if (st != MC_OK) {
         mc_surface_data_free(out);
         return st;

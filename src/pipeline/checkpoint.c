@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -180,6 +181,30 @@ static int corrupt(const char *path, const char *why, mc_error *err)
                    path, why);
 }
 
+/* The first field of c whose values are not all finite (NULL: none): a file written by a run
+ * that went wrong, or altered with its checksum recomputed, is refused at read time, not at the
+ * first solve of the resumed run. */
+static const char *nonfinite_field(const mc_checkpoint *c, char *buf, size_t len)
+{
+    const struct {
+        const char *name;
+        const double *v;
+        size_t n;
+    } f[] = {{"the plastic strain", c->eps_p, 6 * (size_t)c->nvol},
+             {"the accumulated plastic strain", c->peq, (size_t)c->nvol},
+             {"the residual stress", c->sig_r, 6 * (size_t)c->nvol},
+             {"the residual displacement", c->u_r, (size_t)c->nx * (size_t)c->ny},
+             {"the elapsed seconds", &c->seconds, 1}};
+    for (size_t i = 0; i < sizeof f / sizeof f[0]; i++)
+        for (size_t k = 0; f[i].v && k < f[i].n; k++)
+            if (!isfinite(f[i].v[k])) {
+                snprintf(buf, len, "%s holds %g at value %zu of %zu (not finite)", f[i].name,
+                         f[i].v[k], k + 1, f[i].n);
+                return buf;
+            }
+    return NULL;
+}
+
 int mc_checkpoint_read(const char *dir, mc_checkpoint *c, mc_error *err)
 {
     memset(c, 0, sizeof *c);
@@ -275,6 +300,11 @@ int mc_checkpoint_read(const char *dir, mc_checkpoint *c, mc_error *err)
         if (nomem)
             return mc_fail(err, MC_ERR_NOMEM, "checkpoint '%s': out of memory", path);
         return corrupt(path, "its contents do not add up", err);
+    }
+    char why[160];
+    if (nonfinite_field(c, why, sizeof why)) {
+        mc_checkpoint_free(c);
+        return corrupt(path, why, err);
     }
     return MC_OK;
 }

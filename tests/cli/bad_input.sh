@@ -379,6 +379,36 @@ row resample_mesh_file o 1 "[roughness] resample has no effect when the mesh com
     -- surf_good.ini --out o --set mesh.nx= --set mesh.ny= --set mesh.dx= --set roughness.resample=linear
 row deflection_periodic o 1 "[runin] nominal_deflection has no effect on a grid periodic along x and y" \
     -- runin_ok.ini --out o --set runin.nominal_deflection=keep
+# the systematic pass over the key table (src/case/scene_effect.c: each key x each scene class)
+row window_full_periodic o 1 "--set stress.window" \
+    "[stress] window = full has no effect on a grid periodic along y" "remove it" \
+    -- good.ini --out o --set mesh.periodic_y=yes --set stress.window=full
+row depth_max_one_layer  o 1 "--set stress.depth_max" \
+    "[stress] depth_max has no effect with layers = 1 (the one layer is at depth_min)" \
+    -- good.ini --out o --set stress.layers=1 --set stress.depth_max=10um
+row geometric_one_layer  o 1 "--set stress.spacing" \
+    "[stress] spacing = geometric has no effect with layers = 1" \
+    -- good.ini --out o --set stress.layers=1 --set stress.depth_min=1um --set stress.spacing=geometric
+row ellipsoid_one_row    o 1 "--set geometry.radius_y" \
+    "[geometry] radius_y has no effect on a grid of one row (ny = 1" "use shape = cylinder" \
+    -- good.ini --out o --set mesh.ny=1 --set geometry.shape=ellipsoid --set geometry.radius= \
+    --set geometry.radius_x=10mm --set geometry.radius_y=5mm
+row correlation_y_one_row o 1 "--set roughness.correlation_y" \
+    "[roughness] correlation_y has no effect on a grid of one row (ny = 1" \
+    -- good.ini --out o --set mesh.ny=1 --set roughness.type=gaussian --set roughness.rq=0.1um \
+    --set roughness.correlation_x=8um --set roughness.correlation_y=4um
+row lube_radii_macro     o 1 "lube_ok.ini:19:" \
+    "[lubrication] radius1 has no effect with speed and macro_radius" \
+    -- lube_ok.ini --out o --set lubrication.rpm= --set lubrication.speed=1m/s \
+    --set lubrication.macro_radius=20mm
+row margin_doubly_periodic o 1 "--set plasticity.margin" \
+    "[plasticity] margin has no effect on a grid periodic along x and y" \
+    -- plastic_line.ini --out o --set mesh.periodic_x=yes --set mesh.ny=2 --set plasticity.margin=40um
+# messages name what the user wrote: heights that would overflow the solve name the data file
+printf '1 2 3\n4 5 6\n7 8 1e300\n' > huge_heights.txt
+row huge_heights o 1 "[roughness] file: huge_heights.txt: the height 1e+300 m at row 2, column 2" \
+    "not a surface height" \
+    -- roughness_ok_text.ini --out o --set roughness.file=huge_heights.txt --set mesh.nx=3 --set mesh.ny=3
 # [runin] lists continue on indented lines up to their maximum count
 printf '  500, 200 rpm\n' > cont.txt
 sed 's/^speeds = 1000, 500, 200 rpm$/speeds = 1000,/' runin_ok.ini > runin_cont.ini
