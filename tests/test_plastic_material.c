@@ -585,6 +585,45 @@ START_TEST(test_material_table)
 }
 END_TEST
 
+/* The law table: every law has a name, help and a reference, its name maps back to it, and its
+ * constructor from the case's parameters builds a valid law of that kind (iterates the table). */
+START_TEST(test_law_table)
+{
+    char path[512];
+    mc_hardening h;
+    mc_error e;
+    snprintf(path, sizeof path, "%s/hard_table.csv", test_tmpdir());
+    FILE *f = fopen(path, "w");
+    ck_assert(f && fputs("0, 1460\n1e-3, 2468\n", f) >= 0 && fclose(f) == 0);
+    const mc_hardening_params par = {.E = 210e9, .yield_stress = 1.5e9, .tangent_modulus = 1e10,
+                                     .swift_B = 1280e6, .swift_C = 4, .swift_n = 0.095,
+                                     .table = path, .table_unit = MPA};
+    ck_assert_int_ge(mc_hardening_count(), 1);
+    for (int k = 0; k < mc_hardening_count(); k++) {
+        mc_hardening_kind kind = (mc_hardening_kind)k, back;
+        const char *name = mc_hardening_name(kind);
+        ck_assert_ptr_nonnull(name);
+        ck_assert_ptr_nonnull(mc_hardening_help(kind));
+        ck_assert_ptr_nonnull(mc_hardening_reference(kind));
+        ck_assert_int_eq(mc_hardening_from_name(name, &back, &e), MC_OK);
+        ck_assert_int_eq(back, kind);
+        ck_assert_int_eq(mc_hardening_build(kind, &par, &h, &e), MC_OK);
+        ck_assert_int_eq(h.kind, kind);
+        ck_assert_int_eq(mc_hardening_validate(&h, &e), MC_OK);
+        double y0 = mc_hardening_initial(&h);
+        ck_assert_msg(y0 > 1e9 && y0 < 2e9, "%s: sigma_y(0) = %g Pa", name, y0);
+        mc_hardening_free(&h);
+    }
+    ck_assert_ptr_null(mc_hardening_name((mc_hardening_kind)mc_hardening_count()));
+    ck_assert_int_eq(mc_hardening_build((mc_hardening_kind)mc_hardening_count(), &par, &h, &e),
+                     MC_ERR_INPUT);
+    mc_hardening_kind back;
+    ck_assert_int_eq(mc_hardening_from_name("voce", &back, &e), MC_ERR_INPUT);
+    for (int k = 0; k < mc_hardening_count(); k++)
+        ck_assert_msg(strstr(e.msg, mc_hardening_name((mc_hardening_kind)k)), "%s", e.msg);
+}
+END_TEST
+
 Suite *suite_plastic_material(void);
 Suite *suite_plastic_material(void)
 {
@@ -597,6 +636,7 @@ Suite *suite_plastic_material(void)
     tcase_add_test(tl, test_validation);
     tcase_add_test(tl, test_nomem);
     tcase_add_test(tl, test_material_table);
+    tcase_add_test(tl, test_law_table);
     suite_add_tcase(s, tl);
     TCase *tr = tcase_create("return_map");
     tcase_set_timeout(tr, 60);

@@ -635,18 +635,38 @@ START_TEST(test_entries)
     p.Mr2 = 3;
     p.cutoff = 4;
     mc_roughness_entry e[MC_ROUGHNESS_NENTRIES];
-    ck_assert_int_eq(mc_roughness_entries(&p, e), MC_ROUGHNESS_NENTRIES);
-    static const char *names[] = {"Ra", "Rq", "Rz", "Rp", "Rv", "Rt", "Rsk", "Rku", "Rk", "Rpk",
-                                  "Rvk", "Mr1", "Mr2", "Sa", "Sq", "Sz", "Sp", "Sv", "Ssk",
-                                  "Sku", "Sdq", "Sdr", "Sk", "Spk", "Svk", "Smr1", "Smr2",
-                                  "lambda_c"};
-    for (int k = 0; k < MC_ROUGHNESS_NENTRIES; k++)
-        ck_assert_str_eq(e[k].name, names[k]);
-    ck_assert_double_eq(e[0].value, 1);
-    ck_assert_double_eq(e[21].value, 2);
-    ck_assert_str_eq(e[21].unit, "%");
-    ck_assert_double_eq(e[12].value, 3);
-    ck_assert_double_eq(e[27].value, 4);
+    const int n = mc_roughness_entry_count();
+    ck_assert_int_eq(mc_roughness_entries(&p, e), n);
+    /* the entries are the table's rows, in its order, names unique, with help */
+    for (int k = 0; k < n; k++) {
+        ck_assert_str_eq(e[k].name, mc_roughness_entry_name(k));
+        ck_assert_ptr_nonnull(mc_roughness_entry_help(k));
+        for (int j = 0; j < k; j++)
+            ck_assert_str_ne(e[k].name, e[j].name);
+    }
+    ck_assert_ptr_null(mc_roughness_entry_name(n));
+    /* each value is its field's (looked up by name, not by position) */
+    const struct {
+        const char *name, *unit;
+        double value;
+    } want[] = {{"Ra", "m", 1}, {"Sdr", "%", 2}, {"Mr2", "%", 3}, {"lambda_c", "m", 4},
+                {"Rq", "m", 0}, {"Rsk", "1", 0}, {"Sq", "m", 0}};
+    for (size_t w = 0; w < sizeof want / sizeof want[0]; w++) {
+        int found = 0;
+        for (int k = 0; k < n; k++)
+            if (!strcmp(e[k].name, want[w].name)) {
+                found = 1;
+                ck_assert_str_eq(e[k].unit, want[w].unit);
+                ck_assert_double_eq(e[k].value, want[w].value);
+            }
+        ck_assert_msg(found, "%s not reported", want[w].name);
+    }
+    /* without the profile family: only names of the areal family and lambda_c */
+    p.profile_not_computable = 1;
+    int m = mc_roughness_entries(&p, e);
+    ck_assert_int_lt(m, n);
+    for (int k = 0; k < m; k++)
+        ck_assert_msg(e[k].name[0] != 'R' && strncmp(e[k].name, "Mr", 2), "%s", e[k].name);
 }
 END_TEST
 

@@ -42,11 +42,21 @@ _Static_assert(MC_PLANS_MEASURE == 1 && MC_PLANS_WISDOM == 2,
 _Static_assert(MC_DEFLECTION_KEEP == 1, "[runin] nominal_deflection choices follow the enum");
 _Static_assert(MC_SHAPE_ELLIPSOID == 3 && MC_ROUGH_FILE == 3 && MC_BACKEND_DIRECT == 1 &&
                    MC_METHOD_ACTIVE_SET == 2 && MC_SPACING_GEOMETRIC == 1 && MC_STRESS_POINT == 1 &&
-                   MC_STRESS_WINDOW_FULL == 1 && MC_FILM_GIVEN == 1 && MC_FILM_HAMROCK_DOWSON_MIN == 5 &&
-                   MC_PSI_AREA == 1 && MC_HARDENING_TABLE == 3 &&
-                   MC_CRITERION_PRESSURE_CAP == 1 && MC_TABLE_UNIT_GPA == 2,
+                   MC_STRESS_WINDOW_FULL == 1 && MC_FILM_GIVEN == 1 &&
+                                      MC_CRITERION_PRESSURE_CAP == 1 && MC_TABLE_UNIT_GPA == 2,
                "choice lists below follow the enum order");
 
+
+/* ---- choices owned by their modules ------------------------------------------------------------ */
+
+/* Enum rows whose names live in a module's table (.choice/.choice_help): name and help of choice
+ * i, NULL past the last. Adding a formula or a law to its module adds it here too. */
+static const char *film_formula_choice(int i) { return mc_film_formula_name((mc_film_formula)i); }
+static const char *film_formula_help(int i) { return mc_film_formula_help((mc_film_formula)i); }
+static const char *hardening_choice(int i) { return mc_hardening_name((mc_hardening_kind)i); }
+static const char *hardening_help(int i) { return mc_hardening_help((mc_hardening_kind)i); }
+static const char *psi_choice(int i) { return mc_psi_name((mc_psi_kind)i); }
+static const char *psi_help(int i) { return mc_psi_help((mc_psi_kind)i); }
 
 /* ---- the key table --------------------------------------------------------------------------- */
 
@@ -299,11 +309,10 @@ const case_key mc_keys[] = {
      .use_values = "given", .off = AT(lubrication.film_thickness),
      .doc = "h_EHD: the lubricant volume is h_EHD times the nominal area."},
     {.section = "lubrication", .name = "formula", .kind = K_ENUM,
-     .choices = "pan_hamrock_central pan_hamrock_min dowson_toyoda dowson_higginson "
-                "hamrock_dowson_central hamrock_dowson_min",
+     .choice = film_formula_choice, .choice_help = film_formula_help,
      .def = "pan_hamrock_central", .use = USE_WHEN, .use_key = "film", .use_values = "ehl",
      .off = AT(lubrication.formula),
-     .doc = "EHL film formula (isothermal, fully flooded; line contact unless hamrock_dowson)."},
+     .doc = "EHL film formula (Hamrock's groups; isothermal, fully flooded)."},
     {.section = "lubrication", .name = "viscosity", .kind = K_REAL, .unit = MC_UNIT_VISCOSITY,
      .lo = 0, .lo_open = 1, .hi = 1e6, .required = 1, .use = USE_WHEN, .use_key = "film",
      .use_values = "ehl", .off = AT(lubrication.viscosity),
@@ -345,10 +354,9 @@ const case_key mc_keys[] = {
     {.section = "lubrication", .name = "mu_fluid", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
      .hi = 2, .def = "0.02", .off = AT(lubrication.mu_fluid),
      .doc = "Friction coefficient of the fluid film (an assumption; from EHL traction)."},
-    {.section = "lubrication", .name = "psi", .kind = K_ENUM, .choices = "load area",
-     .def = "load", .off = AT(lubrication.psi),
-     .doc = "Solid contact ratio of the friction mix mu = psi mu_solid + (1 - psi) mu_fluid: "
-            "load (F_solid / F_N) or area (A_C / A_nom)."},
+    {.section = "lubrication", .name = "psi", .kind = K_ENUM, .choice = psi_choice,
+     .choice_help = psi_help, .def = "load", .off = AT(lubrication.psi),
+     .doc = "Solid contact ratio of the friction mix mu = psi mu_solid + (1 - psi) mu_fluid."},
     {.section = "lubrication", .name = "tolerance", .kind = K_REAL, .unit = MC_UNIT_NONE,
      .lo = 1e-12, .hi = 0.1, .def = "1e-6", .off = AT(lubrication.tolerance),
      .doc = "Relative tolerance of the volume root: abs(V - V*) / V*."},
@@ -367,7 +375,7 @@ const case_key mc_keys[] = {
      .use_values = "pressure_cap", .off = AT(plasticity.hardness),
      .doc = "Limiting pressure of criterion = pressure_cap (e.g. 3 Y)."},
     {.section = "plasticity", .name = "hardening", .kind = K_ENUM,
-     .choices = "perfect linear swift table", .def = "perfect", .use = USE_WHEN,
+     .choice = hardening_choice, .choice_help = hardening_help, .def = "perfect", .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.hardening),
      .doc = "Isotropic hardening law sigma_y(p) of the accumulated plastic strain p."},
     {.section = "plasticity", .name = "yield_stress", .kind = K_REAL, .unit = MC_UNIT_PRESSURE,
@@ -610,6 +618,37 @@ void mc_key_words_joined(const char *list, const char *sep, char *buf, size_t le
     }
 }
 
+int mc_key_choice(const case_key *k, int i, char *buf, size_t len)
+{
+    if (!k->choice)
+        return mc_key_word(k->choices, i, buf, len);
+    const char *name = i >= 0 ? k->choice(i) : NULL;
+    if (!name)
+        return 0;
+    mc_key_fmt(buf, len, "%s", name);
+    return 1;
+}
+
+int mc_key_choice_index(const case_key *k, const char *word)
+{
+    char w[64];
+    for (int i = 0; mc_key_choice(k, i, w, sizeof w); i++)
+        if (strcmp(w, word) == 0)
+            return i;
+    return -1;
+}
+
+void mc_key_choices_joined(const case_key *k, const char *sep, char *buf, size_t len)
+{
+    char w[64];
+    size_t o = 0;
+    buf[0] = '\0';
+    for (int i = 0; mc_key_choice(k, i, w, sizeof w) && o < len; i++) {
+        mc_key_fmt(buf + o, len - o, "%s%s", i ? sep : "", w);
+        o += strlen(buf + o);
+    }
+}
+
 /* A value for a message: continuation line breaks shown as spaces, then quoted and cut. */
 void mc_key_show(const char *v, char *buf, size_t len)
 {
@@ -638,8 +677,8 @@ void mc_key_describe(const case_key *k, int noun, char *buf, size_t len)
     case K_INT: mc_key_fmt(buf, len, "%s%.0f..%.0f", noun ? "an integer in " : "", k->lo, k->hi); return;
     case K_SEED: mc_key_fmt(buf, len, "%s0..18446744073709551615", noun ? "an integer in " : ""); return;
     case K_ENUM: {
-        char w[160];
-        mc_key_words_joined(k->choices, ", ", w, sizeof w);
+        char w[MC_KEY_DESCRIBE_MAX];
+        mc_key_choices_joined(k, ", ", w, sizeof w);
         mc_key_fmt(buf, len, "%s%s", noun ? "one of " : "", w);
         return;
     }
@@ -958,7 +997,7 @@ static int convert_lengths(const case_key *k, const char *v, mc_scene *sc, char 
 int mc_key_convert(const case_key *k, const char *v, const char *base, mc_scene *sc, char *why,
                    size_t wl)
 {
-    char range[200];
+    char range[MC_KEY_DESCRIBE_MAX];
     mc_key_describe(k, 1, range, sizeof range);
     if (!*v) {
         mc_key_fmt(why, wl, "a value is required (%s)", range);
@@ -1012,7 +1051,7 @@ int mc_key_convert(const case_key *k, const char *v, const char *base, mc_scene 
         return 0;
     }
     case K_ENUM: {
-        int i = mc_key_word_index(k->choices, v);
+        int i = mc_key_choice_index(k, v);
         if (i < 0) {
             mc_key_fmt(why, wl, "must be %s", range);
             return 1;
@@ -1075,7 +1114,7 @@ void mc_key_value_text(const mc_scene *sc, int k, char *buf, size_t len)
     int v = mc_key_get_int(sc, mc_keys[k].off);
     if (mc_keys[k].kind == K_BOOL)
         mc_key_fmt(buf, len, "%s", v ? "yes" : "no");
-    else if (!mc_key_word(mc_keys[k].choices, v, buf, len))
+    else if (!mc_key_choice(&mc_keys[k], v, buf, len))
         mc_key_fmt(buf, len, "%d", v);
 }
 
@@ -1129,7 +1168,7 @@ static int unset_real(const case_key *k, double v)
 static int fail_key(const case_key *k, mc_error *err, const char **section, const char **key,
                     const char *value, const char *item)
 {
-    char what[200];
+    char what[MC_KEY_DESCRIBE_MAX];
     mc_key_describe(k, 1, what, sizeof what);
     if (section)
         *section = k->section;
@@ -1204,7 +1243,7 @@ int mc_keys_check_scene(const mc_scene *sc, const char *only, mc_error *err, con
         }
         case K_ENUM: {
             int x = mc_key_get_int(sc, row->off);
-            if (x < 0 || !mc_key_word(row->choices, x, v, sizeof v)) {
+            if (x < 0 || !mc_key_choice(row, x, v, sizeof v)) {
                 mc_key_fmt(v, sizeof v, "%d (no such choice)", x);
                 return fail_key(row, err, section, key, v, "");
             }

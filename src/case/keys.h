@@ -41,7 +41,10 @@ typedef struct {
     double lo, hi;        /* K_INT, K_REAL: accepted range */
     int lo_open, hi_open; /* K_REAL: strict bounds */
     const char *lo_text;  /* replaces the lower bound in messages: a cross-key bound */
-    const char *choices;  /* K_ENUM: space-separated names */
+    const char *choices;  /* K_ENUM: space-separated names (or, instead, choice:) */
+    const char *(*choice)(int i); /* K_ENUM: name of choice i, NULL past the last: the table of
+                                     the module that owns the choices (film formulas, ...) */
+    const char *(*choice_help)(int i); /* with choice: one line of help per choice (docs) */
     const char *def;      /* documented default; NULL: none */
     int def_rule;         /* def states a rule, not a value (not checked against the scene) */
     const char *def_from; /* default: the value of this key of the same section */
@@ -81,6 +84,11 @@ void mc_key_fmt(char *buf, size_t len, const char *f, ...) __attribute__((format
 int mc_key_word(const char *list, int i, char *buf, size_t len); /* word i of a list; 0: none */
 int mc_key_word_index(const char *list, const char *word);      /* -1 when absent */
 void mc_key_words_joined(const char *list, const char *sep, char *buf, size_t len);
+/* The choices of an enum row, from its choices string or its module's choice function. */
+int mc_key_choice(const case_key *k, int i, char *buf, size_t len); /* 0: no choice i */
+int mc_key_choice_index(const case_key *k, const char *word);      /* -1 when absent */
+void mc_key_choices_joined(const case_key *k, const char *sep, char *buf, size_t len);
+#define MC_KEY_DESCRIBE_MAX 512 /* longest "what a key accepts" text (the table check asserts it) */
 void mc_key_show(const char *v, char *buf, size_t len); /* a value quoted for a message */
 void mc_key_fmt_bound(double v, mc_unit_kind unit, char *buf, size_t len);
 

@@ -92,7 +92,7 @@ char *mc_case_reference_markdown(void)
             const case_key *key = &mc_keys[k];
             if (strcmp(key->section, sec) != 0)
                 continue;
-            char unit[160], def[128], range[200], note[256] = "", vals[96];
+            char unit[160], def[128], range[MC_KEY_DESCRIBE_MAX], note[256] = "", vals[96];
             if ((key->kind == K_REAL || key->kind == K_LENGTHS || key->kind == K_REGION) &&
                 key->unit != MC_UNIT_NONE)
                 code_list(mc_unit_suffixes(key->unit), unit, sizeof unit);
@@ -133,8 +133,12 @@ char *mc_case_reference_markdown(void)
                 mc_key_fmt(note + o, sizeof note - o, " Give %s one of %s.",
                     defaulted ? "at most" : "exactly", members);
             }
-            sb_add(&b, "| `%s` | %s | %s | %s | %s%s |\n", key->name, unit, def, range, key->doc,
+            sb_add(&b, "| `%s` | %s | %s | %s | %s%s", key->name, unit, def, range, key->doc,
                    note);
+            for (int i = 0; key->choice && key->choice_help && key->choice(i); i++)
+                sb_add(&b, "%s`%s`: %s%s", i ? "; " : " ", key->choice(i), key->choice_help(i),
+                       key->choice(i + 1) ? "" : ".");
+            sb_add(&b, " |\n");
         }
     }
     if (b.nomem) {
@@ -157,6 +161,21 @@ int mc_case_check_table(mc_error *err)
             if (texts[t] && strchr(texts[t], '|'))
                 return mc_fail(err, MC_ERR_INTERNAL, "[%s] %s: '|' would break the Markdown table",
                                key->section, key->name);
+        for (int i = 0; key->choice && key->choice_help && key->choice(i); i++)
+            if (!key->choice_help(i) || strchr(key->choice_help(i), '|'))
+                return mc_fail(err, MC_ERR_INTERNAL,
+                               "[%s] %s: the help of choice '%s' is missing or has a '|'",
+                               key->section, key->name, key->choice(i));
+        if (key->kind == K_ENUM) {
+            char all[MC_KEY_DESCRIBE_MAX + 1], w[64];
+            mc_key_choices_joined(key, " ", all, sizeof all);
+            if (!key->choices == !key->choice || !mc_key_choice(key, 0, w, sizeof w) ||
+                strlen(all) + 16 >= MC_KEY_DESCRIBE_MAX || strchr(all, '|'))
+                return mc_fail(err, MC_ERR_INTERNAL,
+                               "[%s] %s: needs one of choices or choice, at least one name, no "
+                               "'|', and a list shorter than MC_KEY_DESCRIBE_MAX",
+                               key->section, key->name);
+        }
         if (!mc_key_section(key->section))
             return mc_fail(err, MC_ERR_INTERNAL, "[%s] %s: section not in the section table",
                            key->section, key->name);
@@ -174,7 +193,7 @@ int mc_case_check_table(mc_error *err)
             char w[64];
             for (int i = 0; key->use == USE_WHEN && mc_key_word(key->use_values, i, w, sizeof w);
                  i++) {
-                int ok = mc_keys[sel].kind == K_ENUM   ? mc_key_word_index(mc_keys[sel].choices, w) >= 0
+                int ok = mc_keys[sel].kind == K_ENUM   ? mc_key_choice_index(&mc_keys[sel], w) >= 0
                          : mc_keys[sel].kind == K_BOOL ? strcmp(w, "yes") == 0 || strcmp(w, "no") == 0
                                                     : 0;
                 if (!ok)

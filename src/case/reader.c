@@ -317,7 +317,7 @@ static void value_text(const ctx *c, int k, char *buf, size_t len)
     int v = mc_key_get_int(&c->sc, mc_keys[k].off);
     if (mc_keys[k].kind == K_BOOL)
         mc_key_fmt(buf, len, "%s", v ? "yes" : "no");
-    else if (!mc_key_word(mc_keys[k].choices, v, buf, len))
+    else if (!mc_key_choice(&mc_keys[k], v, buf, len))
         mc_key_fmt(buf, len, "%d", v);
 }
 
@@ -416,7 +416,7 @@ static int key_of_entry(const entry *e) { return e->name ? mc_key_find(e->sectio
 
 static int convert_entries(ctx *c)
 {
-    char why[512], qv[96];
+    char why[MC_KEY_DESCRIBE_MAX + 64], qv[96];
     for (int i = 0; i < c->n; i++) {
         const entry *e = &c->e[i];
         int k = key_of_entry(e);
@@ -473,7 +473,7 @@ static int check_use(ctx *c)
 
 static int check_required(ctx *c)
 {
-    char range[200], cond[96], members[256];
+    char range[MC_KEY_DESCRIBE_MAX], cond[96], members[256];
     for (int k = 0; k < mc_nkeys; k++) {
         const case_key *key = &mc_keys[k];
         if (c->slot[k] >= 0 || !used(c, k) || !section_active(c, key->section))

@@ -402,14 +402,9 @@ int mc_cli_run(int argc, char **argv)
     }
     if (res.runin.enabled)
         mc_checkpoint_remove(ckdir); /* the results are committed: nothing left to resume */
-    printf("  results in %s/ (summary.json, pressure.npy, gap.npy, displacement.npy, "
-           "topography.npy, profile_x.csv%s%s%s)\n",
-           dir, res.nlayers > 0 ? ", von_mises.npy, stress_*.npy, axis.csv, depths.csv" : "",
-           res.plastic.enabled ? ", residual_displacement.npy, topography_final.npy, "
-                                 "plastic_strain.npy, residual_von_mises.npy, plastic.csv"
-                               : "",
-           res.runin.enabled ? ", runin.csv, runin.gp, surface_initial.npy, surface_final.npy"
-                             : "");
+    char files[2048];
+    mc_output_files_joined(&scene, &res, ", ", files, sizeof files);
+    printf("  results in %s/ (%s)\n", dir, files);
     mc_results_free(&res);
     mc_output_close(&od);
     int sig = mc_cli_signal_caught();

@@ -2,46 +2,84 @@
 #include "lube/film.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
-/* One row per formula: H = c U^eu G^eg W^ew (1 - ka exp(-kb k)); ka = 0 for line contact.
+/* The formula table: the one place that names, documents and defines every formula. The key
+ * table ([lubrication] formula), docs/case-format.md and the error messages take the names and
+ * help from here (mc_film_formula_name, mc_film_formula_help). To add a formula: a value in
+ * mc_film_formula (film.h, before MC_FILM_NFORMULAS) and a row here; nothing else.
+ *
+ * Each row: H = c U^eu G^eg W^ew (1 - ka exp(-kb k)); ka = 0 for line contact.
  * Coefficients: theory.md §10.2 (Hamrock 1991, NASA RP-1255; Hamrock & Dowson,
- * J. Lubr. Technol. 99(2) 264, 1977). */
+ * J. Lubr. Technol. 99(2) 264, 1977). No '|' in help (it goes into a Markdown table). */
 typedef struct {
-    const char *name;
+    const char *name, *help, *reference;
     double c, eu, eg, ew;
     int point;
     double ka, kb;
 } formula_row;
 
-static const formula_row rows[MC_FILM_NFORMULAS] = {
-    [MC_FILM_PAN_HAMROCK_CENTRAL] = {"pan_hamrock_central", 2.922, 0.692, 0.470, -0.166, 0, 0, 0},
-    [MC_FILM_PAN_HAMROCK_MIN] = {"pan_hamrock_min", 1.714, 0.694, 0.568, -0.128, 0, 0, 0},
-    [MC_FILM_DOWSON_TOYODA] = {"dowson_toyoda", 3.06, 0.69, 0.56, -0.10, 0, 0, 0},
-    [MC_FILM_DOWSON_HIGGINSON] = {"dowson_higginson", 2.65, 0.70, 0.54, -0.13, 0, 0, 0},
-    [MC_FILM_HAMROCK_DOWSON_CENTRAL] = {"hamrock_dowson_central", 2.69, 0.67, 0.53, -0.067, 1,
-                                        0.61, 0.73},
-    [MC_FILM_HAMROCK_DOWSON_MIN] = {"hamrock_dowson_min", 3.63, 0.68, 0.49, -0.073, 1, 1.0, 0.68},
+static const formula_row rows[] = {
+    [MC_FILM_PAN_HAMROCK_CENTRAL] = {"pan_hamrock_central",
+                                     "line contact, central film H_c = 2.922 W'^-0.166 U^0.692 G^0.470",
+                                     "Pan & Hamrock 1989", 2.922, 0.692, 0.470, -0.166, 0, 0, 0},
+    [MC_FILM_PAN_HAMROCK_MIN] = {"pan_hamrock_min",
+                                 "line contact, minimum film H_min = 1.714 W'^-0.128 U^0.694 G^0.568",
+                                 "Pan & Hamrock 1989", 1.714, 0.694, 0.568, -0.128, 0, 0, 0},
+    [MC_FILM_DOWSON_TOYODA] = {"dowson_toyoda",
+                               "line contact, central film H_c = 3.06 U^0.69 G^0.56 W'^-0.10",
+                               "Dowson & Toyoda 1979", 3.06, 0.69, 0.56, -0.10, 0, 0, 0},
+    [MC_FILM_DOWSON_HIGGINSON] = {"dowson_higginson",
+                                  "line contact, minimum film H_min = 2.65 U^0.70 G^0.54 W'^-0.13",
+                                  "Dowson & Higginson", 2.65, 0.70, 0.54, -0.13, 0, 0, 0},
+    [MC_FILM_HAMROCK_DOWSON_CENTRAL] = {"hamrock_dowson_central",
+                                        "point contact, central film H_c = 2.69 U^0.67 G^0.53 "
+                                        "W^-0.067 (1 - 0.61 e^(-0.73 k))",
+                                        "Hamrock & Dowson 1977", 2.69, 0.67, 0.53, -0.067, 1, 0.61,
+                                        0.73},
+    [MC_FILM_HAMROCK_DOWSON_MIN] = {"hamrock_dowson_min",
+                                    "point contact, minimum film H_min = 3.63 U^0.68 G^0.49 "
+                                    "W^-0.073 (1 - e^(-0.68 k))",
+                                    "Hamrock & Dowson 1977", 3.63, 0.68, 0.49, -0.073, 1, 1.0,
+                                    0.68},
 };
+_Static_assert(sizeof rows / sizeof rows[0] == MC_FILM_NFORMULAS,
+               "one row per value of mc_film_formula");
 
 static int valid_formula(mc_film_formula f) { return (int)f >= 0 && f < MC_FILM_NFORMULAS; }
+
+int mc_film_formula_count(void) { return MC_FILM_NFORMULAS; }
 
 const char *mc_film_formula_name(mc_film_formula f)
 {
     return valid_formula(f) ? rows[f].name : NULL;
 }
 
+const char *mc_film_formula_help(mc_film_formula f)
+{
+    return valid_formula(f) ? rows[f].help : NULL;
+}
+
+const char *mc_film_formula_reference(mc_film_formula f)
+{
+    return valid_formula(f) ? rows[f].reference : NULL;
+}
+
 int mc_film_formula_from_name(const char *name, mc_film_formula *out, mc_error *err)
 {
-    for (int f = 0; name && f < MC_FILM_NFORMULAS; f++)
-        if (strcmp(name, rows[f].name) == 0) {
+    char list[512];
+    size_t o = 0;
+    for (int f = 0; f < MC_FILM_NFORMULAS; f++) {
+        if (name && strcmp(name, rows[f].name) == 0) {
             *out = (mc_film_formula)f;
             return MC_OK;
         }
-    return mc_fail(err, MC_ERR_INPUT,
-                   "film formula '%s' is unknown; accepted: %s | %s | %s | %s | %s | %s",
-                   name ? name : "(none)", rows[0].name, rows[1].name, rows[2].name, rows[3].name,
-                   rows[4].name, rows[5].name);
+        int n = snprintf(list + o, sizeof list - o, "%s%s", f ? " | " : "", rows[f].name);
+        o = n > 0 && o + (size_t)n < sizeof list ? o + (size_t)n : o;
+    }
+    return mc_fail(err, MC_ERR_INPUT, "film formula '%s' is unknown; accepted: %s",
+                   name ? name : "(none)", list);
 }
 
 int mc_film_formula_is_point(mc_film_formula f) { return valid_formula(f) && rows[f].point; }

@@ -43,9 +43,14 @@ typedef enum {
 
 #define MC_FILM_DEFAULT MC_FILM_PAN_HAMROCK_CENTRAL
 
-/* "pan_hamrock_central", "pan_hamrock_min", "dowson_toyoda", "dowson_higginson",
- * "hamrock_dowson_central", "hamrock_dowson_min"; NULL when f is out of range. */
+/* The formula table (film.c): every formula's name ("pan_hamrock_central", ...), one line of
+ * help (contact kind, film, expression) and its reference; NULL when f is out of range. The key
+ * table, the docs and the messages list the formulas from these, in table order; iterate
+ * f = 0 .. mc_film_formula_count() - 1. */
+int mc_film_formula_count(void);
 const char *mc_film_formula_name(mc_film_formula f);
+const char *mc_film_formula_help(mc_film_formula f);
+const char *mc_film_formula_reference(mc_film_formula f);
 
 /* Exact (case-sensitive) name -> formula. MC_OK, or MC_ERR_INPUT naming the accepted names. */
 int mc_film_formula_from_name(const char *name, mc_film_formula *out, mc_error *err);

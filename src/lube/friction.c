@@ -2,24 +2,46 @@
 #include "lube/friction.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
-static const char *const psi_names[] = {"load", "area"};
+/* The psi table: the one place that names and documents each solid contact ratio; the key
+ * table ([lubrication] psi), the docs and the messages take them from here. To add one: a value
+ * in mc_psi_kind (before MC_PSI_NKINDS), a row here, its case in mc_lube_split_psi. */
+static const struct {
+    const char *name, *help;
+} psis[] = {
+    [MC_PSI_LOAD] = {"load", "F_solid / F_N, the solid contacts' share of the load"},
+    [MC_PSI_AREA] = {"area", "A_C / A_nom, the solid contacts' share of the nominal area"},
+};
+_Static_assert(sizeof psis / sizeof psis[0] == MC_PSI_NKINDS, "one row per mc_psi_kind");
+
+int mc_psi_count(void) { return MC_PSI_NKINDS; }
 
 const char *mc_psi_name(mc_psi_kind k)
 {
-    return (int)k >= 0 && (int)k < 2 ? psi_names[k] : NULL;
+    return (int)k >= 0 && k < MC_PSI_NKINDS ? psis[k].name : NULL;
+}
+
+const char *mc_psi_help(mc_psi_kind k)
+{
+    return (int)k >= 0 && k < MC_PSI_NKINDS ? psis[k].help : NULL;
 }
 
 int mc_psi_from_name(const char *name, mc_psi_kind *out, mc_error *err)
 {
-    for (int k = 0; name && k < 2; k++)
-        if (strcmp(name, psi_names[k]) == 0) {
+    char list[128];
+    size_t o = 0;
+    for (int k = 0; k < MC_PSI_NKINDS; k++) {
+        if (name && strcmp(name, psis[k].name) == 0) {
             *out = (mc_psi_kind)k;
             return MC_OK;
         }
-    return mc_fail(err, MC_ERR_INPUT, "solid contact ratio psi '%s' is unknown; accepted: load | area",
-                   name ? name : "(none)");
+        int n = snprintf(list + o, sizeof list - o, "%s%s", k ? " | " : "", psis[k].name);
+        o = n > 0 && o + (size_t)n < sizeof list ? o + (size_t)n : o;
+    }
+    return mc_fail(err, MC_ERR_INPUT, "solid contact ratio psi '%s' is unknown; accepted: %s",
+                   name ? name : "(none)", list);
 }
 
 int mc_pocket_height(double volume, double a_nom, double a_contact, double *h, mc_error *err)

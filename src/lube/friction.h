@@ -22,9 +22,13 @@
 
 #include "core/error.h"
 
-typedef enum { MC_PSI_LOAD = 0, MC_PSI_AREA = 1 } mc_psi_kind;
+typedef enum { MC_PSI_LOAD = 0, MC_PSI_AREA = 1, MC_PSI_NKINDS } mc_psi_kind;
 
-const char *mc_psi_name(mc_psi_kind k); /* "load" | "area"; NULL when out of range */
+/* The psi table (friction.c): name ("load" | "area") and one line of help of kind k; NULL when
+ * out of range. Iterate k = 0 .. mc_psi_count() - 1. */
+int mc_psi_count(void);
+const char *mc_psi_name(mc_psi_kind k);
+const char *mc_psi_help(mc_psi_kind k);
 /* "load" | "area" -> kind. MC_OK or MC_ERR_INPUT naming the accepted names. */
 int mc_psi_from_name(const char *name, mc_psi_kind *out, mc_error *err);
 

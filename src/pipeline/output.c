@@ -34,22 +34,179 @@ static const char *const stress_npy[MC_NSTRESS] = {
     [MC_SXX] = "stress_xx.npy", [MC_SYY] = "stress_yy.npy", [MC_SZZ] = "stress_zz.npy",
     [MC_SXY] = "stress_xy.npy", [MC_SYZ] = "stress_yz.npy", [MC_SXZ] = "stress_xz.npy"};
 
-/* Every file name the contract defines: the set cleaned of stale files after a run. */
-static const char *const contract_files[] = {
-    "summary.json",  "pressure.npy",  "gap.npy",       "displacement.npy", "topography.npy",
-    "profile_x.csv", "von_mises.npy", "hydrostatic.npy", "stress_xx.npy", "stress_yy.npy",
-    "stress_zz.npy", "stress_xy.npy", "stress_yz.npy", "stress_xz.npy",    "depths.csv",
-    "axis.csv",      "field.vti",     "stress.vtr",
-    "residual_displacement.npy", "topography_final.npy", "plastic_strain.npy",
-    "residual_von_mises.npy", "plastic.csv", "runin.csv", "runin.gp", "surface_initial.npy",
-    "surface_final.npy", "topography.x3p", "topography_final.x3p", "surface_initial.x3p",
-    "surface_final.x3p"};
-#define N_CONTRACT ((int)(sizeof contract_files / sizeof contract_files[0]))
+/* The output table: every file a run can write, when it writes it and what it holds. The stale
+ * file sweep, the commit, the bound of out_ctx.files, the CLI's "results in" line
+ * (mc_output_files_joined) and docs/outputs.md (mc_output_reference_markdown) come from it; a
+ * run that writes a file not in the table, or not the files the table says, fails with
+ * MC_ERR_INTERNAL (check_written). To add a file: a row here and its writer below; nothing else.
+ * No '|' in help (it goes into a Markdown table). */
+typedef enum {
+    OUT_ALWAYS,
+    OUT_STRESS,        /* stress layers */
+    OUT_VTK,           /* [output] vtk */
+    OUT_VTK_STRESS,    /* vtk and stress layers */
+    OUT_PLASTIC,       /* the elastic-plastic stage's fields */
+    OUT_RUNIN,         /* [runin] */
+    OUT_RUNIN_INITIAL, /* [runin] with the surface before */
+    OUT_RUNIN_FINAL,   /* [runin] with the surface after */
+    OUT_X3P,           /* [output] x3p */
+    OUT_X3P_PLASTIC,   /* x3p and the elastic-plastic fields */
+    OUT_X3P_INITIAL,   /* x3p and the running-in's surface before */
+    OUT_X3P_FINAL      /* x3p and the running-in's surface after */
+} out_when;
+
+static const struct {
+    const char *name;
+    out_when when;
+    const char *help;
+} outputs[] = {
+    {"summary.json", OUT_ALWAYS,
+     "mesh, materials, load, roughness with its ISO parameters, contact results, stress summary, lubrication{...} and plastic{...} when those stages ran, warnings, timings (SI units)"},
+    {"pressure.npy", OUT_ALWAYS,
+     "contact pressure, ny x nx float64, Pa"},
+    {"gap.npy", OUT_ALWAYS,
+     "gap = topography + displacement - approach, ny x nx, m"},
+    {"displacement.npy", OUT_ALWAYS,
+     "surface displacement, ny x nx, m"},
+    {"topography.npy", OUT_ALWAYS,
+     "gap at zero load (shape and roughness), ny x nx, m"},
+    {"profile_x.csv", OUT_ALWAYS,
+     "x, pressure, gap, displacement along the row through the maximum pressure"},
+    {"von_mises.npy", OUT_STRESS,
+     "von Mises stress, layers x ny x nx, Pa"},
+    {"hydrostatic.npy", OUT_STRESS,
+     "hydrostatic stress, layers x ny x nx, Pa"},
+    {"stress_xx.npy", OUT_STRESS,
+     "stress component xx, layers x ny x nx, Pa (tension positive)"},
+    {"stress_yy.npy", OUT_STRESS,
+     "stress component yy, layers x ny x nx, Pa"},
+    {"stress_zz.npy", OUT_STRESS,
+     "stress component zz, layers x ny x nx, Pa"},
+    {"stress_xy.npy", OUT_STRESS,
+     "stress component xy, layers x ny x nx, Pa"},
+    {"stress_yz.npy", OUT_STRESS,
+     "stress component yz, layers x ny x nx, Pa"},
+    {"stress_xz.npy", OUT_STRESS,
+     "stress component xz, layers x ny x nx, Pa"},
+    {"depths.csv", OUT_STRESS,
+     "the layer depths, m"},
+    {"axis.csv", OUT_STRESS,
+     "stresses versus depth under the maximum pressure"},
+    {"field.vti", OUT_VTK,
+     "ParaView image of the surface fields"},
+    {"stress.vtr", OUT_VTK_STRESS,
+     "ParaView grid of the stress fields"},
+    {"residual_displacement.npy", OUT_PLASTIC,
+     "the permanent surface displacement (positive into the body), ny x nx, m"},
+    {"topography_final.npy", OUT_PLASTIC,
+     "the unloaded gap the next load sees (initial gap + residual displacement), ny x nx, m"},
+    {"plastic_strain.npy", OUT_PLASTIC,
+     "accumulated equivalent plastic strain, nz x ny x nx (zero outside the columns under the contact)"},
+    {"residual_von_mises.npy", OUT_PLASTIC,
+     "von Mises stress of the residual stresses after unloading, nz x ny x nx, Pa"},
+    {"plastic.csv", OUT_PLASTIC,
+     "one row per load step: load, approach, p_max, contact area, plastic volume, largest plastic strain and its position, largest residual displacement, iterations"},
+    {"runin.csv", OUT_RUNIN,
+     "one row per running-in step: force, phase down/up, speed, h_EHD, p_lub, psi_load, psi_area, pocket height, mu, Ra, Rq, Rz, Sa, Sq, largest residual displacement, converged, seconds, ..."},
+    {"runin.gp", OUT_RUNIN,
+     "the gnuplot script of the three running-in figures (cd DIR; gnuplot runin.gp)"},
+    {"surface_initial.npy", OUT_RUNIN_INITIAL,
+     "the composite surface before the running-in, ny x nx, m"},
+    {"surface_final.npy", OUT_RUNIN_FINAL,
+     "the composite surface after the running-in, ny x nx, m"},
+    {"topography.x3p", OUT_X3P,
+     "topography.npy as X3P (ISO 25178-72), heights in m"},
+    {"topography_final.x3p", OUT_X3P_PLASTIC,
+     "topography_final.npy as X3P"},
+    {"surface_initial.x3p", OUT_X3P_INITIAL,
+     "surface_initial.npy as X3P"},
+    {"surface_final.x3p", OUT_X3P_FINAL,
+     "surface_final.npy as X3P"},
+};
+#define N_OUTPUTS ((int)(sizeof outputs / sizeof outputs[0]))
+
+static const char *const when_text[] = {
+    [OUT_ALWAYS] = "always",
+    [OUT_STRESS] = "with [stress]",
+    [OUT_VTK] = "with [output] vtk = yes",
+    [OUT_VTK_STRESS] = "with [output] vtk = yes and [stress]",
+    [OUT_PLASTIC] = "with [plasticity]",
+    [OUT_RUNIN] = "with [runin]",
+    [OUT_RUNIN_INITIAL] = "with [runin]",
+    [OUT_RUNIN_FINAL] = "with [runin]",
+    [OUT_X3P] = "with [output] x3p = yes",
+    [OUT_X3P_PLASTIC] = "with [output] x3p = yes and [plasticity]",
+    [OUT_X3P_INITIAL] = "with [output] x3p = yes and [runin]",
+    [OUT_X3P_FINAL] = "with [output] x3p = yes and [runin]"};
+
+static int out_wanted(out_when w, const mc_scene *sc, const mc_results *r)
+{
+    int stress = r->nlayers > 0, plastic = r->plastic.enabled && r->residual_displacement;
+    switch (w) {
+    case OUT_ALWAYS: return 1;
+    case OUT_STRESS: return stress;
+    case OUT_VTK: return sc->output.vtk;
+    case OUT_VTK_STRESS: return sc->output.vtk && stress;
+    case OUT_PLASTIC: return plastic;
+    case OUT_RUNIN: return r->runin.enabled;
+    case OUT_RUNIN_INITIAL: return r->runin.enabled && r->surface_initial;
+    case OUT_RUNIN_FINAL: return r->runin.enabled && r->surface_final;
+    case OUT_X3P: return sc->output.x3p;
+    case OUT_X3P_PLASTIC: return sc->output.x3p && plastic;
+    case OUT_X3P_INITIAL: return sc->output.x3p && r->runin.enabled && r->surface_initial;
+    case OUT_X3P_FINAL: return sc->output.x3p && r->runin.enabled && r->surface_final;
+    }
+    return 0;
+}
+
+int mc_output_file_count(void) { return N_OUTPUTS; }
+
+const char *mc_output_file_name(int i) { return i >= 0 && i < N_OUTPUTS ? outputs[i].name : NULL; }
+
+const char *mc_output_file_help(int i) { return i >= 0 && i < N_OUTPUTS ? outputs[i].help : NULL; }
+
+int mc_output_file_written(int i, const mc_scene *scene, const mc_results *res)
+{
+    return i >= 0 && i < N_OUTPUTS && out_wanted(outputs[i].when, scene, res);
+}
+
+void mc_output_files_joined(const mc_scene *scene, const mc_results *res, const char *sep,
+                            char *buf, size_t len)
+{
+    size_t o = 0;
+    if (len)
+        buf[0] = '\0';
+    for (int i = 0, first = 1; i < N_OUTPUTS && o + 1 < len; i++) {
+        if (!out_wanted(outputs[i].when, scene, res))
+            continue;
+        int n = snprintf(buf + o, len - o, "%s%s", first ? "" : sep, outputs[i].name);
+        o = n > 0 && o + (size_t)n < len ? o + (size_t)n : len - 1;
+        first = 0;
+    }
+}
+
+char *mc_output_reference_markdown(void)
+{
+    size_t len = 256;
+    for (int i = 0; i < N_OUTPUTS; i++)
+        len += strlen(outputs[i].name) + strlen(outputs[i].help) + 64;
+    char *s = mc_malloc(len);
+    if (!s)
+        return NULL;
+    size_t o = (size_t)snprintf(s, len,
+                                "<!-- generated by mc_output_reference_markdown() from the output "
+                                "table in src/pipeline/output.c; edit that table, not the text "
+                                "below -->\n\n| file | written | content |\n|---|---|---|\n");
+    for (int i = 0; i < N_OUTPUTS && o < len; i++)
+        o += (size_t)snprintf(s + o, len - o, "| `%s` | %s | %s |\n", outputs[i].name,
+                              when_text[outputs[i].when], outputs[i].help);
+    return s;
+}
 
 typedef struct {
     const char *dir;
     char stage[OUT_PATH_MAX];
-    const char *files[N_CONTRACT]; /* written so far, in order; static strings */
+    const char *files[N_OUTPUTS]; /* written so far, in order; static strings (record) */
     int nfiles;
     const mc_scene *scene;
     const mc_results *res;
@@ -99,6 +256,23 @@ static int check_stop(mc_error *err)
 
 /* ---- small writers ----------------------------------------------------------------------- */
 
+/* Note a staged file: it must be a row of the output table, written once (this bounds files[]). */
+static int record(out_ctx *c, const char *name, mc_error *err)
+{
+    int row = -1;
+    for (int i = 0; i < N_OUTPUTS && row < 0; i++)
+        if (strcmp(outputs[i].name, name) == 0)
+            row = i;
+    for (int k = 0; row >= 0 && k < c->nfiles; k++)
+        if (strcmp(c->files[k], name) == 0)
+            row = -1;
+    if (row < 0 || c->nfiles >= N_OUTPUTS)
+        return mc_fail(err, MC_ERR_INTERNAL,
+                       "output: '%s' is not a row of the output table or is written twice", name);
+    c->files[c->nfiles++] = outputs[row].name;
+    return MC_OK;
+}
+
 static int open_staged(out_ctx *c, const char *name, FILE **f, mc_error *err)
 {
     char path[OUT_PATH_MAX];
@@ -123,8 +297,7 @@ static int close_staged(out_ctx *c, const char *name, FILE *f, mc_error *err)
     }
     if (bad)
         return mc_fail(err, MC_ERR_IO, "%s/%s: cannot write: %s", c->stage, name, strerror(e));
-    c->files[c->nfiles++] = name;
-    return MC_OK;
+    return record(c, name, err);
 }
 
 static int write_npy(out_ctx *c, const char *name, const double *data, int ndim,
@@ -137,7 +310,7 @@ static int write_npy(out_ctx *c, const char *name, const double *data, int ndim,
     if (st == MC_OK)
         st = mc_npy_write(path, data, ndim, shape, err);
     if (st == MC_OK)
-        c->files[c->nfiles++] = name;
+        st = record(c, name, err);
     return st;
 }
 
@@ -164,7 +337,7 @@ static int write_x3p(out_ctx *c, const char *name, const double *z, mc_error *er
                          .x0 = mc_grid_x(g, 0), .y0 = mc_grid_y(g, 0), .z = (double *)z};
     st = mc_x3p_write(path, &s, "microcontact", err);
     if (st == MC_OK)
-        c->files[c->nfiles++] = name;
+        st = record(c, name, err);
     return st;
 }
 
@@ -526,16 +699,16 @@ static int commit(out_ctx *c, mc_error *err)
 {
     char from[OUT_PATH_MAX], to[OUT_PATH_MAX];
     /* Refuse before touching DIR when a target is a directory (rename would fail half-way). */
-    for (int k = 0; k < N_CONTRACT; k++) {
+    for (int k = 0; k < N_OUTPUTS; k++) {
         struct stat sb;
-        int st = join(to, c->dir, contract_files[k], err);
+        int st = join(to, c->dir, outputs[k].name, err);
         if (st != MC_OK)
             return st;
         if (lstat(to, &sb) == 0 && S_ISDIR(sb.st_mode))
             return mc_fail(err, MC_ERR_IO,
                            "output directory '%s': '%s' is a directory; cannot replace it with "
                            "a result file",
-                           c->dir, contract_files[k]);
+                           c->dir, outputs[k].name);
     }
     const char *failed = NULL;
     int e = 0;
@@ -555,12 +728,12 @@ static int commit(out_ctx *c, mc_error *err)
             e = errno;
         }
     }
-    for (int k = 0; !failed && k < N_CONTRACT; k++) {
-        if (produced(c, contract_files[k]))
+    for (int k = 0; !failed && k < N_OUTPUTS; k++) {
+        if (produced(c, outputs[k].name))
             continue;
-        join(to, c->dir, contract_files[k], err);
+        join(to, c->dir, outputs[k].name, err);
         if (unlink(to) != 0 && errno != ENOENT) {
-            failed = contract_files[k];
+            failed = outputs[k].name;
             e = errno;
         }
     }
@@ -653,6 +826,10 @@ static int stage_and_commit(out_ctx *c, mc_error *err)
         st = write_vtr(c, err);
     if (st == MC_OK)
         st = write_summary(c, err);
+    for (int i = 0; st == MC_OK && i < N_OUTPUTS; i++) /* the table tells the truth */
+        if (produced(c, outputs[i].name) != out_wanted(outputs[i].when, c->scene, res))
+            st = mc_fail(err, MC_ERR_INTERNAL, "output: '%s' %s written against the output table",
+                         outputs[i].name, produced(c, outputs[i].name) ? "was" : "was not");
     if (st == MC_OK)
         st = check_stop(err);
     if (st == MC_OK)
@@ -698,7 +875,10 @@ int mc_output_commit(mc_outdir *out, const mc_scene *scene, const mc_results *re
     if (st == MC_OK)
         st = mc_outdir_acquire(out, err);
     if (st == MC_OK) {
-        mc_outdir_sweep(out, contract_files, N_CONTRACT);
+        const char *names[N_OUTPUTS];
+        for (int i = 0; i < N_OUTPUTS; i++)
+            names[i] = outputs[i].name;
+        mc_outdir_sweep(out, names, N_OUTPUTS);
         st = stage_and_commit(&c, err);
         if (st != MC_OK)
             mc_outdir_rollback(out);

@@ -45,6 +45,19 @@ int mc_output_open(mc_outdir *out, const char *dir, mc_error *err);
  * is as it was and the directories this call created are removed. */
 int mc_output_commit(mc_outdir *out, const mc_scene *scene, const mc_results *res, mc_error *err);
 
+/* The output table (output.c): file i's name ("summary.json", "pressure.npy", ...) and one line
+ * of what it holds; NULL when i is out of range. Iterate i = 0 .. mc_output_file_count() - 1. */
+int mc_output_file_count(void);
+const char *mc_output_file_name(int i);
+const char *mc_output_file_help(int i);
+/* 1 when a commit of res (from scene) writes file i, else 0. */
+int mc_output_file_written(int i, const mc_scene *scene, const mc_results *res);
+/* The names of the files a commit of res writes, in table order, joined by sep ("a, b"). */
+void mc_output_files_joined(const mc_scene *scene, const mc_results *res, const char *sep,
+                            char *buf, size_t len);
+/* docs/outputs.md: the output table as Markdown (mc_malloc'd; mc_free), NULL without memory. */
+char *mc_output_reference_markdown(void);
+
 /* Release the lock (idempotent). */
 void mc_output_close(mc_outdir *out);
 

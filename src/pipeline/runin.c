@@ -552,8 +552,7 @@ static int plastic_results(runin_ctx *c, const mc_plastic_step *records, int nre
     memset(ps, 0, sizeof *ps);
     ps->enabled = 1;
     ps->criterion = "von_mises";
-    static const char *const names[] = {"perfect", "linear", "swift", "table"};
-    ps->hardening = names[sc->plasticity.hardening];
+    ps->hardening = mc_hardening_name(sc->plasticity.hardening);
     ps->stress_points = mc_eig_stress_points_name(sc->plasticity.stress_points);
     ps->yield_initial = mc_hardening_initial(&c->law);
     ps->load_steps = nrec;

@@ -10,8 +10,6 @@
 #include "plastic/loop.h"
 #include "stress/stress.h"
 
-static const char *const hardening_names[] = {"perfect", "linear", "swift", "table"};
-
 /* History depth of the Anderson acceleration of a lubricated elastic-plastic run (loop.h). */
 #define MC_ANDERSON_LUBRICATED 4
 
@@ -26,22 +24,15 @@ static double stage_load(const mc_scene *sc, const mc_grid *g)
 int mc_plastic_stage_law(const mc_scene *sc, mc_hardening *law, mc_error *err)
 {
     const double unit[] = {1.0, 1e6, 1e9};
-    switch (sc->plasticity.hardening) {
-    case MC_HARDENING_PERFECT: return mc_hardening_perfect(sc->plasticity.yield_stress, law, err);
-    case MC_HARDENING_LINEAR: {
-        double H;
-        int rc = mc_hardening_linear_from_tangent(sc->body1.E, sc->plasticity.tangent_modulus, &H,
-                                                  err);
-        return rc ? rc : mc_hardening_linear(sc->plasticity.yield_stress, H, law, err);
-    }
-    case MC_HARDENING_SWIFT:
-        return mc_hardening_swift(sc->plasticity.swift_B, sc->plasticity.swift_C,
-                                  sc->plasticity.swift_n, law, err);
-    case MC_HARDENING_TABLE:
-        return mc_hardening_table_read(sc->plasticity.table, unit[sc->plasticity.table_unit], law,
-                                       err);
-    }
-    return mc_fail(err, MC_ERR_INPUT, "[plasticity] hardening: unknown law");
+    const mc_hardening_params par = {.E = sc->body1.E,
+                                     .yield_stress = sc->plasticity.yield_stress,
+                                     .tangent_modulus = sc->plasticity.tangent_modulus,
+                                     .swift_B = sc->plasticity.swift_B,
+                                     .swift_C = sc->plasticity.swift_C,
+                                     .swift_n = sc->plasticity.swift_n,
+                                     .table = sc->plasticity.table,
+                                     .table_unit = unit[sc->plasticity.table_unit]};
+    return mc_hardening_build(sc->plasticity.hardening, &par, law, err);
 }
 
 int mc_plastic_stage_layer_maxima(const mc_scene *sc, const mc_grid *g, const double *p,
@@ -231,7 +222,7 @@ int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
     if (sc->plasticity.criterion == MC_CRITERION_PRESSURE_CAP)
         return run_cap(sc, solver, res, err);
     ps->criterion = "von_mises";
-    ps->hardening = hardening_names[sc->plasticity.hardening];
+    ps->hardening = mc_hardening_name(sc->plasticity.hardening);
     ps->stress_points = mc_eig_stress_points_name(sc->plasticity.stress_points);
     ps->load_steps = sc->plasticity.load_steps;
     mc_hardening law;

@@ -113,6 +113,7 @@ int mc_hardening_validate(const mc_hardening *h, mc_error *err)
         return MC_OK;
     case MC_HARDENING_TABLE:
         return check_table(h->eps_p, h->sigma_y, h->n_rows, NULL, NULL, err);
+    case MC_HARDENING_NKINDS: break;
     }
     return mc_fail(err, MC_ERR_INPUT, "hardening: unknown law kind %d", (int)h->kind);
 }
@@ -345,6 +346,7 @@ double mc_hardening_sigma_y(const mc_hardening *h, double p)
         double t = (p - h->eps_p[i]) / (h->eps_p[i + 1] - h->eps_p[i]);
         return h->sigma_y[i] + t * (h->sigma_y[i + 1] - h->sigma_y[i]);
     }
+    case MC_HARDENING_NKINDS: break;
     }
     return NAN;
 }
@@ -368,6 +370,7 @@ double mc_hardening_slope(const mc_hardening *h, double p)
         size_t i = table_segment(h, p);
         return (h->sigma_y[i + 1] - h->sigma_y[i]) / (h->eps_p[i + 1] - h->eps_p[i]);
     }
+    case MC_HARDENING_NKINDS: break;
     }
     return NAN;
 }
@@ -383,4 +386,82 @@ void mc_hardening_free(mc_hardening *h)
         mc_free(h->sigma_y);
     }
     memset(h, 0, sizeof *h);
+}
+
+/* ---- the law table ------------------------------------------------------------------------ */
+
+static int build_perfect(const mc_hardening_params *q, mc_hardening *h, mc_error *err)
+{
+    return mc_hardening_perfect(q->yield_stress, h, err);
+}
+
+static int build_linear(const mc_hardening_params *q, mc_hardening *h, mc_error *err)
+{
+    double H = 0;
+    int rc = mc_hardening_linear_from_tangent(q->E, q->tangent_modulus, &H, err);
+    return rc ? rc : mc_hardening_linear(q->yield_stress, H, h, err);
+}
+
+static int build_swift(const mc_hardening_params *q, mc_hardening *h, mc_error *err)
+{
+    return mc_hardening_swift(q->swift_B, q->swift_C, q->swift_n, h, err);
+}
+
+static int build_table(const mc_hardening_params *q, mc_hardening *h, mc_error *err)
+{
+    return mc_hardening_table_read(q->table, q->table_unit, h, err);
+}
+
+/* The one place that names, documents and constructs every law (hardening.h). To add a law: a
+ * value in mc_hardening_kind (before MC_HARDENING_NKINDS), a row here, its cases in
+ * mc_hardening_validate, mc_hardening_sigma_y and mc_hardening_slope; a law with new parameters
+ * also needs them in mc_hardening_params, the scene and the key table. No '|' in help. */
+static const struct {
+    const char *name, *help, *reference;
+    int (*build)(const mc_hardening_params *, mc_hardening *, mc_error *);
+} laws[] = {
+    [MC_HARDENING_PERFECT] = {"perfect", "sigma_y = Y0 (elastic-perfectly plastic)",
+                              "theory.md §7.2", build_perfect},
+    [MC_HARDENING_LINEAR] = {"linear", "sigma_y = Y0 + H p, H = E Et / (E - Et)",
+                             "theory.md §7.2", build_linear},
+    [MC_HARDENING_SWIFT] = {"swift", "sigma_y = B (C + 1e6 p)^n",
+                            "Nelias, Boucher & Brunet 2006; theory.md §7.2", build_swift},
+    [MC_HARDENING_TABLE] = {"table", "sigma_y(p) piecewise linear through the rows of a file",
+                            "theory.md §7.2", build_table},
+};
+_Static_assert(sizeof laws / sizeof laws[0] == MC_HARDENING_NKINDS,
+               "one row per value of mc_hardening_kind");
+
+static int valid_kind(mc_hardening_kind k) { return (int)k >= 0 && k < MC_HARDENING_NKINDS; }
+
+int mc_hardening_count(void) { return MC_HARDENING_NKINDS; }
+const char *mc_hardening_name(mc_hardening_kind k) { return valid_kind(k) ? laws[k].name : NULL; }
+const char *mc_hardening_help(mc_hardening_kind k) { return valid_kind(k) ? laws[k].help : NULL; }
+const char *mc_hardening_reference(mc_hardening_kind k)
+{
+    return valid_kind(k) ? laws[k].reference : NULL;
+}
+
+int mc_hardening_from_name(const char *name, mc_hardening_kind *out, mc_error *err)
+{
+    char list[256];
+    size_t o = 0;
+    for (int k = 0; k < MC_HARDENING_NKINDS; k++) {
+        if (name && strcmp(name, laws[k].name) == 0) {
+            *out = (mc_hardening_kind)k;
+            return MC_OK;
+        }
+        int n = snprintf(list + o, sizeof list - o, "%s%s", k ? " | " : "", laws[k].name);
+        o = n > 0 && o + (size_t)n < sizeof list ? o + (size_t)n : o;
+    }
+    return mc_fail(err, MC_ERR_INPUT, "hardening law '%s' is unknown; accepted: %s",
+                   name ? name : "(none)", list);
+}
+
+int mc_hardening_build(mc_hardening_kind k, const mc_hardening_params *par, mc_hardening *h,
+                       mc_error *err)
+{
+    if (!valid_kind(k) || !par)
+        return mc_fail(err, MC_ERR_INPUT, "hardening: unknown law kind %d", (int)k);
+    return laws[k].build(par, h, err);
 }

@@ -33,8 +33,21 @@ typedef enum {
     MC_HARDENING_PERFECT, /* elastic-perfectly plastic */
     MC_HARDENING_LINEAR,  /* linear isotropic hardening */
     MC_HARDENING_SWIFT,   /* Swift power law, Nelias form */
-    MC_HARDENING_TABLE    /* tabulated, piecewise linear */
+    MC_HARDENING_TABLE,   /* tabulated, piecewise linear */
+    MC_HARDENING_NKINDS
 } mc_hardening_kind;
+
+/* The law table (hardening.c): every law's name ("perfect", "linear", "swift", "table"), one
+ * line of help, its reference and its constructor from mc_hardening_params; NULL when k is out
+ * of range. The key table ([plasticity] hardening), the docs, the messages and the results
+ * (summary.json plastic.hardening) take the names from here; iterate
+ * k = 0 .. mc_hardening_count() - 1. */
+int mc_hardening_count(void);
+const char *mc_hardening_name(mc_hardening_kind k);
+const char *mc_hardening_help(mc_hardening_kind k);
+const char *mc_hardening_reference(mc_hardening_kind k);
+/* Exact name -> kind. MC_OK, or MC_ERR_INPUT listing the accepted names. */
+int mc_hardening_from_name(const char *name, mc_hardening_kind *out, mc_error *err);
 
 typedef struct mc_hardening {
     mc_hardening_kind kind;
@@ -66,6 +79,23 @@ int mc_hardening_swift(double B, double C, double n, mc_hardening *h, mc_error *
  * offending row (1-based). MC_ERR_INPUT, or MC_ERR_NOMEM when the copy cannot be allocated. */
 int mc_hardening_table(const double *eps_p, const double *sigma_y, size_t n_rows,
                        mc_hardening *h, mc_error *err);
+
+/* Every parameter any law takes, as a case gives them ([plasticity]); each law reads its own. */
+typedef struct {
+    double E;               /* Young's modulus of the yielding body, Pa (linear: H from Et) */
+    double yield_stress;    /* Y0, Pa (perfect, linear) */
+    double tangent_modulus; /* Et, Pa (linear) */
+    double swift_B, swift_C, swift_n; /* swift */
+    const char *table;      /* path of the table file (table) */
+    double table_unit;      /* Pa per unit of the file's sigma_y column (table) */
+} mc_hardening_params;
+
+/* Law k from the parameters, by the law's constructor in the table (perfect: mc_hardening_perfect
+ * (Y0); linear: H from mc_hardening_linear_from_tangent(E, Et), then mc_hardening_linear; swift;
+ * table: mc_hardening_table_read). Returns what the constructor returns; MC_ERR_INPUT naming k
+ * when it is out of range. */
+int mc_hardening_build(mc_hardening_kind k, const mc_hardening_params *par, mc_hardening *h,
+                       mc_error *err);
 
 /* Largest yield stress of any law, Pa: the bound of the [plasticity] yield_stress key. */
 #define MC_HARDENING_STRESS_MAX 1e12

@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "surface/roughness_internal.h"
@@ -142,26 +143,72 @@ int mc_roughness_compute(const double *z, const unsigned char *valid, int nx, in
     return mc_rough_areal(z, valid, nx, ny, dx, dy, px, opt->periodic_y != 0, out, err);
 }
 
+/* The parameter table: the one place that names, documents and orders the parameters reported
+ * (summary.json roughness{...}, mc_roughness_entries). To add one: its field in
+ * mc_roughness_params, its computation, a row here and MC_ROUGHNESS_NENTRIES (roughness.h).
+ * profile: 1 for the profile family (left out when profile_not_computable). */
+static const struct {
+    const char *name, *unit;
+    size_t off;
+    int profile;
+    const char *help;
+} params[] = {
+#define P(f, u, prof, h) {#f, u, offsetof(mc_roughness_params, f), prof, h}
+    P(Ra, "m", 1, "arithmetical mean height of the profile (ISO 4287)"),
+    P(Rq, "m", 1, "root mean square height of the profile (ISO 4287)"),
+    P(Rz, "m", 1, "maximum height Rp + Rv, mean over the sampling lengths (ISO 4287)"),
+    P(Rp, "m", 1, "highest peak, mean over the sampling lengths (ISO 4287)"),
+    P(Rv, "m", 1, "deepest valley, mean over the sampling lengths (ISO 4287)"),
+    P(Rt, "m", 1, "total height over the evaluation length (ISO 4287)"),
+    P(Rsk, "1", 1, "skewness of the profile (ISO 4287)"),
+    P(Rku, "1", 1, "kurtosis of the profile (ISO 4287)"),
+    P(Rk, "m", 1, "core roughness depth (ISO 13565-2)"),
+    P(Rpk, "m", 1, "reduced peak height (ISO 13565-2)"),
+    P(Rvk, "m", 1, "reduced valley depth (ISO 13565-2)"),
+    P(Mr1, "%", 1, "material ratio at the top of the core (ISO 13565-2)"),
+    P(Mr2, "%", 1, "material ratio at the bottom of the core (ISO 13565-2)"),
+    P(Sa, "m", 0, "arithmetical mean height of the map (ISO 25178-2)"),
+    P(Sq, "m", 0, "root mean square height of the map (ISO 25178-2)"),
+    P(Sz, "m", 0, "maximum height Sp + Sv (ISO 25178-2)"),
+    P(Sp, "m", 0, "highest peak (ISO 25178-2)"),
+    P(Sv, "m", 0, "deepest valley (ISO 25178-2)"),
+    P(Ssk, "1", 0, "skewness of the map (ISO 25178-2)"),
+    P(Sku, "1", 0, "kurtosis of the map (ISO 25178-2)"),
+    P(Sdq, "1", 0, "root mean square gradient (ISO 25178-2)"),
+    P(Sdr, "%", 0, "developed interfacial area ratio (ISO 25178-2)"),
+    P(Sk, "m", 0, "core height of the areal material ratio (ISO 25178-2)"),
+    P(Spk, "m", 0, "reduced peak height (ISO 25178-2)"),
+    P(Svk, "m", 0, "reduced dale height (ISO 25178-2)"),
+    P(Smr1, "%", 0, "material ratio at the top of the core (ISO 25178-2)"),
+    P(Smr2, "%", 0, "material ratio at the bottom of the core (ISO 25178-2)"),
+#undef P
+    {"lambda_c", "m", offsetof(mc_roughness_params, cutoff), 0,
+     "cut-off wavelength used (ISO 16610-21, chosen by ISO 4288 unless given)"},
+};
+_Static_assert(sizeof params / sizeof params[0] == MC_ROUGHNESS_NENTRIES,
+               "MC_ROUGHNESS_NENTRIES counts the rows of the parameter table");
+
+int mc_roughness_entry_count(void) { return MC_ROUGHNESS_NENTRIES; }
+
+const char *mc_roughness_entry_name(int i)
+{
+    return i >= 0 && i < MC_ROUGHNESS_NENTRIES ? params[i].name : NULL;
+}
+
+const char *mc_roughness_entry_help(int i)
+{
+    return i >= 0 && i < MC_ROUGHNESS_NENTRIES ? params[i].help : NULL;
+}
+
 int mc_roughness_entries(const mc_roughness_params *p, mc_roughness_entry out[])
 {
-    const mc_roughness_entry e[MC_ROUGHNESS_NENTRIES] = {
-        {"Ra", "m", p->Ra},     {"Rq", "m", p->Rq},     {"Rz", "m", p->Rz},
-        {"Rp", "m", p->Rp},     {"Rv", "m", p->Rv},     {"Rt", "m", p->Rt},
-        {"Rsk", "1", p->Rsk},   {"Rku", "1", p->Rku},   {"Rk", "m", p->Rk},
-        {"Rpk", "m", p->Rpk},   {"Rvk", "m", p->Rvk},   {"Mr1", "%", p->Mr1},
-        {"Mr2", "%", p->Mr2},   {"Sa", "m", p->Sa},     {"Sq", "m", p->Sq},
-        {"Sz", "m", p->Sz},     {"Sp", "m", p->Sp},     {"Sv", "m", p->Sv},
-        {"Ssk", "1", p->Ssk},   {"Sku", "1", p->Sku},   {"Sdq", "1", p->Sdq},
-        {"Sdr", "%", p->Sdr},   {"Sk", "m", p->Sk},     {"Spk", "m", p->Spk},
-        {"Svk", "m", p->Svk},   {"Smr1", "%", p->Smr1}, {"Smr2", "%", p->Smr2},
-        {"lambda_c", "m", p->cutoff}};
-    if (!p->profile_not_computable) {
-        memcpy(out, e, sizeof e);
-        return MC_ROUGHNESS_NENTRIES;
+    int n = 0; /* without the profile family (R..., Mr1, Mr2) when it has no meaning */
+    for (int k = 0; k < MC_ROUGHNESS_NENTRIES; k++) {
+        if (params[k].profile && p->profile_not_computable)
+            continue;
+        double v;
+        memcpy(&v, (const char *)p + params[k].off, sizeof v);
+        out[n++] = (mc_roughness_entry){params[k].name, params[k].unit, v};
     }
-    int n = 0; /* the profile family (R..., Mr1, Mr2) has no meaning: not printed */
-    for (int k = 0; k < MC_ROUGHNESS_NENTRIES; k++)
-        if (e[k].name[0] != 'R' && strncmp(e[k].name, "Mr", 2) != 0)
-            out[n++] = e[k];
     return n;
 }

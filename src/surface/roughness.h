@@ -153,7 +153,13 @@ typedef struct {
     double value;     /* SI (m), or % where unit says so */
 } mc_roughness_entry;
 
-#define MC_ROUGHNESS_NENTRIES 28
+#define MC_ROUGHNESS_NENTRIES 28 /* rows of the parameter table (roughness.c) */
+
+/* The parameter table (roughness.c): name ("Ra", ...) and one line of help of parameter i in
+ * the reported order; NULL when out of range. Iterate i = 0 .. mc_roughness_entry_count() - 1. */
+int mc_roughness_entry_count(void);
+const char *mc_roughness_entry_name(int i);
+const char *mc_roughness_entry_help(int i);
 
 /* Fill out[] with every parameter in a fixed order (Ra Rq Rz Rp Rv Rt Rsk Rku Rk Rpk Rvk Mr1
  * Mr2 Sa Sq Sz Sp Sv Ssk Sku Sdq Sdr Sk Spk Svk Smr1 Smr2 lambda_c); returns the count,
