@@ -429,7 +429,7 @@ const case_key mc_keys[] = {
     {.section = "plasticity", .name = "max_plastic", .kind = K_INT, .lo = 1, .hi = 100000,
      .def = "100", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
      .off = AT(plasticity.max_plastic),
-     .doc = "Fixed-point sweeps per outer iteration; a fixed point that uses them all in 3 "
+     .doc = "Fixed-point sweeps per outer iteration; a fixed point that uses them all in 8 "
             "successive outer iterations ends the run, not converged (docs/theory.md §9.5)."},
     {.section = "plasticity", .name = "dz", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "min(dx, dy) / 2", .def_rule = 1, .use = USE_WHEN,

@@ -242,11 +242,13 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
 /* The stops of theory §9.5, in counts (never in seconds: a result must not depend on the
  * machine). An increment stops once its tight fixed point has hit max_plastic in INNER_STALL
  * successive outer iterations (the running-in at Y = 50 MPa of issue 20: 100 sweeps per outer
- * iteration from the 6th on, the change stuck at 5e-3 against 1e-4), or once the change of u_r,
+ * iteration from the 6th to the 30th, the change stuck at 5e-3 against 1e-4; a line contact in
+ * the checkerboard band hits the cap in 4 successive ones and then converges, the line grid of
+ * tests/test_warnings.c: twice that is the margin), or once the change of u_r,
  * at tight fixed points, has grown in OUTER_GROWTH successive outer iterations to over
  * OUTER_GROWTH_FACTOR times its least in the increment (the Swift sphere of issue 20: a
  * two-cycle of the contact set whose change grows 10 % per iteration). */
-#define INNER_STALL 3
+#define INNER_STALL 8
 #define OUTER_GROWTH 5
 #define OUTER_GROWTH_FACTOR 2.0
 
@@ -384,7 +386,7 @@ const char *mc_plastic_stop_text(mc_plastic_stop why)
         return "the outer iteration reached max_outer without meeting the tolerance (raise "
                "max_outer, lower relaxation or use more load_steps)";
     case MC_PLASTIC_STOP_INNER_STALL:
-        return "the plastic fixed point stalls: it used all max_plastic sweeps in 3 successive "
+        return "the plastic fixed point stalls: it used all max_plastic sweeps in 8 successive "
                "outer iterations (raise max_plastic or plastic_tolerance)";
     case MC_PLASTIC_STOP_OUTER_DIVERGES:
         return "the outer iteration diverges: the change of the residual displacement grew in 5 "
