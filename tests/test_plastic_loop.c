@@ -236,6 +236,137 @@ START_TEST(shared_operators)
 }
 END_TEST
 
+/* Every field of a stopped run finite (theory §9.5: the results are the last iterate's). */
+static void assert_finite_result(const mc_plastic_result *r, const sphere *t)
+{
+    const size_t n = mc_grid_cells(&t->g), nv = (size_t)r->nvol;
+    for (size_t i = 0; i < n; i++)
+        ck_assert(isfinite(r->u_r[i]) && isfinite(t->p[i]) && isfinite(t->u[i]) &&
+                  isfinite(t->gap[i]));
+    for (size_t i = 0; i < nv; i++)
+        ck_assert(isfinite(r->peq[i]) && isfinite(r->residual_vm[i]));
+    for (size_t i = 0; i < 6 * nv; i++)
+        ck_assert(isfinite(r->eps_p[i]) && isfinite(r->sig_r[i]));
+}
+
+static int total_sweeps(const mc_plastic_result *r) { return sweeps(r); }
+
+/* A run that cannot converge ends in the load step where it failed, with MC_NOT_CONVERGED, the
+ * reason, the step and its last iterate, and within the counts of theory §9.5: max_outer = 2
+ * (the cap), max_plastic = 1 (a fixed point that stalls at its cap). */
+START_TEST(stops_at_caps)
+{
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    sphere t;
+    sphere_init(&t);
+    const struct {
+        int max_outer, max_plastic;
+        mc_plastic_stop why;
+    } cases[] = {{2, 200, MC_PLASTIC_STOP_OUTER_CAP}, {30, 1, MC_PLASTIC_STOP_INNER_STALL}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        mc_plastic_problem pb = t.pb;
+        pb.max_outer = cases[c].max_outer;
+        pb.max_plastic = cases[c].max_plastic;
+        mc_plastic_result r;
+        mc_contact_summary cs;
+        mc_error err = {0};
+        ck_assert_int_eq(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &r, &err),
+                         MC_NOT_CONVERGED);
+        ck_assert_msg(r.stop == cases[c].why, "case %zu: stop %d, not %d (%s)", c, (int)r.stop,
+                      (int)cases[c].why, err.msg);
+        ck_assert(!r.converged && r.stop_step == 1 && r.steps_done == 1 && !r.steps[0].converged);
+        ck_assert_msg(strstr(err.msg, "load step 1 of 2") &&
+                          strstr(err.msg, mc_plastic_stop_text(r.stop)),
+                      "message: %s", err.msg);
+        ck_assert(r.steps[0].outer_iterations <= pb.max_outer);
+        ck_assert(total_sweeps(&r) <= pb.max_outer * pb.max_plastic);
+        ck_assert(maxabs(r.peq, (size_t)r.nvol) > 0); /* the last iterate, not a blank */
+        assert_finite_result(&r, &t);
+        mc_plastic_result_free(&r);
+    }
+    sphere_free(&t);
+    mc_threads_end(&scope);
+}
+END_TEST
+
+/* step (a) of the loop that fails on its third call (a contact or lubricant root that did not
+ * converge) */
+typedef struct {
+    mc_contact_solver *s;
+    int calls;
+} failing_contact;
+
+static int contact_fails_third(void *ctx, const mc_contact_problem *cp, double *p, double *u,
+                               double *gap, mc_contact_summary *sum, double *p_lub, mc_error *err)
+{
+    failing_contact *f = ctx;
+    *p_lub = cp->p_lub;
+    int rc = mc_contact_solve(f->s, cp, p, u, gap, sum, err);
+    if (rc == MC_OK && ++f->calls == 3)
+        rc = mc_fail(err, MC_NOT_CONVERGED, "test: contact not converged");
+    return rc;
+}
+
+/* A contact that does not converge ends the run with its iterate (the residual fields of the
+ * state before it included), not with blank fields. */
+START_TEST(stops_on_contact)
+{
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    sphere t;
+    sphere_init(&t);
+    failing_contact f = {.s = t.s};
+    mc_plastic_problem pb = t.pb;
+    pb.contact = contact_fails_third;
+    pb.contact_ctx = &f;
+    mc_plastic_result r;
+    mc_contact_summary cs;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &r, &err),
+                     MC_NOT_CONVERGED);
+    ck_assert_msg(r.stop == MC_PLASTIC_STOP_CONTACT && r.stop_step == 1 && !r.converged, "%s",
+                  err.msg);
+    ck_assert(maxabs(r.residual_vm, (size_t)r.nvol) > 0); /* unloaded: the residual stress */
+    assert_finite_result(&r, &t);
+    mc_plastic_result_free(&r);
+    sphere_free(&t);
+    mc_threads_end(&scope);
+}
+END_TEST
+
+/* A load no material point can carry (Y = 20 MPa at 4 P_c of Y = 1 GPa, one step): the increments
+ * blow up and split; the step ends in bounded work (its sweep budget over all the split
+ * increments) with a finite last iterate, where the loop before issue 20 spent up to 63
+ * increments of max_outer x max_plastic sweeps and returned no results. */
+START_TEST(overload_ends_bounded)
+{
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    sphere t;
+    sphere_init(&t);
+    mc_hardening_free(&t.law);
+    mc_error err = {0};
+    ck_assert_int_eq(mc_hardening_perfect(20e6, &t.law, &err), MC_OK);
+    mc_plastic_problem pb = t.pb;
+    pb.load_steps = 1;
+    pb.max_outer = 10;
+    pb.max_plastic = 50;
+    mc_plastic_result r;
+    mc_contact_summary cs;
+    ck_assert_int_eq(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &r, &err),
+                     MC_NOT_CONVERGED);
+    ck_assert_msg(r.stop != MC_PLASTIC_RUN_CONVERGED && r.stop_step == 1 && !r.converged, "%s",
+                  err.msg);
+    ck_assert_msg(total_sweeps(&r) <= pb.max_outer * pb.max_plastic, "%d sweeps",
+                  total_sweeps(&r));
+    assert_finite_result(&r, &t);
+    mc_plastic_result_free(&r);
+    sphere_free(&t);
+    mc_threads_end(&scope);
+}
+END_TEST
+
 Suite *suite_plastic_loop(void);
 Suite *suite_plastic_loop(void)
 {
@@ -245,6 +376,9 @@ Suite *suite_plastic_loop(void)
     tcase_add_test(t, inexact_matches_tight);
     tcase_add_test(t, accepts_only_tight);
     tcase_add_test(t, shared_operators);
+    tcase_add_test(t, stops_at_caps);
+    tcase_add_test(t, stops_on_contact);
+    tcase_add_test(t, overload_ends_bounded);
     suite_add_tcase(s, t);
     return s;
 }

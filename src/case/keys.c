@@ -426,7 +426,8 @@ const case_key mc_keys[] = {
     {.section = "plasticity", .name = "max_outer", .kind = K_INT, .lo = 1, .hi = 100000,
      .def = "30", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
      .off = AT(plasticity.max_outer),
-     .doc = "Outer iterations per load step; reaching it is reported as not converged."},
+     .doc = "Outer iterations per load step; reaching it ends the run, not converged, "
+            "with the results of the last iterate (docs/theory.md §9.5)."},
     {.section = "plasticity", .name = "plastic_tolerance", .kind = K_REAL, .unit = MC_UNIT_NONE,
      .lo = 1e-15, .hi = 0.1, .def = "1e-4", .use = USE_WHEN, .use_key = "criterion",
      .use_values = "von_mises", .off = AT(plasticity.plastic_tolerance),
@@ -435,7 +436,9 @@ const case_key mc_keys[] = {
             "contact by 1e-5 relative, with half the sweeps.)"},
     {.section = "plasticity", .name = "max_plastic", .kind = K_INT, .lo = 1, .hi = 100000,
      .def = "100", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
-     .off = AT(plasticity.max_plastic), .doc = "Fixed-point sweeps per outer iteration."},
+     .off = AT(plasticity.max_plastic),
+     .doc = "Fixed-point sweeps per outer iteration; a fixed point that uses them all in 8 "
+            "successive outer iterations ends the run, not converged (docs/theory.md §9.5)."},
     {.section = "plasticity", .name = "dz", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "min(dx, dy) / 2", .def_rule = 1, .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.dz),

@@ -83,6 +83,12 @@ typedef struct {
     int i0, j0, wnx, wny;      /* columns carrying plastic cells (window of the surface grid) */
     long volume_cells;         /* nz wnx wny */
     mc_plastic_step *steps;    /* steps_done records (owned) */
+    /* where and why a run that did not converge stopped (plastic/loop.h, theory §9.5); the
+     * fields are those of its last iterate. summary.json plastic.stop */
+    int stop_step;             /* load step of the loop, from 1 (0: the run did not stop) */
+    double stop_load;          /* load of the increment it stopped in, N */
+    const char *stop_reason;   /* mc_plastic_stop_text (static) */
+    int stop_runin_step;       /* running-in step, from 1 (0: not a running-in) */
 } mc_plastic_summary;
 
 /* One step of the running-in ([runin], pipeline/runin.h): a row of runin.csv. */

@@ -104,6 +104,10 @@ typedef struct {
     double *s_full[6], *qx;
     uint64_t hash;
     double seconds;           /* compute time of the steps done (also those of a checkpoint) */
+    /* a plastic loop that stopped short (plastic/loop.h): the running-in ends with that step */
+    mc_plastic_stop stop;
+    int stop_step;            /* its load step */
+    double stop_load;         /* the load of its last increment, N */
 } runin_ctx;
 
 static void ctx_free(runin_ctx *c)
@@ -249,6 +253,9 @@ static int plastic_step(runin_ctx *c, mc_plastic_step *record, mc_lube_contact *
         if (pr.steps_done > 0)
             *record = pr.steps[pr.steps_done - 1];
         *conv = pr.converged;
+        c->stop = pr.stop;
+        c->stop_step = pr.stop_step;
+        c->stop_load = pr.stop_load;
     }
     mc_plastic_result_free(&pr);
     return rc;
@@ -644,7 +651,8 @@ static int run(runin_ctx *c, mc_error *err)
                         !(ri->hysteresis = mc_zeros((size_t)c->nf)) ||
                         !(records = mc_calloc((size_t)c->nsteps, sizeof *records))))
         rc = mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory for the rows");
-    int start = 0, nrec = 0, worst = MC_OK;
+    int start = 0, nrec = 0, worst = MC_OK, stopped_at = 0;
+    mc_error stop_err = {0};
     if (rc == MC_OK && c->opt && c->opt->resume) {
         if (!c->opt->checkpoint_dir)
             rc = mc_fail(err, MC_ERR_INPUT, "running-in: resume needs a checkpoint directory");
@@ -675,6 +683,13 @@ static int run(runin_ctx *c, mc_error *err)
             worst = src;
         if (ri->rows[s].plastic)
             records[nrec++] = rec;
+        if (c->stop) { /* the loop stopped short: the running-in ends with its last iterate */
+            stop_err = *err;
+            mc_error_prefix(&stop_err, "running-in step %d of %d (%g N, %s, %.6g rpm): ", s + 1,
+                            c->nsteps, ri->rows[s].force, ri->rows[s].up ? "up" : "down",
+                            ri->rows[s].speed * 60.0 / (2.0 * M_PI));
+            stopped_at = s + 1;
+        }
         c->seconds += ri->rows[s].seconds;
         ri->done = s + 1;
         rc = save(c, ri->done, records, nrec, err);
@@ -687,13 +702,24 @@ static int run(runin_ctx *c, mc_error *err)
                                     .eta = el / (s + 1 - start) * (c->nsteps - s - 1)};
             c->opt->progress(c->opt->progress_ctx, &pr);
         }
+        if (stopped_at)
+            break;
     }
     if (rc == MC_OK)
         rc = final_results(c, records, nrec, err);
+    if (rc == MC_OK && stopped_at) {
+        r->plastic.stop_runin_step = stopped_at;
+        r->plastic.stop_step = c->stop_step;
+        r->plastic.stop_load = c->stop_load;
+        r->plastic.stop_reason = mc_plastic_stop_text(c->stop);
+    }
     mc_free(records);
     r->timing.total_s = mc_clock() - t_start;
     r->timing.contact_s = c->seconds;
-    if (rc == MC_OK && worst != MC_OK)
+    if (rc == MC_OK && stopped_at) {
+        *err = stop_err;
+        rc = MC_NOT_CONVERGED;
+    } else if (rc == MC_OK && worst != MC_OK)
         rc = mc_fail(err, worst, "running-in: a solve did not converge (see runin.csv, column "
                                  "converged)");
     return rc;

@@ -304,6 +304,11 @@ int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
         place(res, &v, pr.peq, res->plastic_strain);
         place(res, &v, pr.residual_vm, res->residual_von_mises);
         ps->converged = pr.converged;
+        if (pr.stop_step > 0) {
+            ps->stop_step = pr.stop_step;
+            ps->stop_load = pr.stop_load;
+            ps->stop_reason = mc_plastic_stop_text(pr.stop);
+        }
         ps->steps_done = pr.steps_done;
         ps->steps = pr.steps;
         pr.steps = NULL;

@@ -398,6 +398,15 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
         jset(b, w, "nx", json_integer(q->wnx));
         jset(b, w, "ny", json_integer(q->wny));
         jset(b, o, "volume_cells", json_integer(q->volume_cells));
+        if (q->stop_step > 0) { /* where and why it stopped (theory §9.5) */
+            json_t *st = jchild(b, o, "stop", json_object());
+            if (q->stop_runin_step > 0)
+                jset(b, st, "runin_step", json_integer(q->stop_runin_step));
+            jset(b, st, "load_step", json_integer(q->stop_step));
+            jset(b, st, "load", jnum(q->stop_load));
+            jset(b, st, "reason", jstr(q->stop_reason ? q->stop_reason : ""));
+        } else
+            jset(b, o, "stop", json_null());
     }
 
     if (r->lube.enabled) {

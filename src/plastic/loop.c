@@ -239,6 +239,19 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
 /* Plastic strain increments beyond this are taken as divergence (the step is split). */
 #define DIVERGED_STRAIN 0.5
 
+/* The stops of theory §9.5, in counts (never in seconds: a result must not depend on the
+ * machine). An increment stops once its tight fixed point has hit max_plastic in INNER_STALL
+ * successive outer iterations (the running-in at Y = 50 MPa of issue 20: 100 sweeps per outer
+ * iteration from the 6th to the 30th, the change stuck at 5e-3 against 1e-4; a line contact in
+ * the checkerboard band hits the cap in 4 successive ones and then converges, the line grid of
+ * tests/test_warnings.c: twice that is the margin), or once the change of u_r,
+ * at tight fixed points, has grown in OUTER_GROWTH successive outer iterations to over
+ * OUTER_GROWTH_FACTOR times its least in the increment (the Swift sphere of issue 20: a
+ * two-cycle of the contact set whose change grows 10 % per iteration). */
+#define INNER_STALL 8
+#define OUTER_GROWTH 5
+#define OUTER_GROWTH_FACTOR 2.0
+
 /* The plastic fixed point of dossier §1.4 at fixed elastic stresses: updates c->d_eps and c->dp
  * from the committed eps_p, peq, until the change of a sweep is within tol (relative, as
  * tol_plastic). *sweeps receives the sweeps done; *converged 0 when the cap was hit; *tight 1
@@ -365,19 +378,52 @@ static void step_record(const loop_ctx *c, const mc_contact_summary *cs, const d
         st->residual_max = fmax(st->residual_max, u_r[i]);
 }
 
+const char *mc_plastic_stop_text(mc_plastic_stop why)
+{
+    switch (why) {
+    case MC_PLASTIC_RUN_CONVERGED: return "";
+    case MC_PLASTIC_STOP_OUTER_CAP:
+        return "the outer iteration reached max_outer without meeting the tolerance (raise "
+               "max_outer, lower relaxation or use more load_steps)";
+    case MC_PLASTIC_STOP_INNER_STALL:
+        return "the plastic fixed point stalls: it used all max_plastic sweeps in 8 successive "
+               "outer iterations (raise max_plastic or plastic_tolerance)";
+    case MC_PLASTIC_STOP_OUTER_DIVERGES:
+        return "the outer iteration diverges: the change of the residual displacement grew in 5 "
+               "successive outer iterations (lower relaxation or use more load_steps)";
+    case MC_PLASTIC_STOP_SPLIT_LIMIT:
+        return "the increments diverge (plastic strain increments beyond 0.5, or non-finite "
+               "values) even in 32 sub-increments: the load exceeds what the material carries "
+               "(use more load_steps or hardening)";
+    case MC_PLASTIC_STOP_STEP_BUDGET:
+        return "the split increments of the step used its budget of max_outer x max_plastic "
+               "fixed-point sweeps";
+    case MC_PLASTIC_STOP_CONTACT:
+        return "the contact solve did not converge";
+    }
+    return "unknown";
+}
+
 /* One load increment to `load` from the committed state (res->eps_p, res->peq, res->u_r): the
- * outer iteration of dossier §2.1; commits on success. Returns MC_OK with *diverged set when the
- * plastic fixed point blew up (nothing committed), or the contact's status. st accumulates the
- * iteration counts; *conv receives whether the outer iteration met its tolerance. */
+ * outer iteration of dossier §2.1. Returns MC_OK with *conv set (committed), *diverged set (the
+ * plastic fixed point or u_r blew up: nothing committed, the caller splits), or *why set (a stop
+ * of theory §9.5: the last iterate committed, the caller ends the run); or an error. st
+ * accumulates the iteration counts. */
 static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int warm, double *p,
                      double *u, double *gap, mc_contact_summary *sum, mc_plastic_result *res,
-                     mc_plastic_step *st, int *conv, int *diverged, mc_error *err)
+                     mc_plastic_step *st, int *conv, int *diverged, mc_plastic_stop *why,
+                     mc_error *err)
 {
     const mc_plastic_problem *pb = c->pb;
     const size_t nv6 = 6 * (size_t)c->nvol;
     const double gap_factor = pb->both ? 2.0 : 1.0;
     *conv = 0;
     *diverged = 0;
+    *why = MC_PLASTIC_RUN_CONVERGED;
+    /* a step's sweeps over all its increments: what one unsplit increment may spend (§9.5) */
+    const long budget = (long)pb->max_outer * pb->max_plastic;
+    int capped = 0, grew = 0; /* successive tight fixed points at their cap; growths of u_r's */
+    double last_change = INFINITY, least_change = INFINITY; /* change at tight fixed points */
     memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
     memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
     memcpy(c->u_r, res->u_r, c->ncell * sizeof *c->u_r);
@@ -385,9 +431,13 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
     double outer_rel = 1.0; /* relative change of u_r in the last outer iteration */
     double rel_hist[2] = {INFINITY, INFINITY}; /* in the two before it, older first */
     double forcing = pb->tight_inner ? 0.0 : INNER_FORCING;
-    for (int k = 1; k <= pb->max_outer; k++) {
+    for (int k = 1; k <= pb->max_outer && !*why; k++) {
         if (pb->stop && pb->stop(pb->stop_ctx))
             return mc_fail(err, MC_ERR_INTERRUPTED, "plastic loop: stopped on request");
+        if (st->plastic_iterations > budget - pb->max_plastic) { /* (never in an unsplit step) */
+            *why = MC_PLASTIC_STOP_STEP_BUDGET;
+            break;
+        }
         st->outer_iterations++;
         for (size_t i = 0; i < c->ncell; i++)
             c->h_extra[i] = gap_factor * c->u_r[i];
@@ -403,8 +453,13 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
             rc = pb->contact(pb->contact_ctx, &cp, p, u, gap, sum, &c->p_lub, err);
         else
             rc = mc_contact_solve(solver, &cp, p, u, gap, sum, err);
+        if (rc == MC_NOT_CONVERGED) { /* ends the run with the iterate before it (§9.5) */
+            *why = MC_PLASTIC_STOP_CONTACT;
+            rc = MC_OK;
+            break;
+        }
         if (rc != MC_OK)
-            return rc; /* a contact that did not converge ends the run: reported as such */
+            return rc;
         if ((rc = elastic_stresses(c, p, err)) != MC_OK)
             return rc;
         int sweeps = 0, fp_ok = 0, tight = 0, yielded = 0;
@@ -419,6 +474,11 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
             forcing = 0.0; /* the safeguard: a fixed point that hit its cap */
         if (rc != MC_OK || *diverged)
             return rc;
+        capped = tol_k <= pb->tol_plastic && !fp_ok ? capped + 1 : 0;
+        if (capped >= INNER_STALL) {
+            *why = MC_PLASTIC_STOP_INNER_STALL;
+            break;
+        }
         int any = 0;
         for (size_t i = 0; i < nv6; i++) {
             c->tot[i] = res->eps_p[i] + c->d_eps[i];
@@ -430,9 +490,15 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
         } else
             residual_displacement(c, c->tot, c->u_new);
         double change = 0, size = 0;
+        int finite = 1;
         for (size_t i = 0; i < c->ncell; i++) {
             change = fmax(change, fabs(c->u_new[i] - c->u_r[i]));
             size = fmax(size, fabs(c->u_new[i]));
+            finite &= isfinite(c->u_new[i]) != 0; /* (fmax drops a NaN) */
+        }
+        if (!finite) { /* as a fixed point that blew up: the caller splits the step */
+            *diverged = 1;
+            return MC_OK;
         }
         /* accepted only on a tight inner solve: never on a loose one */
         if (tight && change <= pb->tol_outer * size) {
@@ -440,6 +506,15 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
             res->inner_change = fmax(res->inner_change, fp_change);
             *conv = 1;
             break;
+        }
+        if (tight) { /* the divergence test of §9.5 (a loose fixed point's change is noise) */
+            grew = change > last_change ? grew + 1 : 0;
+            last_change = change;
+            least_change = fmin(least_change, change);
+            if (grew >= OUTER_GROWTH && change > OUTER_GROWTH_FACTOR * least_change) {
+                *why = MC_PLASTIC_STOP_OUTER_DIVERGES;
+                break;
+            }
         }
         /* the next inner tolerance; tight once this change is within tol_outer */
         const double rel = size > 0 ? change / size : INFINITY;
@@ -460,7 +535,9 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
             for (size_t i = 0; i < c->ncell; i++)
                 c->u_r[i] += pb->relaxation * (c->u_new[i] - c->u_r[i]);
     }
-    /* commit (also an increment that used up its outer iterations: reported, not hidden) */
+    if (!*conv && !*why)
+        *why = MC_PLASTIC_STOP_OUTER_CAP;
+    /* commit: the converged state, or the last iterate of a stop (the run ends with it) */
     for (size_t i = 0; i < nv6; i++)
         res->eps_p[i] += c->d_eps[i];
     for (long v = 0; v < c->nvol; v++)
@@ -517,7 +594,9 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
         memcpy(save_peq, res->peq, (size_t)c.nvol * sizeof *save_peq);
         memcpy(save_ur, res->u_r, c.ncell * sizeof *save_ur);
         int all_conv = 0, diverged = 1;
-        for (int split = 0; rc == MC_OK && diverged && split <= MAX_SPLIT; split++) {
+        mc_plastic_stop why = MC_PLASTIC_RUN_CONVERGED;
+        double at = st->load; /* the load of the increment in progress */
+        for (int split = 0; rc == MC_OK && diverged && !why && split <= MAX_SPLIT; split++) {
             if (split > 0) { /* back to the state before the step, in 2^split increments */
                 memcpy(res->eps_p, save_eps, nv6 * sizeof *save_eps);
                 memcpy(res->peq, save_peq, (size_t)c.nvol * sizeof *save_peq);
@@ -527,27 +606,28 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
             const int parts = 1 << split;
             all_conv = 1;
             diverged = 0;
-            for (int q = 1; rc == MC_OK && !diverged && q <= parts; q++) {
+            for (int q = 1; rc == MC_OK && !diverged && !why && q <= parts; q++) {
                 int conv;
-                rc = increment(&c, solver, l0 + (st->load - l0) * q / parts, n > 1 || q > 1, p,
-                               u, gap, sum, res, st, &conv, &diverged, err);
+                at = l0 + (st->load - l0) * q / parts;
+                rc = increment(&c, solver, at, n > 1 || q > 1, p, u, gap, sum, res, st, &conv,
+                               &diverged, &why, err);
                 all_conv &= conv;
             }
         }
-        if (rc == MC_OK && diverged)
-            rc = mc_fail(err, MC_ERR_NUMERIC,
-                         "plastic loop: load step %d of %d (%g N) diverges even in %d "
-                         "increments: use more load_steps, a smaller relaxation or hardening",
-                         n, pb->load_steps, st->load, 1 << MAX_SPLIT);
-        if (rc != MC_OK) {
-            if (rc == MC_NOT_CONVERGED)
-                res->converged = 0;
+        if (rc != MC_OK)
             break;
-        }
-        st->converged = all_conv;
+        if (diverged) /* the state is that of the last increment that did not blow up */
+            why = MC_PLASTIC_STOP_SPLIT_LIMIT;
+        st->converged = all_conv && !why;
         res->converged &= st->converged;
         step_record(&c, sum, res->peq, res->u_r, st);
         res->steps_done = n;
+        if (why) { /* the run ends here with its last iterate (theory §9.5) */
+            res->stop = why;
+            res->stop_step = n;
+            res->stop_load = at;
+            break;
+        }
     }
     if (rc == MC_OK) { /* unloading: the residual field of the plastic strain alone */
         residual_displacement(&c, res->eps_p, res->u_r);
@@ -561,8 +641,10 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
         }
         if (!res->converged)
             rc = mc_fail(err, MC_NOT_CONVERGED,
-                         "plastic loop: a load step did not converge in %d outer iterations",
-                         pb->max_outer);
+                         "plastic loop: load step %d of %d (%g N, stopped at %g N): %s; the "
+                         "results are those of the last iterate",
+                         res->stop_step, pb->load_steps, res->steps[res->stop_step - 1].load,
+                         res->stop_load, mc_plastic_stop_text(res->stop));
     }
     res->p_lub = c.p_lub;
     res->contact_solves = c.solves;

@@ -113,6 +113,24 @@ typedef struct {
     void *stop_ctx;
 } mc_plastic_problem;
 
+/* Why a run stopped short of the full load (docs/theory.md §9.5). Every way out of a load step
+ * that is not convergence ends the run: the later steps would start from a state that is not an
+ * equilibrium, and each would spend the caps again. */
+typedef enum {
+    MC_PLASTIC_RUN_CONVERGED = 0,
+    MC_PLASTIC_STOP_OUTER_CAP,    /* max_outer outer iterations without meeting tol_outer */
+    MC_PLASTIC_STOP_INNER_STALL,  /* the tight fixed point hit max_plastic in successive outer
+                                     iterations */
+    MC_PLASTIC_STOP_OUTER_DIVERGES, /* the change of u_r grew in successive outer iterations */
+    MC_PLASTIC_STOP_SPLIT_LIMIT,  /* the increments blew up (plastic strain beyond 0.5,
+                                     non-finite values) even in the finest split */
+    MC_PLASTIC_STOP_STEP_BUDGET,  /* the step's increments used max_outer x max_plastic sweeps */
+    MC_PLASTIC_STOP_CONTACT       /* the contact solve (step a) did not converge */
+} mc_plastic_stop;
+
+/* One line on why the run stopped ("" for MC_PLASTIC_RUN_CONVERGED). */
+const char *mc_plastic_stop_text(mc_plastic_stop why);
+
 /* One load step's record (plastic.csv). */
 typedef struct {
     double load, approach, p_max, area;
@@ -141,14 +159,21 @@ typedef struct {
                                    sweep at an accepted outer iteration (<= tol_plastic) */
     double p_lub;               /* lubricant pressure of the last contact solve, Pa */
     int contact_solves;         /* step (a) calls */
+    mc_plastic_stop stop;       /* why the run stopped short (MC_PLASTIC_RUN_CONVERGED: it did
+                                   not) */
+    int stop_step;              /* the load step it stopped in, from 1 (0: none) */
+    double stop_load;           /* the load of the increment it stopped in, N */
 } mc_plastic_result;
 
 /* Run the loop. solver is planned over K (the two-body Love operator of the surface grid);
  * p, u, gap (ny*nx, caller-owned) receive the state at the maximum load, sum its contact
  * summary. With eps_p0, peq0 the result's eps_p, peq are the totals (initial plus this run's)
- * and u_r the residual displacement of the total. Returns MC_OK, MC_NOT_CONVERGED (a step did
- * not converge: everything is still filled and res->converged = 0, the step records say
- * which), MC_ERR_INTERRUPTED (prob->stop asked), or an error. */
+ * and u_r the residual displacement of the total. The work is bounded by counts (theory §9.5):
+ * at most load_steps x max_outer x max_plastic sweeps, however the steps split. Returns MC_OK,
+ * MC_NOT_CONVERGED (a load step did not converge and the run stopped there: everything is
+ * still filled from the last iterate, finite, res->converged = 0, res->stop and stop_step say
+ * why and where, the step records end with that step, and err names both), MC_ERR_INTERRUPTED
+ * (prob->stop asked), or an error. */
 int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
                    const mc_plastic_problem *prob, double *p, double *u, double *gap,
                    mc_contact_summary *sum, mc_plastic_result *res, mc_error *err);

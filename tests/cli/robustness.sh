@@ -20,6 +20,8 @@
 #                 range, hexadecimal or infinite heights are exit 2 naming what is accepted
 #   hang_*        no hangs: a doubly periodic grid of a huge cell aspect ratio is refused at once
 #   warn_*        warnings a user can act on: summary.json "warnings" and stderr
+#   plastic_stop_* every plastic run ends (issue 20): scenes that cannot converge end in seconds
+#                 with exit 1, the load step and the reason, converged false and finite fields
 # Every row prints one PASS or FAIL line; the last line is "robustness: N passed, M failed".
 # ROBUST_PAIRS (default 50) and ROBUST_SIGNAL_REPS (default 2) set the repetitions.
 # shellcheck disable=SC2010,SC2012,SC2045 # ls over directories that hold only names this script
@@ -671,6 +673,62 @@ grep -q "belongs to another case" err || why="$why message: $(cat err);"
 [ -f rs/checkpoint/state.bin ] || why="$why the checkpoint was removed;"
 row runin_resume_other_case "$why"
 rm -rf rs rp rref
+
+# ---- 10. every plastic run ends (issue 20; docs/theory.md §9.5) -------------------------------
+# finite_npy FILE: no NaN or Inf among its float64 values (the exponent bits all set)
+finite_npy() {
+    hl=$(od -An -tu2 -j8 -N2 "$1" | tr -d ' ')
+    ! od -An -v -tx8 -j $((10 + hl)) "$1" | tr -s ' ' '\n' | grep -qi '^[7f]ff'
+}
+# plastic_stop NAME SECONDS CASE [FIELDS...]: a plastic scene that cannot converge ends within
+# SECONDS with exit 1, a message that names the load step and the reason, summary.json with
+# plastic "converged": false and plastic.stop, and its fields written and finite
+plastic_stop() {
+    name=$1 secs=$2 case=$3
+    shift 3
+    rm -rf po
+    t0=$(date +%s)
+    timeout $((secs * 3)) "$PROG" run "$case" --out po > out 2> err
+    st=$? t1=$(date +%s)
+    why=""
+    [ $((t1 - t0)) -le "$secs" ] || why="$why took $((t1 - t0)) s (more than $secs s);"
+    [ "$st" -eq 1 ] || why="$why exit $st, not 1: $(tail -c 300 err);"
+    grep -q "load step [0-9]* of [0-9]*" err || why="$why the message names no load step: $(tail -c 300 err);"
+    grep -q "the results are those of the last iterate" err || why="$why the message gives no reason: $(tail -c 300 err);"
+    case $case in runin*) grep -q "running-in step 1 of" err || why="$why the message names no running-in step;" ;; esac
+    if [ -f po/summary.json ]; then
+        sed -n '/"plastic": {/,/^  }/p' po/summary.json > plastic.json
+        grep -q '"converged": false' plastic.json || why="$why plastic converged is not false;"
+        grep -q '"stop": {' plastic.json && grep -q '"reason": "[a-z]' plastic.json &&
+            grep -q '"load_step": [1-9]' plastic.json || why="$why no plastic.stop with step and reason;"
+        for f in pressure gap residual_displacement topography_final plastic_strain residual_von_mises "$@"; do
+            if [ ! -s "po/$f.npy" ]; then why="$why no $f.npy;"
+            elif ! finite_npy "po/$f.npy"; then why="$why $f.npy not finite;"; fi
+        done
+    else
+        why="$why no summary.json;"
+    fi
+    row "$name" "$why"
+    rm -rf po
+}
+# a flat patch at 1 GPa with Y = 100 MPa: beyond what the perfectly plastic body carries (before:
+# 98 s on 8 x 8, then exit 1 and nothing written)
+{ printf '[mesh]\nnx = 8\nny = 8\ndx = 1 um\n[load]\nforce = 0.064 N\n[solver]\nthreads = 1\n'
+  printf '[plasticity]\nhardening = perfect\nyield_stress = 100 MPa\n'; } > flat_overload.ini
+plastic_stop plastic_stop_flat_overload 30 flat_overload.ini
+# the Swift sphere with C = 1e9 (nearly perfectly plastic at 358 MPa) on 20 x 20 in 3 load steps:
+# the outer iteration cycles with a growing change (before: 266 s, every step at its cap)
+{ printf '[mesh]\nnx = 20\nny = 20\ndx = 6 um\n[geometry]\nshape = sphere\nradius = 5 mm\n'
+  printf '[body2]\nrigid = yes\n[load]\nforce = 5 N\n[solver]\nthreads = 1\n'
+  printf '[plasticity]\nhardening = swift\nswift_B = 50 MPa\nswift_C = 1e9\nswift_n = 0.095\n'
+  printf 'load_steps = 3\n'; } > swift_c1e9.ini
+plastic_stop plastic_stop_swift_c1e9 30 swift_c1e9.ini
+# the running-in of cases/default.ini on 32 x 32, perfectly plastic at 50 MPa: the fixed point
+# stalls at its cap (before: 3000 sweeps in every elastic-plastic step, 18 of them)
+sed -e 's/^n\([xy]\) = 64/n\1 = 32/' -e 's/^hardening = swift/hardening = perfect\nyield_stress = 50 MPa/' \
+    -e '/^swift_/d' -e '/^dir = /d' "$REPO/cases/default.ini" > runin_y50.ini
+printf '[solver]\nthreads = 1\n' >> runin_y50.ini
+plastic_stop plastic_stop_runin_y50 30 runin_y50.ini surface_final
 
 echo "robustness: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
