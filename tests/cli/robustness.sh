@@ -695,7 +695,7 @@ plastic_stop() {
     [ "$st" -eq 1 ] || why="$why exit $st, not 1: $(tail -c 300 err);"
     grep -q "load step [0-9]* of [0-9]*" err || why="$why the message names no load step: $(tail -c 300 err);"
     grep -q "the results are those of the last iterate" err || why="$why the message gives no reason: $(tail -c 300 err);"
-    case $case in runin*) grep -q "running-in step 1 of" err || why="$why the message names no running-in step;" ;; esac
+    case $case in runin*) grep -q "running-in step [0-9]* of" err || why="$why the message names no running-in step;" ;; esac
     if [ -f po/summary.json ]; then
         sed -n '/"plastic": {/,/^  }/p' po/summary.json > plastic.json
         grep -q '"converged": false' plastic.json || why="$why plastic converged is not false;"
@@ -711,9 +711,10 @@ plastic_stop() {
     row "$name" "$why"
     rm -rf po
 }
-# a flat patch at 1 GPa with Y = 100 MPa: beyond what the perfectly plastic body carries (before:
-# 98 s on 8 x 8, then exit 1 and nothing written)
-{ printf '[mesh]\nnx = 8\nny = 8\ndx = 1 um\n[load]\nforce = 0.064 N\n[solver]\nthreads = 1\n'
+# a flat patch at 10 GPa with Y = 100 MPa: far beyond what the perfectly plastic body carries
+# (issue 20's 1 GPa patch: before, 98 s on 8 x 8, then exit 1 and nothing written; with the cell
+# averages of theory §8.7 that scene converges in 0.9 s, so the row loads ten times more)
+{ printf '[mesh]\nnx = 8\nny = 8\ndx = 1 um\n[load]\nforce = 0.64 N\n[solver]\nthreads = 1\n'
   printf '[plasticity]\nhardening = perfect\nyield_stress = 100 MPa\n'; } > flat_overload.ini
 plastic_stop plastic_stop_flat_overload 30 flat_overload.ini
 # the Swift sphere with C = 1e9 (nearly perfectly plastic at 358 MPa) on 20 x 20 in 3 load steps:
