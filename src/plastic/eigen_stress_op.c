@@ -33,6 +33,11 @@ typedef struct {
 } table_ctx;
 
 /* the 21 stored pairs of the infinite-space kernel at depth offset m dz */
+/* 3-point Gauss-Legendre on a cell of unit width centred on 0: nodes +-sqrt(3/5)/2, 0 and their
+ * weights (the cell averages of theory.md §8.7) */
+static const double GAUSS3_X[3] = {-0.38729833462074170, 0.0, 0.38729833462074170};
+static const double GAUSS3_W[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+
 static void s1_point(const table_ctx *t, double x, double y, double z, double S[6][6])
 {
     if (t->line)
@@ -55,8 +60,7 @@ static void s1_cell(const table_ctx *t, int di, int dj, double S[6][6])
         s1_point(t, x, y, z, S);
         return;
     }
-    static const double gp[3] = {-0.38729833462074170, 0.0, 0.38729833462074170}; /* sqrt(3/5)/2 */
-    static const double gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+    const double *gp = GAUSS3_X, *gw = GAUSS3_W;
     memset(S, 0, 36 * sizeof S[0][0]);
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < (t->line ? 1 : 3); b++)
@@ -156,8 +160,7 @@ static void love_kernel(int di, int dj, const void *ctx, double *out)
             mc_rect_stress_p(x, y, z, 0.5 * t->dx, 0.5 * t->dy, t->nu, out);
         return;
     }
-    static const double gp[3] = {-0.38729833462074170, 0.0, 0.38729833462074170};
-    static const double gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+    const double *gp = GAUSS3_X, *gw = GAUSS3_W;
     for (int i = 0; i < 6; i++)
         out[i] = 0.0;
     for (int a = 0; a < 3; a++)
