@@ -18,6 +18,7 @@
 #include "kernels/kernel.h"
 #include "operator/operator.h"
 #include "plastic/eigen_op.h"
+#include "eigen_testkit.h"
 #include "test_util.h"
 
 /* ---- tolerances ------------------------------------------------------------------------------ */
@@ -86,41 +87,9 @@ static mc_eigen_volume case_volume(const vol_case *c)
 
 static size_t vol_cells(const mc_eigen_volume *v) { return (size_t)v->nx * v->ny * v->nz; }
 
-/* Six component arrays carved from one block (component-major). */
-static double *alloc_fields(size_t n, double *f[6])
-{
-    double *b = calloc(6 * n, sizeof *b);
-    ck_assert(b != NULL);
-    for (int c = 0; c < 6; c++)
-        f[c] = b + (size_t)c * n;
-    return b;
-}
 
-static double max_abs(const double *a, size_t n)
-{
-    double m = 0.0;
-    for (size_t i = 0; i < n; i++)
-        m = fmax(m, fabs(a[i]));
-    return m;
-}
 
-static mc_eigen_disp *disp_op(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)
-{
-    mc_eigen_disp *op;
-    mc_error err;
-    int rc = mc_eigen_disp_create(g, v, NU, b, &op, &err);
-    ck_assert_msg(rc == MC_OK, "%s", err.msg);
-    return op;
-}
 
-static mc_eigen_stress *stress_op(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)
-{
-    mc_eigen_stress *op;
-    mc_error err;
-    int rc = mc_eigen_stress_create(g, v, NU, b, &op, &err);
-    ck_assert_msg(rc == MC_OK, "%s", err.msg);
-    return op;
-}
 
 /* ---- direct vs fft ------------------------------------------------------------------------- */
 
@@ -130,17 +99,17 @@ START_TEST(test_disp_backends)
     const mc_grid g = case_grid(vc);
     const mc_eigen_volume v = case_volume(vc);
     const size_t n = vol_cells(&v), ns = mc_grid_cells(&g);
-    double *eps[6], *blk = alloc_fields(n, eps);
+    double *eps[6], *blk = eig_fields(n, eps);
     test_random_field(blk, 6 * n, 11 + (unsigned)_i);
     double *ud = malloc(ns * sizeof *ud), *uf = malloc(ns * sizeof *uf);
-    mc_eigen_disp *od = disp_op(&g, &v, MC_BACKEND_DIRECT), *of = disp_op(&g, &v, MC_BACKEND_FFT);
+    mc_eigen_disp *od = eig_disp_op(&g, &v, NU, MC_BACKEND_DIRECT), *of = eig_disp_op(&g, &v, NU, MC_BACKEND_FFT);
     mc_eigen_disp_apply(od, (const double *const *)eps, ud);
     mc_eigen_disp_apply(of, (const double *const *)eps, uf);
     const double e = test_rel_maxdiff(uf, ud, ns);
     if (getenv("MC_TEST_VERBOSE"))
         fprintf(stderr, "disp case %d: fft vs direct %.3g\n", _i, e);
     ck_assert_msg(e <= TOL_BACKENDS, "case %d: fft vs direct %.3g", _i, e);
-    ck_assert(max_abs(ud, ns) > 0.0);
+    ck_assert(eig_max_abs(ud, ns) > 0.0);
     mc_eigen_disp_destroy(&od);
     mc_eigen_disp_destroy(&of);
     free(ud);
@@ -158,10 +127,10 @@ START_TEST(test_stress_backends)
         v.stress_points = MC_EIG_CELL_AVERAGE;
     const size_t n = vol_cells(&v), nw = (size_t)v.nx * v.ny;
     double *eps[6], *sd[6], *sf[6];
-    double *b1 = alloc_fields(n, eps), *b2 = alloc_fields(n, sd), *b3 = alloc_fields(n, sf);
+    double *b1 = eig_fields(n, eps), *b2 = eig_fields(n, sd), *b3 = eig_fields(n, sf);
     test_random_field(b1, 6 * n, 29 + (unsigned)_i);
-    mc_eigen_stress *od = stress_op(&g, &v, MC_BACKEND_DIRECT);
-    mc_eigen_stress *of = stress_op(&g, &v, MC_BACKEND_FFT);
+    mc_eigen_stress *od = eig_stress_op(&g, &v, NU, MC_BACKEND_DIRECT);
+    mc_eigen_stress *of = eig_stress_op(&g, &v, NU, MC_BACKEND_FFT);
     mc_eigen_stress_apply(od, (const double *const *)eps, G_MOD, sd);
     mc_eigen_stress_apply(of, (const double *const *)eps, G_MOD, sf);
     const double e = test_rel_maxdiff(b3, b2, 6 * n);
@@ -173,7 +142,7 @@ START_TEST(test_stress_backends)
     mc_eigen_stress_p3(of, pf);
     const double ep = test_rel_maxdiff(pf, pd, nw);
     ck_assert_msg(ep <= TOL_BACKENDS, "case %d: p3 fft vs direct %.3g", _i, ep);
-    ck_assert(max_abs(b2, 6 * n) > 0.0 && max_abs(pd, nw) > 0.0);
+    ck_assert(eig_max_abs(b2, 6 * n) > 0.0 && eig_max_abs(pd, nw) > 0.0);
     mc_eigen_stress_destroy(&od);
     mc_eigen_stress_destroy(&of);
     free(pd);
@@ -195,10 +164,10 @@ START_TEST(test_disp_impulse)
     const mc_eigen_volume v = case_volume(vc);
     const int is = 1, js = 5, ks = 3, c = _i;
     const size_t n = vol_cells(&v), ns = mc_grid_cells(&g);
-    double *eps[6], *blk = alloc_fields(n, eps);
+    double *eps[6], *blk = eig_fields(n, eps);
     eps[c][((size_t)ks * v.ny + js) * v.nx + is] = 1.0;
     double *u = malloc(ns * sizeof *u), *ref = malloc(ns * sizeof *ref);
-    mc_eigen_disp *op = disp_op(&g, &v, MC_BACKEND_DIRECT);
+    mc_eigen_disp *op = eig_disp_op(&g, &v, NU, MC_BACKEND_DIRECT);
     mc_eigen_disp_apply(op, (const double *const *)eps, u);
     const double xs = mc_grid_x(&g, v.i0 + is), ys = mc_grid_y(&g, v.j0 + js);
     for (int j = 0; j < g.ny; j++)
@@ -235,9 +204,9 @@ START_TEST(test_stress_impulse)
     const size_t n = vol_cells(&v), nw = (size_t)v.nx * v.ny;
     const double hx = 0.5 * g.dx, hy = 0.5 * g.dy;
     double *eps[6], *sig[6], *ref[6];
-    double *b1 = alloc_fields(n, eps), *b2 = alloc_fields(n, sig), *b3 = alloc_fields(n, ref);
+    double *b1 = eig_fields(n, eps), *b2 = eig_fields(n, sig), *b3 = eig_fields(n, ref);
     eps[c][((size_t)ks * v.ny + js) * v.nx + is] = 1.0;
-    mc_eigen_stress *op = stress_op(&g, &v, MC_BACKEND_DIRECT);
+    mc_eigen_stress *op = eig_stress_op(&g, &v, NU, MC_BACKEND_DIRECT);
     mc_eigen_stress_apply(op, (const double *const *)eps, G_MOD, sig);
     /* p3 / 2G of the cuboid on the window, and its check against the operator's p3 */
     double *p3 = malloc(nw * sizeof *p3), *p3op = malloc(nw * sizeof *p3op);
@@ -328,8 +297,8 @@ START_TEST(test_disp_uniform_layer)
     const mc_eigen_volume v = mc_eigen_volume_full(&g, 1, t);
     const size_t mid = (size_t)(g.ny / 2) * g.nx + g.nx / 2;
     const size_t n = mc_grid_cells(&g);
-    double *eps[6], *blk = alloc_fields(n, eps), *u = malloc(n * sizeof *u);
-    mc_eigen_disp *op = disp_op(&g, &v, MC_BACKEND_FFT); /* = direct: test_disp_backends */
+    double *eps[6], *blk = eig_fields(n, eps), *u = malloc(n * sizeof *u);
+    mc_eigen_disp *op = eig_disp_op(&g, &v, NU, MC_BACKEND_FFT); /* = direct: test_disp_backends */
     for (int q = 0; q < 5; q++) {
         for (int c = 0; c < 6; c++)
             for (size_t s = 0; s < n; s++)
@@ -365,10 +334,10 @@ START_TEST(test_stress_uniform_layer)
     const mc_grid g = {SLAB_CELLS, _i ? 1 : SLAB_CELLS, dx, dx, 0, _i};
     const mc_eigen_volume v = mc_eigen_volume_full(&g, nz, t);
     const size_t nw = mc_grid_cells(&g), n = nw * nz;
-    double *eps[6], *sig[6], *b1 = alloc_fields(n, eps), *b2 = alloc_fields(n, sig);
+    double *eps[6], *sig[6], *b1 = eig_fields(n, eps), *b2 = eig_fields(n, sig);
     for (size_t s = 0; s < nw; s++)
         eps[0][kl * nw + s] = eps[1][kl * nw + s] = 1.0;
-    mc_eigen_stress *op = stress_op(&g, &v, MC_BACKEND_FFT); /* = direct: test_stress_backends */
+    mc_eigen_stress *op = eig_stress_op(&g, &v, NU, MC_BACKEND_FFT); /* = direct: test_stress_backends */
     mc_eigen_stress_apply(op, (const double *const *)eps, G_MOD, sig);
     const double ref = -2.0 * G_MOD * (1.0 + NU) / (1.0 - NU), tol = TOL_SLAB(t, w) * fabs(ref);
     const size_t mid = (size_t)(g.ny / 2) * g.nx + g.nx / 2;
@@ -405,7 +374,7 @@ static double top_traction(double dz, double *p3max)
     const mc_grid g = {w, w, 1e-6, 1e-6, 0, 0};
     const mc_eigen_volume v = mc_eigen_volume_full(&g, nz, dz * 1e-6);
     const size_t nw = mc_grid_cells(&g), n = nw * nz;
-    double *eps[6], *sig[6], *b1 = alloc_fields(n, eps), *b2 = alloc_fields(n, sig);
+    double *eps[6], *sig[6], *b1 = eig_fields(n, eps), *b2 = eig_fields(n, sig);
     for (int k = 0; k < nz; k++) {
         const double zc = (k + 0.5) * dz;
         if (zc < 2.0 || zc > 3.0)
@@ -415,12 +384,12 @@ static double top_traction(double dz, double *p3max)
                 for (int c = 0; c < 6; c++)
                     eps[c][k * nw + (size_t)j * w + i] = e6[c] * (1.0 + 0.1 * i - 0.05 * j);
     }
-    mc_eigen_stress *op = stress_op(&g, &v, MC_BACKEND_FFT);
+    mc_eigen_stress *op = eig_stress_op(&g, &v, NU, MC_BACKEND_FFT);
     mc_eigen_stress_apply(op, (const double *const *)eps, G_MOD, sig);
     double *p3 = malloc(nw * sizeof *p3);
     mc_eigen_stress_p3(op, p3);
-    *p3max = max_abs(p3, nw);
-    const double top = max_abs(sig[MC_SZZ], nw); /* layer 0 */
+    *p3max = eig_max_abs(p3, nw);
+    const double top = eig_max_abs(sig[MC_SZZ], nw); /* layer 0 */
     mc_eigen_stress_destroy(&op);
     free(p3);
     free(b1);
@@ -459,7 +428,7 @@ static double reciprocity_error(double h)
     const mc_grid g = {w, w, h * unit, h * unit, 0, 0};
     const mc_eigen_volume v = mc_eigen_volume_full(&g, nz, h * unit);
     const size_t nw = mc_grid_cells(&g), n = nw * nz;
-    double *eps[6], *sig[6], *b1 = alloc_fields(n, eps), *b2 = alloc_fields(n, sig);
+    double *eps[6], *sig[6], *b1 = eig_fields(n, eps), *b2 = eig_fields(n, sig);
     for (int k = 0; k < nz; k++)
         for (int j = 0; j < w; j++)
             for (int i = 0; i < w; i++) {
@@ -469,8 +438,8 @@ static double reciprocity_error(double h)
                 for (int c = 0; c < 6; c++)
                     eps[c][k * nw + (size_t)j * w + i] = e6[c] * b;
             }
-    mc_eigen_stress *os = stress_op(&g, &v, MC_BACKEND_FFT);
-    mc_eigen_disp *od = disp_op(&g, &v, MC_BACKEND_FFT);
+    mc_eigen_stress *os = eig_stress_op(&g, &v, NU, MC_BACKEND_FFT);
+    mc_eigen_disp *od = eig_disp_op(&g, &v, NU, MC_BACKEND_FFT);
     mc_operator *love;
     mc_error err;
     ck_assert_int_eq(mc_operator_plan_love(&g, E_MOD / (1.0 - NU * NU), MC_BACKEND_FFT, &love,
@@ -510,14 +479,14 @@ START_TEST(test_threads)
     const mc_eigen_volume v = case_volume(vc);
     const size_t n = vol_cells(&v), ns = mc_grid_cells(&g);
     double *eps[6], *s1[6], *s2[6];
-    double *b1 = alloc_fields(n, eps), *b2 = alloc_fields(n, s1), *b3 = alloc_fields(n, s2);
+    double *b1 = eig_fields(n, eps), *b2 = eig_fields(n, s1), *b3 = eig_fields(n, s2);
     double *u1 = malloc(ns * sizeof *u1), *u2 = malloc(ns * sizeof *u2);
     test_random_field(b1, 6 * n, 5);
     for (int r = 0; r < 2; r++) {
         mc_threads_scope scope;
         mc_threads_begin(r + 1, &scope);
-        mc_eigen_stress *os = stress_op(&g, &v, MC_BACKEND_FFT);
-        mc_eigen_disp *od = disp_op(&g, &v, MC_BACKEND_FFT);
+        mc_eigen_stress *os = eig_stress_op(&g, &v, NU, MC_BACKEND_FFT);
+        mc_eigen_disp *od = eig_disp_op(&g, &v, NU, MC_BACKEND_FFT);
         mc_eigen_stress_apply(os, (const double *const *)eps, G_MOD, r ? s2 : s1);
         mc_eigen_disp_apply(od, (const double *const *)eps, r ? u2 : u1);
         mc_eigen_stress_destroy(&os);
@@ -558,7 +527,7 @@ static double long_error(int what, int ny, const double *eps_line, const mc_grid
     const mc_grid g = {nx, ny, gl->dx, gl->dy, 0, 0};
     const mc_eigen_volume v = {vl->i0, 0, wx, ny, nz, vl->dz, MC_EIG_CELL_CENTRE};
     const size_t n = (size_t)wx * ny * nz, nl = (size_t)wx * nz;
-    double *eps[6], *blk = alloc_fields(n, eps), *el[6];
+    double *eps[6], *blk = eig_fields(n, eps), *el[6];
     for (int c = 0; c < 6; c++) {
         el[c] = (double *)eps_line + (size_t)c * nl;
         for (int k = 0; k < nz; k++)
@@ -570,7 +539,7 @@ static double long_error(int what, int ny, const double *eps_line, const mc_grid
     const int jc = ny / 2;
     if (what == 0) {
         double *u = malloc((size_t)nx * ny * sizeof *u), *ul = malloc((size_t)nx * sizeof *ul);
-        mc_eigen_disp *op = disp_op(&g, &v, MC_BACKEND_FFT), *ol = disp_op(gl, vl, MC_BACKEND_FFT);
+        mc_eigen_disp *op = eig_disp_op(&g, &v, NU, MC_BACKEND_FFT), *ol = eig_disp_op(gl, vl, NU, MC_BACKEND_FFT);
         mc_eigen_disp_apply(op, (const double *const *)eps, u);
         mc_eigen_disp_apply(ol, (const double *const *)el, ul);
         for (int i = 0; i < nx; i++) {
@@ -582,9 +551,9 @@ static double long_error(int what, int ny, const double *eps_line, const mc_grid
         free(u);
         free(ul);
     } else {
-        double *sig[6], *sl[6], *b2 = alloc_fields(n, sig), *b3 = alloc_fields(nl, sl);
-        mc_eigen_stress *op = stress_op(&g, &v, MC_BACKEND_FFT);
-        mc_eigen_stress *ol = stress_op(gl, vl, MC_BACKEND_FFT);
+        double *sig[6], *sl[6], *b2 = eig_fields(n, sig), *b3 = eig_fields(nl, sl);
+        mc_eigen_stress *op = eig_stress_op(&g, &v, NU, MC_BACKEND_FFT);
+        mc_eigen_stress *ol = eig_stress_op(gl, vl, NU, MC_BACKEND_FFT);
         mc_eigen_stress_apply(op, (const double *const *)eps, G_MOD, sig);
         mc_eigen_stress_apply(ol, (const double *const *)el, G_MOD, sl);
         for (int c = 0; c < 6; c++)
@@ -609,7 +578,7 @@ START_TEST(test_line_vs_long_grid)
     const mc_grid gl = {11, 1, 1e-6, 1.2e-6, 0, 1};
     const mc_eigen_volume vl = {2, 0, 7, 1, 3, 0.7e-6, MC_EIG_CELL_CENTRE};
     const size_t nl = (size_t)vl.nx * vl.nz;
-    double *eps[6], *blk = alloc_fields(nl, eps);
+    double *eps[6], *blk = eig_fields(nl, eps);
     test_random_field(blk, 6 * nl, 71);
     const double e1 = long_error(_i, NY_SHORT, blk, &gl, &vl);
     const double e2 = long_error(_i, NY_LONG, blk, &gl, &vl);

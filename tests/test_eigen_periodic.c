@@ -13,6 +13,7 @@
 #include "core/alloc.h"
 #include "kernels/kernel.h"
 #include "plastic/eigen_op.h"
+#include "eigen_testkit.h"
 #include "test_util.h"
 
 static const double NU = 0.3;
@@ -66,40 +67,9 @@ static mc_eigen_volume vol_of(const pcase *c)
     return v;
 }
 
-static double *fields(size_t n, double *f[6])
-{
-    double *b = calloc(6 * n, sizeof *b);
-    ck_assert(b != NULL);
-    for (int c = 0; c < 6; c++)
-        f[c] = b + (size_t)c * n;
-    return b;
-}
 
-static double max_abs(const double *a, size_t n)
-{
-    double m = 0.0;
-    for (size_t i = 0; i < n; i++)
-        m = fabs(a[i]) > m ? fabs(a[i]) : m;
-    return m;
-}
 
-static mc_eigen_disp *disp_op(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)
-{
-    mc_eigen_disp *op = NULL;
-    mc_error err;
-    int rc = mc_eigen_disp_create(g, v, NU, b, &op, &err);
-    ck_assert_msg(rc == MC_OK, "%s", err.msg);
-    return op;
-}
 
-static mc_eigen_stress *stress_op(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)
-{
-    mc_eigen_stress *op = NULL;
-    mc_error err;
-    int rc = mc_eigen_stress_create(g, v, NU, b, &op, &err);
-    ck_assert_msg(rc == MC_OK, "%s", err.msg);
-    return op;
-}
 
 /* ---- direct vs fft ---------------------------------------------------------------------------- */
 
@@ -110,13 +80,13 @@ START_TEST(test_backends)
     const mc_eigen_volume v = vol_of(pc);
     const size_t nw = (size_t)v.nx * v.ny, n = nw * v.nz, ns = mc_grid_cells(&g);
     double *eps[6], *sd[6], *sf[6];
-    double *b1 = fields(n, eps), *b2 = fields(n, sd), *b3 = fields(n, sf);
+    double *b1 = eig_fields(n, eps), *b2 = eig_fields(n, sd), *b3 = eig_fields(n, sf);
     test_random_field(b1, 6 * n, 71 + (unsigned)_i);
     double *ud = malloc(ns * sizeof *ud), *uf = malloc(ns * sizeof *uf);
     double *pd = malloc(nw * sizeof *pd), *pf = malloc(nw * sizeof *pf);
-    mc_eigen_disp *dd = disp_op(&g, &v, MC_BACKEND_DIRECT), *df = disp_op(&g, &v, MC_BACKEND_FFT);
-    mc_eigen_stress *od = stress_op(&g, &v, MC_BACKEND_DIRECT);
-    mc_eigen_stress *of = stress_op(&g, &v, MC_BACKEND_FFT);
+    mc_eigen_disp *dd = eig_disp_op(&g, &v, NU, MC_BACKEND_DIRECT), *df = eig_disp_op(&g, &v, NU, MC_BACKEND_FFT);
+    mc_eigen_stress *od = eig_stress_op(&g, &v, NU, MC_BACKEND_DIRECT);
+    mc_eigen_stress *of = eig_stress_op(&g, &v, NU, MC_BACKEND_FFT);
     mc_eigen_disp_apply(dd, (const double *const *)eps, ud);
     mc_eigen_disp_apply(df, (const double *const *)eps, uf);
     mc_eigen_stress_apply(od, (const double *const *)eps, G_MOD, sd);
@@ -131,7 +101,7 @@ START_TEST(test_backends)
     ck_assert_msg(eu <= TOL_BACKENDS, "case %d: u_z fft vs direct %.3g", _i, eu);
     ck_assert_msg(es <= TOL_BACKENDS, "case %d: stress fft vs direct %.3g", _i, es);
     ck_assert_msg(ep <= TOL_BACKENDS, "case %d: p3 fft vs direct %.3g", _i, ep);
-    ck_assert(max_abs(ud, ns) > 0.0 && max_abs(b2, 6 * n) > 0.0);
+    ck_assert(eig_max_abs(ud, ns) > 0.0 && eig_max_abs(b2, 6 * n) > 0.0);
     mc_eigen_disp_destroy(&dd);
     mc_eigen_disp_destroy(&df);
     mc_eigen_stress_destroy(&od);
@@ -152,14 +122,14 @@ START_TEST(test_uniform_closed_form)
     const size_t nw = (size_t)v.nx * v.ny, n = nw * v.nz;
     double e[64][6];
     test_random_field(&e[0][0], (size_t)v.nz * 6, 5 + (unsigned)_i);
-    double *eps[6], *sig[6], *b1 = fields(n, eps), *b2 = fields(n, sig);
+    double *eps[6], *sig[6], *b1 = eig_fields(n, eps), *b2 = eig_fields(n, sig);
     for (int k = 0; k < v.nz; k++)
         for (int c = 0; c < 6; c++)
             for (size_t s = 0; s < nw; s++)
                 eps[c][k * nw + s] = e[k][c];
     double *u = malloc(nw * sizeof *u);
-    mc_eigen_disp *od = disp_op(&g, &v, b);
-    mc_eigen_stress *os = stress_op(&g, &v, b);
+    mc_eigen_disp *od = eig_disp_op(&g, &v, NU, b);
+    mc_eigen_stress *os = eig_stress_op(&g, &v, NU, b);
     mc_eigen_disp_apply(od, (const double *const *)eps, u);
     mc_eigen_stress_apply(os, (const double *const *)eps, G_MOD, sig);
     const double a = NU / (1.0 - NU);
@@ -213,7 +183,7 @@ START_TEST(test_strip_uniform_is_line)
     const mc_eigen_volume vs = {0, 0, nx, ny, nz, 0.5e-6, sp}, vl = {0, 0, nx, 1, nz, 0.5e-6, sp};
     const size_t nl = (size_t)nx * nz, ns = nl * ny;
     double *el[6], *es[6], *sl[6], *ss[6];
-    double *b1 = fields(nl, el), *b2 = fields(ns, es), *b3 = fields(nl, sl), *b4 = fields(ns, ss);
+    double *b1 = eig_fields(nl, el), *b2 = eig_fields(ns, es), *b3 = eig_fields(nl, sl), *b4 = eig_fields(ns, ss);
     test_random_field(b1, 6 * nl, 13);
     for (int c = 0; c < 6; c++) {
         if (c == 3 || c == 4) /* xy, yz: odd in y, nothing uniform along y */
@@ -224,13 +194,13 @@ START_TEST(test_strip_uniform_is_line)
                     es[c][((size_t)k * ny + j) * nx + i] = el[c][(size_t)k * nx + i];
     }
     double *ul = malloc(nx * sizeof *ul), *us = malloc((size_t)nx * ny * sizeof *us);
-    mc_eigen_disp *dl = disp_op(&gl, &vl, b), *ds = disp_op(&gs, &vs, b);
-    mc_eigen_stress *ol = stress_op(&gl, &vl, b), *os = stress_op(&gs, &vs, b);
+    mc_eigen_disp *dl = eig_disp_op(&gl, &vl, NU, b), *ds = eig_disp_op(&gs, &vs, NU, b);
+    mc_eigen_stress *ol = eig_stress_op(&gl, &vl, NU, b), *os = eig_stress_op(&gs, &vs, NU, b);
     mc_eigen_disp_apply(dl, (const double *const *)el, ul);
     mc_eigen_disp_apply(ds, (const double *const *)es, us);
     mc_eigen_stress_apply(ol, (const double *const *)el, G_MOD, sl);
     mc_eigen_stress_apply(os, (const double *const *)es, G_MOD, ss);
-    const double umax = max_abs(ul, nx), smax = max_abs(b3, 6 * nl);
+    const double umax = eig_max_abs(ul, nx), smax = eig_max_abs(b3, 6 * nl);
     double du = 0.0, dsg = 0.0;
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++) {
@@ -267,7 +237,7 @@ START_TEST(test_tiled)
     const mc_eigen_volume v1 = {0, 0, nx, ny, nz, 0.5e-6, MC_EIG_CELL_AVERAGE}, v2 = {0, 0, tx, ty, nz, 0.5e-6, MC_EIG_CELL_AVERAGE};
     const size_t n1 = (size_t)nx * ny * nz, n2 = (size_t)tx * ty * nz;
     double *e1[6], *e2[6], *s1[6], *s2[6];
-    double *b1 = fields(n1, e1), *b2 = fields(n2, e2), *b3 = fields(n1, s1), *b4 = fields(n2, s2);
+    double *b1 = eig_fields(n1, e1), *b2 = eig_fields(n2, e2), *b3 = eig_fields(n1, s1), *b4 = eig_fields(n2, s2);
     test_random_field(b1, 6 * n1, 31 + (unsigned)_i);
     for (int c = 0; c < 6; c++)
         for (int k = 0; k < nz; k++)
@@ -276,14 +246,14 @@ START_TEST(test_tiled)
                     e2[c][((size_t)k * ty + j) * tx + i] =
                         e1[c][((size_t)k * ny + j % ny) * nx + i % nx];
     double *u1 = malloc((size_t)nx * ny * sizeof *u1), *u2 = malloc((size_t)tx * ty * sizeof *u2);
-    mc_eigen_disp *d1 = disp_op(&g1, &v1, MC_BACKEND_FFT), *d2 = disp_op(&g2, &v2, MC_BACKEND_FFT);
-    mc_eigen_stress *o1 = stress_op(&g1, &v1, MC_BACKEND_FFT);
-    mc_eigen_stress *o2 = stress_op(&g2, &v2, MC_BACKEND_FFT);
+    mc_eigen_disp *d1 = eig_disp_op(&g1, &v1, NU, MC_BACKEND_FFT), *d2 = eig_disp_op(&g2, &v2, NU, MC_BACKEND_FFT);
+    mc_eigen_stress *o1 = eig_stress_op(&g1, &v1, NU, MC_BACKEND_FFT);
+    mc_eigen_stress *o2 = eig_stress_op(&g2, &v2, NU, MC_BACKEND_FFT);
     mc_eigen_disp_apply(d1, (const double *const *)e1, u1);
     mc_eigen_disp_apply(d2, (const double *const *)e2, u2);
     mc_eigen_stress_apply(o1, (const double *const *)e1, G_MOD, s1);
     mc_eigen_stress_apply(o2, (const double *const *)e2, G_MOD, s2);
-    const double umax = max_abs(u1, (size_t)nx * ny), smax = max_abs(b3, 6 * n1);
+    const double umax = eig_max_abs(u1, (size_t)nx * ny), smax = eig_max_abs(b3, 6 * n1);
     double du = 0.0, dsg = 0.0;
     for (int j = 0; j < ty; j++)
         for (int i = 0; i < tx; i++) {
