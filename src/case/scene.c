@@ -63,10 +63,37 @@ static int lubrication_rules(const mc_scene *s, mc_error *err, const char **sect
         BLAME("load", "force",
               "[lubrication] needs [load] force (the macro normal force F_N); approach, "
               "force_per_length and pressure_file are not supported with the volume equilibrium");
-    if (s->geometry.shape != MC_SHAPE_FLAT)
+    if (s->geometry.shape != MC_SHAPE_FLAT && s->geometry.shape != MC_SHAPE_CYLINDER)
         BLAME("geometry", "shape",
-              "[lubrication] needs [geometry] shape = flat: a rough patch standing for the "
-              "centre of the macro contact (a curved macro geometry is not supported yet)");
+              "[lubrication] needs [geometry] shape = flat (a rough patch standing for the "
+              "centre of the macro contact) or cylinder (the whole line contact on a strip "
+              "periodic along y); a sphere or ellipsoid (a crowned, elliptical whole contact) "
+              "is not supported with the volume equilibrium yet");
+    if (s->geometry.shape == MC_SHAPE_CYLINDER) {
+        /* the whole contact (theory.md §11.5): the grid carries the macro geometry */
+        if (!s->grid.periodic_y || s->grid.periodic_x)
+            BLAME("mesh", "periodic_y",
+                  "[lubrication] with [geometry] shape = cylinder (the whole line contact) needs "
+                  "a strip: periodic_y = yes and x free (the Hertz band lies across x)");
+        if (!(s->lubrication.width > 0))
+            BLAME("lubrication", "width",
+                  "[lubrication] with [geometry] shape = cylinder needs width (the strip carries "
+                  "w' = F_N / width per length along y)");
+        double rx = s->lubrication.macro_radius;
+        const char *rkey = "macro_radius";
+        if (!(rx > 0) && s->lubrication.radius1 > 0 && s->lubrication.radius2 > 0) {
+            rx = s->lubrication.radius1 * s->lubrication.radius2 /
+                 (s->lubrication.radius1 + s->lubrication.radius2);
+            rkey = "radius1";
+        }
+        if (rx > 0 && !(fabs(s->geometry.radius - rx) <= 1e-9 * rx))
+            BLAME("geometry", "radius",
+                  "[geometry] radius = %.9g mm is not the reduced radius R_x = %.9g mm of "
+                  "[lubrication] %s%s: the whole contact's cylinder is the discs' macro gap "
+                  "(R_x = R1 R2 / (R1 + R2)); make them equal",
+                  s->geometry.radius * 1e3, rx * 1e3, rkey,
+                  rkey[6] == '1' ? " and radius2" : "");
+    }
     if (isfinite(s->load.pressure_cap))
         BLAME("load", "pressure_cap",
               "[load] pressure_cap cannot be combined with [lubrication] (not supported)");
@@ -90,7 +117,7 @@ static int lubrication_rules(const mc_scene *s, mc_error *err, const char **sect
         if (!(s->lubrication.width > 0))
             BLAME("lubrication", "width",
                   "[lubrication] film = ehl needs width (the load per length w' = F_N / width)");
-    } else if (!(rx > 0) && s->lubrication.width > 0)
+    } else if (!(rx > 0) && s->lubrication.width > 0 && s->geometry.shape != MC_SHAPE_CYLINDER)
         BLAME("lubrication", "width",
               "[lubrication] width has no effect without macro_radius when film = given (the "
               "scene's own load is used)");

@@ -62,6 +62,10 @@ typedef struct {
     double psi_load, psi_area, pocket_height; /* solid contact ratios; V / (A_nom - A_C), m */
     double mu;             /* mu = psi mu_solid + (1 - psi) mu_fluid */
     const char *psi_kind;  /* "load" | "area": the psi of mu */
+    int whole;             /* 1: the whole contact (the grid carries the macro cylinder, the
+                              nominal area is the Hertz band |x| <= b; theory.md §11.5) */
+    const char *profile;   /* whole: "uniform" | "hertz", the lubricant pressure profile */
+    double nominal_area;   /* the volume equilibrium's nominal area, m^2 */
 } mc_lube_summary;
 
 /* The elastic-plastic stage ([plasticity]). */
@@ -152,6 +156,8 @@ typedef struct {
     mc_stress_layout stress_layout;
 
     mc_lube_summary lube;
+    double *lube_profile; /* ny*nx: the whole contact's lubricant pressure profile w (lube/
+                             volume.h), NULL for a patch (stage_lube.h mc_lube_profile) */
 
     /* elastic-plastic stage (NULL / 0 when not run) */
     mc_plastic_summary plastic;

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/alloc.h"
 #include "lube/film.h"
 #include "lube/friction.h"
 #include "lube/volume.h"
@@ -20,7 +21,10 @@ int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, m
     lube->film = sc->lubrication.film == MC_FILM_EHL ? "ehl" : "given";
     lube->formula = "";
     lube->psi_kind = mc_psi_name(sc->lubrication.psi);
+    lube->whole = sc->geometry.shape == MC_SHAPE_CYLINDER;
     double rx = sc->lubrication.macro_radius;
+    if (lube->whole) /* the scene checked that it equals macro_radius or R1 R2 / (R1 + R2) */
+        rx = sc->geometry.radius;
     if (!(rx > 0) && sc->lubrication.radius1 > 0 && sc->lubrication.radius2 > 0) {
         int rc = mc_film_reduced_radius(sc->lubrication.radius1, sc->lubrication.radius2, &rx, err);
         if (rc != MC_OK)
@@ -34,9 +38,32 @@ int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, m
         if (rc != MC_OK)
             return rc;
     }
-    /* with a macro radius the patch is the centre of the macro contact, loaded with p_H */
-    lube->patch_load = lube->hertz_pressure > 0 ? lube->hertz_pressure * a_nom : sc->load.value;
-    lube->nominal_pressure = lube->patch_load / a_nom;
+    if (lube->whole) {
+        /* the whole contact: the strip carries w' per length along y; the nominal area is the
+         * Hertz band, which must lie inside the grid with a margin for the rough edge */
+        const double half = 0.5 * g->nx * g->dx, b = lube->hertz_half_width;
+        if (!(MC_WHOLE_BAND_MARGIN * b <= half))
+            return mc_fail(err, MC_ERR_INPUT,
+                           "[mesh] the grid spans |x| <= %.6g um, too narrow for the whole "
+                           "contact at F_N = %.6g N: the Hertz band |x| <= b = %.6g um plus %.0f %% "
+                           "needs nx >= %.0f at dx = %.6g um",
+                           half * 1e6, sc->load.value, b * 1e6,
+                           (MC_WHOLE_BAND_MARGIN - 1.0) * 100.0,
+                           ceil(2.0 * MC_WHOLE_BAND_MARGIN * b / g->dx), g->dx * 1e6);
+        size_t nband = 0;
+        for (int i = 0; i < g->nx; i++)
+            nband += fabs(mc_grid_x(g, i)) <= b;
+        lube->nominal_area = (double)nband * (double)g->ny * mc_grid_cell_area(g);
+        lube->patch_load = lube->load_per_length * g->ny * g->dy;
+        lube->nominal_pressure = lube->patch_load / lube->nominal_area;
+        lube->profile = sc->lubrication.profile == MC_PROFILE_HERTZ ? "hertz" : "uniform";
+    } else {
+        /* with a macro radius the patch is the centre of the macro contact, loaded with p_H */
+        lube->patch_load = lube->hertz_pressure > 0 ? lube->hertz_pressure * a_nom
+                                                    : sc->load.value;
+        lube->nominal_area = a_nom;
+        lube->nominal_pressure = lube->patch_load / a_nom;
+    }
     if (sc->lubrication.film == MC_FILM_GIVEN) {
         lube->h_ehd = sc->lubrication.film_thickness;
         return MC_OK;
@@ -73,14 +100,48 @@ int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, m
     return rc;
 }
 
+int mc_lube_profile(const mc_scene *sc, mc_results *res, mc_error *err)
+{
+    if (!res->lube.whole)
+        return MC_OK;
+    const mc_grid *g = &res->grid;
+    const size_t n = mc_grid_cells(g);
+    if (!res->lube_profile && !(res->lube_profile = mc_malloc(n * sizeof *res->lube_profile)))
+        return mc_fail(err, MC_ERR_NOMEM, "lubrication: out of memory for the profile");
+    const double b = res->lube.hertz_half_width;
+    const int hertz = sc->lubrication.profile == MC_PROFILE_HERTZ;
+    double sum = 0;
+    long nband = 0;
+    double *row = res->lube_profile; /* the profile depends on x alone: row 0, then copies */
+    for (int i = 0; i < g->nx; i++) {
+        const double t = mc_grid_x(g, i) / b;
+        row[i] = fabs(t) <= 1.0 ? (hertz ? sqrt(fmax(0.0, 1.0 - t * t)) : 1.0) : 0.0;
+        sum += row[i];
+        nband += row[i] > 0;
+    }
+    if (!(sum > 0))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "lubrication: the Hertz band b = %.6g um holds no cell centre of the grid "
+                       "(dx = %.6g um)",
+                       b * 1e6, g->dx * 1e6);
+    for (int i = 0; i < g->nx; i++) /* mean 1 over the band: p_lub is the band's mean */
+        row[i] *= (double)nband / sum;
+    for (int j = 1; j < g->ny; j++)
+        memcpy(row + (size_t)j * g->nx, row, (size_t)g->nx * sizeof *row);
+    return MC_OK;
+}
+
 int mc_lube_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, const double *h_extra,
                   const double *p_start, mc_results *res, mc_error *err)
 {
     mc_lube_summary *lube = &res->lube;
     int rc = mc_lube_macro(sc, &res->grid, lube, err);
+    if (rc == MC_OK)
+        rc = mc_lube_profile(sc, res, err);
     if (rc != MC_OK)
         return rc;
-    mc_volume_problem prob = {.h = res->topography,
+    mc_volume_problem prob = {.weight = res->lube_profile,
+                              .h = res->topography,
                               .h_extra = h_extra,
                               .load = lube->patch_load,
                               .h_target = lube->h_ehd,
@@ -114,8 +175,10 @@ int mc_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_results *
     const size_t n = mc_grid_cells(&res->grid);
     mc_lube_split split;
     mc_error serr = {0};
-    int src = mc_lube_split_of(res->pressure, res->gap, n, mc_grid_cell_area(&res->grid),
-                               vr->p_lub, lube->patch_load, &split, &serr);
+    int src = mc_lube_split_weighted(res->pressure, res->gap,
+                                     lube->whole ? res->lube_profile : NULL, n,
+                                     mc_grid_cell_area(&res->grid), vr->p_lub, lube->patch_load,
+                                     &split, &serr);
     /* psi_load = F_solid / F_N reaches 1 + round-off in the dry regime (the load is met to the
      * contact tolerance): clamp what is within that, refuse anything beyond */
     double psi = mc_lube_split_psi(&split, sc->lubrication.psi);
@@ -144,6 +207,7 @@ int mc_lube_contact_step(void *ctx, const mc_contact_problem *cp, double *p, dou
                               .load = cp->load,
                               .h_target = lc->h_target,
                               .tolerance = lc->tolerance,
+                              .weight = lc->weight,
                               .p_start = cp->p_start};
     if (lc->calls > 0 && lc->last.regime == MC_REGIME_MIXED) { /* the last root as the guess */
         prob.p_lub_guess = lc->last.p_lub;
