@@ -427,7 +427,7 @@ END_TEST
 /* max(a, b) that keeps a NaN (fmax drops it): a NaN deviation must fail the bound it meets */
 static double max_keep_nan(double a, double b) { return isnan(a) || isnan(b) ? NAN : fmax(a, b); }
 
-/* ---- the whole contact: a lubricant pressure profile over the Hertz band (theory.md §11.5) -- */
+/* ---- the whole contact: a lubricant pressure profile over the Hertz band (theory.md §11.4) -- */
 
 /* A smooth cylinder R on a line grid (ny = 1, periodic y: plane strain), nx cells of dx; the band
  * |x| <= b holds the profile w = 1. */

@@ -364,7 +364,7 @@ const case_key mc_keys[] = {
      .doc = "The whole contact (shape = cylinder): the lubricant pressure over the Hertz band "
             "|x| <= b, the nominal area of the volume equilibrium. uniform: one p_lub in the "
             "valleys (the paper's); hertz: a profile shaped like the smooth contact's pressure, "
-            "scaled by the unknown (theory.md §11.5)."},
+            "scaled by the unknown (theory.md §11.4)."},
     {.section = "lubrication", .name = "tolerance", .kind = K_REAL, .unit = MC_UNIT_NONE,
      .lo = 1e-12, .hi = 0.1, .def = "1e-6", .off = AT(lubrication.tolerance),
      .doc = "Relative tolerance of the volume root: abs(V - V*) / V*."},

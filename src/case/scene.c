@@ -70,7 +70,7 @@ static int lubrication_rules(const mc_scene *s, mc_error *err, const char **sect
               "periodic along y); a sphere or ellipsoid (a crowned, elliptical whole contact) "
               "is not supported with the volume equilibrium yet");
     if (s->geometry.shape == MC_SHAPE_CYLINDER) {
-        /* the whole contact (theory.md §11.5): the grid carries the macro geometry */
+        /* the whole contact (theory.md §11.4): the grid carries the macro geometry */
         if (!s->grid.periodic_y || s->grid.periodic_x)
             BLAME("mesh", "periodic_y",
                   "[lubrication] with [geometry] shape = cylinder (the whole line contact) needs "
@@ -93,6 +93,20 @@ static int lubrication_rules(const mc_scene *s, mc_error *err, const char **sect
                   "(R_x = R1 R2 / (R1 + R2)); make them equal",
                   s->geometry.radius * 1e3, rx * 1e3, rkey,
                   rkey[6] == '1' ? " and radius2" : "");
+        /* the Hertz band of the largest force must lie inside the grid (stage_lube.h: the same
+         * rule at run time, MC_WHOLE_BAND_MARGIN) */
+        double fmax_ = s->load.value;
+        for (int f = 0; s->runin.enabled && f < s->runin.nforces; f++)
+            fmax_ = fmax(fmax_, s->runin.forces[f]);
+        const double estar = mc_scene_estar(s), r = s->geometry.radius;
+        const double b = sqrt(4.0 * (fmax_ / s->lubrication.width) * r / (M_PI * estar));
+        const double half = 0.5 * s->grid.nx * s->grid.dx;
+        if (!(1.1 * b <= half))
+            BLAME("mesh", "nx",
+                  "[mesh] the grid spans |x| <= %.4g um, too narrow for the whole contact at "
+                  "F_N = %.6g N: the Hertz band |x| <= b = %.4g um plus 10 %% needs nx >= %.0f at "
+                  "dx = %.4g um",
+                  half * 1e6, fmax_, b * 1e6, ceil(2.2 * b / s->grid.dx), s->grid.dx * 1e6);
     }
     if (isfinite(s->load.pressure_cap))
         BLAME("load", "pressure_cap",

@@ -45,7 +45,7 @@ typedef enum { MC_FILM_EHL, MC_FILM_GIVEN } mc_film_source;
 typedef enum { MC_CRITERION_VON_MISES, MC_CRITERION_PRESSURE_CAP } mc_yield_criterion;
 typedef enum { MC_TABLE_UNIT_PA, MC_TABLE_UNIT_MPA, MC_TABLE_UNIT_GPA } mc_table_unit;
 /* [lubrication] lubricant_profile: the lubricant pressure over the Hertz band of the whole
- * contact (theory.md §11.5): one p_lub on the band (the paper's), or a Hertz-shaped profile */
+ * contact (theory.md §11.4): one p_lub on the band (the paper's), or a Hertz-shaped profile */
 typedef enum { MC_PROFILE_UNIFORM, MC_PROFILE_HERTZ } mc_lube_profile_kind;
 /* [runin] nominal_deflection: the patch's own bowl under its nominal pressure (pipeline/runin.h) */
 typedef enum { MC_DEFLECTION_REMOVE, MC_DEFLECTION_KEEP } mc_nominal_deflection;

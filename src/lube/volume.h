@@ -66,7 +66,7 @@ typedef struct {
     /* The lubricant pressure profile w (ny*nx, >= 0, finite; NULL = 1 everywhere, the patch):
      * the lubricant pressure of cell i is p_lub w_i, the nominal area is the cells with
      * w_i > 0 (A_nom = dA |{w > 0}|) and V sums the gap over them alone. The whole contact of a
-     * macro geometry (theory.md §11.5) sets w = 1 on the Hertz band |x| <= b and 0 outside (or
+     * macro geometry (theory.md §11.4) sets w = 1 on the Hertz band |x| <= b and 0 outside (or
      * a Hertz-shaped profile): the macro gap outside the band is not lubricant of the contact.
      * p_nominal = F_N / (dA sum w) is the p_lub at which the fluid carries the whole load. */
     const double *weight;

@@ -63,7 +63,7 @@ typedef struct {
     double mu;             /* mu = psi mu_solid + (1 - psi) mu_fluid */
     const char *psi_kind;  /* "load" | "area": the psi of mu */
     int whole;             /* 1: the whole contact (the grid carries the macro cylinder, the
-                              nominal area is the Hertz band |x| <= b; theory.md §11.5) */
+                              nominal area is the Hertz band |x| <= b; theory.md §11.4) */
     const char *profile;   /* whole: "uniform" | "hertz", the lubricant pressure profile */
     double nominal_area;   /* the volume equilibrium's nominal area, m^2 */
 } mc_lube_summary;

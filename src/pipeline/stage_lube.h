@@ -20,7 +20,7 @@ int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, m
 /* The whole contact's Hertz band must lie within the grid with this factor of margin on b. */
 #define MC_WHOLE_BAND_MARGIN 1.1
 
-/* The lubricant pressure profile w of the whole contact (lube/volume.h, theory.md §11.5) into
+/* The lubricant pressure profile w of the whole contact (lube/volume.h, theory.md §11.4) into
  * res->lube_profile (allocated on first use), from the macro contact in res->lube
  * (mc_lube_macro): uniform 1 on the Hertz band |x| <= b, or (hertz) sqrt(1 - (x/b)^2) scaled to
  * mean 1 over the band's cells; 0 outside. For a patch (res->lube.whole = 0) nothing is done
