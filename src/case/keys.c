@@ -362,7 +362,7 @@ const case_key mc_keys[] = {
      .choices = "uniform hertz", .def = "uniform", .use = USE_WHEN, .use_key = "geometry.shape",
      .use_values = "cylinder", .off = AT(lubrication.profile),
      .doc = "The whole contact (shape = cylinder): the lubricant pressure over the Hertz band "
-            "|x| <= b, the nominal area of the volume equilibrium. uniform: one p_lub in the "
+            "within b of the axis, the nominal area of the volume equilibrium. uniform: one p_lub in the "
             "valleys (the paper's); hertz: a profile shaped like the smooth contact's pressure, "
             "scaled by the unknown (theory.md §11.4)."},
     {.section = "lubrication", .name = "tolerance", .kind = K_REAL, .unit = MC_UNIT_NONE,
