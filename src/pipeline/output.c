@@ -602,6 +602,12 @@ static int write_runin(out_ctx *c, mc_error *err)
         {"runin_psi.png", "mean pocket height h_pocket [um]", "solid contact ratio psi_load",
          "pocket_height", "psi_load", 1e6, 1},
         {"runin_mu.png", "disc speed [rpm]", "friction coefficient mu", "rpm", "mu", 1, 1}};
+    for (int g = 0; g < 3; g++)
+        if (!runin_column(figs[g].x) || !runin_column(figs[g].y)) {
+            fclose(f);
+            return mc_fail(err, MC_ERR_INTERNAL, "runin.gp: '%s' or '%s' is not a column of "
+                           "runin.csv", figs[g].x, figs[g].y);
+        }
     for (int g = 0; g < 3; g++) {
         fprintf(f, "\nset output '%s'\nset xlabel '%s'\nset ylabel '%s'\n%s", figs[g].png,
                 figs[g].xlabel, figs[g].ylabel, g == 2 ? "set logscale x\n" : "unset logscale x\n");
