@@ -503,8 +503,9 @@ static int write_runin_maps(out_ctx *c, FILE *f, mc_error *err)
     if (!(hi > lo))
         hi = lo + 1e-9;
     const double w = g->nx * g->dx * 1e6, h = g->ny * g->dy * 1e6;
-    fprintf(f, "\n# the height maps (surface_*.npy: float64, ny x nx, x fastest, after a header of "
-               "the\n# bytes skipped), x and y in um at the cell centres, heights in um\n"
+    fprintf(f, "\n# the height maps: the .npy files read as raw float64, ny x nx with x fastest, "
+               "after their\n# header (skip = its bytes); x and y in um at the cell centres, "
+               "heights in um\n"
                "set output 'runin_surface.png'\n"
                "set terminal pngcairo size %d,%d font 'sans,11'\n"
                "unset logscale x\nunset key\nset size ratio -1\nset xlabel 'x [um]'\n"
