@@ -558,7 +558,8 @@ const case_section mc_key_sections[] = {
      "then the run-up, elastic on the run-in surface. The scene itself is the first step: [load] "
      "force is the first force, [lubrication] rpm (film = ehl, with radius1, radius2) the first "
      "speed, [load] lubricant_pressure = auto. Without [plasticity] the material is elastic and "
-     "nothing runs in. Writes runin.csv, runin.gp, surface_initial.npy, surface_final.npy; "
+     "nothing runs in. Writes runin.csv, runin.gp, surface_initial.npy, surface_final.npy, "
+     "material_ratio.csv; "
      "checkpoints in DIR/checkpoint/ for --resume."},
 };
 
