@@ -144,6 +144,36 @@ static void smooth(vf_ctx *ctx)
     mc_results_free(&r);
 }
 
+/* The whole crowned contact (shape = ellipsoid on a free grid), smooth, with a film of 0.1 nm (the
+ * fluid then takes a few MPa in the ellipse's last cells and leaves the Hertz pressure): the elliptical Hertz contact (Johnson 1985 §4.2; reference/hertz.h, itself checked
+ * against the contact solver in tests/test_hertz.c): p_max, the nominal area pi a b. */
+static void crowned(vf_ctx *ctx)
+{
+    mc_results r;
+    const char *text = "[mesh]\nnx = 64\nny = 288\ndx = 0.8 um\n"
+                       "[geometry]\nshape = ellipsoid\nradius_x = 2 mm\nradius_y = 20 mm\n"
+                       "[load]\nforce = 3 N\nlubricant_pressure = auto\n"
+                       "[lubrication]\nfilm = given\nfilm_thickness = 0.1 nm\ntolerance = 1e-3\n";
+    if (run_pipeline(ctx, "crowned_run", text, &r) == 0) {
+        const mc_lube_summary *l = &r.lube;
+        double pmax = 0;
+        for (size_t i = 0; i < mc_grid_cells(&r.grid); i++)
+            pmax = vf_worst(pmax, r.pressure[i]);
+        /* 27 cells across the short semi-axis: the peak is the centre's, within 0.5 % */
+        vf_check(ctx, "crowned_p0", "crowned whole contact: p_max / elliptical Hertz p0",
+                 "Johnson (1985) §4.2", 1, pmax / l->hertz_pressure, 5e-3, VF_REL);
+        /* the ellipse's cells against its area: the boundary cells, ~ perimeter dx / area */
+        vf_check(ctx, "crowned_area", "crowned: nominal area (cells in the ellipse) / pi a b",
+                 "the Hertz ellipse", 1, l->nominal_area / (M_PI * l->hertz_half_width *
+                                                            l->hertz_half_length),
+                 0.02, VF_REL);
+        vf_info(ctx, "crowned_axes", "crowned: a / b of the Hertz ellipse (R_y / R_x = 10)",
+                "Hamrock & Brewe: 1.0339 (R_y/R_x)^0.636 = 4.47", NAN,
+                l->hertz_half_length / l->hertz_half_width);
+    }
+    mc_results_free(&r);
+}
+
 /* The peak plastic strain in the outer ring of cells (within `ring` cells of a free edge of the
  * plastic window) over the peak inside it: the patch's edge artefact. */
 static double ring_ratio(const mc_results *r, int ring, int free_y)
@@ -390,6 +420,7 @@ int vf_suite_whole_contact(vf_ctx *ctx, int fast)
             "field near the surface, its edge ring, psi).\n\n");
     smooth(ctx); /* the same in both variants: at dx = 0.4 um the vanishing film's root is
                   * below the contact tolerance's resolution (the equilibrium stops) */
+    crowned(ctx);
     rough_compare(ctx);
     runin(ctx, fast);
     return 0;

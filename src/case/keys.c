@@ -360,9 +360,10 @@ const case_key mc_keys[] = {
      .doc = "Solid contact ratio of the friction mix mu = psi mu_solid + (1 - psi) mu_fluid."},
     {.section = "lubrication", .name = "lubricant_profile", .kind = K_ENUM,
      .choices = "uniform hertz", .def = "uniform", .use = USE_WHEN, .use_key = "geometry.shape",
-     .use_values = "cylinder", .off = AT(lubrication.profile),
-     .doc = "The whole contact (shape = cylinder): the lubricant pressure over the Hertz band "
-            "within b of the axis, the nominal area of the volume equilibrium. uniform: one p_lub in the "
+     .use_values = "cylinder ellipsoid", .off = AT(lubrication.profile),
+     .doc = "The whole contact (shape = cylinder: the line contact on a strip; ellipsoid: the "
+            "crowned contact on a free grid): the lubricant pressure over the Hertz band (or "
+            "ellipse), the nominal area of the volume equilibrium. uniform: one p_lub in the "
             "valleys (the paper's); hertz: a profile shaped like the smooth contact's pressure, "
             "scaled by the unknown (theory.md §11.4)."},
     {.section = "lubrication", .name = "tolerance", .kind = K_REAL, .unit = MC_UNIT_NONE,

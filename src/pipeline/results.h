@@ -65,6 +65,9 @@ typedef struct {
     int whole;             /* 1: the whole contact (the grid carries the macro cylinder, the
                               nominal area is the Hertz band |x| <= b; theory.md §11.4) */
     const char *profile;   /* whole: "uniform" | "hertz", the lubricant pressure profile */
+    int crowned;           /* whole and crowned ([geometry] shape = ellipsoid): the nominal area
+                              is the Hertz ellipse |x/b|^2 + |y/a|^2 <= 1 */
+    double hertz_half_length; /* crowned: the ellipse's semi-axis a along y, m (0 otherwise) */
     double nominal_area;   /* the volume equilibrium's nominal area, m^2 */
 } mc_lube_summary;
 

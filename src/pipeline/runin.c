@@ -430,7 +430,7 @@ static int setup(runin_ctx *c, mc_error *err)
     if (rc != MC_OK)
         return rc;
     c->hash = mc_runin_case_hash(sc, c->h0, c->n);
-    if (sc->geometry.shape == MC_SHAPE_CYLINDER) { /* the whole contact (stage_lube.h) */
+    if (mc_lube_is_whole(sc)) { /* the whole contact (stage_lube.h) */
         double fmax_ = 0;
         for (int f = 0; f < c->nf; f++)
             fmax_ = fmax(fmax_, c->forces[f]);
@@ -445,7 +445,7 @@ static int setup(runin_ctx *c, mc_error *err)
         for (int j = 0; j < c->g.ny; j++)
             for (int i = 0; i < c->g.nx; i++)
                 c->rmask[(size_t)j * c->g.nx + i] =
-                    fabs(mc_grid_x(&c->g, i)) <= widest.hertz_half_width;
+                    mc_lube_nominal_shape(&widest, mc_grid_x(&c->g, i), mc_grid_y(&c->g, j), 0) > 0;
     }
     /* a simulated window is much shorter than the ISO 4288 cut-off (0.8 mm for ground
      * surfaces): without a [roughness] cutoff the rows are only levelled (their mean removed),
@@ -472,7 +472,7 @@ static int setup(runin_ctx *c, mc_error *err)
                                .estar = estar};
     if (rc == MC_OK)
         rc = mc_contact_create(c->K, &copt, &c->solver, err);
-    const int whole = sc->geometry.shape == MC_SHAPE_CYLINDER; /* stage_lube.h */
+    const int whole = mc_lube_is_whole(sc);
     if (rc == MC_OK && sc->runin.deflection == MC_DEFLECTION_REMOVE && !whole) {
         double *one = mc_zeros(c->n);
         if (!one || !(c->bowl = mc_zeros(c->n))) {

@@ -8,6 +8,7 @@
 #include "lube/film.h"
 #include "lube/friction.h"
 #include "lube/volume.h"
+#include "reference/hertz.h"
 
 static const double RAD_S_PER_RPM = 6.283185307179586476925286766559 / 60.0;
 
@@ -21,16 +22,27 @@ int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, m
     lube->film = sc->lubrication.film == MC_FILM_EHL ? "ehl" : "given";
     lube->formula = "";
     lube->psi_kind = mc_psi_name(sc->lubrication.psi);
-    lube->whole = sc->geometry.shape == MC_SHAPE_CYLINDER;
+    lube->whole = mc_lube_is_whole(sc);
+    lube->crowned = sc->geometry.shape == MC_SHAPE_ELLIPSOID;
     double rx = sc->lubrication.macro_radius;
     if (lube->whole) /* the scene checked that it equals macro_radius or R1 R2 / (R1 + R2) */
-        rx = sc->geometry.radius;
+        rx = lube->crowned ? sc->geometry.radius_x : sc->geometry.radius;
     if (!(rx > 0) && sc->lubrication.radius1 > 0 && sc->lubrication.radius2 > 0) {
         int rc = mc_film_reduced_radius(sc->lubrication.radius1, sc->lubrication.radius2, &rx, err);
         if (rc != MC_OK)
             return rc;
     }
-    if (rx > 0 && sc->lubrication.width > 0) {
+    if (lube->crowned) { /* the elliptical Hertz contact of F_N */
+        mc_hertz_ellipse he;
+        int rc = mc_hertz_ellipse_from_load(rx, sc->geometry.radius_y, estar, sc->load.value, &he,
+                                            err);
+        if (rc != MC_OK)
+            return rc;
+        lube->macro_radius = rx;
+        lube->hertz_half_width = he.ax;
+        lube->hertz_half_length = he.ay;
+        lube->hertz_pressure = he.p0;
+    } else if (rx > 0 && sc->lubrication.width > 0) {
         lube->macro_radius = rx;
         lube->load_per_length = sc->load.value / sc->lubrication.width;
         int rc = mc_film_hertz_line(lube->load_per_length, rx, estar, &lube->hertz_half_width,
@@ -42,6 +54,12 @@ int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, m
         /* the whole contact: the strip carries w' per length along y; the nominal area is the
          * Hertz band, which must lie inside the grid with a margin for the rough edge */
         const double half = 0.5 * g->nx * g->dx, b = lube->hertz_half_width;
+        const double halfy = 0.5 * g->ny * g->dy, a = lube->hertz_half_length;
+        if (lube->crowned && !(MC_WHOLE_BAND_MARGIN * a <= halfy))
+            return mc_fail(err, MC_ERR_INPUT,
+                           "[mesh] the grid spans |y| <= %.6g um, too short for the whole crowned "
+                           "contact at F_N = %.6g N: its Hertz ellipse reaches a = %.6g um",
+                           halfy * 1e6, sc->load.value, a * 1e6);
         if (!(MC_WHOLE_BAND_MARGIN * b <= half))
             return mc_fail(err, MC_ERR_INPUT,
                            "[mesh] the grid spans |x| <= %.6g um, too narrow for the whole "
@@ -51,10 +69,12 @@ int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, m
                            (MC_WHOLE_BAND_MARGIN - 1.0) * 100.0,
                            ceil(2.0 * MC_WHOLE_BAND_MARGIN * b / g->dx), g->dx * 1e6);
         size_t nband = 0;
-        for (int i = 0; i < g->nx; i++)
-            nband += fabs(mc_grid_x(g, i)) <= b;
-        lube->nominal_area = (double)nband * (double)g->ny * mc_grid_cell_area(g);
-        lube->patch_load = lube->load_per_length * g->ny * g->dy;
+        for (int j = 0; j < g->ny; j++)
+            for (int i = 0; i < g->nx; i++)
+                nband += mc_lube_nominal_shape(lube, mc_grid_x(g, i), mc_grid_y(g, j), 0) > 0;
+        lube->nominal_area = (double)nband * mc_grid_cell_area(g);
+        /* the strip carries w' per length; the crowned contact the whole F_N */
+        lube->patch_load = lube->crowned ? sc->load.value : lube->load_per_length * g->ny * g->dy;
         lube->nominal_pressure = lube->patch_load / lube->nominal_area;
         lube->profile = sc->lubrication.profile == MC_PROFILE_HERTZ ? "hertz" : "uniform";
     } else {
@@ -93,11 +113,24 @@ int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, m
                         /* line formulas take w', point formulas F_N with a circular contact */
                         .load = mc_film_formula_is_point(f) ? sc->load.value
                                                             : lube->load_per_length,
-                        .k = mc_film_ellipticity(1.0)};
+                        /* the crowned contact's ellipticity, else the circle's */
+                        .k = mc_film_ellipticity(lube->crowned ? sc->geometry.radius_y /
+                                                                     sc->geometry.radius_x
+                                                               : 1.0)};
     rc = mc_film_thickness(f, &in, &lube->h_ehd, err);
     if (rc != MC_OK)
         mc_error_prefix(err, "[lubrication] film = ehl: ");
     return rc;
+}
+
+double mc_lube_nominal_shape(const mc_lube_summary *lube, double x, double y, int hertz)
+{
+    const double tx = x / lube->hertz_half_width;
+    const double ty = lube->crowned ? y / lube->hertz_half_length : 0.0;
+    const double r2 = tx * tx + ty * ty;
+    if (!(r2 <= 1.0))
+        return 0.0;
+    return hertz ? sqrt(1.0 - r2) : 1.0;
 }
 
 int mc_lube_profile(const mc_scene *sc, mc_results *res, mc_error *err)
@@ -108,26 +141,24 @@ int mc_lube_profile(const mc_scene *sc, mc_results *res, mc_error *err)
     const size_t n = mc_grid_cells(g);
     if (!res->lube_profile && !(res->lube_profile = mc_malloc(n * sizeof *res->lube_profile)))
         return mc_fail(err, MC_ERR_NOMEM, "lubrication: out of memory for the profile");
-    const double b = res->lube.hertz_half_width;
     const int hertz = sc->lubrication.profile == MC_PROFILE_HERTZ;
     double sum = 0;
     long nband = 0;
-    double *row = res->lube_profile; /* the profile depends on x alone: row 0, then copies */
-    for (int i = 0; i < g->nx; i++) {
-        const double t = mc_grid_x(g, i) / b;
-        row[i] = fabs(t) <= 1.0 ? (hertz ? sqrt(fmax(0.0, 1.0 - t * t)) : 1.0) : 0.0;
-        sum += row[i];
-        nband += row[i] > 0;
-    }
+    double *w = res->lube_profile;
+    for (int j = 0; j < g->ny; j++)
+        for (int i = 0; i < g->nx; i++) {
+            double *wi = &w[(size_t)j * g->nx + i];
+            *wi = mc_lube_nominal_shape(&res->lube, mc_grid_x(g, i), mc_grid_y(g, j), hertz);
+            sum += *wi;
+            nband += *wi > 0;
+        }
     if (!(sum > 0))
         return mc_fail(err, MC_ERR_INPUT,
-                       "lubrication: the Hertz band b = %.6g um holds no cell centre of the grid "
-                       "(dx = %.6g um)",
-                       b * 1e6, g->dx * 1e6);
-    for (int i = 0; i < g->nx; i++) /* mean 1 over the band: p_lub is the band's mean */
-        row[i] *= (double)nband / sum;
-    for (int j = 1; j < g->ny; j++)
-        memcpy(row + (size_t)j * g->nx, row, (size_t)g->nx * sizeof *row);
+                       "lubrication: the Hertz contact (b = %.6g um) holds no cell centre of the "
+                       "grid (dx = %.6g um)",
+                       res->lube.hertz_half_width * 1e6, g->dx * 1e6);
+    for (size_t i = 0; i < n; i++) /* mean 1 over the nominal area: p_lub is its mean */
+        w[i] *= (double)nband / sum;
     return MC_OK;
 }
 

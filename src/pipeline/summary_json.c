@@ -435,13 +435,18 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
         jset(b, o, "nominal_area", jnum(l->nominal_area));
         if (l->whole)
             jset(b, o, "lubricant_profile", jstr(l->profile));
+        if (l->crowned)
+            jset(b, o, "hertz_half_length", jnum(l->hertz_half_length));
         jset(b, o, "volume", jnum(l->volume));
         jset(b, o, "volume_target", jnum(l->v_target));
         jset(b, o, "volume_rel_error", jnum(l->rel_error));
         jset(b, o, "contact_solves", json_integer(l->solves));
         jset(b, o, "converged", json_boolean(l->converged));
         jset(b, o, "note",
-             jstr(l->whole
+             jstr(l->crowned
+                      ? "the whole crowned contact: the grid carries the macro ellipsoid and "
+                        "F_N; the lubricant volume equilibrium is over the Hertz ellipse"
+                  : l->whole
                       ? "the whole line contact: the strip carries the macro cylinder and w' "
                         "times its length; the lubricant volume equilibrium is over the Hertz "
                         "band |x| <= b"
