@@ -520,7 +520,7 @@ const case_key mc_keys[] = {
      .doc = "Also write every surface height map as X3P (ISO 25178-72, heights in m, the same "
             "field as the .npy of the same name): topography.x3p, and where the run has them "
             "topography_final.x3p (elastic-plastic), surface_initial.x3p and surface_final.x3p "
-            "(running-in)."},
+            "(running-in), surface_initial_body1.x3p, ... (with [roughness2])."},
 };
 
 const int mc_nkeys = (int)(sizeof mc_keys / sizeof mc_keys[0]);
