@@ -302,6 +302,30 @@ START_TEST(final_minus_own_dent)
 }
 END_TEST
 
+/* A warning about a body's roughness parameters names the body and its section (its cutoff is
+ * its section's): a cut-off of 20 um clipped on the 32 um profiles of body 2 alone. */
+START_TEST(body_warning_names_the_body)
+{
+    const char *dir = test_tmpdir();
+    double z[N * N];
+    write_map(dir, "a.npy", 0.3e-6, 41, z);
+    write_map(dir, "b.npy", 0.2e-6, 42, z);
+    const char *set[] = {"roughness.cutoff=8um", "roughness2.cutoff=20um"};
+    mc_scene s;
+    scene(&s, dir, "a.npy", "b.npy", NULL, 2, set);
+    mc_results r;
+    mc_error err = {0};
+    ck_assert_msg(mc_pipeline_run(&s, &r, &err) == MC_OK, "%s", err.msg);
+    ck_assert(r.body_roughness_initial[1].cutoff_clipped && !r.body_roughness_initial[0].cutoff_clipped);
+    int named = 0;
+    for (int k = 0; k < r.nwarnings; k++)
+        named |= strstr(r.warnings[k].message, "of body 2 ([roughness2])") &&
+                 strstr(r.warnings[k].message, "clipped") != NULL;
+    ck_assert_msg(named, "no warning names body 2's clipped cut-off");
+    mc_results_free(&r);
+}
+END_TEST
+
 /* Bad input: the message names the file, the line, the [section] key and what is accepted. */
 START_TEST(bad_input)
 {
@@ -393,6 +417,7 @@ Suite *suite_two_surfaces(void)
     tcase_add_test(tc, outward_bump_carries_the_load);
     tcase_add_test(tc, swap_gives_same_composite);
     tcase_add_test(tc, final_minus_own_dent);
+    tcase_add_test(tc, body_warning_names_the_body);
     tcase_add_test(tc, bad_input);
     suite_add_tcase(s, tc);
     return s;

@@ -65,7 +65,7 @@ static const struct {
     const char *help;
 } outputs[] = {
     {"summary.json", OUT_ALWAYS,
-     "mesh, materials, load, roughness with its ISO parameters, contact results, stress summary, lubrication{...} and plastic{...} when those stages ran, warnings, timings (SI units)"},
+     "mesh, materials, load, roughness with its ISO parameters (with [roughness2] also each body's, roughness.body1 and roughness.body2, before and after), contact results, stress summary, lubrication{...} and plastic{...} when those stages ran, warnings, timings (SI units)"},
     {"pressure.npy", OUT_ALWAYS,
      "contact pressure, ny x nx float64, Pa"},
     {"gap.npy", OUT_ALWAYS,
