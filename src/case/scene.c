@@ -358,25 +358,39 @@ static int scale_rules(const mc_scene *s, mc_error *err, const char **section,
     return MC_OK;
 }
 
+/* The rules of one roughness section (sec: "roughness" or "roughness2") over its spec r. */
+static int roughness_rules(const mc_scene *s, const mc_roughness_spec *r, const char *sec,
+                           mc_error *err, const char **section, const char **keyname)
+{
+    if (r->type != MC_ROUGH_SELF_AFFINE)
+        return MC_OK;
+    if (r->rq > 0 && r->rms_slope > 0)
+        BLAME(sec, "rms_slope", "[%s] type = self_affine takes rq or rms_slope, not both", sec);
+    if (!(r->rq > 0 || r->rms_slope > 0))
+        BLAME(sec, "rq", "[%s] type = self_affine needs rq > 0 or rms_slope > 0", sec);
+    double lo, hi;
+    mc_scene_spec_cutoffs(s, r, &hi, &lo);
+    if (!(lo < hi))
+        BLAME(sec, "lambda_short", "[%s] lambda_short = %g m: must be < lambda_long = %g m", sec,
+              lo, hi);
+    return MC_OK;
+}
+
 /* The rules that tie keys together; each key's own bounds are the table's (mc_keys_check_scene).
  * A key that is given but has no effect in its scene is refused here or by the table's use
  * conditions, never silently ignored. */
 static int scene_rules(const mc_scene *s, mc_error *err, const char **section,
                        const char **keyname)
 {
-    if (s->roughness.type == MC_ROUGH_SELF_AFFINE) {
-        if (s->roughness.rq > 0 && s->roughness.rms_slope > 0)
-            BLAME("roughness", "rms_slope",
-                  "[roughness] type = self_affine takes rq or rms_slope, not both");
-        if (!(s->roughness.rq > 0 || s->roughness.rms_slope > 0))
-            BLAME("roughness", "rq",
-                  "[roughness] type = self_affine needs rq > 0 or rms_slope > 0");
-        double lo, hi;
-        mc_scene_cutoffs(s, &hi, &lo);
-        if (!(lo < hi))
-            BLAME("roughness", "lambda_short",
-                  "[roughness] lambda_short = %g m: must be < lambda_long = %g m", lo, hi);
-    }
+    int rc = roughness_rules(s, &s->roughness, "roughness", err, section, keyname);
+    if (rc == MC_OK && s->roughness2.type != MC_ROUGH_NONE)
+        rc = roughness_rules(s, &s->roughness2, "roughness2", err, section, keyname);
+    if (rc != MC_OK)
+        return rc;
+    if (s->roughness2.type != MC_ROUGH_NONE && s->roughness.type == MC_ROUGH_NONE)
+        BLAME("roughness2", "type",
+              "[roughness2] (body 2's surface) needs [roughness] (body 1's surface): give "
+              "[roughness] type, or give one composite surface in [roughness] alone");
     if (s->load.kind == MC_LOAD_FORCE_PER_LENGTH && !s->grid.periodic_y)
         BLAME("load", "force_per_length",
               "[load] force_per_length needs [mesh] periodic_y = yes (a load per unit length is "
@@ -396,7 +410,7 @@ static int scene_rules(const mc_scene *s, mc_error *err, const char **section,
         BLAME("load", "pressure_cap",
               "[load] pressure_cap = %g Pa: must be > lubricant_pressure = %g Pa",
               s->load.pressure_cap, s->load.lubricant_pressure);
-    int rc = lubrication_rules(s, err, section, keyname);
+    rc = lubrication_rules(s, err, section, keyname);
     if (rc == MC_OK)
         rc = scale_rules(s, err, section, keyname);
     if (rc == MC_OK)
@@ -475,13 +489,18 @@ int mc_scene_depths(const mc_scene *s, double *depths, int *ndepths, mc_error *e
     return MC_OK;
 }
 
-void mc_scene_cutoffs(const mc_scene *s, double *lambda_long, double *lambda_short)
+void mc_scene_spec_cutoffs(const mc_scene *s, const mc_roughness_spec *r, double *lambda_long,
+                           double *lambda_short)
 {
     const mc_grid *g = &s->grid;
     double lx = g->nx * g->dx, ly = g->ny * g->dy;
-    *lambda_long = s->roughness.lambda_long > 0 ? s->roughness.lambda_long : fmax(lx, ly);
-    *lambda_short =
-        s->roughness.lambda_short > 0 ? s->roughness.lambda_short : 2.0 * fmax(g->dx, g->dy);
+    *lambda_long = r->lambda_long > 0 ? r->lambda_long : fmax(lx, ly);
+    *lambda_short = r->lambda_short > 0 ? r->lambda_short : 2.0 * fmax(g->dx, g->dy);
+}
+
+void mc_scene_cutoffs(const mc_scene *s, double *lambda_long, double *lambda_short)
+{
+    mc_scene_spec_cutoffs(s, &s->roughness, lambda_long, lambda_short);
 }
 
 int mc_scene_output_dir(const mc_scene *s, char *buf, size_t len, mc_error *err)

@@ -70,7 +70,9 @@ typedef struct {
 
     mc_shape_spec geometry; /* [geometry] (surface.h) */
 
-    mc_roughness_spec roughness; /* [roughness] (surface.h) */
+    mc_roughness_spec roughness;  /* [roughness] (surface.h): the gap's composite roughness, or
+                                     body 1's surface when roughness2 is given */
+    mc_roughness_spec roughness2; /* [roughness2]: body 2's surface (type none: not given) */
 
     mc_material body1, body2; /* [body1], [body2] */
 
@@ -204,6 +206,9 @@ int mc_scene_depths(const mc_scene *s, double *depths, int *ndepths, mc_error *e
 /* Effective self-affine cut-off wavelengths, m: the scene's values, or for 0 the defaults
  * lambda_long = max(nx dx, ny dy) and lambda_short = 2 max(dx, dy). */
 void mc_scene_cutoffs(const mc_scene *s, double *lambda_long, double *lambda_short);
+/* The same for the roughness spec r of the scene ([roughness] or [roughness2]). */
+void mc_scene_spec_cutoffs(const mc_scene *s, const mc_roughness_spec *r, double *lambda_long,
+                           double *lambda_short);
 
 /* Output directory: s->output.dir, or when it is "" "out/<file name of s->path without .ini>"
  * ("out/scene" when path is "" too). MC_ERR_INPUT if it does not fit in len bytes. */

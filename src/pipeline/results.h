@@ -8,6 +8,7 @@
 #include "operator/operator.h"
 #include "contact/contact.h"
 #include "surface/roughness.h"
+#include "surface/surface.h"
 #include "plastic/loop.h"
 
 typedef struct {
@@ -185,6 +186,19 @@ typedef struct {
     double *surface_initial, *surface_final;
     int has_roughness_final;
     mc_roughness_params roughness_final;
+
+    /* two surfaces ([roughness2], pipeline/bodies.h; NULL / 0 without): index 0 body 1, 1 body 2.
+     * Each body's roughness heights, outward towards the other body (m, ny*nx), before, and
+     * where the results hold a final surface (elastic-plastic stage, running-in) after: the
+     * initial heights minus the body's own residual dent; their ISO parameters (the options of
+     * roughness_initial, each with its own section's cutoff); what each file held */
+    int two_bodies;
+    double *body_initial[2], *body_final[2];
+    mc_roughness_params body_roughness_initial[2], body_roughness_final[2];
+    int body_has_final;
+    int body_dents[2]; /* the body takes the residual displacement (body 1 with [plasticity],
+                          body 2 with bodies = both) */
+    mc_surface_file_info body_file[2];
 
     mc_timing timing;
     unsigned long long roughness_seed;

@@ -13,6 +13,7 @@
 #include "lube/film.h"
 #include "lube/volume.h"
 #include "operator/operator.h"
+#include "pipeline/bodies.h"
 #include "pipeline/checkpoint.h"
 #include "pipeline/memguard.h"
 #include "pipeline/pipeline.h"
@@ -426,7 +427,7 @@ static int setup(runin_ctx *c, mc_error *err)
         return mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory");
     memcpy(c->step, sc, sizeof *c->step);
     c->h0 = r->topography;
-    int rc = mc_surface_topography(&c->g, &sc->geometry, &sc->roughness, c->h0, err);
+    int rc = mc_bodies_topography(sc, r, c->h0, NULL, err); /* with [roughness2]: z1 + z2 */
     if (rc != MC_OK)
         return rc;
     c->hash = mc_runin_case_hash(sc, c->h0, c->n);
@@ -457,6 +458,8 @@ static int setup(runin_ctx *c, mc_error *err)
     c->ropt.periodic_y = c->g.periodic_y;
     if (sc->roughness.type != MC_ROUGH_NONE) {
         rc = surface_roughness(c, r->surface_initial, &r->roughness_initial, err);
+        if (rc == MC_OK)
+            rc = mc_bodies_initial_parameters(sc, 1, r, NULL, err);
         if (rc != MC_OK)
             return rc;
         r->has_roughness = 1;
@@ -659,6 +662,9 @@ static int final_results(runin_ctx *c, const mc_plastic_step *records, int nrec,
         if (rc != MC_OK)
             return rc;
         r->has_roughness_final = 1;
+        rc = mc_bodies_final(c->sc, 1, c->u_r, r, NULL, err); /* each body minus its own dent */
+        if (rc != MC_OK)
+            return rc;
     }
     for (int f = 0; f < c->nf; f++)
         r->runin.hysteresis[f] = mc_runin_hysteresis(&r->runin, f);
