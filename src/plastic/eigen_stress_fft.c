@@ -59,7 +59,23 @@ typedef struct {
     size_t zlen;
     fftw_complex *tw;     /* w^kz, kz = 0..Nz, w = e^(-2 pi i / L) */
     fftw_plan zf, zi;     /* depth DFTs of length L, cs sequences at a time */
+    /* streamed (a free, padded y axis: ty > wy): the layer spectra are kept transformed along x
+     * only, on the window's wy rows (H instead of E: wy / ty of its size); the y transforms, the
+     * depth step and S3 run per block of cb columns in a per-thread scratch (file comment) */
+    int stream;
+    int cb;               /* columns per block (stream) */
+    size_t hl;            /* complex values per layer of H (wy hx, rounded up to 4) */
+    fftw_complex *H;      /* 6 nz layers [c * nz + k] of hl */
+    fftw_complex *sb;     /* nthr x sbl: 6 nz x ty x cb, the block's columns of every layer */
+    size_t sbl;
+    fftw_plan xf, xb;     /* r2c / c2r along x of the wy rows of a layer (row stride hx in H) */
+    fftw_plan yf, yb;     /* DFTs along y of length ty over the cb columns of a block */
 } sfft;
+
+/* columns per block of the streamed path: the block scratch is 6 nz ty cb complex values per
+ * thread (at 256^2 x 32, cb = 8: 12.6 MB, 6 bytes per volume cell), and FFTW's column transforms
+ * over 8 interleaved columns run at full speed */
+#define STREAM_COLUMNS 8
 
 /* Half the lateral transform sizes: a free axis padded to 2 m >= 2 window; a periodic axis
  * (mc_eig_per_x / _y) transformed over its period n, unpadded, m = n / 2. */
@@ -229,21 +245,41 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     const size_t sl = f->fft.speclen, rl = (size_t)wy * f->fft.tx;
     const size_t blk = (size_t)op->qy * f->nch * f->ch; /* doubles per blocked plane */
     const size_t nv = (size_t)(f->Nz + 1) * MC_EIG_NSYM * blk, np3 = 6 * (size_t)nz * blk;
+    const int ty = f->fft.ty, tx = f->fft.tx;
+    f->stream = ty > wy;
+    f->cb = STREAM_COLUMNS;
+    f->hl = ((size_t)wy * hx + 3) / 4 * 4;
+    f->sbl = 6 * (size_t)nz * ty * f->cb;
+    /* the layer spectra: E (6 nz padded half spectra), or streamed H (6 nz x-spectra of the
+     * window's rows) and a block scratch per thread */
+    const size_t nspec = f->stream ? 6 * (size_t)nz * f->hl + (size_t)f->nthr * f->sbl
+                                   : 6 * (size_t)nz * sl;
     f->V = mc_calloc(nv, sizeof *f->V);
     f->P3 = mc_calloc(np3, sizeof *f->P3);
-    f->E = mc_malloc(6 * (size_t)nz * sl * sizeof *f->E);
+    if (f->stream) {
+        f->H = mc_malloc(6 * (size_t)nz * f->hl * sizeof *f->H);
+        f->sb = mc_malloc((size_t)f->nthr * f->sbl * sizeof *f->sb);
+    } else {
+        f->E = mc_malloc(6 * (size_t)nz * sl * sizeof *f->E);
+    }
     f->P = mc_malloc(sl * sizeof *f->P);
     f->rows = mc_malloc((size_t)f->nthr * rl * sizeof *f->rows);
     f->zb = mc_calloc((size_t)f->nthr * f->zlen, sizeof *f->zb);
     f->tw = mc_malloc((size_t)(f->Nz + 1) * sizeof *f->tw);
-    if (!f->V || !f->P3 || !f->E || !f->P || !f->rows || !f->zb || !f->tw)
+    if (!f->V || !f->P3 || (f->stream ? !f->H || !f->sb : !f->E) || !f->P || !f->rows ||
+        !f->zb || !f->tw)
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for %zu spectra",
                        (size_t)(f->Nz + 1) * MC_EIG_NSYM + 12 * (size_t)nz);
     op->bytes += sizeof *f + (nv + np3) * sizeof(double) +
-                 ((6 * (size_t)nz + 1) * sl + (size_t)f->nthr * f->zlen + f->Nz + 1) *
-                     sizeof(fftw_complex) + (size_t)f->nthr * rl * sizeof(double);
+                 (nspec + sl + (size_t)f->nthr * f->zlen + f->Nz + 1) * sizeof(fftw_complex) +
+                 (size_t)f->nthr * rl * sizeof(double);
     /* touch the spectra now: the first apply should not pay the page faults */
-    memset(f->E, 0, 6 * (size_t)nz * sl * sizeof *f->E);
+    if (f->stream) {
+        memset(f->H, 0, 6 * (size_t)nz * f->hl * sizeof *f->H);
+        memset(f->sb, 0, (size_t)f->nthr * f->sbl * sizeof *f->sb);
+    } else {
+        memset(f->E, 0, 6 * (size_t)nz * sl * sizeof *f->E);
+    }
     memset(f->P, 0, sl * sizeof *f->P);
     if ((rc = build_spectra(op, f, err)))
         return rc;
@@ -260,6 +296,18 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     f->zi = fftw_plan_guru_dft(1, &dim, 1, &vec, f->zb, f->zb, FFTW_BACKWARD, rep);
     if (!f->zf || !f->zi)
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: FFTW could not plan depth transforms");
+    if (f->stream) { /* planned on H and the scratch: both are filled at every apply */
+        int nrow[1] = {tx}, ncol[1] = {ty};
+        f->xf = fftw_plan_many_dft_r2c(1, nrow, wy, f->rows, NULL, 1, tx, f->H, NULL, 1, hx, rep);
+        f->xb = fftw_plan_many_dft_c2r(1, nrow, wy, f->H, NULL, 1, hx, f->rows, NULL, 1, tx, rep);
+        f->yf = fftw_plan_many_dft(1, ncol, f->cb, f->sb, NULL, f->cb, 1, f->sb, NULL, f->cb, 1,
+                                   FFTW_FORWARD, rep);
+        f->yb = fftw_plan_many_dft(1, ncol, f->cb, f->sb, NULL, f->cb, 1, f->sb, NULL, f->cb, 1,
+                                   FFTW_BACKWARD, rep);
+        if (!f->xf || !f->xb || !f->yf || !f->yb)
+            return mc_fail(err, MC_ERR_NOMEM, "eigen stress: FFTW could not plan the streamed "
+                                              "transforms");
+    }
     return MC_OK;
 }
 
@@ -273,6 +321,12 @@ void mc_eig_stress_fft_free(mc_eigen_stress *op)
         fftw_destroy_plan(f->zf);
     if (f->zi)
         fftw_destroy_plan(f->zi);
+    fftw_plan sp[] = {f->xf, f->xb, f->yf, f->yb};
+    for (int k = 0; k < 4; k++)
+        if (sp[k])
+            fftw_destroy_plan(sp[k]);
+    mc_free(f->H);
+    mc_free(f->sb);
     mc_free(f->V);
     mc_free(f->P3);
     mc_free(f->E);
@@ -288,16 +342,31 @@ void mc_eig_stress_fft_free(mc_eigen_stress *op)
  * column factors (-i)^(ox + oy) s_y and the mirror layers, p3, depth DFTs, the 6 x 6 products for
  * kz = 0..Nz (on planar copies, so the loops run over contiguous kx) and the twiddle for the rest,
  * inverse DFTs, scatter with the row factors and 1 / L back into E. */
+/* The layer spectra the depth step reads and writes: layer t at E + t * ls, spectrum row ky at
+ * row ky * rs, its first column kx0 (at index x0 of the row); the kernel block's values from xo
+ * on (kx0 = chunk ch + xo), len columns. The E of the unstreamed path: ls = speclen, rs = hx,
+ * x0 = kx0, xo = 0, len the chunk, and p3 accumulates; streamed: the block scratch, ls = ty cb,
+ * rs = cb, x0 = 0, and S3 (Love's spectra times the cut p3 spectrum f->P) is added. */
+typedef struct {
+    fftw_complex *E;
+    size_t ls, rs;
+    int x0, xo, len;
+    int accumulate_p3; /* 1: f->P = sum of the p3 kernels times the source (unstreamed) */
+    int add_s3;        /* 1: the outputs get S3 (streamed) */
+} dstep;
+
 DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, int ky, int chunk,
-                       fftw_complex *zb)
+                       const dstep *d, fftw_complex *zb)
 {
     const int nz = op->v.nz, Nz = f->Nz, L = f->L, ch = f->ch, cs = f->cs;
-    const int hx = f->fft.hx, ty = f->fft.ty, my = op->qy - 1, mirror = ky > my, kx0 = chunk * ch;
-    const int len = hx - kx0 < ch ? hx - kx0 : ch;
-    const size_t sl = f->fft.speclen, at = (size_t)ky * hx + kx0; /* spectrum index */
+    const int hx = f->fft.hx, ty = f->fft.ty, my = op->qy - 1, mirror = ky > my;
+    const int kx0 = chunk * ch + d->xo, len = d->len;
+    const size_t sl = d->ls, at = (size_t)ky * d->rs + d->x0; /* spectrum index */
+    const size_t pat = (size_t)ky * hx + kx0;                 /* in f->P */
     const size_t b = (size_t)(mirror ? ty - ky : ky) * f->nch + chunk; /* kernel block */
-    const double *Vb = f->V + b * (size_t)(Nz + 1) * MC_EIG_NSYM * ch;
-    const double *Pb = f->P3 + b * (size_t)nz * 6 * ch;
+    const double *Vb = f->V + b * (size_t)(Nz + 1) * MC_EIG_NSYM * ch + d->xo;
+    const double *Pb = f->P3 + b * (size_t)nz * 6 * ch + d->xo;
+    fftw_complex *const E = d->E;
     const size_t cstride = (size_t)L * cs; /* complex values per component */
     fftw_complex *A = zb, *B = zb + 6 * cstride;
 
@@ -315,7 +384,7 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
         memset(a + (size_t)nz * cs, 0, (size_t)(L - 2 * nz) * cs * sizeof *a);
         for (int q = 0; q < nz; q++) {
             fftw_complex *g = a + (size_t)q * cs, *gm = a + (size_t)(L - 1 - q) * cs;
-            const fftw_complex *e = f->E + (size_t)(c * nz + q) * sl + at;
+            const fftw_complex *e = E + (size_t)(c * nz + q) * sl + at;
             const double *P = Pb + (size_t)(q * 6 + c) * ch;
             for (int x = 0; x < len; x++) {
                 double re = sy[c] * e[x][0], im = sy[c] * e[x][1];
@@ -332,10 +401,11 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
         }
         fftw_execute_dft(f->zf, a, a);
     }
-    for (int x = 0; x < len; x++) {
-        f->P[at + x][0] = pr[x];
-        f->P[at + x][1] = pi[x];
-    }
+    if (d->accumulate_p3)
+        for (int x = 0; x < len; x++) {
+            f->P[pat + x][0] = pr[x];
+            f->P[pat + x][1] = pi[x];
+        }
     /* products at kz = 0..Nz; the upper half by Y(L - kz) = s_i w^kz Y(kz). On planar copies
      * (contiguous runs over kx), one kx at a time with its six inputs in registers and each
      * row's sum over c = 0..5 in order; the kernel's 21 values of a frequency read once each. */
@@ -403,7 +473,7 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
         const double scale = 1.0 / (L * mc_eig_weight(i)); /* the DFT pair; V's weight */
         fftw_execute_dft(f->zi, g, g);
         for (int k = 0; k < nz; k++) {
-            fftw_complex *e = f->E + (size_t)(i * nz + k) * sl + at;
+            fftw_complex *e = E + (size_t)(i * nz + k) * sl + at;
             const fftw_complex *y = g + (size_t)k * cs;
             for (int x = 0; x < len; x++) {
                 double re = scale * sy[i] * y[x][0], im = scale * sy[i] * y[x][1];
@@ -411,12 +481,23 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
                 e[x][0] = re;
                 e[x][1] = im;
             }
+            if (d->add_s3) { /* as the unstreamed path adds it, after the depth step */
+                const double *l = op->love + (size_t)(k * 6 + i) * op->qlen +
+                                  (size_t)(mirror ? ty - ky : ky) * op->qx + kx0;
+                for (int x = 0; x < len; x++) {
+                    double re = sy[i] * l[x] * f->P[pat + x][0];
+                    double im = sy[i] * l[x] * f->P[pat + x][1];
+                    mc_eig_rot(&re, &im, rot[i]);
+                    e[x][0] += re;
+                    e[x][1] += im;
+                }
+            }
         }
     }
 }
 
-void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
-                             double *const sig[6])
+static void apply_padded(mc_eigen_stress *op, const double *const eps[6], double G,
+                         double *const sig[6])
 {
     sfft *f = op->fft;
     const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, tx = f->fft.tx, ty = f->fft.ty;
@@ -442,9 +523,12 @@ void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], do
             if (chunk * f->ch >= hx)
                 continue;
             fftw_complex *zb = f->zb + (size_t)me * f->zlen;
-            depth_step(op, f, ky, chunk, zb);
+            const int kx0 = chunk * f->ch;
+            const dstep d = {f->E, sl, (size_t)hx, kx0, 0, hx - kx0 < f->ch ? hx - kx0 : f->ch,
+                             1, 0};
+            depth_step(op, f, ky, chunk, &d, zb);
             if (ky > 0 && ty - ky > my) /* its mirror row (an odd period has no Nyquist row) */
-                depth_step(op, f, ty - ky, chunk, zb);
+                depth_step(op, f, ty - ky, chunk, &d, zb);
         }
 #pragma omp single
         {
@@ -485,4 +569,143 @@ void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], do
                     out[(size_t)j * wx + x] = 2.0 * G * scale * rows[(size_t)j * tx + x];
         }
     }
+}
+
+/* The block scratch sb (6 nz layers of ty x cb) from columns kx0 .. kx0 + n - 1 of H's wy rows,
+ * zero elsewhere, then transformed along y. */
+static void block_forward(const mc_eigen_stress *op, const sfft *f, int kx0, int n,
+                          fftw_complex *sb)
+{
+    const int wy = op->v.ny, ty = f->fft.ty, cb = f->cb, hx = f->fft.hx;
+    for (int t = 0; t < 6 * op->v.nz; t++) {
+        fftw_complex *s = sb + (size_t)t * ty * cb;
+        const fftw_complex *h = f->H + (size_t)t * f->hl + kx0;
+        for (int j = 0; j < wy; j++) {
+            memcpy(s + (size_t)j * cb, h + (size_t)j * hx, (size_t)n * sizeof *s);
+            memset(s + (size_t)j * cb + n, 0, (size_t)(cb - n) * sizeof *s);
+        }
+        memset(s + (size_t)wy * cb, 0, (size_t)(ty - wy) * cb * sizeof *s);
+        fftw_execute_dft(f->yf, s, s);
+    }
+}
+
+/* The streamed application (a padded y axis; file comment): the layers along x into H; per
+ * block of columns the y transforms and p3's sum (the p3 kernels times the source); p3 cut to the
+ * window; per block again the y transforms, the depth step with S3, the inverse y transforms
+ * back into H's rows; the layers back along x. The block's y transforms are done twice: storing
+ * them would be the padded spectra this path avoids. */
+static void apply_streamed(mc_eigen_stress *op, const double *const eps[6], double G,
+                           double *const sig[6])
+{
+    sfft *f = op->fft;
+    const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, tx = f->fft.tx, ty = f->fft.ty;
+    const int hx = f->fft.hx, my = op->qy - 1, ch = f->ch, cb = f->cb;
+    const size_t wc = (size_t)wx * wy, rl = (size_t)wy * tx, ql = op->qlen;
+    const double scale = 1.0 / ((double)tx * ty); /* FFTW does not normalise */
+    const int per = (ch + cb - 1) / cb;           /* blocks per kernel chunk */
+    const int nblk = f->nch * per;
+    (void)ql;
+#pragma omp parallel num_threads(f->nthr)
+    {
+        const int me = omp_get_thread_num();
+        double *rows = f->rows + (size_t)me * rl;
+        fftw_complex *sb = f->sb + (size_t)me * f->sbl;
+        fftw_complex *zb = f->zb + (size_t)me * f->zlen;
+        /* every layer and column along x */
+#pragma omp for schedule(dynamic, 1)
+        for (int t = 0; t < 6 * nz; t++) {
+            const int c = t / nz, k = t % nz;
+            mc_eig_fill_rows(rows, tx, eps[c] + k * wc, wx, wy, 0);
+            fftw_execute_dft_r2c(f->xf, rows, f->H + (size_t)t * f->hl);
+        }
+        /* p3's spectrum, block by block: the gather of the depth step (the same signs, order) */
+#pragma omp for schedule(dynamic, 1)
+        for (int bl = 0; bl < nblk; bl++) {
+            const int chunk = bl / per, kx0 = chunk * ch + (bl % per) * cb;
+            const int end = chunk * ch + ch < hx ? chunk * ch + ch : hx;
+            if (kx0 >= end)
+                continue;
+            const int n = end - kx0 < cb ? end - kx0 : cb;
+            block_forward(op, f, kx0, n, sb);
+            for (int ky = 0; ky < ty; ky++) {
+                const int mirror = ky > my;
+                const size_t b = (size_t)(mirror ? ty - ky : ky) * f->nch + chunk;
+                const double *Pb = f->P3 + b * (size_t)nz * 6 * ch + (kx0 - chunk * ch);
+                double pr[STREAM_COLUMNS] = {0.0}, pi[STREAM_COLUMNS] = {0.0};
+                for (int c = 0; c < 6; c++) {
+                    const int rot = mc_eig_odd_x(c) + mc_eig_odd_y(c);
+                    const double sy = (mirror && mc_eig_odd_y(c)) ? -1.0 : 1.0;
+                    for (int q = 0; q < nz; q++) {
+                        const fftw_complex *e = sb + ((size_t)(c * nz + q) * ty + ky) * cb;
+                        const double *P = Pb + (size_t)(q * 6 + c) * ch;
+                        for (int x = 0; x < n; x++) {
+                            double re = sy * e[x][0], im = sy * e[x][1];
+                            mc_eig_rot(&re, &im, rot);
+                            pr[x] += P[x] * re;
+                            pi[x] += P[x] * im;
+                        }
+                    }
+                }
+                for (int x = 0; x < n; x++) {
+                    f->P[(size_t)ky * hx + kx0 + x][0] = pr[x];
+                    f->P[(size_t)ky * hx + kx0 + x][1] = pi[x];
+                }
+            }
+        }
+#pragma omp single
+        {
+            /* p3 on the window only: back to space, cut, forward again */
+            mc_eig_fft_inverse(&f->fft, f->P, rows);
+            for (int j = 0; j < wy; j++)
+                for (int i = 0; i < wx; i++) {
+                    const double p = scale * rows[(size_t)j * tx + i];
+                    op->work[(size_t)j * wx + i] = p;
+                    op->p3[(size_t)j * wx + i] = 2.0 * G * p;
+                }
+            mc_eig_fill_rows(rows, tx, op->work, wx, wy, 0);
+            mc_eig_fft_forward(&f->fft, rows, f->P);
+        }
+        /* per block: y, the depth step with S3, back along y into H's rows */
+#pragma omp for schedule(dynamic, 1)
+        for (int bl = 0; bl < nblk; bl++) {
+            const int chunk = bl / per, kx0 = chunk * ch + (bl % per) * cb;
+            const int end = chunk * ch + ch < hx ? chunk * ch + ch : hx;
+            if (kx0 >= end)
+                continue;
+            const int n = end - kx0 < cb ? end - kx0 : cb;
+            block_forward(op, f, kx0, n, sb);
+            const dstep d = {sb, (size_t)ty * cb, (size_t)cb, 0, kx0 - chunk * ch, n, 0, 1};
+            for (int ky = 0; ky <= my; ky++) {
+                depth_step(op, f, ky, chunk, &d, zb);
+                if (ky > 0 && ty - ky > my)
+                    depth_step(op, f, ty - ky, chunk, &d, zb);
+            }
+            for (int t = 0; t < 6 * nz; t++) {
+                fftw_complex *s = sb + (size_t)t * ty * cb;
+                fftw_complex *h = f->H + (size_t)t * f->hl + kx0;
+                fftw_execute_dft(f->yb, s, s);
+                for (int j = 0; j < wy; j++)
+                    memcpy(h + (size_t)j * hx, s + (size_t)j * cb, (size_t)n * sizeof *h);
+            }
+        }
+        /* every stress layer back along x */
+#pragma omp for schedule(dynamic, 1)
+        for (int t = 0; t < 6 * nz; t++) {
+            const int i = t / nz, k = t % nz;
+            fftw_execute_dft_c2r(f->xb, f->H + (size_t)t * f->hl, rows);
+            double *out = sig[i] + k * wc;
+            for (int j = 0; j < wy; j++)
+                for (int x = 0; x < wx; x++)
+                    out[(size_t)j * wx + x] = 2.0 * G * scale * rows[(size_t)j * tx + x];
+        }
+    }
+}
+
+void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
+                             double *const sig[6])
+{
+    if (((sfft *)op->fft)->stream)
+        apply_streamed(op, eps, G, sig);
+    else
+        apply_padded(op, eps, G, sig);
 }
