@@ -70,6 +70,7 @@ typedef struct {
     size_t sbl;
     fftw_plan xf, xb;     /* r2c / c2r along x of the wy rows of a layer (row stride hx in H) */
     fftw_plan yf, yb;     /* DFTs along y of length ty over the cb columns of a block */
+    fftw_plan zfs, zis;   /* the depth DFTs over cb sequences only (a block's) */
 } sfft;
 
 /* columns per block of the streamed path: the block scratch is 6 nz ty cb complex values per
@@ -304,7 +305,10 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
                                    FFTW_FORWARD, rep);
         f->yb = fftw_plan_many_dft(1, ncol, f->cb, f->sb, NULL, f->cb, 1, f->sb, NULL, f->cb, 1,
                                    FFTW_BACKWARD, rep);
-        if (!f->xf || !f->xb || !f->yf || !f->yb)
+        fftw_iodim vs = {f->cb, 1, 1};
+        f->zfs = fftw_plan_guru_dft(1, &dim, 1, &vs, f->zb, f->zb, FFTW_FORWARD, rep);
+        f->zis = fftw_plan_guru_dft(1, &dim, 1, &vs, f->zb, f->zb, FFTW_BACKWARD, rep);
+        if (!f->xf || !f->xb || !f->yf || !f->yb || !f->zfs || !f->zis)
             return mc_fail(err, MC_ERR_NOMEM, "eigen stress: FFTW could not plan the streamed "
                                               "transforms");
     }
@@ -321,8 +325,8 @@ void mc_eig_stress_fft_free(mc_eigen_stress *op)
         fftw_destroy_plan(f->zf);
     if (f->zi)
         fftw_destroy_plan(f->zi);
-    fftw_plan sp[] = {f->xf, f->xb, f->yf, f->yb};
-    for (int k = 0; k < 4; k++)
+    fftw_plan sp[] = {f->xf, f->xb, f->yf, f->yb, f->zfs, f->zis};
+    for (int k = 0; k < 6; k++)
         if (sp[k])
             fftw_destroy_plan(sp[k]);
     mc_free(f->H);
@@ -353,6 +357,8 @@ typedef struct {
     int x0, xo, len;
     int accumulate_p3; /* 1: f->P = sum of the p3 kernels times the source (unstreamed) */
     int add_s3;        /* 1: the outputs get S3 (streamed) */
+    int nseq;          /* sequences the depth DFTs transform (>= len): cs, or cb (streamed) */
+    fftw_plan zf, zi;  /* and their plans */
 } dstep;
 
 DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, int ky, int chunk,
@@ -381,7 +387,11 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
     for (int c = 0; c < 6; c++) {
         fftw_complex *a = A + c * cstride;
         const double r = mc_eig_odd_z(c) ? -1.0 : 1.0;
-        memset(a + (size_t)nz * cs, 0, (size_t)(L - 2 * nz) * cs * sizeof *a);
+        if (d->nseq == cs)
+            memset(a + (size_t)nz * cs, 0, (size_t)(L - 2 * nz) * cs * sizeof *a);
+        else /* only the sequences transformed */
+            for (int q = nz; q < L - nz; q++)
+                memset(a + (size_t)q * cs, 0, (size_t)d->nseq * sizeof *a);
         for (int q = 0; q < nz; q++) {
             fftw_complex *g = a + (size_t)q * cs, *gm = a + (size_t)(L - 1 - q) * cs;
             const fftw_complex *e = E + (size_t)(c * nz + q) * sl + at;
@@ -396,10 +406,10 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
                 pr[x] += P[x] * re;
                 pi[x] += P[x] * im;
             }
-            for (int x = len; x < cs; x++)
+            for (int x = len; x < d->nseq; x++)
                 g[x][0] = g[x][1] = gm[x][0] = gm[x][1] = 0.0;
         }
-        fftw_execute_dft(f->zf, a, a);
+        fftw_execute_dft(d->zf, a, a);
     }
     if (d->accumulate_p3)
         for (int x = 0; x < len; x++) {
@@ -471,7 +481,7 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
     for (int i = 0; i < 6; i++) {
         fftw_complex *g = B + i * cstride;
         const double scale = 1.0 / (L * mc_eig_weight(i)); /* the DFT pair; V's weight */
-        fftw_execute_dft(f->zi, g, g);
+        fftw_execute_dft(d->zi, g, g);
         for (int k = 0; k < nz; k++) {
             fftw_complex *e = E + (size_t)(i * nz + k) * sl + at;
             const fftw_complex *y = g + (size_t)k * cs;
@@ -525,7 +535,7 @@ static void apply_padded(mc_eigen_stress *op, const double *const eps[6], double
             fftw_complex *zb = f->zb + (size_t)me * f->zlen;
             const int kx0 = chunk * f->ch;
             const dstep d = {f->E, sl, (size_t)hx, kx0, 0, hx - kx0 < f->ch ? hx - kx0 : f->ch,
-                             1, 0};
+                             1, 0, f->cs, f->zf, f->zi};
             depth_step(op, f, ky, chunk, &d, zb);
             if (ky > 0 && ty - ky > my) /* its mirror row (an odd period has no Nyquist row) */
                 depth_step(op, f, ty - ky, chunk, &d, zb);
@@ -674,7 +684,8 @@ static void apply_streamed(mc_eigen_stress *op, const double *const eps[6], doub
                 continue;
             const int n = end - kx0 < cb ? end - kx0 : cb;
             block_forward(op, f, kx0, n, sb);
-            const dstep d = {sb, (size_t)ty * cb, (size_t)cb, 0, kx0 - chunk * ch, n, 0, 1};
+            const dstep d = {sb, (size_t)ty * cb, (size_t)cb, 0, kx0 - chunk * ch, n, 0, 1,
+                             cb, f->zfs, f->zis};
             for (int ky = 0; ky <= my; ky++) {
                 depth_step(op, f, ky, chunk, &d, zb);
                 if (ky > 0 && ty - ky > my)
