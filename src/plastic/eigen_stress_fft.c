@@ -70,13 +70,16 @@ typedef struct {
     size_t sbl;
     fftw_plan xf, xb;     /* r2c / c2r along x of the wy rows of a layer (row stride hx in H) */
     fftw_plan yf, yb;     /* DFTs along y of length ty over the cb columns of a block */
-    fftw_plan zfs, zis;   /* the depth DFTs over cb sequences only (a block's) */
+    fftw_plan zfs, zis;   /* the depth DFTs over rpc cb sequences (rpc rows of a block) */
+    int rpc;              /* rows per depth step call (streamed): cs / cb, 1..DEPTH_ROWS */
 } sfft;
 
 /* columns per block of the streamed path: the block scratch is 6 nz ty cb complex values per
  * thread (at 256^2 x 32, cb = 8: 12.6 MB, 6 bytes per volume cell), and FFTW's column transforms
  * over 8 interleaved columns run at full speed */
 #define STREAM_COLUMNS 8
+/* rows per call of the depth step at most (streamed: its sequences are rows x columns) */
+#define DEPTH_ROWS 16
 
 /* Half the lateral transform sizes: a free axis padded to 2 m >= 2 window; a periodic axis
  * (mc_eig_per_x / _y) transformed over its period n, unpadded, m = n / 2. */
@@ -236,19 +239,24 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     if (rc)
         return rc;
     const int hx = f->fft.hx; /* = qx */
-    f->nch = (hx + CHUNK_TARGET - 1) / CHUNK_TARGET;
+    const int ty = f->fft.ty, tx = f->fft.tx;
+    /* streamed: the kernel blocks are as narrow as the column blocks (a block's kernel values
+     * one contiguous run), and a depth step takes up to 8 rows of them side by side */
+    f->stream = ty > wy;
+    const int target = f->stream ? STREAM_COLUMNS : CHUNK_TARGET;
+    f->nch = (hx + target - 1) / target;
     f->ch = (hx + f->nch - 1) / f->nch;
-    f->cs = (f->ch + 3) / 4 * 4;
+    f->cb = f->ch;
+    f->cs = ((f->stream ? 8 * f->ch : f->ch) + 3) / 4 * 4;
     if (f->cs % 16 == 0) /* a power-of-2 stride between depth planes thrashes the cache */
         f->cs += 4;
+    f->rpc = f->cs / f->cb;
+    f->rpc = f->rpc < 1 ? 1 : f->rpc > DEPTH_ROWS ? DEPTH_ROWS : f->rpc;
     f->nthr = mc_eig_threads(12 * (size_t)nz * (size_t)f->fft.tx * (size_t)f->fft.ty);
     f->zlen = (size_t)(12 * f->L + 12) * f->cs;
     const size_t sl = f->fft.speclen, rl = (size_t)wy * f->fft.tx;
     const size_t blk = (size_t)op->qy * f->nch * f->ch; /* doubles per blocked plane */
     const size_t nv = (size_t)(f->Nz + 1) * MC_EIG_NSYM * blk, np3 = 6 * (size_t)nz * blk;
-    const int ty = f->fft.ty, tx = f->fft.tx;
-    f->stream = ty > wy;
-    f->cb = STREAM_COLUMNS;
     f->hl = ((size_t)wy * hx + 3) / 4 * 4;
     f->sbl = 6 * (size_t)nz * ty * f->cb;
     /* the layer spectra: E (6 nz padded half spectra), or streamed H (6 nz x-spectra of the
@@ -305,7 +313,7 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
                                    FFTW_FORWARD, rep);
         f->yb = fftw_plan_many_dft(1, ncol, f->cb, f->sb, NULL, f->cb, 1, f->sb, NULL, f->cb, 1,
                                    FFTW_BACKWARD, rep);
-        fftw_iodim vs = {f->cb, 1, 1};
+        fftw_iodim vs = {f->rpc * f->cb, 1, 1};
         f->zfs = fftw_plan_guru_dft(1, &dim, 1, &vs, f->zb, f->zb, FFTW_FORWARD, rep);
         f->zis = fftw_plan_guru_dft(1, &dim, 1, &vs, f->zb, f->zb, FFTW_BACKWARD, rep);
         if (!f->xf || !f->xb || !f->yf || !f->yb || !f->zfs || !f->zis)
@@ -349,44 +357,55 @@ void mc_eig_stress_fft_free(mc_eigen_stress *op)
 /* The layer spectra the depth step reads and writes: layer t at E + t * ls, spectrum row ky at
  * row ky * rs, its first column kx0 (at index x0 of the row); the kernel block's values from xo
  * on (kx0 = chunk ch + xo), len columns. The E of the unstreamed path: ls = speclen, rs = hx,
- * x0 = kx0, xo = 0, len the chunk, and p3 accumulates; streamed: the block scratch, ls = ty cb,
- * rs = cb, x0 = 0, and S3 (Love's spectra times the cut p3 spectrum f->P) is added. */
+ * x0 = kx0, xo = 0, len the chunk, one row per call, and p3 accumulates; streamed: the block
+ * scratch, ls = ty cb, rs = cb, x0 = 0, up to cs / cb rows per call (their len columns side by
+ * side in the depth DFTs' sequences), and S3 (Love's spectra times the cut p3 spectrum f->P) is
+ * added. */
 typedef struct {
     fftw_complex *E;
     size_t ls, rs;
     int x0, xo, len;
     int accumulate_p3; /* 1: f->P = sum of the p3 kernels times the source (unstreamed) */
     int add_s3;        /* 1: the outputs get S3 (streamed) */
-    int nseq;          /* sequences the depth DFTs transform (>= len): cs, or cb (streamed) */
+    int nseq;          /* sequences the depth DFTs transform (>= rows x len): cs, or a
+                          multiple of cb (streamed) */
     fftw_plan zf, zi;  /* and their plans */
 } dstep;
 
-DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, int ky, int chunk,
-                       const dstep *d, fftw_complex *zb)
+/* The depth step for the spectrum rows ky[0..nr) (nr <= DEPTH_ROWS), block chunk (kx0 = chunk
+ * ch + xo, len values each): gather with the column factors (-i)^(ox + oy) s_y and the mirror
+ * layers, p3, depth DFTs, the 6 x 6 products for kz = 0..Nz (on planar copies, so the loops run
+ * over contiguous kx) and the twiddle for the rest, inverse DFTs, scatter with the row factors
+ * and 1 / L back into E (and S3). Sequence r len + x of the DFTs is column x of row r. */
+DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, const int *ky,
+                                    int nr, int chunk, const dstep *d, fftw_complex *zb)
 {
     const int nz = op->v.nz, Nz = f->Nz, L = f->L, ch = f->ch, cs = f->cs;
-    const int hx = f->fft.hx, ty = f->fft.ty, my = op->qy - 1, mirror = ky > my;
-    const int kx0 = chunk * ch + d->xo, len = d->len;
-    const size_t sl = d->ls, at = (size_t)ky * d->rs + d->x0; /* spectrum index */
-    const size_t pat = (size_t)ky * hx + kx0;                 /* in f->P */
-    const size_t b = (size_t)(mirror ? ty - ky : ky) * f->nch + chunk; /* kernel block */
-    const double *Vb = f->V + b * (size_t)(Nz + 1) * MC_EIG_NSYM * ch + d->xo;
-    const double *Pb = f->P3 + b * (size_t)nz * 6 * ch + d->xo;
+    const int hx = f->fft.hx, ty = f->fft.ty, my = op->qy - 1;
+    const int kx0 = chunk * ch + d->xo, len = d->len, ns = nr * len;
+    const size_t sl = d->ls;
     fftw_complex *const E = d->E;
     const size_t cstride = (size_t)L * cs; /* complex values per component */
     fftw_complex *A = zb, *B = zb + 6 * cstride;
-
-    int rot[6];
-    double sy[6];
-    for (int c = 0; c < 6; c++) {
-        rot[c] = mc_eig_odd_x(c) + mc_eig_odd_y(c);
-        sy[c] = (mirror && mc_eig_odd_y(c)) ? -1.0 : 1.0;
+    size_t at[DEPTH_ROWS], pat[DEPTH_ROWS];
+    const double *Vb[DEPTH_ROWS], *Pb[DEPTH_ROWS];
+    int mirror[DEPTH_ROWS];
+    for (int r = 0; r < nr; r++) {
+        mirror[r] = ky[r] > my;
+        at[r] = (size_t)ky[r] * d->rs + d->x0; /* spectrum index */
+        pat[r] = (size_t)ky[r] * hx + kx0;      /* in f->P */
+        const size_t b = (size_t)(mirror[r] ? ty - ky[r] : ky[r]) * f->nch + chunk;
+        Vb[r] = f->V + b * (size_t)(Nz + 1) * MC_EIG_NSYM * ch + d->xo;
+        Pb[r] = f->P3 + b * (size_t)nz * 6 * ch + d->xo;
     }
+    int rot[6];
+    for (int c = 0; c < 6; c++)
+        rot[c] = mc_eig_odd_x(c) + mc_eig_odd_y(c);
     /* gather: layers q < nz and their mirrors at L - 1 - q (r_c = -1 for yz, xz); p3 / 2G */
     double pr[CHUNK_TARGET] = {0.0}, pi[CHUNK_TARGET] = {0.0};
     for (int c = 0; c < 6; c++) {
         fftw_complex *a = A + c * cstride;
-        const double r = mc_eig_odd_z(c) ? -1.0 : 1.0;
+        const double rz = mc_eig_odd_z(c) ? -1.0 : 1.0;
         if (d->nseq == cs)
             memset(a + (size_t)nz * cs, 0, (size_t)(L - 2 * nz) * cs * sizeof *a);
         else /* only the sequences transformed */
@@ -394,27 +413,35 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
                 memset(a + (size_t)q * cs, 0, (size_t)d->nseq * sizeof *a);
         for (int q = 0; q < nz; q++) {
             fftw_complex *g = a + (size_t)q * cs, *gm = a + (size_t)(L - 1 - q) * cs;
-            const fftw_complex *e = E + (size_t)(c * nz + q) * sl + at;
-            const double *P = Pb + (size_t)(q * 6 + c) * ch;
-            for (int x = 0; x < len; x++) {
-                double re = sy[c] * e[x][0], im = sy[c] * e[x][1];
-                mc_eig_rot(&re, &im, rot[c]);
-                g[x][0] = re;
-                g[x][1] = im;
-                gm[x][0] = r * re;
-                gm[x][1] = r * im;
-                pr[x] += P[x] * re;
-                pi[x] += P[x] * im;
+            for (int r = 0; r < nr; r++) {
+                const fftw_complex *e = E + (size_t)(c * nz + q) * sl + at[r];
+                const double sy = (mirror[r] && mc_eig_odd_y(c)) ? -1.0 : 1.0;
+                fftw_complex *gr = g + r * len, *gmr = gm + r * len;
+                for (int x = 0; x < len; x++) {
+                    double re = sy * e[x][0], im = sy * e[x][1];
+                    mc_eig_rot(&re, &im, rot[c]);
+                    gr[x][0] = re;
+                    gr[x][1] = im;
+                    gmr[x][0] = rz * re;
+                    gmr[x][1] = rz * im;
+                }
+                if (d->accumulate_p3) { /* (one row per call) */
+                    const double *P = Pb[r] + (size_t)(q * 6 + c) * ch;
+                    for (int x = 0; x < len; x++) {
+                        pr[x] += P[x] * gr[x][0];
+                        pi[x] += P[x] * gr[x][1];
+                    }
+                }
             }
-            for (int x = len; x < d->nseq; x++)
+            for (int x = ns; x < d->nseq; x++)
                 g[x][0] = g[x][1] = gm[x][0] = gm[x][1] = 0.0;
         }
         fftw_execute_dft(d->zf, a, a);
     }
     if (d->accumulate_p3)
         for (int x = 0; x < len; x++) {
-            f->P[pat + x][0] = pr[x];
-            f->P[pat + x][1] = pi[x];
+            f->P[pat[0] + x][0] = pr[x];
+            f->P[pat[0] + x][1] = pi[x];
         }
     /* products at kz = 0..Nz; the upper half by Y(L - kz) = s_i w^kz Y(kz). On planar copies
      * (contiguous runs over kx), one kx at a time with its six inputs in registers and each
@@ -426,39 +453,44 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
             const fftw_complex *a = A + c * cstride + (size_t)kz * cs;
             double *ar = pl + (size_t)c * 2 * cs, *ai = ar + cs;
             const int odd = mc_eig_odd_z(c); /* (-i)^oz(c) */
-            for (int x = 0; x < len; x++) {
+            for (int x = 0; x < ns; x++) {
                 ar[x] = odd ? a[x][1] : a[x][0];
                 ai[x] = odd ? -a[x][0] : a[x][1];
             }
         }
-        const double *V = Vb + (size_t)kz * MC_EIG_NSYM * ch;
-        const double *r0 = pl, *i0 = pl + cs, *r1 = pl + 2 * cs, *i1 = pl + 3 * cs;
-        const double *r2 = pl + 4 * cs, *i2 = pl + 5 * cs, *r3 = pl + 6 * cs, *i3 = pl + 7 * cs;
-        const double *r4 = pl + 8 * cs, *i4 = pl + 9 * cs, *r5 = pl + 10 * cs, *i5 = pl + 11 * cs;
-        /* ROW(i, ...): the stored pairs mc_eig_sym(i, c) for c = 0..5 */
+        for (int r = 0; r < nr; r++) {
+            const double *V = Vb[r] + (size_t)kz * MC_EIG_NSYM * ch;
+            const int o = r * len;
+            const double *r0 = pl + o, *i0 = pl + cs + o, *r1 = pl + 2 * cs + o;
+            const double *i1 = pl + 3 * cs + o, *r2 = pl + 4 * cs + o, *i2 = pl + 5 * cs + o;
+            const double *r3 = pl + 6 * cs + o, *i3 = pl + 7 * cs + o, *r4 = pl + 8 * cs + o;
+            const double *i4 = pl + 9 * cs + o, *r5 = pl + 10 * cs + o, *i5 = pl + 11 * cs + o;
+            double *pw = po + o;
+            /* ROW(i, ...): the stored pairs mc_eig_sym(i, c) for c = 0..5 */
 #define KV(n) V[(size_t)(n) * ch + x]
 #define ROW(i, n0, n1, n2, n3, n4, n5)                                                            \
     do {                                                                                          \
         const double v0 = KV(n0), v1 = KV(n1), v2 = KV(n2), v3 = KV(n3), v4 = KV(n4), v5 = KV(n5); \
-        po[(size_t)(2 * (i)) * cs + x] =                                                          \
+        pw[(size_t)(2 * (i)) * cs + x] =                                                          \
             v0 * a0r + v1 * a1r + v2 * a2r + v3 * a3r + v4 * a4r + v5 * a5r;                      \
-        po[(size_t)(2 * (i) + 1) * cs + x] =                                                      \
+        pw[(size_t)(2 * (i) + 1) * cs + x] =                                                      \
             v0 * a0i + v1 * a1i + v2 * a2i + v3 * a3i + v4 * a4i + v5 * a5i;                      \
     } while (0)
 #pragma omp simd
-        for (int x = 0; x < len; x++) {
-            const double a0r = r0[x], a0i = i0[x], a1r = r1[x], a1i = i1[x], a2r = r2[x];
-            const double a2i = i2[x], a3r = r3[x], a3i = i3[x], a4r = r4[x], a4i = i4[x];
-            const double a5r = r5[x], a5i = i5[x];
-            ROW(0, 0, 1, 2, 3, 4, 5);
-            ROW(1, 1, 6, 7, 8, 9, 10);
-            ROW(2, 2, 7, 11, 12, 13, 14);
-            ROW(3, 3, 8, 12, 15, 16, 17);
-            ROW(4, 4, 9, 13, 16, 18, 19);
-            ROW(5, 5, 10, 14, 17, 19, 20);
-        }
+            for (int x = 0; x < len; x++) {
+                const double a0r = r0[x], a0i = i0[x], a1r = r1[x], a1i = i1[x], a2r = r2[x];
+                const double a2i = i2[x], a3r = r3[x], a3i = i3[x], a4r = r4[x], a4i = i4[x];
+                const double a5r = r5[x], a5i = i5[x];
+                ROW(0, 0, 1, 2, 3, 4, 5);
+                ROW(1, 1, 6, 7, 8, 9, 10);
+                ROW(2, 2, 7, 11, 12, 13, 14);
+                ROW(3, 3, 8, 12, 15, 16, 17);
+                ROW(4, 4, 9, 13, 16, 18, 19);
+                ROW(5, 5, 10, 14, 17, 19, 20);
+            }
 #undef ROW
 #undef KV
+        }
         const double twr = f->tw[kz][0], twi = f->tw[kz][1];
         for (int i = 0; i < 6; i++) {
             const double *yr = po + (size_t)(2 * i) * cs, *yi = yr + cs;
@@ -466,7 +498,7 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
             fftw_complex *ym = B + i * cstride + (size_t)(L - kz) * cs;
             const int odd = mc_eig_odd_z(i);
             const double s = odd ? -1.0 : 1.0;
-            for (int x = 0; x < len; x++) {
+            for (int x = 0; x < ns; x++) {
                 /* (-i)^oz(i) */
                 const double re = odd ? yi[x] : yr[x], im = odd ? -yr[x] : yi[x];
                 y[x][0] = re;
@@ -482,27 +514,29 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
         fftw_complex *g = B + i * cstride;
         const double scale = 1.0 / (L * mc_eig_weight(i)); /* the DFT pair; V's weight */
         fftw_execute_dft(d->zi, g, g);
-        for (int k = 0; k < nz; k++) {
-            fftw_complex *e = E + (size_t)(i * nz + k) * sl + at;
-            const fftw_complex *y = g + (size_t)k * cs;
-            for (int x = 0; x < len; x++) {
-                double re = scale * sy[i] * y[x][0], im = scale * sy[i] * y[x][1];
-                mc_eig_rot(&re, &im, rot[i]);
-                e[x][0] = re;
-                e[x][1] = im;
-            }
-            if (d->add_s3) { /* as the unstreamed path adds it, after the depth step */
-                const double *l = op->love + (size_t)(k * 6 + i) * op->qlen +
-                                  (size_t)(mirror ? ty - ky : ky) * op->qx + kx0;
+        for (int k = 0; k < nz; k++)
+            for (int r = 0; r < nr; r++) {
+                fftw_complex *e = E + (size_t)(i * nz + k) * sl + at[r];
+                const fftw_complex *y = g + (size_t)k * cs + r * len;
+                const double sy = (mirror[r] && mc_eig_odd_y(i)) ? -1.0 : 1.0;
                 for (int x = 0; x < len; x++) {
-                    double re = sy[i] * l[x] * f->P[pat + x][0];
-                    double im = sy[i] * l[x] * f->P[pat + x][1];
+                    double re = scale * sy * y[x][0], im = scale * sy * y[x][1];
                     mc_eig_rot(&re, &im, rot[i]);
-                    e[x][0] += re;
-                    e[x][1] += im;
+                    e[x][0] = re;
+                    e[x][1] = im;
+                }
+                if (d->add_s3) { /* as the unstreamed path adds it, after the depth step */
+                    const double *l = op->love + (size_t)(k * 6 + i) * op->qlen +
+                                      (size_t)(mirror[r] ? ty - ky[r] : ky[r]) * op->qx + kx0;
+                    for (int x = 0; x < len; x++) {
+                        double re = sy * l[x] * f->P[pat[r] + x][0];
+                        double im = sy * l[x] * f->P[pat[r] + x][1];
+                        mc_eig_rot(&re, &im, rot[i]);
+                        e[x][0] += re;
+                        e[x][1] += im;
+                    }
                 }
             }
-        }
     }
 }
 
@@ -536,9 +570,10 @@ static void apply_padded(mc_eigen_stress *op, const double *const eps[6], double
             const int kx0 = chunk * f->ch;
             const dstep d = {f->E, sl, (size_t)hx, kx0, 0, hx - kx0 < f->ch ? hx - kx0 : f->ch,
                              1, 0, f->cs, f->zf, f->zi};
-            depth_step(op, f, ky, chunk, &d, zb);
-            if (ky > 0 && ty - ky > my) /* its mirror row (an odd period has no Nyquist row) */
-                depth_step(op, f, ty - ky, chunk, &d, zb);
+            depth_step(op, f, &ky, 1, chunk, &d, zb);
+            const int km = ty - ky;
+            if (ky > 0 && km > my) /* its mirror row (an odd period has no Nyquist row) */
+                depth_step(op, f, &km, 1, chunk, &d, zb);
         }
 #pragma omp single
         {
@@ -685,11 +720,14 @@ static void apply_streamed(mc_eigen_stress *op, const double *const eps[6], doub
             const int n = end - kx0 < cb ? end - kx0 : cb;
             block_forward(op, f, kx0, n, sb);
             const dstep d = {sb, (size_t)ty * cb, (size_t)cb, 0, kx0 - chunk * ch, n, 0, 1,
-                             cb, f->zfs, f->zis};
-            for (int ky = 0; ky <= my; ky++) {
-                depth_step(op, f, ky, chunk, &d, zb);
-                if (ky > 0 && ty - ky > my)
-                    depth_step(op, f, ty - ky, chunk, &d, zb);
+                             f->rpc * cb, f->zfs, f->zis};
+            int ky[DEPTH_ROWS], nr = 0;
+            for (int r = 0; r < ty; r++) { /* every row, rpc at a time */
+                ky[nr++] = r;
+                if (nr == f->rpc || r == ty - 1) {
+                    depth_step(op, f, ky, nr, chunk, &d, zb);
+                    nr = 0;
+                }
             }
             for (int t = 0; t < 6 * nz; t++) {
                 fftw_complex *s = sb + (size_t)t * ty * cb;
