@@ -59,27 +59,7 @@ typedef struct {
     size_t zlen;
     fftw_complex *tw;     /* w^kz, kz = 0..Nz, w = e^(-2 pi i / L) */
     fftw_plan zf, zi;     /* depth DFTs of length L, cs sequences at a time */
-    /* streamed (a free, padded y axis: ty > wy): the layer spectra are kept transformed along x
-     * only, on the window's wy rows (H instead of E: wy / ty of its size); the y transforms, the
-     * depth step and S3 run per block of cb columns in a per-thread scratch (file comment) */
-    int stream;
-    int cb;               /* columns per block (stream) */
-    size_t hl;            /* complex values per layer of H (wy hx, rounded up to 4) */
-    fftw_complex *H;      /* 6 nz layers [c * nz + k] of hl */
-    fftw_complex *sb;     /* nthr x sbl: 6 nz x ty x cb, the block's columns of every layer */
-    size_t sbl;
-    fftw_plan xf, xb;     /* r2c / c2r along x of the wy rows of a layer (row stride hx in H) */
-    fftw_plan yf, yb;     /* DFTs along y of length ty over the cb columns of a block */
-    fftw_plan zfs, zis;   /* the depth DFTs over rpc cb sequences (rpc rows of a block) */
-    int rpc;              /* rows per depth step call (streamed): cs / cb, 1..DEPTH_ROWS */
 } sfft;
-
-/* columns per block of the streamed path: the block scratch is 6 nz ty cb complex values per
- * thread (at 256^2 x 32, cb = 8: 12.6 MB, 6 bytes per volume cell), and FFTW's column transforms
- * over 8 interleaved columns run at full speed */
-#define STREAM_COLUMNS 8
-/* rows per call of the depth step at most (streamed: its sequences are rows x columns) */
-#define DEPTH_ROWS 16
 
 /* Half the lateral transform sizes: a free axis padded to 2 m >= 2 window; a periodic axis
  * (mc_eig_per_x / _y) transformed over its period n, unpadded, m = n / 2. */
@@ -239,56 +219,31 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     if (rc)
         return rc;
     const int hx = f->fft.hx; /* = qx */
-    const int ty = f->fft.ty, tx = f->fft.tx;
-    /* streamed: the kernel blocks are as narrow as the column blocks (a block's kernel values
-     * one contiguous run), and a depth step takes up to 8 rows of them side by side */
-    f->stream = ty > wy;
-    const int target = f->stream ? STREAM_COLUMNS : CHUNK_TARGET;
-    f->nch = (hx + target - 1) / target;
+    f->nch = (hx + CHUNK_TARGET - 1) / CHUNK_TARGET;
     f->ch = (hx + f->nch - 1) / f->nch;
-    f->cb = f->ch;
-    f->cs = ((f->stream ? 8 * f->ch : f->ch) + 3) / 4 * 4;
+    f->cs = (f->ch + 3) / 4 * 4;
     if (f->cs % 16 == 0) /* a power-of-2 stride between depth planes thrashes the cache */
         f->cs += 4;
-    f->rpc = f->cs / f->cb;
-    f->rpc = f->rpc < 1 ? 1 : f->rpc > DEPTH_ROWS ? DEPTH_ROWS : f->rpc;
     f->nthr = mc_eig_threads(12 * (size_t)nz * (size_t)f->fft.tx * (size_t)f->fft.ty);
     f->zlen = (size_t)(12 * f->L + 12) * f->cs;
     const size_t sl = f->fft.speclen, rl = (size_t)wy * f->fft.tx;
     const size_t blk = (size_t)op->qy * f->nch * f->ch; /* doubles per blocked plane */
     const size_t nv = (size_t)(f->Nz + 1) * MC_EIG_NSYM * blk, np3 = 6 * (size_t)nz * blk;
-    f->hl = ((size_t)wy * hx + 3) / 4 * 4;
-    f->sbl = 6 * (size_t)nz * ty * f->cb;
-    /* the layer spectra: E (6 nz padded half spectra), or streamed H (6 nz x-spectra of the
-     * window's rows) and a block scratch per thread */
-    const size_t nspec = f->stream ? 6 * (size_t)nz * f->hl + (size_t)f->nthr * f->sbl
-                                   : 6 * (size_t)nz * sl;
     f->V = mc_calloc(nv, sizeof *f->V);
     f->P3 = mc_calloc(np3, sizeof *f->P3);
-    if (f->stream) {
-        f->H = mc_malloc(6 * (size_t)nz * f->hl * sizeof *f->H);
-        f->sb = mc_malloc((size_t)f->nthr * f->sbl * sizeof *f->sb);
-    } else {
-        f->E = mc_malloc(6 * (size_t)nz * sl * sizeof *f->E);
-    }
+    f->E = mc_malloc(6 * (size_t)nz * sl * sizeof *f->E);
     f->P = mc_malloc(sl * sizeof *f->P);
     f->rows = mc_malloc((size_t)f->nthr * rl * sizeof *f->rows);
     f->zb = mc_calloc((size_t)f->nthr * f->zlen, sizeof *f->zb);
     f->tw = mc_malloc((size_t)(f->Nz + 1) * sizeof *f->tw);
-    if (!f->V || !f->P3 || (f->stream ? !f->H || !f->sb : !f->E) || !f->P || !f->rows ||
-        !f->zb || !f->tw)
+    if (!f->V || !f->P3 || !f->E || !f->P || !f->rows || !f->zb || !f->tw)
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for %zu spectra",
                        (size_t)(f->Nz + 1) * MC_EIG_NSYM + 12 * (size_t)nz);
     op->bytes += sizeof *f + (nv + np3) * sizeof(double) +
-                 (nspec + sl + (size_t)f->nthr * f->zlen + f->Nz + 1) * sizeof(fftw_complex) +
-                 (size_t)f->nthr * rl * sizeof(double);
+                 ((6 * (size_t)nz + 1) * sl + (size_t)f->nthr * f->zlen + f->Nz + 1) *
+                     sizeof(fftw_complex) + (size_t)f->nthr * rl * sizeof(double);
     /* touch the spectra now: the first apply should not pay the page faults */
-    if (f->stream) {
-        memset(f->H, 0, 6 * (size_t)nz * f->hl * sizeof *f->H);
-        memset(f->sb, 0, (size_t)f->nthr * f->sbl * sizeof *f->sb);
-    } else {
-        memset(f->E, 0, 6 * (size_t)nz * sl * sizeof *f->E);
-    }
+    memset(f->E, 0, 6 * (size_t)nz * sl * sizeof *f->E);
     memset(f->P, 0, sl * sizeof *f->P);
     if ((rc = build_spectra(op, f, err)))
         return rc;
@@ -305,21 +260,6 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     f->zi = fftw_plan_guru_dft(1, &dim, 1, &vec, f->zb, f->zb, FFTW_BACKWARD, rep);
     if (!f->zf || !f->zi)
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: FFTW could not plan depth transforms");
-    if (f->stream) { /* planned on H and the scratch: both are filled at every apply */
-        int nrow[1] = {tx}, ncol[1] = {ty};
-        f->xf = fftw_plan_many_dft_r2c(1, nrow, wy, f->rows, NULL, 1, tx, f->H, NULL, 1, hx, rep);
-        f->xb = fftw_plan_many_dft_c2r(1, nrow, wy, f->H, NULL, 1, hx, f->rows, NULL, 1, tx, rep);
-        f->yf = fftw_plan_many_dft(1, ncol, f->cb, f->sb, NULL, f->cb, 1, f->sb, NULL, f->cb, 1,
-                                   FFTW_FORWARD, rep);
-        f->yb = fftw_plan_many_dft(1, ncol, f->cb, f->sb, NULL, f->cb, 1, f->sb, NULL, f->cb, 1,
-                                   FFTW_BACKWARD, rep);
-        fftw_iodim vs = {f->rpc * f->cb, 1, 1};
-        f->zfs = fftw_plan_guru_dft(1, &dim, 1, &vs, f->zb, f->zb, FFTW_FORWARD, rep);
-        f->zis = fftw_plan_guru_dft(1, &dim, 1, &vs, f->zb, f->zb, FFTW_BACKWARD, rep);
-        if (!f->xf || !f->xb || !f->yf || !f->yb || !f->zfs || !f->zis)
-            return mc_fail(err, MC_ERR_NOMEM, "eigen stress: FFTW could not plan the streamed "
-                                              "transforms");
-    }
     return MC_OK;
 }
 
@@ -333,12 +273,6 @@ void mc_eig_stress_fft_free(mc_eigen_stress *op)
         fftw_destroy_plan(f->zf);
     if (f->zi)
         fftw_destroy_plan(f->zi);
-    fftw_plan sp[] = {f->xf, f->xb, f->yf, f->yb, f->zfs, f->zis};
-    for (int k = 0; k < 6; k++)
-        if (sp[k])
-            fftw_destroy_plan(sp[k]);
-    mc_free(f->H);
-    mc_free(f->sb);
     mc_free(f->V);
     mc_free(f->P3);
     mc_free(f->E);
@@ -354,95 +288,54 @@ void mc_eig_stress_fft_free(mc_eigen_stress *op)
  * column factors (-i)^(ox + oy) s_y and the mirror layers, p3, depth DFTs, the 6 x 6 products for
  * kz = 0..Nz (on planar copies, so the loops run over contiguous kx) and the twiddle for the rest,
  * inverse DFTs, scatter with the row factors and 1 / L back into E. */
-/* The layer spectra the depth step reads and writes: layer t at E + t * ls, spectrum row ky at
- * row ky * rs, its first column kx0 (at index x0 of the row); the kernel block's values from xo
- * on (kx0 = chunk ch + xo), len columns. The E of the unstreamed path: ls = speclen, rs = hx,
- * x0 = kx0, xo = 0, len the chunk, one row per call, and p3 accumulates; streamed: the block
- * scratch, ls = ty cb, rs = cb, x0 = 0, up to cs / cb rows per call (their len columns side by
- * side in the depth DFTs' sequences), and S3 (Love's spectra times the cut p3 spectrum f->P) is
- * added. */
-typedef struct {
-    fftw_complex *E;
-    size_t ls, rs;
-    int x0, xo, len;
-    int accumulate_p3; /* 1: f->P = sum of the p3 kernels times the source (unstreamed) */
-    int add_s3;        /* 1: the outputs get S3 (streamed) */
-    int nseq;          /* sequences the depth DFTs transform (>= rows x len): cs, or a
-                          multiple of cb (streamed) */
-    fftw_plan zf, zi;  /* and their plans */
-} dstep;
-
-/* The depth step for the spectrum rows ky[0..nr) (nr <= DEPTH_ROWS), block chunk (kx0 = chunk
- * ch + xo, len values each): gather with the column factors (-i)^(ox + oy) s_y and the mirror
- * layers, p3, depth DFTs, the 6 x 6 products for kz = 0..Nz (on planar copies, so the loops run
- * over contiguous kx) and the twiddle for the rest, inverse DFTs, scatter with the row factors
- * and 1 / L back into E (and S3). Sequence r len + x of the DFTs is column x of row r. */
-DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, const int *ky,
-                                    int nr, int chunk, const dstep *d, fftw_complex *zb)
+DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, int ky, int chunk,
+                       fftw_complex *zb)
 {
     const int nz = op->v.nz, Nz = f->Nz, L = f->L, ch = f->ch, cs = f->cs;
-    const int hx = f->fft.hx, ty = f->fft.ty, my = op->qy - 1;
-    const int kx0 = chunk * ch + d->xo, len = d->len, ns = nr * len;
-    const size_t sl = d->ls;
-    fftw_complex *const E = d->E;
+    const int hx = f->fft.hx, ty = f->fft.ty, my = op->qy - 1, mirror = ky > my, kx0 = chunk * ch;
+    const int len = hx - kx0 < ch ? hx - kx0 : ch;
+    const size_t sl = f->fft.speclen, at = (size_t)ky * hx + kx0; /* spectrum index */
+    const size_t b = (size_t)(mirror ? ty - ky : ky) * f->nch + chunk; /* kernel block */
+    const double *Vb = f->V + b * (size_t)(Nz + 1) * MC_EIG_NSYM * ch;
+    const double *Pb = f->P3 + b * (size_t)nz * 6 * ch;
     const size_t cstride = (size_t)L * cs; /* complex values per component */
     fftw_complex *A = zb, *B = zb + 6 * cstride;
-    size_t at[DEPTH_ROWS], pat[DEPTH_ROWS];
-    const double *Vb[DEPTH_ROWS], *Pb[DEPTH_ROWS];
-    int mirror[DEPTH_ROWS];
-    for (int r = 0; r < nr; r++) {
-        mirror[r] = ky[r] > my;
-        at[r] = (size_t)ky[r] * d->rs + d->x0; /* spectrum index */
-        pat[r] = (size_t)ky[r] * hx + kx0;      /* in f->P */
-        const size_t b = (size_t)(mirror[r] ? ty - ky[r] : ky[r]) * f->nch + chunk;
-        Vb[r] = f->V + b * (size_t)(Nz + 1) * MC_EIG_NSYM * ch + d->xo;
-        Pb[r] = f->P3 + b * (size_t)nz * 6 * ch + d->xo;
-    }
+
     int rot[6];
-    for (int c = 0; c < 6; c++)
+    double sy[6];
+    for (int c = 0; c < 6; c++) {
         rot[c] = mc_eig_odd_x(c) + mc_eig_odd_y(c);
+        sy[c] = (mirror && mc_eig_odd_y(c)) ? -1.0 : 1.0;
+    }
     /* gather: layers q < nz and their mirrors at L - 1 - q (r_c = -1 for yz, xz); p3 / 2G */
     double pr[CHUNK_TARGET] = {0.0}, pi[CHUNK_TARGET] = {0.0};
     for (int c = 0; c < 6; c++) {
         fftw_complex *a = A + c * cstride;
-        const double rz = mc_eig_odd_z(c) ? -1.0 : 1.0;
-        if (d->nseq == cs)
-            memset(a + (size_t)nz * cs, 0, (size_t)(L - 2 * nz) * cs * sizeof *a);
-        else /* only the sequences transformed */
-            for (int q = nz; q < L - nz; q++)
-                memset(a + (size_t)q * cs, 0, (size_t)d->nseq * sizeof *a);
+        const double r = mc_eig_odd_z(c) ? -1.0 : 1.0;
+        memset(a + (size_t)nz * cs, 0, (size_t)(L - 2 * nz) * cs * sizeof *a);
         for (int q = 0; q < nz; q++) {
             fftw_complex *g = a + (size_t)q * cs, *gm = a + (size_t)(L - 1 - q) * cs;
-            for (int r = 0; r < nr; r++) {
-                const fftw_complex *e = E + (size_t)(c * nz + q) * sl + at[r];
-                const double sy = (mirror[r] && mc_eig_odd_y(c)) ? -1.0 : 1.0;
-                fftw_complex *gr = g + r * len, *gmr = gm + r * len;
-                for (int x = 0; x < len; x++) {
-                    double re = sy * e[x][0], im = sy * e[x][1];
-                    mc_eig_rot(&re, &im, rot[c]);
-                    gr[x][0] = re;
-                    gr[x][1] = im;
-                    gmr[x][0] = rz * re;
-                    gmr[x][1] = rz * im;
-                }
-                if (d->accumulate_p3) { /* (one row per call) */
-                    const double *P = Pb[r] + (size_t)(q * 6 + c) * ch;
-                    for (int x = 0; x < len; x++) {
-                        pr[x] += P[x] * gr[x][0];
-                        pi[x] += P[x] * gr[x][1];
-                    }
-                }
+            const fftw_complex *e = f->E + (size_t)(c * nz + q) * sl + at;
+            const double *P = Pb + (size_t)(q * 6 + c) * ch;
+            for (int x = 0; x < len; x++) {
+                double re = sy[c] * e[x][0], im = sy[c] * e[x][1];
+                mc_eig_rot(&re, &im, rot[c]);
+                g[x][0] = re;
+                g[x][1] = im;
+                gm[x][0] = r * re;
+                gm[x][1] = r * im;
+                pr[x] += P[x] * re;
+                pi[x] += P[x] * im;
             }
-            for (int x = ns; x < d->nseq; x++)
+            for (int x = len; x < cs; x++)
                 g[x][0] = g[x][1] = gm[x][0] = gm[x][1] = 0.0;
         }
-        fftw_execute_dft(d->zf, a, a);
+        fftw_execute_dft(f->zf, a, a);
     }
-    if (d->accumulate_p3)
-        for (int x = 0; x < len; x++) {
-            f->P[pat[0] + x][0] = pr[x];
-            f->P[pat[0] + x][1] = pi[x];
-        }
+    for (int x = 0; x < len; x++) {
+        f->P[at + x][0] = pr[x];
+        f->P[at + x][1] = pi[x];
+    }
     /* products at kz = 0..Nz; the upper half by Y(L - kz) = s_i w^kz Y(kz). On planar copies
      * (contiguous runs over kx), one kx at a time with its six inputs in registers and each
      * row's sum over c = 0..5 in order; the kernel's 21 values of a frequency read once each. */
@@ -453,44 +346,39 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, co
             const fftw_complex *a = A + c * cstride + (size_t)kz * cs;
             double *ar = pl + (size_t)c * 2 * cs, *ai = ar + cs;
             const int odd = mc_eig_odd_z(c); /* (-i)^oz(c) */
-            for (int x = 0; x < ns; x++) {
+            for (int x = 0; x < len; x++) {
                 ar[x] = odd ? a[x][1] : a[x][0];
                 ai[x] = odd ? -a[x][0] : a[x][1];
             }
         }
-        for (int r = 0; r < nr; r++) {
-            const double *V = Vb[r] + (size_t)kz * MC_EIG_NSYM * ch;
-            const int o = r * len;
-            const double *r0 = pl + o, *i0 = pl + cs + o, *r1 = pl + 2 * cs + o;
-            const double *i1 = pl + 3 * cs + o, *r2 = pl + 4 * cs + o, *i2 = pl + 5 * cs + o;
-            const double *r3 = pl + 6 * cs + o, *i3 = pl + 7 * cs + o, *r4 = pl + 8 * cs + o;
-            const double *i4 = pl + 9 * cs + o, *r5 = pl + 10 * cs + o, *i5 = pl + 11 * cs + o;
-            double *pw = po + o;
-            /* ROW(i, ...): the stored pairs mc_eig_sym(i, c) for c = 0..5 */
+        const double *V = Vb + (size_t)kz * MC_EIG_NSYM * ch;
+        const double *r0 = pl, *i0 = pl + cs, *r1 = pl + 2 * cs, *i1 = pl + 3 * cs;
+        const double *r2 = pl + 4 * cs, *i2 = pl + 5 * cs, *r3 = pl + 6 * cs, *i3 = pl + 7 * cs;
+        const double *r4 = pl + 8 * cs, *i4 = pl + 9 * cs, *r5 = pl + 10 * cs, *i5 = pl + 11 * cs;
+        /* ROW(i, ...): the stored pairs mc_eig_sym(i, c) for c = 0..5 */
 #define KV(n) V[(size_t)(n) * ch + x]
 #define ROW(i, n0, n1, n2, n3, n4, n5)                                                            \
     do {                                                                                          \
         const double v0 = KV(n0), v1 = KV(n1), v2 = KV(n2), v3 = KV(n3), v4 = KV(n4), v5 = KV(n5); \
-        pw[(size_t)(2 * (i)) * cs + x] =                                                          \
+        po[(size_t)(2 * (i)) * cs + x] =                                                          \
             v0 * a0r + v1 * a1r + v2 * a2r + v3 * a3r + v4 * a4r + v5 * a5r;                      \
-        pw[(size_t)(2 * (i) + 1) * cs + x] =                                                      \
+        po[(size_t)(2 * (i) + 1) * cs + x] =                                                      \
             v0 * a0i + v1 * a1i + v2 * a2i + v3 * a3i + v4 * a4i + v5 * a5i;                      \
     } while (0)
 #pragma omp simd
-            for (int x = 0; x < len; x++) {
-                const double a0r = r0[x], a0i = i0[x], a1r = r1[x], a1i = i1[x], a2r = r2[x];
-                const double a2i = i2[x], a3r = r3[x], a3i = i3[x], a4r = r4[x], a4i = i4[x];
-                const double a5r = r5[x], a5i = i5[x];
-                ROW(0, 0, 1, 2, 3, 4, 5);
-                ROW(1, 1, 6, 7, 8, 9, 10);
-                ROW(2, 2, 7, 11, 12, 13, 14);
-                ROW(3, 3, 8, 12, 15, 16, 17);
-                ROW(4, 4, 9, 13, 16, 18, 19);
-                ROW(5, 5, 10, 14, 17, 19, 20);
-            }
+        for (int x = 0; x < len; x++) {
+            const double a0r = r0[x], a0i = i0[x], a1r = r1[x], a1i = i1[x], a2r = r2[x];
+            const double a2i = i2[x], a3r = r3[x], a3i = i3[x], a4r = r4[x], a4i = i4[x];
+            const double a5r = r5[x], a5i = i5[x];
+            ROW(0, 0, 1, 2, 3, 4, 5);
+            ROW(1, 1, 6, 7, 8, 9, 10);
+            ROW(2, 2, 7, 11, 12, 13, 14);
+            ROW(3, 3, 8, 12, 15, 16, 17);
+            ROW(4, 4, 9, 13, 16, 18, 19);
+            ROW(5, 5, 10, 14, 17, 19, 20);
+        }
 #undef ROW
 #undef KV
-        }
         const double twr = f->tw[kz][0], twi = f->tw[kz][1];
         for (int i = 0; i < 6; i++) {
             const double *yr = po + (size_t)(2 * i) * cs, *yi = yr + cs;
@@ -498,7 +386,7 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, co
             fftw_complex *ym = B + i * cstride + (size_t)(L - kz) * cs;
             const int odd = mc_eig_odd_z(i);
             const double s = odd ? -1.0 : 1.0;
-            for (int x = 0; x < ns; x++) {
+            for (int x = 0; x < len; x++) {
                 /* (-i)^oz(i) */
                 const double re = odd ? yi[x] : yr[x], im = odd ? -yr[x] : yi[x];
                 y[x][0] = re;
@@ -513,35 +401,22 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, co
     for (int i = 0; i < 6; i++) {
         fftw_complex *g = B + i * cstride;
         const double scale = 1.0 / (L * mc_eig_weight(i)); /* the DFT pair; V's weight */
-        fftw_execute_dft(d->zi, g, g);
-        for (int k = 0; k < nz; k++)
-            for (int r = 0; r < nr; r++) {
-                fftw_complex *e = E + (size_t)(i * nz + k) * sl + at[r];
-                const fftw_complex *y = g + (size_t)k * cs + r * len;
-                const double sy = (mirror[r] && mc_eig_odd_y(i)) ? -1.0 : 1.0;
-                for (int x = 0; x < len; x++) {
-                    double re = scale * sy * y[x][0], im = scale * sy * y[x][1];
-                    mc_eig_rot(&re, &im, rot[i]);
-                    e[x][0] = re;
-                    e[x][1] = im;
-                }
-                if (d->add_s3) { /* as the unstreamed path adds it, after the depth step */
-                    const double *l = op->love + (size_t)(k * 6 + i) * op->qlen +
-                                      (size_t)(mirror[r] ? ty - ky[r] : ky[r]) * op->qx + kx0;
-                    for (int x = 0; x < len; x++) {
-                        double re = sy * l[x] * f->P[pat[r] + x][0];
-                        double im = sy * l[x] * f->P[pat[r] + x][1];
-                        mc_eig_rot(&re, &im, rot[i]);
-                        e[x][0] += re;
-                        e[x][1] += im;
-                    }
-                }
+        fftw_execute_dft(f->zi, g, g);
+        for (int k = 0; k < nz; k++) {
+            fftw_complex *e = f->E + (size_t)(i * nz + k) * sl + at;
+            const fftw_complex *y = g + (size_t)k * cs;
+            for (int x = 0; x < len; x++) {
+                double re = scale * sy[i] * y[x][0], im = scale * sy[i] * y[x][1];
+                mc_eig_rot(&re, &im, rot[i]);
+                e[x][0] = re;
+                e[x][1] = im;
             }
+        }
     }
 }
 
-static void apply_padded(mc_eigen_stress *op, const double *const eps[6], double G,
-                         double *const sig[6])
+void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
+                             double *const sig[6])
 {
     sfft *f = op->fft;
     const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, tx = f->fft.tx, ty = f->fft.ty;
@@ -567,13 +442,9 @@ static void apply_padded(mc_eigen_stress *op, const double *const eps[6], double
             if (chunk * f->ch >= hx)
                 continue;
             fftw_complex *zb = f->zb + (size_t)me * f->zlen;
-            const int kx0 = chunk * f->ch;
-            const dstep d = {f->E, sl, (size_t)hx, kx0, 0, hx - kx0 < f->ch ? hx - kx0 : f->ch,
-                             1, 0, f->cs, f->zf, f->zi};
-            depth_step(op, f, &ky, 1, chunk, &d, zb);
-            const int km = ty - ky;
-            if (ky > 0 && km > my) /* its mirror row (an odd period has no Nyquist row) */
-                depth_step(op, f, &km, 1, chunk, &d, zb);
+            depth_step(op, f, ky, chunk, zb);
+            if (ky > 0 && ty - ky > my) /* its mirror row (an odd period has no Nyquist row) */
+                depth_step(op, f, ty - ky, chunk, zb);
         }
 #pragma omp single
         {
@@ -614,147 +485,4 @@ static void apply_padded(mc_eigen_stress *op, const double *const eps[6], double
                     out[(size_t)j * wx + x] = 2.0 * G * scale * rows[(size_t)j * tx + x];
         }
     }
-}
-
-/* The block scratch sb (6 nz layers of ty x cb) from columns kx0 .. kx0 + n - 1 of H's wy rows,
- * zero elsewhere, then transformed along y. */
-static void block_forward(const mc_eigen_stress *op, const sfft *f, int kx0, int n,
-                          fftw_complex *sb)
-{
-    const int wy = op->v.ny, ty = f->fft.ty, cb = f->cb, hx = f->fft.hx;
-    for (int t = 0; t < 6 * op->v.nz; t++) {
-        fftw_complex *s = sb + (size_t)t * ty * cb;
-        const fftw_complex *h = f->H + (size_t)t * f->hl + kx0;
-        for (int j = 0; j < wy; j++) {
-            memcpy(s + (size_t)j * cb, h + (size_t)j * hx, (size_t)n * sizeof *s);
-            memset(s + (size_t)j * cb + n, 0, (size_t)(cb - n) * sizeof *s);
-        }
-        memset(s + (size_t)wy * cb, 0, (size_t)(ty - wy) * cb * sizeof *s);
-        fftw_execute_dft(f->yf, s, s);
-    }
-}
-
-/* The streamed application (a padded y axis; file comment): the layers along x into H; per
- * block of columns the y transforms and p3's sum (the p3 kernels times the source); p3 cut to the
- * window; per block again the y transforms, the depth step with S3, the inverse y transforms
- * back into H's rows; the layers back along x. The block's y transforms are done twice: storing
- * them would be the padded spectra this path avoids. */
-static void apply_streamed(mc_eigen_stress *op, const double *const eps[6], double G,
-                           double *const sig[6])
-{
-    sfft *f = op->fft;
-    const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, tx = f->fft.tx, ty = f->fft.ty;
-    const int hx = f->fft.hx, my = op->qy - 1, ch = f->ch, cb = f->cb;
-    const size_t wc = (size_t)wx * wy, rl = (size_t)wy * tx, ql = op->qlen;
-    const double scale = 1.0 / ((double)tx * ty); /* FFTW does not normalise */
-    const int per = (ch + cb - 1) / cb;           /* blocks per kernel chunk */
-    const int nblk = f->nch * per;
-    (void)ql;
-#pragma omp parallel num_threads(f->nthr)
-    {
-        const int me = omp_get_thread_num();
-        double *rows = f->rows + (size_t)me * rl;
-        fftw_complex *sb = f->sb + (size_t)me * f->sbl;
-        fftw_complex *zb = f->zb + (size_t)me * f->zlen;
-        /* every layer and column along x */
-#pragma omp for schedule(dynamic, 1)
-        for (int t = 0; t < 6 * nz; t++) {
-            const int c = t / nz, k = t % nz;
-            mc_eig_fill_rows(rows, tx, eps[c] + k * wc, wx, wy, 0);
-            fftw_execute_dft_r2c(f->xf, rows, f->H + (size_t)t * f->hl);
-        }
-        /* p3's spectrum, block by block: the gather of the depth step (the same signs, order) */
-#pragma omp for schedule(dynamic, 1)
-        for (int bl = 0; bl < nblk; bl++) {
-            const int chunk = bl / per, kx0 = chunk * ch + (bl % per) * cb;
-            const int end = chunk * ch + ch < hx ? chunk * ch + ch : hx;
-            if (kx0 >= end)
-                continue;
-            const int n = end - kx0 < cb ? end - kx0 : cb;
-            block_forward(op, f, kx0, n, sb);
-            for (int ky = 0; ky < ty; ky++) {
-                const int mirror = ky > my;
-                const size_t b = (size_t)(mirror ? ty - ky : ky) * f->nch + chunk;
-                const double *Pb = f->P3 + b * (size_t)nz * 6 * ch + (kx0 - chunk * ch);
-                double pr[STREAM_COLUMNS] = {0.0}, pi[STREAM_COLUMNS] = {0.0};
-                for (int c = 0; c < 6; c++) {
-                    const int rot = mc_eig_odd_x(c) + mc_eig_odd_y(c);
-                    const double sy = (mirror && mc_eig_odd_y(c)) ? -1.0 : 1.0;
-                    for (int q = 0; q < nz; q++) {
-                        const fftw_complex *e = sb + ((size_t)(c * nz + q) * ty + ky) * cb;
-                        const double *P = Pb + (size_t)(q * 6 + c) * ch;
-                        for (int x = 0; x < n; x++) {
-                            double re = sy * e[x][0], im = sy * e[x][1];
-                            mc_eig_rot(&re, &im, rot);
-                            pr[x] += P[x] * re;
-                            pi[x] += P[x] * im;
-                        }
-                    }
-                }
-                for (int x = 0; x < n; x++) {
-                    f->P[(size_t)ky * hx + kx0 + x][0] = pr[x];
-                    f->P[(size_t)ky * hx + kx0 + x][1] = pi[x];
-                }
-            }
-        }
-#pragma omp single
-        {
-            /* p3 on the window only: back to space, cut, forward again */
-            mc_eig_fft_inverse(&f->fft, f->P, rows);
-            for (int j = 0; j < wy; j++)
-                for (int i = 0; i < wx; i++) {
-                    const double p = scale * rows[(size_t)j * tx + i];
-                    op->work[(size_t)j * wx + i] = p;
-                    op->p3[(size_t)j * wx + i] = 2.0 * G * p;
-                }
-            mc_eig_fill_rows(rows, tx, op->work, wx, wy, 0);
-            mc_eig_fft_forward(&f->fft, rows, f->P);
-        }
-        /* per block: y, the depth step with S3, back along y into H's rows */
-#pragma omp for schedule(dynamic, 1)
-        for (int bl = 0; bl < nblk; bl++) {
-            const int chunk = bl / per, kx0 = chunk * ch + (bl % per) * cb;
-            const int end = chunk * ch + ch < hx ? chunk * ch + ch : hx;
-            if (kx0 >= end)
-                continue;
-            const int n = end - kx0 < cb ? end - kx0 : cb;
-            block_forward(op, f, kx0, n, sb);
-            const dstep d = {sb, (size_t)ty * cb, (size_t)cb, 0, kx0 - chunk * ch, n, 0, 1,
-                             f->rpc * cb, f->zfs, f->zis};
-            int ky[DEPTH_ROWS], nr = 0;
-            for (int r = 0; r < ty; r++) { /* every row, rpc at a time */
-                ky[nr++] = r;
-                if (nr == f->rpc || r == ty - 1) {
-                    depth_step(op, f, ky, nr, chunk, &d, zb);
-                    nr = 0;
-                }
-            }
-            for (int t = 0; t < 6 * nz; t++) {
-                fftw_complex *s = sb + (size_t)t * ty * cb;
-                fftw_complex *h = f->H + (size_t)t * f->hl + kx0;
-                fftw_execute_dft(f->yb, s, s);
-                for (int j = 0; j < wy; j++)
-                    memcpy(h + (size_t)j * hx, s + (size_t)j * cb, (size_t)n * sizeof *h);
-            }
-        }
-        /* every stress layer back along x */
-#pragma omp for schedule(dynamic, 1)
-        for (int t = 0; t < 6 * nz; t++) {
-            const int i = t / nz, k = t % nz;
-            fftw_execute_dft_c2r(f->xb, f->H + (size_t)t * f->hl, rows);
-            double *out = sig[i] + k * wc;
-            for (int j = 0; j < wy; j++)
-                for (int x = 0; x < wx; x++)
-                    out[(size_t)j * wx + x] = 2.0 * G * scale * rows[(size_t)j * tx + x];
-        }
-    }
-}
-
-void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
-                             double *const sig[6])
-{
-    if (((sfft *)op->fft)->stream)
-        apply_streamed(op, eps, G, sig);
-    else
-        apply_padded(op, eps, G, sig);
 }
