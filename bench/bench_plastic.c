@@ -13,6 +13,11 @@
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
+#include <stdlib.h>
+#include <fcntl.h>
+#include <unistd.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 
 #include "bench.h"
 #include "core/alloc.h"
@@ -543,6 +548,86 @@ static void section_skips(vf_ctx *ctx, int quick)
             1 - e0.t / e1.t);
 }
 
+/* ---- the peak memory of a whole run --------------------------------------------------------- */
+
+/* Peak resident memory (bytes, getrusage ru_maxrss of the child through wait4) of a fresh
+ * `microcontact run` (this executable, one thread) of an elastic-plastic sphere whose plastic
+ * volume is n x n x 32 cells under the whole grid (dz = 0.5 um on dx = 1 um, depth 16 um),
+ * free (per 0), a strip periodic along y (1) or doubly periodic (2). One load step, one outer
+ * iteration of at most 5 sweeps: every array of the loop and the operators is allocated and
+ * written by then (the run ends not converged, exit 1, by design). -1 on failure. */
+static double whole_run_peak(const char *self, const char *dir, int n, int per)
+{
+    char ini[512], out[512];
+    snprintf(ini, sizeof ini, "%s/peak%d_%d.ini", dir, n, per);
+    snprintf(out, sizeof out, "%s/out%d_%d", dir, n, per);
+    FILE *f = fopen(ini, "w");
+    if (!f)
+        return -1;
+    fprintf(f, "[mesh]\nnx = %d\nny = %d\ndx = 1 um\nperiodic_x = %s\nperiodic_y = %s\n"
+               "[geometry]\nshape = sphere\nradius = 2 mm\n[body2]\nrigid = yes\n"
+               "[load]\nforce = 0.5 N\n[plasticity]\nhardening = perfect\n"
+               "yield_stress = 450 MPa\nload_steps = 1\ndz = 0.5 um\ndepth = 16 um\n%s"
+               "max_outer = 1\nmax_plastic = 5\n",
+            n, n, per == 2 ? "yes" : "no", per >= 1 ? "yes" : "no",
+            per == 2 ? "" : "margin = 1 mm\n");
+    fclose(f);
+    const pid_t pid = fork();
+    if (pid < 0)
+        return -1;
+    if (pid == 0) {
+        const int fd = open("/dev/null", O_WRONLY);
+        if (fd >= 0) {
+            dup2(fd, 1);
+            dup2(fd, 2);
+        }
+        setenv("OMP_NUM_THREADS", "1", 1);
+        execl(self, self, "run", ini, "--out", out, "--quiet", (char *)NULL);
+        _exit(127);
+    }
+    int status = 0;
+    struct rusage ru;
+    if (wait4(pid, &status, 0, &ru) != pid || !WIFEXITED(status) || WEXITSTATUS(status) > 1)
+        return -1; /* exit 1: not converged, with results (the one outer iteration asked) */
+    return 1024.0 * (double)ru.ru_maxrss; /* Linux: kilobytes */
+}
+
+static void section_whole_peak(vf_ctx *ctx, int quick)
+{
+    char dir[] = "/tmp/mc_bench_peak_XXXXXX", self[1024];
+    const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (len <= 0 || !mkdtemp(dir))
+        return;
+    self[len] = '\0';
+    static const char *const name[] = {"free", "strip (periodic y)", "doubly periodic"};
+    static const char *const key[] = {"free", "strip", "doubly"};
+    const int n = quick ? 128 : 256, nper = quick ? 1 : 3;
+    vf_text(ctx, "\n### Peak memory of a whole run\n\n"
+                 "Peak resident memory (getrusage ru_maxrss of a child `microcontact run`, one "
+                 "thread) of an elastic-plastic sphere whose plastic volume is %d² x 32 cells under "
+                 "the whole grid (one load step, one outer iteration: every array of the loop and "
+                 "the operators allocated and written), divided by the volume cells; the program "
+                 "itself (code, libraries, FFTW, surface fields) is included. Target of issue 20: "
+                 "<= 200 bytes per volume cell at 256² x 32.\n\n"
+                 "| volume | peak (MiB) | bytes per volume cell |\n|---|---|---|\n",
+            n);
+    for (int per = 0; per < nper; per++) {
+        const double rss = whole_run_peak(self, dir, n, per);
+        const double bpc = rss > 0 ? rss / ((double)n * n * 32) : NAN;
+        vf_text(ctx, "| %s %d² x 32 | %.0f | %.0f |\n", name[per], n, rss / 1048576.0, bpc);
+        char id[64], q[160];
+        snprintf(id, sizeof id, "plastic_run_peak_bytes_%s", key[per]);
+        snprintf(q, sizeof q, "peak bytes per volume cell of a whole elastic-plastic run, %s "
+                 "%d² x 32 (child ru_maxrss)", name[per], n);
+        vf_info(ctx, id, q, "issue 20 target <= 200 at 256² x 32", 200, bpc);
+        vf_regress(ctx, id, VF_TIER_NONE);
+    }
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    if (system(cmd) != 0)
+        vf_text(ctx, "(could not remove %s)\n", dir);
+}
+
 int mc_bench_plastic(vf_ctx *ctx, int quick)
 {
     double ratio256 = NAN, bytes256 = NAN;
@@ -556,6 +641,7 @@ int mc_bench_plastic(vf_ctx *ctx, int quick)
              at);
     vf_check(ctx, "plastic_bytes_per_cell", q, "target <= 400 (issue 11)", BYTES_MAX, bytes256,
              BYTES_MAX, VF_MAX);
+    section_whole_peak(ctx, quick);
     section_ke(ctx, quick);
     section_skips(ctx, quick);
     return 0;

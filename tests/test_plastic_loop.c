@@ -5,6 +5,8 @@
  * built once (mc_plastic_ops) and lent to several runs give the bits of a run that builds its
  * own, and are refused by a problem they were not made for. */
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "contact/contact.h"
@@ -367,6 +369,47 @@ START_TEST(overload_ends_bounded)
 }
 END_TEST
 
+/* Round-off of a symmetric run: the contact, the fixed points and the FFTs are mirror-symmetric
+ * in exact arithmetic; their round-off breaks the symmetry by ~1e-13 of the largest value, and a
+ * window misplaced by one column breaks it by O(1). */
+#define MIRROR_TOL 1e-9
+
+/* A window smaller than the grid (its elastic stresses taken layer by layer from the whole grid
+ * and cut to the window) under a centred sphere: the accumulated plastic strain is mirror-
+ * symmetric in x and y within the window. */
+START_TEST(window_is_symmetric)
+{
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    sphere t;
+    sphere_init(&t);
+    mc_plastic_problem pb = t.pb;
+    pb.load_steps = 1;
+    pb.volume = (mc_eigen_volume){2, 3, 12, 10, 6, 40e-6, MC_EIG_CELL_AVERAGE};
+    mc_plastic_result r;
+    mc_contact_summary cs;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &r, &err), MC_OK);
+    const int nx = pb.volume.nx, ny = pb.volume.ny;
+    const double top = maxabs(r.peq, (size_t)r.nvol);
+    ck_assert(top > 0);
+    double dev = 0;
+    for (int k = 0; k < pb.volume.nz; k++)
+        for (int j = 0; j < ny; j++)
+            for (int i = 0; i < nx; i++) {
+                const double v = r.peq[((size_t)k * ny + j) * nx + i];
+                dev = fmax(dev, fabs(v - r.peq[((size_t)k * ny + j) * nx + (nx - 1 - i)]));
+                dev = fmax(dev, fabs(v - r.peq[((size_t)k * ny + (ny - 1 - j)) * nx + i]));
+            }
+    if (getenv("MC_TEST_VERBOSE"))
+        printf("window symmetry: %.3g of the largest plastic strain %.3g\n", dev / top, top);
+    ck_assert_msg(dev <= MIRROR_TOL * top, "asymmetry %g of %g", dev, top);
+    mc_plastic_result_free(&r);
+    sphere_free(&t);
+    mc_threads_end(&scope);
+}
+END_TEST
+
 Suite *suite_plastic_loop(void);
 Suite *suite_plastic_loop(void)
 {
@@ -379,6 +422,7 @@ Suite *suite_plastic_loop(void)
     tcase_add_test(t, stops_at_caps);
     tcase_add_test(t, stops_on_contact);
     tcase_add_test(t, overload_ends_bounded);
+    tcase_add_test(t, window_is_symmetric);
     suite_add_tcase(s, t);
     return s;
 }

@@ -48,24 +48,26 @@ int mc_plastic_stage_layer_maxima(const mc_scene *sc, const mc_grid *g, const do
                             .backend = sc->solver.backend,
                             .loads = MC_TRACTION_P | (f > 0 ? MC_TRACTION_QX : 0)};
     mc_stress_plan *plan = NULL;
+    /* one layer at a time: nz layers of the whole grid would cost more than the plastic volume
+     * itself (the probe reaches 3 contact half-widths, up to 256 layers) */
     double *s[6] = {0}, *qx = f > 0 ? mc_zeros(n) : NULL;
     int rc = mc_stress_create(g, &so, &plan, err);
     for (int c = 0; rc == MC_OK && c < 6; c++)
-        if (!(s[c] = mc_zeros(n * (size_t)nz)))
+        if (!(s[c] = mc_zeros(n)))
             rc = mc_fail(err, MC_ERR_NOMEM, "plastic stage: out of memory for the depth probe");
     if (rc == MC_OK && f > 0 && !qx)
         rc = mc_fail(err, MC_ERR_NOMEM, "plastic stage: out of memory for the traction");
     if (rc == MC_OK && qx)
         for (size_t i = 0; i < n; i++)
             qx[i] = p[i] > p_lub ? f * (p[i] - p_lub) : 0.0;
-    if (rc == MC_OK)
-        rc = mc_stress_field(plan, p, qx, NULL, s, err);
     for (int k = 0; rc == MC_OK && k < nz; k++) {
+        if ((rc = mc_stress_layer(plan, k, p, qx, NULL, s, err)) != MC_OK)
+            break;
         double m = 0;
         for (size_t i = 0; i < n; i++) {
             double t[6];
             for (int c = 0; c < 6; c++)
-                t[c] = s[c][(size_t)k * n + i];
+                t[c] = s[c][i];
             m = fmax(m, mc_von_mises(t));
         }
         vm_layer[k] = m;

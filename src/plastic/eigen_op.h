@@ -39,6 +39,14 @@
  *     blocks of up to 64 kx, its 6 x 6 products register-blocked, an AVX2 copy on x86-64);
  *   direct: O((window cells)^2 nz^2) (stress) and O(grid cells x window cells x nz) operations,
  *     ~430 (stress) and ~50 (displacement) bytes per volume cell of tables in space.
+ * Periodic axes are not padded: a strip 322 + 26, a doubly periodic volume 161 + 13 bytes per
+ * volume cell at 256^2 x 32. What was measured and not kept (issue 20 item 2, theory.md §8.4):
+ * fewer stored depth offsets where the kernel spectra decay does not apply at the accuracy the
+ * backends promise (at every lateral frequency of a 64^2 x 16 volume the depth tail stays above
+ * 1e-8 of the frequency's largest value: the tables end at the window, so their spectra do not
+ * decay like exp(-q z)); streaming the padded y transform by blocks of kx (the layer spectra
+ * kept transformed along x only) saved 96 of the 193 bytes of the layer spectra but cost 1.7 x
+ * the stress apply's CPU time (branch i20-memory-stream).
  */
 #ifndef MC_EIGEN_OP_H
 #define MC_EIGEN_OP_H

@@ -23,10 +23,15 @@ typedef struct {
     mc_eigen_disp *disp;      /* eigenstrain -> surface residual displacement */
     mc_eigen_stress *resid;   /* eigenstrain -> residual stress at the cuboid centres */
     double *depths;              /* nz cuboid-centre depths */
-    double *s_full[6];           /* elastic stresses on the whole grid, nz*ny*nx each */
+    int whole;                   /* 1: the window is the whole grid (the elastic stresses go
+                                    straight into sig_e) */
+    double *s_layer;             /* 6 ny*nx: one layer of elastic stresses on the whole grid
+                                    (a window smaller than the grid; NULL when whole) */
     double *qx;                  /* friction traction, ny*nx */
     double *sig_e, *sig_r;       /* 6*nvol, window: elastic and residual stresses */
-    double *d_eps, *d_new, *tot; /* 6*nvol: the step's increment, its update, eps_p + d_eps */
+    double *d_eps, *tot;         /* 6*nvol: the step's increment, eps_p + d_eps */
+    double *d_new;               /* the increment's update: the same array as tot (tot is
+                                    consumed by the residual stress before d_new is written) */
     double *dp, *dp_new;         /* nvol: the step's plastic strain increment, its update */
     double *u_r, *u_new, *h_extra; /* ny*nx */
     double p_lub;                /* lubricant pressure of the last contact solve, Pa */
@@ -40,10 +45,8 @@ static void ctx_free(loop_ctx *c)
     mc_plastic_ops_destroy(&c->own); /* (borrowed operators are the caller's) */
     mc_anderson_destroy(&c->aa);
     mc_anderson_destroy(&c->aa_outer);
-    for (int k = 0; k < 6; k++)
-        mc_free(c->s_full[k]);
-    double *arrays[] = {c->depths, c->qx,  c->sig_e, c->sig_r, c->d_eps,  c->d_new,
-                        c->tot,    c->dp,  c->dp_new, c->u_r, c->u_new, c->h_extra};
+    double *arrays[] = {c->depths, c->s_layer, c->qx,     c->sig_e, c->sig_r, c->d_eps,
+                        c->tot,    c->dp,      c->dp_new, c->u_r,   c->u_new, c->h_extra};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         mc_free(arrays[k]);
 }
@@ -126,16 +129,17 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
     c->nvol = (long)pb->volume.nz * c->nwx * c->nwy;
     c->ncell = mc_grid_cells(g);
     c->G = pb->E / (2.0 * (1.0 + pb->nu));
-    const size_t nv6 = 6 * (size_t)c->nvol, nfull = (size_t)pb->volume.nz * c->ncell;
+    const size_t nv6 = 6 * (size_t)c->nvol;
+    c->whole = pb->volume.i0 == 0 && pb->volume.j0 == 0 && c->nwx == g->nx && c->nwy == g->ny;
     int ok = (c->depths = mc_zeros((size_t)pb->volume.nz)) && (c->qx = mc_zeros(c->ncell)) &&
+             (c->whole || (c->s_layer = mc_zeros(6 * c->ncell))) &&
              (c->sig_e = mc_zeros(nv6)) && (c->sig_r = mc_zeros(nv6)) &&
-             (c->d_eps = mc_zeros(nv6)) && (c->d_new = mc_zeros(nv6)) &&
-             (c->tot = mc_zeros(nv6)) && (c->dp = mc_zeros((size_t)c->nvol)) &&
+             (c->d_eps = mc_zeros(nv6)) && (c->tot = mc_zeros(nv6)) &&
+             (c->dp = mc_zeros((size_t)c->nvol)) &&
              (c->dp_new = mc_zeros((size_t)c->nvol)) &&
              (c->u_r = mc_zeros(c->ncell)) && (c->u_new = mc_zeros(c->ncell)) &&
              (c->h_extra = mc_zeros(c->ncell));
-    for (int k = 0; ok && k < 6; k++)
-        ok = (c->s_full[k] = mc_zeros(nfull)) != NULL;
+    c->d_new = c->tot;
     if (!ok)
         return mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for %ld volume cells",
                        c->nvol);
@@ -204,18 +208,30 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
             c->qx[i] = p[i] > c->p_lub ? pb->friction * (p[i] - c->p_lub) : 0.0;
         qx = c->qx;
     }
-    int rc = mc_stress_field(c->elastic, p, qx, NULL, c->s_full, err);
-    if (rc != MC_OK)
-        return rc;
+    if (c->whole) { /* the volume layout is the stress plan's: straight into sig_e */
+        double *const s[6] = {c->sig_e,                 c->sig_e + c->nvol,
+                              c->sig_e + 2 * c->nvol,   c->sig_e + 3 * c->nvol,
+                              c->sig_e + 4 * c->nvol,   c->sig_e + 5 * c->nvol};
+        return mc_stress_field(c->elastic, p, qx, NULL, s, err);
+    }
+    /* layer by layer through one grid-sized layer (the same computation per layer as
+     * mc_stress_field: the same bits), cut to the window: nz grid-sized layers would cost
+     * (grid / window) x 48 bytes per volume cell */
     const mc_grid *g = c->g;
-    for (int comp = 0; comp < 6; comp++)
-        for (int k = 0; k < pb->volume.nz; k++)
+    double *const s[6] = {c->s_layer,              c->s_layer + c->ncell,
+                          c->s_layer + 2 * c->ncell, c->s_layer + 3 * c->ncell,
+                          c->s_layer + 4 * c->ncell, c->s_layer + 5 * c->ncell};
+    for (int k = 0; k < pb->volume.nz; k++) {
+        int rc = mc_stress_layer(c->elastic, k, p, qx, NULL, s, err);
+        if (rc != MC_OK)
+            return rc;
+        for (int comp = 0; comp < 6; comp++)
             for (long j = 0; j < c->nwy; j++)
                 for (long i = 0; i < c->nwx; i++) {
-                    size_t src = ((size_t)k * g->ny + (size_t)(j + pb->volume.j0)) * g->nx +
-                                 (size_t)(i + pb->volume.i0);
-                    c->sig_e[comp * c->nvol + vidx(c, k, j, i)] = c->s_full[comp][src];
+                    size_t src = (size_t)(j + pb->volume.j0) * g->nx + (size_t)(i + pb->volume.i0);
+                    c->sig_e[comp * c->nvol + vidx(c, k, j, i)] = s[comp][src];
                 }
+    }
     return MC_OK;
 }
 
@@ -567,8 +583,6 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
         if (!(res->steps = mc_calloc((size_t)pb->load_steps, sizeof *res->steps)) ||
             !(res->eps_p = mc_zeros(nv6)) || !(res->peq = mc_zeros((size_t)c.nvol)) ||
             !(res->u_r = mc_zeros(c.ncell)) || !(res->residual_vm = mc_zeros((size_t)c.nvol)) ||
-            !(res->sig_r = mc_zeros(nv6)) ||
-            !(save_eps = mc_zeros(nv6)) || !(save_peq = mc_zeros((size_t)c.nvol)) ||
             !(save_ur = mc_zeros(c.ncell)))
             rc = mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the results");
     }
@@ -590,19 +604,33 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
         mc_plastic_step *st = &res->steps[n - 1];
         const double l0 = pb->load * (n - 1) / pb->load_steps;
         st->load = pb->load * n / pb->load_steps;
-        memcpy(save_eps, res->eps_p, nv6 * sizeof *save_eps);
-        memcpy(save_peq, res->peq, (size_t)c.nvol * sizeof *save_peq);
-        memcpy(save_ur, res->u_r, c.ncell * sizeof *save_ur);
         int all_conv = 0, diverged = 1;
         mc_plastic_stop why = MC_PLASTIC_RUN_CONVERGED;
         double at = st->load; /* the load of the increment in progress */
         for (int split = 0; rc == MC_OK && diverged && !why && split <= MAX_SPLIT; split++) {
-            if (split > 0) { /* back to the state before the step, in 2^split increments */
+            if (split == 1) { /* the unsplit increment diverged and committed nothing: the
+                               * state is the one before the step; keep it for the finer splits
+                               * (saved only now: a run that never splits holds no copy) */
+                if (!save_eps && !(save_eps = mc_malloc(nv6 * sizeof *save_eps))) {
+                    rc = mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the state "
+                                                    "before a split load step");
+                    break;
+                }
+                if (!save_peq && !(save_peq = mc_malloc((size_t)c.nvol * sizeof *save_peq))) {
+                    rc = mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the state "
+                                                    "before a split load step");
+                    break;
+                }
+                memcpy(save_eps, res->eps_p, nv6 * sizeof *save_eps);
+                memcpy(save_peq, res->peq, (size_t)c.nvol * sizeof *save_peq);
+                memcpy(save_ur, res->u_r, c.ncell * sizeof *save_ur);
+            } else if (split > 1) { /* back to the state before the step */
                 memcpy(res->eps_p, save_eps, nv6 * sizeof *save_eps);
                 memcpy(res->peq, save_peq, (size_t)c.nvol * sizeof *save_peq);
                 memcpy(res->u_r, save_ur, c.ncell * sizeof *save_ur);
-                st->splits = split;
             }
+            if (split > 0)
+                st->splits = split;
             const int parts = 1 << split;
             all_conv = 1;
             diverged = 0;
@@ -632,11 +660,12 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
     if (rc == MC_OK) { /* unloading: the residual field of the plastic strain alone */
         residual_displacement(&c, res->eps_p, res->u_r);
         residual_stress(&c, res->eps_p);
-        memcpy(res->sig_r, c.sig_r, nv6 * sizeof *res->sig_r);
+        res->sig_r = c.sig_r; /* handed over, not copied: the loop is done with it */
+        c.sig_r = NULL;
         for (long v = 0; v < c.nvol; v++) {
             double s3[6];
             for (int q = 0; q < 6; q++)
-                s3[q] = c.sig_r[q * c.nvol + v];
+                s3[q] = res->sig_r[q * c.nvol + v];
             res->residual_vm[v] = mc_von_mises(s3);
         }
         if (!res->converged)
