@@ -18,6 +18,7 @@
 #include "pipeline/runin.h"
 #include "pipeline/warnings.h"
 #include "surface/surface.h"
+#include "core/dist.h"
 
 double mc_clock(void)
 {
@@ -319,9 +320,45 @@ int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
     return mc_pipeline_run_staged(sc, NULL, NULL, res, err);
 }
 
+int mc_pipeline_check_ranks(const mc_scene *sc, int ranks, mc_error *err)
+{
+    if (ranks <= 1)
+        return MC_OK;
+    /* distributed today: the elastic operator (operator/dfft.h); every other stage computes the
+     * same replicated arrays on every rank, which needs the same plans on every rank */
+    if (sc->plasticity.enabled) {
+        mc_fail(err, MC_ERR_INPUT,
+                "[plasticity] criterion: the elastic-plastic stage is not distributed yet (%d MPI "
+                "processes); run this case with one process (mpirun -np 1, or bin/microcontact)",
+                ranks);
+        return blame_key(sc, "plasticity", "criterion", MC_ERR_INPUT, err);
+    }
+    if (sc->runin.enabled) {
+        mc_fail(err, MC_ERR_INPUT,
+                "[runin] forces: the running-in is not distributed yet (%d MPI processes); run "
+                "this case with one process (mpirun -np 1, or bin/microcontact)",
+                ranks);
+        return blame_key(sc, "runin", "forces", MC_ERR_INPUT, err);
+    }
+    if (sc->solver.plans != MC_PLANS_ESTIMATE) {
+        mc_fail(err, MC_ERR_INPUT,
+                "[solver] plans = %s: with %d MPI processes only estimate is accepted (measured "
+                "plans may differ from process to process, and the processes must compute the "
+                "same numbers)",
+                mc_plan_rigor_name(sc->solver.plans), ranks);
+        return blame_key(sc, "solver", "plans", MC_ERR_INPUT, err);
+    }
+    return MC_OK;
+}
+
 int mc_pipeline_run_staged(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_results *res,
                            mc_error *err)
 {
+    int rc0 = mc_pipeline_check_ranks(sc, mc_dist_size(), err);
+    if (rc0 != MC_OK) {
+        memset(res, 0, sizeof *res); /* nothing computed; the caller frees res as after a run */
+        return rc0;
+    }
     /* the scene's thread count holds for this run only (core/threads.h) */
     mc_threads_scope scope;
     mc_threads_begin(sc->solver.threads, &scope);

@@ -1,0 +1,49 @@
+/* dist.c - the run's communicator (dist.h). */
+#include "core/dist.h"
+
+#ifdef MC_MPI
+static MPI_Comm run_comm = MPI_COMM_NULL;
+
+void mc_dist_set(MPI_Comm comm) { run_comm = comm; }
+MPI_Comm mc_dist_comm(void) { return run_comm; }
+int mc_dist_active(void) { return run_comm != MPI_COMM_NULL; }
+
+int mc_dist_size(void)
+{
+    int p = 1;
+    if (run_comm != MPI_COMM_NULL)
+        MPI_Comm_size(run_comm, &p);
+    return p;
+}
+
+int mc_dist_rank(void)
+{
+    int r = 0;
+    if (run_comm != MPI_COMM_NULL)
+        MPI_Comm_rank(run_comm, &r);
+    return r;
+}
+
+int mc_dist_root_int(int v)
+{
+    if (run_comm != MPI_COMM_NULL)
+        MPI_Bcast(&v, 1, MPI_INT, 0, run_comm);
+    return v;
+}
+
+void mc_dist_max(double *v, int n)
+{
+    if (run_comm != MPI_COMM_NULL && n > 0)
+        MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_MAX, run_comm);
+}
+#else
+int mc_dist_active(void) { return 0; }
+int mc_dist_size(void) { return 1; }
+int mc_dist_rank(void) { return 0; }
+int mc_dist_root_int(int v) { return v; }
+void mc_dist_max(double *v, int n)
+{
+    (void)v;
+    (void)n;
+}
+#endif

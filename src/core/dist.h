@@ -1,0 +1,39 @@
+/* dist.h - the ranks of a run: the MPI communicator the distributed transforms use.
+ *
+ * A build with -DMC_MPI (bin/microcontact-mpi, README "Running on a cluster") runs as P
+ * processes under mpirun. The front end (cli/) initialises MPI and hands the run's communicator
+ * over with mc_dist_set; the numerics ask for it here, never for the scene: today the elastic
+ * operator's fft backend (operator/dfft.h) splits its transforms over the ranks, every other
+ * stage computes the same replicated arrays on every rank. Without MC_MPI, and before
+ * mc_dist_set, there is one rank and nothing is distributed.
+ *
+ * Process-wide like the thread count (threads.h): set once by the front end, read by the plans;
+ * every rank must make the same calls in the same order (the transforms are collective).
+ */
+#ifndef MC_DIST_H
+#define MC_DIST_H
+
+#ifdef MC_MPI
+#include <mpi.h>
+
+/* The run's communicator (MPI_COMM_NULL: none, the default). Not owned; must stay valid while
+ * plans made under it live. Call from one thread, between runs. */
+void mc_dist_set(MPI_Comm comm);
+MPI_Comm mc_dist_comm(void);
+#endif
+
+/* 1 when plans made now distribute their transforms (an MPI build with a communicator set). */
+int mc_dist_active(void);
+
+/* Ranks of the run's communicator (1 without one) and this process's rank (0 without one). */
+int mc_dist_size(void);
+int mc_dist_rank(void);
+
+/* Rank 0's v on every rank (v unchanged without a communicator): a decision only rank 0 can
+ * make (it writes the files), shared so that all ranks go on alike. Collective. */
+int mc_dist_root_int(int v);
+
+/* The maximum over the ranks of each of v[0..n) (unchanged without a communicator). Collective. */
+void mc_dist_max(double *v, int n);
+
+#endif
