@@ -132,9 +132,9 @@ $(MPI_TESTS): tests/mpi/mpi_operator.c $(MPI_LIB_OBJ)
 	@mkdir -p $(dir $@)
 	$(MPICC) $(ALL_CFLAGS) -DMC_MPI -o $@ $< $(MPI_LIB_OBJ) $(LDFLAGS) $(MPI_LIBS)
 
-$(NPY_COMPARE): tests/mpi/npy_compare.c $(LIBRARY)
+$(NPY_COMPARE): tests/mpi/npy_compare.c
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -o $@ $< $(LIBRARY) $(LDFLAGS) $(LIBS)
+	$(CC) $(ALL_CFLAGS) -o $@ $< -lm
 
 -include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(MPI_LIB_OBJ:.o=.d) $(MPI_CLI_OBJ:.o=.d)
 
