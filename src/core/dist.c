@@ -31,6 +31,22 @@ int mc_dist_root_int(int v)
     return v;
 }
 
+int mc_dist_max_int(int v)
+{
+    if (run_comm != MPI_COMM_NULL)
+        MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_MAX, run_comm);
+    return v;
+}
+
+void mc_dist_bcast(double *v, size_t n, int root)
+{
+    if (run_comm == MPI_COMM_NULL)
+        return;
+    const size_t chunk = (size_t)1 << 30; /* MPI counts are int */
+    for (size_t at = 0; at < n; at += chunk)
+        MPI_Bcast(v + at, (int)(n - at < chunk ? n - at : chunk), MPI_DOUBLE, root, run_comm);
+}
+
 void mc_dist_max(double *v, int n)
 {
     if (run_comm != MPI_COMM_NULL && n > 0)
@@ -41,6 +57,13 @@ int mc_dist_active(void) { return 0; }
 int mc_dist_size(void) { return 1; }
 int mc_dist_rank(void) { return 0; }
 int mc_dist_root_int(int v) { return v; }
+int mc_dist_max_int(int v) { return v; }
+void mc_dist_bcast(double *v, size_t n, int root)
+{
+    (void)v;
+    (void)n;
+    (void)root;
+}
 void mc_dist_max(double *v, int n)
 {
     (void)v;

@@ -13,6 +13,8 @@
 #ifndef MC_DIST_H
 #define MC_DIST_H
 
+#include <stddef.h>
+
 #ifdef MC_MPI
 #include <mpi.h>
 
@@ -32,6 +34,13 @@ int mc_dist_rank(void);
 /* Rank 0's v on every rank (v unchanged without a communicator): a decision only rank 0 can
  * make (it writes the files), shared so that all ranks go on alike. Collective. */
 int mc_dist_root_int(int v);
+
+/* The largest v over the ranks (v without a communicator): a status every rank must share before
+ * the next collective step. Collective. */
+int mc_dist_max_int(int v);
+
+/* n values of v from rank root to every rank (nothing without a communicator). Collective. */
+void mc_dist_bcast(double *v, size_t n, int root);
 
 /* The maximum over the ranks of each of v[0..n) (unchanged without a communicator). Collective. */
 void mc_dist_max(double *v, int n);
