@@ -149,6 +149,9 @@ static void print_solve(const mc_results *r)
     printf("  time %.3f s (setup %.3f, contact %.3f, stress %.3f), peak memory %.0f MiB\n",
            r->timing.total_s, r->timing.setup_s, r->timing.contact_s, r->timing.stress_s,
            peak_memory_mib());
+    if (mc_dist_active()) /* bin/microcontact-mpi: rank 0's share (README "Running on a cluster") */
+        printf("  MPI: %d process%s; rank 0 spent %.3f s communicating (its peak memory above)\n",
+               mc_dist_size(), mc_dist_size() > 1 ? "es" : "", r->timing.comm_s);
 }
 
 /* ---- running-in -------------------------------------------------------------------------- */

@@ -1,7 +1,14 @@
 /* dist.c - the run's communicator (dist.h). */
 #include "core/dist.h"
 
+static double comm_seconds;
+
+double mc_dist_comm_seconds(void) { return comm_seconds; }
+void mc_dist_comm_add(double s) { comm_seconds += s; }
+
 #ifdef MC_MPI
+double mc_dist_clock(void) { return MPI_Wtime(); }
+
 static MPI_Comm run_comm = MPI_COMM_NULL;
 
 void mc_dist_set(MPI_Comm comm) { run_comm = comm; }
@@ -42,9 +49,11 @@ void mc_dist_bcast(double *v, size_t n, int root)
 {
     if (run_comm == MPI_COMM_NULL)
         return;
+    const double t0 = MPI_Wtime();
     const size_t chunk = (size_t)1 << 30; /* MPI counts are int */
     for (size_t at = 0; at < n; at += chunk)
         MPI_Bcast(v + at, (int)(n - at < chunk ? n - at : chunk), MPI_DOUBLE, root, run_comm);
+    comm_seconds += MPI_Wtime() - t0;
 }
 
 void mc_dist_max(double *v, int n)
@@ -53,6 +62,7 @@ void mc_dist_max(double *v, int n)
         MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_MAX, run_comm);
 }
 #else
+double mc_dist_clock(void) { return 0; }
 int mc_dist_active(void) { return 0; }
 int mc_dist_size(void) { return 1; }
 int mc_dist_rank(void) { return 0; }

@@ -42,6 +42,15 @@ int mc_dist_max_int(int v);
 /* n values of v from rank root to every rank (nothing without a communicator). Collective. */
 void mc_dist_bcast(double *v, size_t n, int root);
 
+/* Seconds this process has spent in the distributed transforms' and stages' communication
+ * (transposes, gathers, broadcasts: MPI_Wtime around them, waiting for the other ranks
+ * included) since the process started; 0 without MPI. mc_dist_comm_add adds to it. */
+double mc_dist_comm_seconds(void);
+void mc_dist_comm_add(double s);
+
+/* Wall clock of MPI (MPI_Wtime; 0 without MPI), for mc_dist_comm_add. */
+double mc_dist_clock(void);
+
 /* The maximum over the ranks of each of v[0..n) (unchanged without a communicator). Collective. */
 void mc_dist_max(double *v, int n);
 

@@ -87,7 +87,8 @@ int mc_dfft_create(int nx, int ny, int tx, int ty, mc_dfft **out, mc_error *err)
         return mc_fail(err, MC_ERR_NOMEM, "distributed FFT %d x %d: out of memory", tx, ty);
     }
     /* who holds which output rows: the gather's counts and offsets */
-    int mine[2] = {(int)d->nr * nx, (int)d->r0 * nx}, *all = mc_malloc(2 * (size_t)size * sizeof *all);
+    int mine[2] = {(int)d->nr * nx, (int)d->r0 * nx};
+    int *all = mc_malloc(2 * (size_t)size * sizeof *all);
     if (!all) {
         mc_dfft_destroy(&d);
         return mc_fail(err, MC_ERR_NOMEM, "distributed FFT: out of memory");
@@ -149,7 +150,9 @@ void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec)
     fftw_complex *rows = (fftw_complex *)d->rows, *cols = (fftw_complex *)d->cols;
     for (ptrdiff_t r = 0; r < d->nr; r++)
         row_forward(d, field + (size_t)(d->r0 + r) * d->nx, d->nx, rows + (size_t)r * d->hx);
+    const double t0 = MPI_Wtime();
     fftw_execute(d->tr_fwd); /* ny x hx by rows -> hx x ny by columns */
+    mc_dist_comm_add(MPI_Wtime() - t0);
     for (ptrdiff_t k = 0; k < d->nk; k++)
         col_forward(d, cols + (size_t)k * d->ny, d->ny, spec + (size_t)k * d->ty);
 }
@@ -162,14 +165,18 @@ void mc_dfft_inverse(mc_dfft *d, double *out)
         fftw_execute_dft(d->bwd, d->cline, d->cline);
         memcpy(cols + (size_t)k * d->ny, d->cline, (size_t)d->ny * sizeof *cols);
     }
+    double t0 = MPI_Wtime();
     fftw_execute(d->tr_bwd); /* hx x ny by columns -> ny x hx by rows */
+    mc_dist_comm_add(MPI_Wtime() - t0);
     for (ptrdiff_t r = 0; r < d->nr; r++) {
         memcpy(d->cline, rows + (size_t)r * d->hx, (size_t)d->hx * sizeof *d->cline);
         fftw_execute_dft_c2r(d->c2r, d->cline, d->line);
         memcpy(out + (size_t)(d->r0 + r) * d->nx, d->line, (size_t)d->nx * sizeof *out);
     }
+    t0 = MPI_Wtime();
     MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, out, d->counts, d->displs, MPI_DOUBLE,
                    d->comm);
+    mc_dist_comm_add(MPI_Wtime() - t0);
 }
 
 void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)

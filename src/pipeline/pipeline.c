@@ -372,8 +372,10 @@ int mc_pipeline_run_staged(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_
         return blame_key(sc, "solver", "wisdom_file", rc, err);
     }
     /* a running-in is its own sequence of stages (pipeline/runin.h) */
+    const double comm0 = mc_dist_comm_seconds();
     rc = sc->runin.enabled ? mc_runin_run(sc, NULL, res, err)
                            : run_stages(sc, stage, ctx, res, err);
+    res->timing.comm_s = mc_dist_comm_seconds() - comm0;
     if (rc == MC_OK || rc == MC_NOT_CONVERGED)
         mc_results_warnings(sc, res);
     mc_error perr = {0};
