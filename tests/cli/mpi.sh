@@ -96,20 +96,25 @@ runcase rough cases/rough_sphere.ini --set mesh.nx=128 --set mesh.ny=128 --set s
 runcase lube cases/lubricated_equilibrium.ini
 
 # ---- 3. refused with more than one process ----------------------------------------------------
-refused() { # NAME WANT CASE SET...: exit 2, the message naming WANT, no output directory
-    name=$1 want=$2 case=$3; shift 3
+refused() { # NAME WANT CASE SET...: exit ${CODE:-2}, the message naming WANT, no output directory
+    name=$1 want=$2 case=$3 code=${CODE:-2}; shift 3
     $MPIRUN -np 2 "$MPROG" run "$case" --out "$T/$name" "$@" > "$T/$name.log" 2>&1
     rc=$?
-    if [ $rc -eq 2 ] && grep -q -- "$want" "$T/$name.log" && [ ! -e "$T/$name" ]; then
+    if [ $rc -eq "$code" ] && grep -q -- "$want" "$T/$name.log" && [ ! -e "$T/$name" ]; then
         ok "refused with 2 processes: $name ($(grep -m1 error "$T/$name.log"))"
     else
-        bad "$name with 2 processes: exit $rc (want 2, a message naming '$want', no directory)"
+        bad "$name with 2 processes: exit $rc (want $code, a message naming '$want', no directory)"
         cat "$T/$name.log"
     fi
 }
 refused plasticity '\[plasticity\]' cases/elastic_plastic.ini
 refused runin '\[runin\]' cases/default.ini
 refused plans '\[solver\] plans' cases/hertz_point.ini --set solver.plans=measure
+# the memory guard decides for all processes alike (rank 0's available memory): exit 3 on all
+export MC_MEMORY_LIMIT=1000
+CODE=3
+refused memory 'needs about' cases/hertz_point.ini
+unset MC_MEMORY_LIMIT CODE
 if $MPIRUN -np 2 "$MPROG" verify --list > "$T/verify.log" 2>&1; then
     bad "verify with 2 processes was not refused"
 elif grep -q "only 'run' is distributed" "$T/verify.log"; then
