@@ -262,16 +262,22 @@ static int run_stages(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_resul
     rc = mc_surface_topography(&sc->grid, &sc->geometry, &sc->roughness, res->topography, err);
     if (rc == MC_OK && sc->roughness.type != MC_ROUGH_NONE)
         rc = roughness_parameters(sc, res, err);
-    if (rc == MC_ERR_LIMIT) /* named its key already ([roughness] cutoff) */
-        return rc;
-    if (rc != MC_OK && rc != MC_ERR_NOMEM && sc->roughness.type != MC_ROUGH_NONE)
+    const int surface_rc = rc;
+    if (rc == MC_OK && sc->load.kind == MC_LOAD_PRESSURE_FILE)
+        rc = read_prescribed(sc, res, err);
+    /* over MPI processes each reads the inputs itself: all go on only if all could (a process
+     * that stopped alone would leave the others waiting in the first transform) */
+    const int all = mc_dist_max_int(rc);
+    if (all != MC_OK && rc == MC_OK)
+        return mc_fail(err, all, "another MPI process could not read the inputs (status %d)", all);
+    if (surface_rc == MC_ERR_LIMIT) /* named its key already ([roughness] cutoff) */
+        return surface_rc;
+    if (surface_rc != MC_OK && surface_rc != MC_ERR_NOMEM && sc->roughness.type != MC_ROUGH_NONE)
         return blame_key(sc, "roughness", sc->roughness.type == MC_ROUGH_FILE ? "file" : "type",
-                         rc, err);
+                         surface_rc, err);
     if (rc != MC_OK)
         return rc;
 
-    if (sc->load.kind == MC_LOAD_PRESSURE_FILE && (rc = read_prescribed(sc, res, err)) != MC_OK)
-        return rc;
     if (stage)
         stage(ctx, "contact");
     mc_operator *K = NULL;
