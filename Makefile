@@ -8,6 +8,7 @@
 #   make bless   rewrite the regression baselines verify/baselines/ (SUITES="a b" for some)
 #   make check-sanitize   unit tests + fast suites under AddressSanitizer and UBSan
 #   make fuzz FUZZ_SECONDS=N   libFuzzer targets (clang)
+#   make mpi     bin/microcontact-mpi (MPI, FFTW-MPI) and make mpi-check its tests under mpirun
 #
 # Variants: BUILD=build (default) or any directory; SAN=1 builds with ASan+UBSan.
 
@@ -23,7 +24,8 @@ SAN      ?= 0
 FUZZ_SECONDS ?= 30
 
 DEB_PACKAGES = pkg-config libfftw3-dev libgsl-dev libinih-dev libjansson-dev check libsubunit-dev \
-               gnuplot-nox clang libclang-rt-14-dev libzip-dev libxml2-dev nettle-dev
+               gnuplot-nox clang libclang-rt-14-dev libzip-dev libxml2-dev nettle-dev \
+               libopenmpi-dev openmpi-bin libfftw3-mpi-dev
 
 OPT      ?= -O2
 CFLAGS_BASE = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $(OPT) -g -fopenmp \
@@ -56,9 +58,26 @@ else
 endif
 TESTS     = $(BUILD)/tests/run_tests
 
-.PHONY: all deps run check _check verify bench reports check-sanitize fuzz clean bless help sample-x3p
+.PHONY: all deps run check _check verify bench reports check-sanitize fuzz clean bless help sample-x3p \
+        mpi mpi-check
 
-all: $(LIBRARY) $(PROGRAM)
+# ---- MPI: a second executable, bin/microcontact-mpi (README "Running on a cluster") ----------
+# The same sources compiled by mpicc with -DMC_MPI into $(BUILD)/mpi and linked with FFTW-MPI;
+# built by `all` when mpicc and fftw3-mpi.h are present (make deps installs them), never in a
+# sanitizer build (OpenMPI's own allocations would be reported). The serial build is untouched.
+MPICC    ?= mpicc
+ifeq ($(SAN),0)
+  HAVE_MPI := $(shell command -v $(MPICC) >/dev/null 2>&1 && [ -f /usr/include/fftw3-mpi.h ] && echo 1)
+endif
+MPI_BUILD    = $(BUILD)/mpi
+MPI_LIB_OBJ  = $(LIB_SRC:%.c=$(MPI_BUILD)/%.o)
+MPI_CLI_OBJ  = $(CLI_SRC:%.c=$(MPI_BUILD)/%.o)
+MPI_PROGRAM  = $(dir $(PROGRAM))microcontact-mpi
+MPI_TESTS    = $(MPI_BUILD)/tests/mpi_operator
+NPY_COMPARE  = $(BUILD)/tests/npy_compare
+MPI_LIBS     = -lfftw3_mpi $(LIBS)
+
+all: $(LIBRARY) $(PROGRAM) $(if $(HAVE_MPI),$(MPI_PROGRAM))
 
 help:
 	@sed -n '2,12p' Makefile
@@ -101,7 +120,31 @@ $(TESTS): $(TEST_OBJ) $(LIBRARY)
 	@mkdir -p $(dir $@)
 	$(CC) $(LDFLAGS) -o $@ $(TEST_OBJ) $(LIBRARY) $(TESTLIBS) $(LIBS)
 
--include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_OBJ:.o=.d)
+$(MPI_BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(MPICC) $(ALL_CFLAGS) -DMC_MPI -MMD -MP -c $< -o $@
+
+$(MPI_PROGRAM): $(MPI_CLI_OBJ) $(MPI_LIB_OBJ)
+	@mkdir -p $(dir $@)
+	$(MPICC) $(LDFLAGS) -o $@ $(MPI_CLI_OBJ) $(MPI_LIB_OBJ) $(MPI_LIBS)
+
+$(MPI_TESTS): tests/mpi/mpi_operator.c $(MPI_LIB_OBJ)
+	@mkdir -p $(dir $@)
+	$(MPICC) $(ALL_CFLAGS) -DMC_MPI -o $@ $< $(MPI_LIB_OBJ) $(LDFLAGS) $(MPI_LIBS)
+
+$(NPY_COMPARE): tests/mpi/npy_compare.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -o $@ $< -lm
+
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(MPI_LIB_OBJ:.o=.d) $(MPI_CLI_OBJ:.o=.d)
+
+mpi: deps
+	@$(MAKE) --no-print-directory $(MPI_PROGRAM)
+
+# the distributed operator against the direct sum and across rank counts, and whole runs under
+# mpirun -np 2 and 3 against the serial program (tests/cli/mpi.sh)
+mpi-check: $(PROGRAM) $(MPI_PROGRAM) $(MPI_TESTS) $(NPY_COMPARE)
+	tests/cli/mpi.sh ./$(PROGRAM) ./$(MPI_PROGRAM) ./$(MPI_TESTS) ./$(NPY_COMPARE)
 
 # ---- front doors ----------------------------------------------------------------------------
 run: deps
@@ -119,6 +162,7 @@ _check: $(PROGRAM) $(TESTS)
 	tests/cli/cases.sh ./$(PROGRAM)
 	tests/cli/robustness.sh ./$(PROGRAM)
 	tests/cli/surface.sh ./$(PROGRAM)
+	$(if $(HAVE_MPI),@$(MAKE) --no-print-directory mpi-check)
 
 verify: deps
 	@$(MAKE) --no-print-directory all

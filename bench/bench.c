@@ -42,6 +42,7 @@ static const struct {
     {"stress", mc_bench_stress},     {"threads", mc_bench_threads}, {"skips", mc_bench_skips},
     {"memory", mc_bench_memory},     {"plastic", mc_bench_plastic},   {"whole", mc_bench_whole},
     {"growth", mc_bench_growth},     {"runin", mc_bench_runin},     {"plans", mc_bench_plans},
+    {"mpi", mc_bench_mpi},
 };
 
 static const char *only; /* comma-separated section names; NULL = all */
@@ -64,7 +65,7 @@ int mc_bench_select(const char *names)
 const char *mc_bench_section_names(void)
 {
     return "operator, hertz, rough, stress, threads, skips, memory, plastic, whole, growth, runin, "
-           "plans";
+           "plans, mpi";
 }
 
 static int selected(const char *name)

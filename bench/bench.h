@@ -23,6 +23,7 @@ int mc_bench_whole(vf_ctx *ctx, int quick);
 int mc_bench_growth(vf_ctx *ctx, int quick);
 int mc_bench_runin(vf_ctx *ctx, int quick);
 int mc_bench_plans(vf_ctx *ctx, int quick);
+int mc_bench_mpi(vf_ctx *ctx, int quick);
 
 /* Run only the sections named in names (comma-separated, e.g. "plastic" or "operator,hertz";
  * NULL or "" = all); the string must outlive the run. 0, or -1 for an unknown name. */

@@ -45,4 +45,13 @@ _Noreturn void mc_cli_signal_exit(int sig);
  * runtime reads it before main; wait_policy.c). Returns only when nothing was done or exec failed. */
 void mc_cli_wait_policy(char **argv);
 
+/* bin/microcontact-mpi (mpi.c; without -DMC_MPI these do nothing and return 0 / status):
+ * mc_cli_mpi_start initialises MPI and FFTW-MPI, sets the run's communicator (core/dist.h) and
+ * silences the output of every rank but 0 (0, or 3 when MPI cannot start); mc_cli_mpi_end
+ * finalises and returns status. mc_cli_mpi_command refuses (message, 2) a command other than
+ * run when there is more than one rank, else 0. */
+int mc_cli_mpi_start(int *argc, char ***argv);
+int mc_cli_mpi_end(int status);
+int mc_cli_mpi_command(const char *cmd);
+
 #endif

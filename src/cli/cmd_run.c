@@ -12,6 +12,7 @@
 
 #include "case/case.h"
 #include "cli/cli.h"
+#include "core/dist.h"
 #include "pipeline/checkpoint.h"
 #include "pipeline/output.h"
 #include "pipeline/pipeline.h"
@@ -148,6 +149,9 @@ static void print_solve(const mc_results *r)
     printf("  time %.3f s (setup %.3f, contact %.3f, stress %.3f), peak memory %.0f MiB\n",
            r->timing.total_s, r->timing.setup_s, r->timing.contact_s, r->timing.stress_s,
            peak_memory_mib());
+    if (mc_dist_active()) /* bin/microcontact-mpi: rank 0's share (README "Running on a cluster") */
+        printf("  MPI: %d process%s; rank 0 spent %.3f s communicating (its peak memory above)\n",
+               mc_dist_size(), mc_dist_size() > 1 ? "es" : "", r->timing.comm_s);
 }
 
 /* ---- running-in -------------------------------------------------------------------------- */
@@ -343,6 +347,11 @@ int mc_cli_run(int argc, char **argv)
     } else if (mc_scene_output_dir(&scene, dir, sizeof dir, &err) != MC_OK) {
         return fail(&err);
     }
+    /* under mpirun (bin/microcontact-mpi): what the processes cannot yet compute together */
+    if (mc_pipeline_check_ranks(&scene, mc_dist_size(), &err) != MC_OK)
+        return fail_case(case_path, &err);
+    /* rank 0 alone holds and writes the output directory; the others compute alongside */
+    const int root = mc_dist_rank() == 0;
     if (resume && !scene.runin.enabled) {
         fprintf(stderr, "microcontact: error: --resume: %s has no [runin] section (only a "
                         "running-in is checkpointed)\n",
@@ -350,9 +359,15 @@ int mc_cli_run(int argc, char **argv)
         return 2;
     }
     static mc_outdir od;
-    if (mc_output_open(&od, dir, &err) != MC_OK) {
+    int orc = MC_OK;
+    if (root)
+        orc = mc_output_open(&od, dir, &err);
+    else
+        mc_outdir_init(&od);
+    orc = mc_dist_root_int(orc); /* every rank goes on, or stops, with rank 0's status */
+    if (orc != MC_OK) {
         mc_output_close(&od);
-        return fail(&err);
+        return root ? fail(&err) : mc_status_exit_code(orc);
     }
 
     mc_results res;
@@ -380,7 +395,10 @@ int mc_cli_run(int argc, char **argv)
         print_runin(&res);
     printf("  writing results to %s/\n", dir);
     mc_error werr = {0};
-    int wrc = mc_output_commit(&od, &scene, &res, &werr);
+    int wrc = root ? mc_output_commit(&od, &scene, &res, &werr) : MC_OK;
+    wrc = mc_dist_root_int(wrc);
+    if (!root)
+        werr.code = wrc;
     if (wrc == MC_ERR_INTERRUPTED) {
         int sig = mc_cli_signal_caught();
         fprintf(stderr,

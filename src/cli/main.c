@@ -57,9 +57,21 @@ static int no_arguments(int argc, char **argv)
     return 2;
 }
 
+static int dispatch(int argc, char **argv);
+
 int main(int argc, char **argv)
 {
     mc_cli_wait_policy(argv); /* before any OpenMP: may execute the program again */
+    int rc = mc_cli_mpi_start(&argc, &argv); /* bin/microcontact-mpi only (mpi.c) */
+    if (rc)
+        return rc;
+    if (argc >= 2 && (rc = mc_cli_mpi_command(argv[1])))
+        return mc_cli_mpi_end(rc);
+    return mc_cli_mpi_end(dispatch(argc, argv));
+}
+
+static int dispatch(int argc, char **argv)
+{
     if (argc < 2) {
         usage(stderr);
         return 2;

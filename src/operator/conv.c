@@ -4,7 +4,9 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/dist.h"
 #include "core/fftsize.h"
+#include "operator/dfft.h"
 #include "operator/operator.h"
 #include "operator/padfft.h"
 
@@ -19,6 +21,8 @@ struct mc_conv {
     int tx, ty;     /* kernel table (and transform) size */
     size_t speclen; /* doubles per spectrum */
     mc_padfft fft;  /* fft: the padded transforms (2-D pair for tables, pruned for fields) */
+    int distribute; /* fft: asked to distribute its transforms over the run's ranks */
+    mc_dfft *dfft;  /* fft over the ranks (dfft.h) instead of fft; NULL serially */
 };
 
 struct conv_ops {
@@ -36,33 +40,76 @@ struct conv_ops {
 
 /* ---- fft: DC-FFT (theory.md §3.1) and cyclic FFT (§3.2) ---------------------------------- */
 
-static size_t half_len(const mc_conv *c) { return mc_padfft_spectrum_len(&c->fft) / 2; }
+/* Complex values of this process's spectrum (all of it serially, its columns over ranks). */
+static size_t half_len(const mc_conv *c) { return c->speclen / 2; }
+
+/* The engine's own spectrum, and the transform pair into and out of it: serial (padfft.h) or
+ * over the run's ranks (dfft.h; the spectrum is then this rank's slab of columns). */
+static fftw_complex *work_spec(mc_conv *c)
+{
+    return c->dfft ? mc_dfft_spectrum(c->dfft) : c->fft.cbuf;
+}
+
+static void forward(mc_conv *c, const double *field)
+{
+    if (c->dfft)
+        mc_dfft_forward(c->dfft, field, mc_dfft_spectrum(c->dfft));
+    else
+        mc_padfft_forward(&c->fft, field, c->fft.cbuf);
+}
+
+static void inverse(mc_conv *c, double *out)
+{
+    if (c->dfft)
+        mc_dfft_inverse(c->dfft, out);
+    else
+        mc_padfft_inverse(&c->fft, out);
+}
+
+/* A whole kernel table forward into the engine's spectrum. */
+static void table_forward(mc_conv *c, const double *table)
+{
+    if (c->dfft)
+        mc_dfft_table(c->dfft, table, mc_dfft_spectrum(c->dfft));
+    else
+        mc_padfft_table(&c->fft, table);
+}
 
 static int fft_create(mc_conv *c, mc_error *err)
 {
+    if (c->distribute) {
+        int rc = mc_dfft_create(c->g.nx, c->g.ny, c->tx, c->ty, &c->dfft, err);
+        if (rc == MC_OK)
+            c->speclen = mc_dfft_spectrum_len(c->dfft);
+        return rc;
+    }
     int rc = mc_padfft_create(&c->fft, c->g.nx, c->g.ny, c->tx, c->ty, 1, err);
     if (rc == MC_OK)
         c->speclen = mc_padfft_spectrum_len(&c->fft);
     return rc;
 }
 
-static void fft_destroy(mc_conv *c) { mc_padfft_destroy(&c->fft); }
+static void fft_destroy(mc_conv *c)
+{
+    mc_padfft_destroy(&c->fft);
+    mc_dfft_destroy(&c->dfft);
+}
 
 static void fft_kernel(mc_conv *c, const double *table, double *kspec)
 {
     const size_t nc = half_len(c);
     const double scale = 1.0 / ((double)c->tx * (double)c->ty); /* FFTW does not normalise */
-    mc_padfft_table(&c->fft, table);
-    const double *s = (const double *)c->fft.cbuf;
+    table_forward(c, table);
+    const double *s = (const double *)work_spec(c);
     for (size_t q = 0; q < 2 * nc; q++)
         kspec[q] = scale * s[q];
 }
 
 static void fft_load(mc_conv *c, const double *field, double *lspec)
 {
-    mc_padfft_forward(&c->fft, field, c->fft.cbuf);
+    forward(c, field);
     const long n = 2 * (long)half_len(c);
-    const double *s = (const double *)c->fft.cbuf;
+    const double *s = (const double *)work_spec(c);
 #pragma omp parallel for schedule(static) if (n > 2 * PAR_MIN)
     for (long q = 0; q < n; q++)
         lspec[q] = s[q];
@@ -72,7 +119,7 @@ static void fft_apply(mc_conv *c, int nterms, const double *const *kspec,
                       const double *const *lspec, double *out)
 {
     const long nc = (long)half_len(c);
-    double *s = (double *)c->fft.cbuf;
+    double *s = (double *)work_spec(c);
 #pragma omp parallel for schedule(static) if (nc > PAR_MIN)
     for (long q = 0; q < nc; q++) {
         double re = 0.0, im = 0.0;
@@ -85,7 +132,7 @@ static void fft_apply(mc_conv *c, int nterms, const double *const *kspec,
         s[2 * q] = re;
         s[2 * q + 1] = im;
     }
-    mc_padfft_inverse(&c->fft, out); /* destroys cbuf: it is ours */
+    inverse(c, out); /* destroys the spectrum: it is ours */
 }
 
 /* One kernel, one load, without the intermediate load spectrum: the operator's hot path. The
@@ -93,9 +140,9 @@ static void fft_apply(mc_conv *c, int nterms, const double *const *kspec,
 static void fft_convolve_one(mc_conv *c, const double *kspec, const double *kre,
                              const double *field, double *out)
 {
-    mc_padfft_forward(&c->fft, field, c->fft.cbuf);
+    forward(c, field);
     const long nc = (long)half_len(c);
-    double *s = (double *)c->fft.cbuf;
+    double *s = (double *)work_spec(c);
     if (kre) {
 #pragma omp parallel for schedule(static) if (nc > PAR_MIN)
         for (long q = 0; q < nc; q++) {
@@ -111,7 +158,7 @@ static void fft_convolve_one(mc_conv *c, const double *kspec, const double *kre,
             s[2 * q + 1] = kr * li + ki * lr;
         }
     }
-    mc_padfft_inverse(&c->fft, out);
+    inverse(c, out);
 }
 
 static void fft_convolve(mc_conv *c, const double *kspec, const double *field, double *out,
@@ -210,7 +257,7 @@ int mc_backend_from_name(const char *name, mc_backend *out)
 
 /* ---- the engine ------------------------------------------------------------------------------ */
 
-int mc_conv_create(const mc_grid *g, mc_backend b, mc_conv **out, mc_error *err)
+static int create(const mc_grid *g, mc_backend b, int distribute, mc_conv **out, mc_error *err)
 {
     *out = NULL;
     int rc = mc_grid_check(g, err);
@@ -225,6 +272,7 @@ int mc_conv_create(const mc_grid *g, mc_backend b, mc_conv **out, mc_error *err)
         return mc_fail(err, MC_ERR_NOMEM, "convolution engine: out of memory");
     c->g = *g;
     c->ops = ops;
+    c->distribute = distribute && b == MC_BACKEND_FFT && mc_dist_active();
     c->tx = g->periodic_x ? g->nx : mc_fft_good_size(2 * g->nx - 1);
     c->ty = g->periodic_y ? g->ny : mc_fft_good_size(2 * g->ny - 1);
     if ((rc = ops->create(c, err))) {
@@ -234,6 +282,16 @@ int mc_conv_create(const mc_grid *g, mc_backend b, mc_conv **out, mc_error *err)
     }
     *out = c;
     return MC_OK;
+}
+
+int mc_conv_create(const mc_grid *g, mc_backend b, mc_conv **out, mc_error *err)
+{
+    return create(g, b, 0, out, err);
+}
+
+int mc_conv_create_distributed(const mc_grid *g, mc_backend b, mc_conv **out, mc_error *err)
+{
+    return create(g, b, 1, out, err);
 }
 
 void mc_conv_destroy(mc_conv **c)
@@ -304,13 +362,16 @@ int mc_conv_kernel_real(mc_conv *c, const mc_kernel_table *t, double *kre)
     if (c->ops->id != MC_BACKEND_FFT || table_matches(c, t, NULL) != MC_OK)
         return 0; /* mc_conv_kernel then reports the mismatch */
     const size_t nc = half_len(c);
-    mc_padfft_table(&c->fft, t->k);
-    const double *s = (const double *)c->fft.cbuf;
-    double re = 0, im = 0;
+    table_forward(c, t->k);
+    const double *s = (const double *)work_spec(c);
+    double m[2] = {0, 0}; /* max |Re|, max |Im| */
     for (size_t q = 0; q < nc; q++) {
-        re = fmax(re, fabs(s[2 * q]));
-        im = fmax(im, fabs(s[2 * q + 1]));
+        m[0] = fmax(m[0], fabs(s[2 * q]));
+        m[1] = fmax(m[1], fabs(s[2 * q + 1]));
     }
+    if (c->dfft) /* over all ranks: they must all take the same path */
+        mc_dist_max(m, 2);
+    const double re = m[0], im = m[1];
     if (!(im <= 1e-13 * re))
         return 0;
     const double scale = 1.0 / ((double)c->tx * (double)c->ty);

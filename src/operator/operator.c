@@ -57,7 +57,7 @@ int mc_operator_plan(const mc_grid *g, const mc_kernel_table *t, mc_backend b, m
 {
     *out = NULL;
     mc_conv *conv;
-    int rc = mc_conv_create(g, b, &conv, err);
+    int rc = mc_conv_create_distributed(g, b, &conv, err);
     return rc ? rc : plan_with_conv(conv, t, out, err);
 }
 
@@ -66,7 +66,7 @@ int mc_operator_plan_love(const mc_grid *g, double Estar, mc_backend b, mc_opera
 {
     *out = NULL;
     mc_conv *conv;
-    int rc = mc_conv_create(g, b, &conv, err);
+    int rc = mc_conv_create_distributed(g, b, &conv, err);
     if (rc)
         return rc;
     int tx, ty;

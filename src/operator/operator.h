@@ -139,6 +139,13 @@ typedef struct mc_conv mc_conv;
 int mc_conv_create(const mc_grid *g, mc_backend b, mc_conv **out, mc_error *err);
 void mc_conv_destroy(mc_conv **c); /* frees and sets *c = NULL; NULL-safe */
 
+/* mc_conv_create, but under a run communicator (core/dist.h, an MPI build) the fft backend
+ * distributes its transforms over the ranks (dfft.h): spectra are then this rank's slab of
+ * columns (mc_conv_spectrum_len is its length), and mc_conv_kernel, _load, _apply, _convolve and
+ * _kernel_real are collective (every rank calls them, with the same field; every rank gets the
+ * whole output). Without a communicator, and for the direct backend, it is mc_conv_create. */
+int mc_conv_create_distributed(const mc_grid *g, mc_backend b, mc_conv **out, mc_error *err);
+
 /* Table length this engine convolves with (padded FFT size, or n along periodic axes). */
 void mc_conv_table_dims(const mc_conv *c, int *tx, int *ty);
 
@@ -228,6 +235,9 @@ typedef struct mc_operator mc_operator;
 
 /* Plan u = K f for grid g and backend b; the table (sized by mc_conv_table_dims for g) is
  * transformed and kept, so the caller may free it afterwards. *out is NULL on failure.
+ * Under a run communicator (core/dist.h) the fft backend is distributed
+ * (mc_conv_create_distributed): plan and apply are then collective, every rank passes the whole
+ * field and gets the whole result, and the answer has the same bits on any number of ranks.
  * Returns as mc_conv_create and mc_conv_kernel. */
 int mc_operator_plan(const mc_grid *g, const mc_kernel_table *t, mc_backend b, mc_operator **out,
                      mc_error *err);

@@ -7,18 +7,24 @@
 #include <unistd.h>
 
 #include "contact/contact.h"
+#include "core/dist.h"
 #include "core/fftsize.h"
 
 /* Cells of the transform of one axis (padded when free, as conv.c). */
 static double axis_len(int n, int periodic) { return periodic ? n : mc_fft_good_size(2 * n - 1); }
 
 /* Bytes of one operator on grid (nx, ny): fft - kernel spectrum, real and complex work buffers,
- * and the kernel table while it is built; direct - the table. */
+ * and the kernel table while it is built; direct - the table. Over P MPI processes
+ * (operator/dfft.h) the spectrum, the work spectrum and the two transpose buffers are a slab each,
+ * 1/P; the whole kernel table is still built on every process. */
 static double operator_bytes(int nx, int ny, int px, int py, mc_backend b)
 {
     double tx = axis_len(nx, px), ty = axis_len(ny, py), half = ty * (tx / 2 + 1);
     if (b == MC_BACKEND_DIRECT)
         return 8 * tx * ty;
+    const int ranks = mc_dist_size();
+    if (ranks > 1)
+        return (16 * half * 2 + 2 * 16 * (double)ny * (tx / 2 + 1)) / ranks + 8 * tx * ty;
     return 16 * half * 2 + 8 * tx * ty + 8 * tx * ty;
 }
 
@@ -83,6 +89,8 @@ double mc_memory_available(void)
 int mc_memory_check(const mc_scene *s, mc_error *err)
 {
     double need = mc_scene_memory_estimate(s), have = mc_memory_available();
+    /* over MPI processes: rank 0's figure for all, so that they all go on or all stop */
+    mc_dist_bcast(&have, 1, 0);
     if (need <= have)
         return MC_OK;
     const double GiB = 1073741824.0;

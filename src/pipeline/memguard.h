@@ -8,7 +8,9 @@
 
 /* Estimated peak bytes of running scene s (surface fields, operator, contact solver with its
  * coarse levels, stress volumes and workspaces). A model calibrated against measured peaks
- * (reports/bench: memory): it errs on the high side by design. */
+ * (reports/bench: memory): it errs on the high side by design. Per process: over MPI processes
+ * (core/dist.h) the operators' spectra and transform buffers count 1/P, every replicated array
+ * in full. */
 double mc_scene_memory_estimate(const mc_scene *s);
 
 /* Memory the system can still give, bytes (MemAvailable of /proc/meminfo; physical memory if
@@ -16,7 +18,8 @@ double mc_scene_memory_estimate(const mc_scene *s);
 double mc_memory_available(void);
 
 /* MC_OK if the estimate fits into the available memory, else MC_ERR_NOMEM with a message naming
- * both in GiB and what to reduce. */
+ * both in GiB and what to reduce. Over MPI processes rank 0's available memory decides for all
+ * (collective). */
 int mc_memory_check(const mc_scene *s, mc_error *err);
 
 #endif

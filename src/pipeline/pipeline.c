@@ -19,6 +19,7 @@
 #include "pipeline/runin.h"
 #include "pipeline/warnings.h"
 #include "surface/surface.h"
+#include "core/dist.h"
 
 double mc_clock(void)
 {
@@ -280,16 +281,22 @@ static int run_stages(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_resul
     rc = mc_bodies_topography(sc, res, res->topography, &rsec, err);
     if (rc == MC_OK && sc->roughness.type != MC_ROUGH_NONE)
         rc = roughness_parameters(sc, res, err);
-    if (rc == MC_ERR_LIMIT) /* named its key already ([roughness] cutoff) */
-        return rc;
+    const int surface_rc = rc;
+    if (rc == MC_OK && sc->load.kind == MC_LOAD_PRESSURE_FILE)
+        rc = read_prescribed(sc, res, err);
+    /* over MPI processes each reads the inputs itself: all go on only if all could (a process
+     * that stopped alone would leave the others waiting in the first transform) */
+    const int all = mc_dist_max_int(rc);
+    if (all != MC_OK && rc == MC_OK)
+        return mc_fail(err, all, "another MPI process could not read the inputs (status %d)", all);
+    if (surface_rc == MC_ERR_LIMIT) /* named its key already ([roughness] cutoff) */
+        return surface_rc;
     const mc_roughness_spec *rs = strcmp(rsec, "roughness2") ? &sc->roughness : &sc->roughness2;
-    if (rc != MC_OK && rc != MC_ERR_NOMEM && rs->type != MC_ROUGH_NONE)
-        return blame_key(sc, rsec, rs->type == MC_ROUGH_FILE ? "file" : "type", rc, err);
+    if (surface_rc != MC_OK && surface_rc != MC_ERR_NOMEM && rs->type != MC_ROUGH_NONE)
+        return blame_key(sc, rsec, rs->type == MC_ROUGH_FILE ? "file" : "type", surface_rc, err);
     if (rc != MC_OK)
         return rc;
 
-    if (sc->load.kind == MC_LOAD_PRESSURE_FILE && (rc = read_prescribed(sc, res, err)) != MC_OK)
-        return rc;
     if (stage)
         stage(ctx, "contact");
     mc_operator *K = NULL;
@@ -340,9 +347,46 @@ int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
     return mc_pipeline_run_staged(sc, NULL, NULL, res, err);
 }
 
+int mc_pipeline_check_ranks(const mc_scene *sc, int ranks, mc_error *err)
+{
+    if (ranks <= 1)
+        return MC_OK;
+    /* distributed today: the elastic operator (operator/dfft.h); every other stage computes the
+     * same replicated arrays on every rank, which needs the same plans on every rank. A running-in
+     * is named first: its steps are elastic-plastic too */
+    if (sc->runin.enabled) {
+        mc_fail(err, MC_ERR_INPUT,
+                "[runin] forces: the running-in is not distributed yet (%d MPI processes); run "
+                "this case with one process (mpirun -np 1, or bin/microcontact)",
+                ranks);
+        return blame_key(sc, "runin", "forces", MC_ERR_INPUT, err);
+    }
+    if (sc->plasticity.enabled) {
+        mc_fail(err, MC_ERR_INPUT,
+                "[plasticity] criterion: the elastic-plastic stage is not distributed yet (%d MPI "
+                "processes); run this case with one process (mpirun -np 1, or bin/microcontact)",
+                ranks);
+        return blame_key(sc, "plasticity", "criterion", MC_ERR_INPUT, err);
+    }
+    if (sc->solver.plans != MC_PLANS_ESTIMATE) {
+        mc_fail(err, MC_ERR_INPUT,
+                "[solver] plans = %s: with %d MPI processes only estimate is accepted (measured "
+                "plans may differ from process to process, and the processes must compute the "
+                "same numbers)",
+                mc_plan_rigor_name(sc->solver.plans), ranks);
+        return blame_key(sc, "solver", "plans", MC_ERR_INPUT, err);
+    }
+    return MC_OK;
+}
+
 int mc_pipeline_run_staged(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_results *res,
                            mc_error *err)
 {
+    int rc0 = mc_pipeline_check_ranks(sc, mc_dist_size(), err);
+    if (rc0 != MC_OK) {
+        memset(res, 0, sizeof *res); /* nothing computed; the caller frees res as after a run */
+        return rc0;
+    }
     /* the scene's thread count holds for this run only (core/threads.h) */
     mc_threads_scope scope;
     mc_threads_begin(sc->solver.threads, &scope);
@@ -355,8 +399,10 @@ int mc_pipeline_run_staged(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_
         return blame_key(sc, "solver", "wisdom_file", rc, err);
     }
     /* a running-in is its own sequence of stages (pipeline/runin.h) */
+    const double comm0 = mc_dist_comm_seconds();
     rc = sc->runin.enabled ? mc_runin_run(sc, NULL, res, err)
                            : run_stages(sc, stage, ctx, res, err);
+    res->timing.comm_s = mc_dist_comm_seconds() - comm0;
     if (rc == MC_OK || rc == MC_NOT_CONVERGED)
         mc_results_warnings(sc, res);
     mc_error perr = {0};

@@ -136,6 +136,9 @@ typedef struct {
     /* seconds: the whole run; kernel tables, spectra and plans of the operator; the contact solve
      * (with its coarse-grid start and the plans it makes for the contact's box); the stress stage */
     double total_s, setup_s, contact_s, stress_s;
+    /* of these, seconds in MPI communication on this process (core/dist.h; 0 serially): printed
+     * by the MPI executable, not written to summary.json (the same file as a serial run's) */
+    double comm_s;
 } mc_timing;
 
 /* A warning a user can act on (pipeline/warnings.h): a stable code and one line of text. */

@@ -11,6 +11,8 @@
 #include "operator/box.h"
 #include "stress/stress.h"
 #include "pipeline/stage_stress.h"
+
+#include "core/dist.h"
 #include "stress/stress_internal.h"
 
 /* A new group of layers starts when the window's area would grow beyond this factor of the
@@ -315,7 +317,13 @@ static int stage_group(const mc_scene *sc, const mc_results *res, const mc_stres
         rc = mc_stress_prepare(plan, p, q, NULL, err);
     if (rc == MC_OK)
         w->sparse = mc_stress_is_sparse(plan);
+    /* over MPI processes (core/dist.h) the layers are dealt out in turn, k mod P, and each
+     * layer then sent from the rank that computed it to all: a layer is the same bits whichever
+     * rank computes it (the same plan, the same load) */
+    const int ranks = mc_dist_size(), me = mc_dist_rank();
     for (int k = 0; k < nl && rc == MC_OK; k++) {
+        if (k % ranks != me)
+            continue;
         const size_t at = (size_t)(w->k0 + k) * n;
         double *out[MC_NSTRESS];
         for (int c = 0; c < MC_NSTRESS; c++)
@@ -332,6 +340,14 @@ static int stage_group(const mc_scene *sc, const mc_results *res, const mc_stres
         }
     }
     mc_stress_destroy(&plan);
+    if (ranks > 1) { /* every rank goes on only if all succeeded; then each layer to all */
+        const int any = mc_dist_max_int(rc);
+        if (any != MC_OK && rc == MC_OK)
+            rc = mc_fail(err, any, "stress stage: another MPI process failed (status %d)", any);
+        for (int k = 0; k < nl && rc == MC_OK; k++)
+            for (int c = 0; c < MC_NSTRESS; c++)
+                mc_dist_bcast(vol->stress[c] + (size_t)(w->k0 + k) * n, n, k % ranks);
+    }
     return rc;
 }
 

@@ -1,0 +1,57 @@
+/* dist.h - the ranks of a run: the MPI communicator the distributed transforms use.
+ *
+ * A build with -DMC_MPI (bin/microcontact-mpi, README "Running on a cluster") runs as P
+ * processes under mpirun. The front end (cli/) initialises MPI and hands the run's communicator
+ * over with mc_dist_set; the numerics ask for it here, never for the scene: today the elastic
+ * operator's fft backend (operator/dfft.h) splits its transforms over the ranks, every other
+ * stage computes the same replicated arrays on every rank. Without MC_MPI, and before
+ * mc_dist_set, there is one rank and nothing is distributed.
+ *
+ * Process-wide like the thread count (threads.h): set once by the front end, read by the plans;
+ * every rank must make the same calls in the same order (the transforms are collective).
+ */
+#ifndef MC_DIST_H
+#define MC_DIST_H
+
+#include <stddef.h>
+
+#ifdef MC_MPI
+#include <mpi.h>
+
+/* The run's communicator (MPI_COMM_NULL: none, the default). Not owned; must stay valid while
+ * plans made under it live. Call from one thread, between runs. */
+void mc_dist_set(MPI_Comm comm);
+MPI_Comm mc_dist_comm(void);
+#endif
+
+/* 1 when plans made now distribute their transforms (an MPI build with a communicator set). */
+int mc_dist_active(void);
+
+/* Ranks of the run's communicator (1 without one) and this process's rank (0 without one). */
+int mc_dist_size(void);
+int mc_dist_rank(void);
+
+/* Rank 0's v on every rank (v unchanged without a communicator): a decision only rank 0 can
+ * make (it writes the files), shared so that all ranks go on alike. Collective. */
+int mc_dist_root_int(int v);
+
+/* The largest v over the ranks (v without a communicator): a status every rank must share before
+ * the next collective step. Collective. */
+int mc_dist_max_int(int v);
+
+/* n values of v from rank root to every rank (nothing without a communicator). Collective. */
+void mc_dist_bcast(double *v, size_t n, int root);
+
+/* Seconds this process has spent in the distributed transforms' and stages' communication
+ * (transposes, gathers, broadcasts: MPI_Wtime around them, waiting for the other ranks
+ * included) since the process started; 0 without MPI. mc_dist_comm_add adds to it. */
+double mc_dist_comm_seconds(void);
+void mc_dist_comm_add(double s);
+
+/* Wall clock of MPI (MPI_Wtime; 0 without MPI), for mc_dist_comm_add. */
+double mc_dist_clock(void);
+
+/* The maximum over the ranks of each of v[0..n) (unchanged without a communicator). Collective. */
+void mc_dist_max(double *v, int n);
+
+#endif

@@ -1,0 +1,244 @@
+/* dfft.c - the padded real 2-D FFT distributed over the run's ranks (see dfft.h). */
+#include "operator/dfft.h"
+
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/dist.h"
+#include "core/threads.h"
+
+#ifdef MC_MPI
+#include <fftw3-mpi.h>
+
+struct mc_dfft {
+    MPI_Comm comm;
+    int nx, ny, tx, ty, hx;
+    ptrdiff_t nr, r0;   /* data rows of this rank: r0 .. r0 + nr - 1 (of ny) */
+    ptrdiff_t nk, k0;   /* spectrum columns of this rank: k0 .. k0 + nk - 1 (of hx) */
+    double *rows;       /* nr x hx complex: the row spectra (transpose input and output) */
+    double *cols;       /* nk x ny complex: the columns after the transpose */
+    fftw_complex *spec; /* nk x ty: the engine's spectrum */
+    double *line;       /* one real row, tx */
+    fftw_complex *cline; /* one complex line, max(hx, ty) */
+    fftw_plan r2c, c2r, fwd, bwd; /* one line each, FFTW_ESTIMATE */
+    fftw_plan tr_fwd, tr_bwd;     /* FFTW-MPI transposes ny x hx <-> hx x ny (complex pairs) */
+    int *counts, *displs;         /* the gather of the output rows, in doubles per rank */
+};
+
+void mc_dfft_destroy(mc_dfft **pd)
+{
+    if (!pd || !*pd)
+        return;
+    mc_dfft *d = *pd;
+    fftw_plan plans[] = {d->r2c, d->c2r, d->fwd, d->bwd, d->tr_fwd, d->tr_bwd};
+    for (size_t k = 0; k < sizeof plans / sizeof plans[0]; k++)
+        if (plans[k])
+            fftw_destroy_plan(plans[k]);
+    mc_free(d->rows);
+    mc_free(d->cols);
+    mc_free(d->spec);
+    mc_free(d->line);
+    mc_free(d->cline);
+    mc_free(d->counts);
+    mc_free(d->displs);
+    mc_free(d);
+    *pd = NULL;
+}
+
+static void *alloc_doubles(size_t n) { return mc_malloc((n ? n : 1) * sizeof(double)); }
+
+int mc_dfft_create(int nx, int ny, int tx, int ty, mc_dfft **out, mc_error *err)
+{
+    *out = NULL;
+    if (!mc_dist_active())
+        return mc_fail(err, MC_ERR_INTERNAL, "distributed FFT: no MPI communicator");
+    int rc = mc_fftw_prepare(err);
+    if (rc)
+        return rc;
+    mc_dfft *d = mc_calloc(1, sizeof *d);
+    if (!d)
+        return mc_fail(err, MC_ERR_NOMEM, "distributed FFT: out of memory");
+    d->comm = mc_dist_comm();
+    d->nx = nx;
+    d->ny = ny;
+    d->tx = tx;
+    d->ty = ty;
+    d->hx = tx / 2 + 1;
+    const ptrdiff_t n[2] = {ny, d->hx};
+    const ptrdiff_t alloc = fftw_mpi_local_size_many_transposed(
+        2, n, 2, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, d->comm, &d->nr, &d->r0, &d->nk,
+        &d->k0);
+    /* the transposes' buffers: what FFTW asks for, at least both layouts (complex = 2 doubles) */
+    size_t nbuf = 2 * (size_t)alloc;
+    const size_t nrow = 2 * (size_t)d->nr * (size_t)d->hx, ncol = 2 * (size_t)d->nk * (size_t)ny;
+    if (nbuf < nrow)
+        nbuf = nrow;
+    if (nbuf < ncol)
+        nbuf = ncol;
+    int size;
+    MPI_Comm_size(d->comm, &size);
+    const size_t cl = (size_t)(d->hx > ty ? d->hx : ty);
+    if (!(d->rows = alloc_doubles(nbuf)) || !(d->cols = alloc_doubles(nbuf)) ||
+        !(d->spec = alloc_doubles(2 * (size_t)d->nk * (size_t)ty)) ||
+        !(d->line = alloc_doubles((size_t)tx)) || !(d->cline = alloc_doubles(2 * cl)) ||
+        !(d->counts = mc_calloc((size_t)size, sizeof *d->counts)) ||
+        !(d->displs = mc_calloc((size_t)size, sizeof *d->displs))) {
+        mc_dfft_destroy(&d);
+        return mc_fail(err, MC_ERR_NOMEM, "distributed FFT %d x %d: out of memory", tx, ty);
+    }
+    /* who holds which output rows: the gather's counts and offsets */
+    int mine[2] = {(int)d->nr * nx, (int)d->r0 * nx};
+    int *all = mc_malloc(2 * (size_t)size * sizeof *all);
+    if (!all) {
+        mc_dfft_destroy(&d);
+        return mc_fail(err, MC_ERR_NOMEM, "distributed FFT: out of memory");
+    }
+    MPI_Allgather(mine, 2, MPI_INT, all, 2, MPI_INT, d->comm);
+    for (int p = 0; p < size; p++) {
+        d->counts[p] = all[2 * p];
+        d->displs[p] = all[2 * p + 1];
+    }
+    mc_free(all);
+    /* one-line plans on one thread, always FFTW_ESTIMATE: the same plan, hence the same bits, on
+     * every rank (dfft.h) */
+    fftw_plan_with_nthreads(1);
+    d->r2c = fftw_plan_dft_r2c_1d(tx, d->line, d->cline, FFTW_ESTIMATE);
+    d->c2r = fftw_plan_dft_c2r_1d(tx, d->cline, d->line, FFTW_ESTIMATE);
+    d->fwd = fftw_plan_dft_1d(ty, d->cline, d->cline, FFTW_FORWARD, FFTW_ESTIMATE);
+    d->bwd = fftw_plan_dft_1d(ty, d->cline, d->cline, FFTW_BACKWARD, FFTW_ESTIMATE);
+    d->tr_fwd = fftw_mpi_plan_many_transpose(ny, d->hx, 2, FFTW_MPI_DEFAULT_BLOCK,
+                                             FFTW_MPI_DEFAULT_BLOCK, d->rows, d->cols, d->comm,
+                                             FFTW_ESTIMATE);
+    d->tr_bwd = fftw_mpi_plan_many_transpose(d->hx, ny, 2, FFTW_MPI_DEFAULT_BLOCK,
+                                             FFTW_MPI_DEFAULT_BLOCK, d->cols, d->rows, d->comm,
+                                             FFTW_ESTIMATE);
+    fftw_plan_with_nthreads(mc_threads_count());
+    if (!d->r2c || !d->c2r || !d->fwd || !d->bwd || !d->tr_fwd || !d->tr_bwd) {
+        mc_dfft_destroy(&d);
+        return mc_fail(err, MC_ERR_NOMEM, "FFTW-MPI could not plan the %d x %d transforms", tx,
+                       ty);
+    }
+    *out = d;
+    return MC_OK;
+}
+
+size_t mc_dfft_spectrum_len(const mc_dfft *d) { return 2 * (size_t)d->nk * (size_t)d->ty; }
+
+fftw_complex *mc_dfft_spectrum(mc_dfft *d) { return d->spec; }
+
+/* Row j of a real array of rows of w values, zero-padded to tx, into the row spectrum dst (hx
+ * complex values). */
+static void row_forward(mc_dfft *d, const double *src, int w, fftw_complex *dst)
+{
+    memcpy(d->line, src, (size_t)w * sizeof *d->line);
+    memset(d->line + w, 0, (size_t)(d->tx - w) * sizeof *d->line);
+    fftw_execute_dft_r2c(d->r2c, d->line, d->cline);
+    memcpy(dst, d->cline, (size_t)d->hx * sizeof *dst);
+}
+
+/* A column of m <= ty values, zero-padded to ty, forward into dst (ty values). */
+static void col_forward(mc_dfft *d, const fftw_complex *src, int m, fftw_complex *dst)
+{
+    memcpy(d->cline, src, (size_t)m * sizeof *d->cline);
+    memset(d->cline + m, 0, (size_t)(d->ty - m) * sizeof *d->cline);
+    fftw_execute_dft(d->fwd, d->cline, d->cline);
+    memcpy(dst, d->cline, (size_t)d->ty * sizeof *dst);
+}
+
+void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec)
+{
+    fftw_complex *rows = (fftw_complex *)d->rows, *cols = (fftw_complex *)d->cols;
+    for (ptrdiff_t r = 0; r < d->nr; r++)
+        row_forward(d, field + (size_t)(d->r0 + r) * d->nx, d->nx, rows + (size_t)r * d->hx);
+    const double t0 = MPI_Wtime();
+    fftw_execute(d->tr_fwd); /* ny x hx by rows -> hx x ny by columns */
+    mc_dist_comm_add(MPI_Wtime() - t0);
+    for (ptrdiff_t k = 0; k < d->nk; k++)
+        col_forward(d, cols + (size_t)k * d->ny, d->ny, spec + (size_t)k * d->ty);
+}
+
+void mc_dfft_inverse(mc_dfft *d, double *out)
+{
+    fftw_complex *rows = (fftw_complex *)d->rows, *cols = (fftw_complex *)d->cols;
+    for (ptrdiff_t k = 0; k < d->nk; k++) { /* only the ny data rows are kept */
+        memcpy(d->cline, d->spec + (size_t)k * d->ty, (size_t)d->ty * sizeof *d->cline);
+        fftw_execute_dft(d->bwd, d->cline, d->cline);
+        memcpy(cols + (size_t)k * d->ny, d->cline, (size_t)d->ny * sizeof *cols);
+    }
+    double t0 = MPI_Wtime();
+    fftw_execute(d->tr_bwd); /* hx x ny by columns -> ny x hx by rows */
+    mc_dist_comm_add(MPI_Wtime() - t0);
+    for (ptrdiff_t r = 0; r < d->nr; r++) {
+        memcpy(d->cline, rows + (size_t)r * d->hx, (size_t)d->hx * sizeof *d->cline);
+        fftw_execute_dft_c2r(d->c2r, d->cline, d->line);
+        memcpy(out + (size_t)(d->r0 + r) * d->nx, d->line, (size_t)d->nx * sizeof *out);
+    }
+    t0 = MPI_Wtime();
+    MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, out, d->counts, d->displs, MPI_DOUBLE,
+                   d->comm);
+    mc_dist_comm_add(MPI_Wtime() - t0);
+}
+
+void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)
+{
+    /* all ty rows along x, keeping this rank's columns; then its columns along y */
+    for (int j = 0; j < d->ty; j++) {
+        memcpy(d->line, table + (size_t)j * d->tx, (size_t)d->tx * sizeof *d->line);
+        fftw_execute_dft_r2c(d->r2c, d->line, d->cline);
+        for (ptrdiff_t k = 0; k < d->nk; k++)
+            memcpy(spec + (size_t)k * d->ty + j, d->cline + d->k0 + k, sizeof *spec);
+    }
+    for (ptrdiff_t k = 0; k < d->nk; k++)
+        col_forward(d, spec + (size_t)k * d->ty, d->ty, spec + (size_t)k * d->ty);
+}
+
+#else /* no MPI: the engine is never made */
+
+int mc_dfft_create(int nx, int ny, int tx, int ty, mc_dfft **out, mc_error *err)
+{
+    (void)nx;
+    (void)ny;
+    (void)tx;
+    (void)ty;
+    *out = NULL;
+    return mc_fail(err, MC_ERR_INTERNAL, "distributed FFT: this build has no MPI (-DMC_MPI)");
+}
+
+void mc_dfft_destroy(mc_dfft **d)
+{
+    if (d)
+        *d = NULL;
+}
+
+size_t mc_dfft_spectrum_len(const mc_dfft *d)
+{
+    (void)d;
+    return 0;
+}
+
+fftw_complex *mc_dfft_spectrum(mc_dfft *d)
+{
+    (void)d;
+    return NULL;
+}
+
+void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec)
+{
+    (void)d;
+    (void)field;
+    (void)spec;
+}
+
+void mc_dfft_inverse(mc_dfft *d, double *out)
+{
+    (void)d;
+    (void)out;
+}
+
+void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)
+{
+    (void)d;
+    (void)table;
+    (void)spec;
+}
+#endif

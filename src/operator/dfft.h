@@ -1,0 +1,62 @@
+/* dfft.h - the zero-padded real 2-D FFT of padfft.h distributed over the run's ranks
+ * (core/dist.h; an MPI build, -DMC_MPI): the transforms of the elastic operator's fft backend
+ * under mpirun.
+ *
+ * FFTW-MPI's slab layout. A field of nx x ny cells (row-major, x fastest) is zero-padded to
+ * tx x ty as in padfft.h. Forward: each rank transforms its block of the ny data rows along x
+ * (r2c of length tx, hx = tx/2 + 1 values per row); FFTW-MPI's transpose
+ * (fftw_mpi_plan_many_transpose, blocks of fftw_mpi_local_size_many_transposed) turns the
+ * ny x hx row spectra into slabs along x: rank r holds the columns kx = k0 .. k0 + nk - 1, each
+ * of ny values, zero-padded to ty and transformed along y (c2c of length ty). The spectrum stays
+ * distributed: nk x ty complex values per rank, [kx - k0][ky]. Inverse: the columns backward, of
+ * which only the ny data rows are kept (pruned, as padfft.h prunes a free y axis), the transpose
+ * back, the rows backward (c2r) cropped to nx, and the rows gathered on every rank
+ * (MPI_Allgatherv): every rank ends with the whole field. Per transform pair the ranks exchange
+ * 2 x 16 ny hx bytes in the transposes and 8 nx ny in the gather.
+ *
+ * The same bits on any number of ranks: every line (row or column) is copied into one aligned
+ * scratch line and transformed by the same one-line FFTW_ESTIMATE plan, whichever rank does it;
+ * the transposes and the gather only move values. Against padfft.h (plans over many lines, the
+ * 2-D plan of a periodic grid) the numbers differ by round-off only. The plans are always
+ * FFTW_ESTIMATE: a measured plan could differ from rank to rank, and the ranks' replicated
+ * arrays with it. One thread per rank (the ranks are the parallelism).
+ *
+ * Without MC_MPI the functions exist but mc_dfft_create refuses (MC_ERR_INTERNAL).
+ * Every function but mc_dfft_table and the accessors is collective: all ranks call it.
+ */
+#ifndef MC_DFFT_H
+#define MC_DFFT_H
+
+#include <fftw3.h>
+#include <stddef.h>
+
+#include "core/error.h"
+
+typedef struct mc_dfft mc_dfft;
+
+/* Plan for an nx x ny field padded to tx x ty (tx >= nx, ty >= ny) over the run's communicator.
+ * *out is NULL on failure. MC_OK, MC_ERR_NOMEM (allocation or planning) or MC_ERR_INTERNAL (no
+ * MPI build or no communicator, FFTW threads). Collective. */
+int mc_dfft_create(int nx, int ny, int tx, int ty, mc_dfft **out, mc_error *err);
+void mc_dfft_destroy(mc_dfft **d); /* frees and sets *d = NULL; NULL-safe */
+
+/* Doubles of this rank's part of a spectrum: 2 nk ty (0 on a rank without columns). */
+size_t mc_dfft_spectrum_len(const mc_dfft *d);
+
+/* The engine's own spectrum (mc_dfft_spectrum_len doubles): mc_dfft_inverse reads it. */
+fftw_complex *mc_dfft_spectrum(mc_dfft *d);
+
+/* The field (nx*ny, the same on every rank; each reads its rows), zero-padded, forward into spec
+ * (this rank's part; the engine's spectrum or an array of as many doubles). Collective. */
+void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec);
+
+/* The engine's spectrum backward (unnormalised: the caller scales), cropped to nx x ny, into out
+ * on every rank. Destroys the spectrum. Collective. */
+void mc_dfft_inverse(mc_dfft *d, double *out);
+
+/* This rank's part of the spectrum of a whole ty x tx table (wrap-around layout, on every rank)
+ * into spec, by the same line transforms; local (no communication): each rank transforms all ty
+ * rows once. Not collective. */
+void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec);
+
+#endif

@@ -1,0 +1,178 @@
+/* mpi_operator.c - the elastic operator distributed over MPI ranks (operator/dfft.h), run under
+ * mpirun by tests/cli/mpi.sh with 1, 2, 3 and 4 processes.
+ *
+ * On grids that make every part of the slab layout work (free and periodic axes, odd sizes,
+ * dx != dy, one row, more ranks than rows or spectrum columns): u = K f of the distributed fft
+ * operator against the O(N^2) direct sum (the independent reference) and against the serial fft
+ * operator, for the even Love kernel (the real-spectrum path) and an odd kernel (the complex
+ * path). Rank 0 prints one line per check and, per grid and kernel, a hash of the result's bits:
+ * the script requires the same hashes for every process count (the same bits on any P).
+ * Closes with "N passed, N failed"; exit 1 on a failure. */
+#include <fftw3-mpi.h>
+#include <math.h>
+#include <mpi.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/dist.h"
+#include "core/threads.h"
+#include "operator/operator.h"
+
+/* Round-off tier: an FFT of length m carries a relative error of a few eps log2 m against the
+ * largest value (here < 1e-14 for m <= 256), the direct sum a few eps sqrt(N); 1e-12 leaves two
+ * orders of magnitude and still catches any wrong slab, offset or missing row (errors of O(1)). */
+#define TOL_ROUNDOFF 1e-12
+
+static int passed, failed, rank;
+
+static void check(const char *what, double rel, double tol)
+{
+    const int ok = rel <= tol;
+    ok ? passed++ : failed++;
+    if (rank == 0)
+        printf("%s %s: max |a - b| / max |b| = %.3g (tol %.0e)\n", ok ? "PASS" : "FAIL", what,
+               rel, tol);
+}
+
+static double rel_diff(const double *a, const double *b, size_t n)
+{
+    double d = 0, m = 0;
+    for (size_t i = 0; i < n; i++) {
+        d = fmax(d, fabs(a[i] - b[i]));
+        m = fmax(m, fabs(b[i]));
+    }
+    return m > 0 ? d / m : d;
+}
+
+static uint64_t hash_bits(const double *v, size_t n) /* FNV-1a over the bytes */
+{
+    uint64_t h = 1469598103934665603ull;
+    const unsigned char *p = (const unsigned char *)v;
+    for (size_t i = 0; i < n * sizeof *v; i++)
+        h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
+/* An odd kernel (no symmetry in either offset): its spectrum is complex. */
+static double odd_value(double ox, double oy, const void *ctx)
+{
+    const double *d = ctx;
+    const double x = ox / d[0], y = oy / d[1];
+    return (1.0 + 0.3 * x - 0.2 * y) / (1.0 + x * x + 2.0 * y * y) + 0.1 * x * y / (3.0 + x * x);
+}
+
+/* u = K f through an operator planned serially or distributed. */
+static int apply(const mc_grid *g, const mc_kernel_table *t, mc_backend b, int distributed,
+                 const double *f, double *u)
+{
+    MPI_Comm saved = mc_dist_comm();
+    if (!distributed)
+        mc_dist_set(MPI_COMM_NULL);
+    mc_operator *op = NULL;
+    mc_error err = {0};
+    int rc = mc_operator_plan(g, t, b, &op, &err);
+    if (rc == MC_OK)
+        mc_operator_apply(op, f, u);
+    else if (rank == 0)
+        printf("FAIL plan: %s\n", err.msg);
+    mc_operator_destroy(&op);
+    mc_dist_set(saved);
+    return rc;
+}
+
+static void one_grid(const char *name, mc_grid g)
+{
+    const size_t n = mc_grid_cells(&g);
+    double *f = mc_malloc(n * sizeof *f), *ud = mc_malloc(n * sizeof *ud),
+           *us = mc_malloc(n * sizeof *us), *ur = mc_malloc(n * sizeof *ur);
+    uint64_t s = 12345; /* the same field on every rank */
+    for (size_t i = 0; i < n; i++) {
+        s = s * 6364136223846793005ull + 1442695040888963407ull;
+        f[i] = (double)(s >> 11) / 9007199254740992.0 - 0.25;
+    }
+    /* the table sizes of the fft backend (the direct one reads the same table) */
+    mc_conv *c = NULL;
+    mc_error err = {0};
+    mc_conv_create(&g, MC_BACKEND_FFT, &c, &err);
+    int tx, ty;
+    mc_conv_table_dims(c, &tx, &ty);
+    mc_conv_destroy(&c);
+    const double dd[2] = {g.dx, g.dy};
+    const mc_kernel_fn odd = {odd_value, NULL, dd};
+    for (int kind = 0; kind < 2; kind++) {
+        mc_kernel_table t;
+        int rc = kind == 0 ? mc_kernel_table_love(&g, tx, ty, 210e9, &t, &err)
+                           : mc_kernel_table_build(&g, tx, ty, &odd, 2, &t, &err);
+        if (rc != MC_OK) {
+            failed++;
+            if (rank == 0)
+                printf("FAIL %s: table: %s\n", name, err.msg);
+            continue;
+        }
+        const char *kname = kind == 0 ? "love" : "odd";
+        char what[128];
+        if (apply(&g, &t, MC_BACKEND_FFT, 1, f, ud) || apply(&g, &t, MC_BACKEND_FFT, 0, f, us) ||
+            apply(&g, &t, MC_BACKEND_DIRECT, 0, f, ur)) {
+            failed++;
+        } else {
+            snprintf(what, sizeof what, "%s %s distributed fft vs direct", name, kname);
+            check(what, rel_diff(ud, ur, n), TOL_ROUNDOFF);
+            snprintf(what, sizeof what, "%s %s distributed fft vs serial fft", name, kname);
+            check(what, rel_diff(ud, us, n), TOL_ROUNDOFF);
+            /* every rank holds the whole result, the same bits as rank 0's */
+            double mine = (double)(hash_bits(ud, n) >> 12), lo = mine, hi = mine;
+            MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+            MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+            snprintf(what, sizeof what, "%s %s the same result on every rank", name, kname);
+            check(what, lo == hi ? 0.0 : 1.0, 0.0);
+            if (rank == 0)
+                printf("hash %s %s %016llx\n", name, kname, (unsigned long long)hash_bits(ud, n));
+        }
+        mc_kernel_table_free(&t);
+    }
+    mc_free(f);
+    mc_free(ud);
+    mc_free(us);
+    mc_free(ur);
+}
+
+int main(int argc, char **argv)
+{
+    int provided, size;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    mc_threads_scope ts;
+    mc_threads_begin(1, &ts);
+    mc_error err = {0};
+    if (mc_fftw_prepare(&err) != MC_OK)
+        return 1;
+    fftw_mpi_init();
+    mc_dist_set(MPI_COMM_WORLD);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    if (rank == 0)
+        printf("distributed elastic operator, %d MPI process%s\n", size, size > 1 ? "es" : "");
+    const double d = 1e-6;
+    struct {
+        const char *name;
+        mc_grid g;
+    } grids[] = {
+        {"free 37x23 dy=1.7dx", {37, 23, d, 1.7 * d, 0, 0}},
+        {"free 64x48", {64, 48, d, d, 0, 0}},
+        {"free 50x1", {50, 1, d, d, 0, 0}},
+        {"free 3x2", {3, 2, d, 2 * d, 0, 0}},
+        {"periodic-x 40x17", {40, 17, d, d, 1, 0}},
+        {"periodic-y 31x20", {31, 20, 0.8 * d, d, 0, 1}},
+        {"periodic 32x24", {32, 24, d, 1.3 * d, 1, 1}},
+        {"line 60x1 periodic-y", {60, 1, d, d, 0, 1}},
+    };
+    for (size_t k = 0; k < sizeof grids / sizeof grids[0]; k++)
+        one_grid(grids[k].name, grids[k].g);
+    if (rank == 0)
+        printf("%d passed, %d failed\n", passed, failed);
+    mc_dist_set(MPI_COMM_NULL);
+    fftw_mpi_cleanup();
+    MPI_Finalize();
+    return failed ? 1 : 0;
+}
