@@ -41,6 +41,9 @@
  *  plasticity margin              doubly periodic grid (the volume spans the  here (new)
  *                                  whole period along x and y)
  *  runin nominal_deflection       doubly periodic grid (no bowl)              here
+ *  runin friction_in_yield        no [plasticity] (von_mises); pure rolling   here (new)
+ *                                  (no sliding direction)
+ *  plasticity friction            runin friction_in_yield = yes (replaced)    here (new)
  *  stress / lubrication /         the section's enabled = no                  accepted: the
  *   plasticity / runin keys                                                    switch keeps a
  *                                                                              section for later
@@ -171,6 +174,21 @@ static int plastic_runin_rules(const mc_scene *s, mc_error *err, const char **se
         BLAME("plasticity", "margin",
               "[plasticity] margin has no effect in a running-in ([runin]): every step's plastic "
               "columns span the whole grid; remove it");
+    if (s->runin.friction_in_yield && !vm)
+        BLAME("runin", "friction_in_yield",
+              "[runin] friction_in_yield = yes has no effect without [plasticity] (criterion = "
+              "von_mises): nothing yields; remove it, or add [plasticity]");
+    if (s->runin.friction_in_yield && vm && s->plasticity.friction > 0)
+        BLAME("plasticity", "friction",
+              "[plasticity] friction has no effect with [runin] friction_in_yield = yes (each "
+              "step's mu replaces it): remove one of them");
+    if (s->runin.friction_in_yield && vm && s->lubrication.rpm > 0 &&
+        !(s->lubrication.rpm2 > 0 && s->lubrication.rpm2 * s->lubrication.radius2 !=
+                                         s->lubrication.rpm * s->lubrication.radius1))
+        BLAME("runin", "friction_in_yield",
+              "[runin] friction_in_yield = yes has no effect in pure rolling (equal surface "
+              "speeds: no sliding, so no direction for the traction); accepted with "
+              "[lubrication] rpm2 giving disc 2 another surface speed than disc 1");
     if (s->runin.deflection != MC_DEFLECTION_REMOVE && s->grid.periodic_x && s->grid.periodic_y)
         BLAME("runin", "nominal_deflection",
               "[runin] nominal_deflection has no effect on a grid periodic along x and y (the "
