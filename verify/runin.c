@@ -199,12 +199,17 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
     vf_check(ctx, "hysteresis_largest_first",
              "max H at the higher forces / H at 1086 N", "paper: largest at the lowest force", 1,
              hmax_other / h1, 1 - 1e-3, VF_MAX);
-    /* (4) the friction curves cross: mu(F_last) - mu(F_1) on the run-down, at the fastest speed
+    /* (4) the friction curves cross: mu(F_max) - mu(F_min) on the run-down, at the fastest speed
      * with solid contact at either force (> 0: mu rises with the force) and at the slowest
      * (< 0: it falls). The margin 1e-5 is far above the noise of mu (psi to the volume root's
      * 1e-6 relative: ~1e-7 in mu) and far below the differences (1e-3 to 1e-2). */
     {
-        const mc_runin_row *lo = &ri->rows[0], *hi = &ri->rows[2 * m * (nf - 1)];
+        int flo = 0, fhi = 0; /* by magnitude: the trend is about the force, not the order */
+        for (int f = 1; f < nf; f++) {
+            flo = ri->rows[2 * m * f].force < ri->rows[2 * m * flo].force ? f : flo;
+            fhi = ri->rows[2 * m * f].force > ri->rows[2 * m * fhi].force ? f : fhi;
+        }
+        const mc_runin_row *lo = &ri->rows[2 * m * flo], *hi = &ri->rows[2 * m * fhi];
         int k0 = 0;
         while (k0 < m - 1 && !(lo[k0].psi_load > 0 || hi[k0].psi_load > 0))
             k0++;
