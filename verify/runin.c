@@ -46,8 +46,9 @@ static const char *PLASTIC = "[plasticity]\nhardening = swift\nswift_B = 1280 MP
 #define FAST_SPEEDS "3000, 1000, 700, 500, 350, 200 rpm"
 #define FORCES "1086 N, 2172 N, 3258 N"
 /* the plastic volume: 6.4 um deep (the asperities' plastic zone at 1732 MPa: docs/theory.md
- * §19.7); layers of 0.4 um (the default case's), in the fast variant 0.8 um = dx (cell averages:
- * the dent within 4 %, the hysteresis within 5 % of 0.4 um, the same trends; theory §19.7) */
+ * §19.7); the fast variant is cases/default.ini (layers of 0.8 um = dx, cell averages), the full
+ * one refines the layers to 0.4 um (the dent 4 % deeper, the hysteresis within 4 %, the same
+ * trends: theory §19.7) and adds 2000 rpm */
 #define FULL_DZ "0.4 um"
 #define FAST_DZ "0.8 um"
 
