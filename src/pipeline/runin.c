@@ -463,15 +463,18 @@ static int setup(runin_ctx *c, mc_error *err)
         if (rc != MC_OK)
             mc_error_prefix(err, "[plasticity] ");
         c->G = sc->body1.E / (2.0 * (1.0 + sc->body1.nu));
-        if (sc->runin.friction_in_yield && sc->lubrication.rpm2 > 0) { /* surface speeds of the first step: the ratio stays */
+        /* the surface speeds of the first step (every step keeps their ratio); pure rolling is
+         * refused by the scene rules */
+        if (sc->runin.friction_in_yield && sc->lubrication.rpm2 > 0) {
             const double u1 = sc->lubrication.rpm * sc->lubrication.radius1;
             const double u2 = sc->lubrication.rpm2 * sc->lubrication.radius2;
-            c->slide = u2 > u1 ? 1.0 : u2 < u1 ? -1.0 : 0.0; /* pure rolling: refused (scene) */
+            c->slide = u2 > u1 ? 1.0 : u2 < u1 ? -1.0 : 0.0;
         }
         /* with mu_solid = mu_fluid = 0 every step's traction is 0: the operators without q_x, so
          * the run is the one without the option to the bit */
         c->qx_loads = sc->plasticity.friction > 0 ||
-                      (c->slide != 0 && (sc->lubrication.mu_solid > 0 || sc->lubrication.mu_fluid > 0));
+                      (c->slide != 0 &&
+                       (sc->lubrication.mu_solid > 0 || sc->lubrication.mu_fluid > 0));
         if (rc == MC_OK)
             rc = plan_volume(c, err);
         const size_t nv = (size_t)c->nvol;
