@@ -88,7 +88,8 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
 {
     vf_text(ctx,
             "The running-in of the paper (Mevissen et al. 2025, Figs. 4-1 to 4-3) at its "
-            "pressures, the scene of cases/default.ini: the twin-disc case of the dossier (§4.4), "
+            "pressures, the scene of cases/default.ini (the fast variant is that case; the full "
+            "one halves its layers and adds 2000 rpm): the twin-disc case of the dossier (§4.4), "
             "R1 = R2 = 40 mm, eta0 = 30 mPa s, alpha = 2e-8 1/Pa, pure rolling, forces %s on a "
             "2 mm track: p_H = 998.6, 1412.2, 1729.6 MPa (E = 210 GPa, nu = 0.3). The 2 mm is "
             "an inference from the paper's numbers, not a statement of it: its forces go as "
