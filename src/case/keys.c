@@ -499,7 +499,7 @@ const case_key mc_keys[] = {
             "(psi mu_solid + (1 - psi) mu_fluid at the step's volume equilibrium), along the "
             "sliding of disc 2 against disc 1 (+x when disc 2 is the faster surface); needs "
             "[plasticity] and rolling-sliding ([lubrication] rpm2), and replaces [plasticity] "
-            "friction (docs/theory.md §19.6). no: pressure alone, as the paper's model."},
+            "friction (docs/theory.md §19.7). no: pressure alone, as the paper's model."},
 
     /* [output] */
     {.section = "output", .name = "dir", .kind = K_PATH, .def = "out/(case file name without .ini)",
@@ -558,7 +558,8 @@ const case_section mc_key_sections[] = {
      "then the run-up, elastic on the run-in surface. The scene itself is the first step: [load] "
      "force is the first force, [lubrication] rpm (film = ehl, with radius1, radius2) the first "
      "speed, [load] lubricant_pressure = auto. Without [plasticity] the material is elastic and "
-     "nothing runs in. Writes runin.csv, runin.gp, surface_initial.npy, surface_final.npy; "
+     "nothing runs in. Writes runin.csv, runin.gp, surface_initial.npy, surface_final.npy, "
+     "material_ratio.csv; "
      "checkpoints in DIR/checkpoint/ for --resume."},
 };
 

@@ -102,6 +102,9 @@ typedef struct {
     double psi_load, psi_area, pocket_height, mu; /* pocket height in m */
     int regime;              /* lube/volume.h mc_lube_regime */
     double ra, rq, rz, sa, sq; /* of the surface after the step (ISO, as roughness.initial), m */
+    double rpk, rk, rvk, mr1, mr2; /* its ISO 13565-2 family (mean over the rows), m and % */
+    double sp, spk, sk, svk, smr1, smr2; /* its highest peak and areal material ratio
+                                            (ISO 25178-2), m and % */
     double residual_max;     /* largest residual displacement of body 1 so far, m */
     int plastic;             /* the step ran the plastic loop (something yielded) */
     int converged;           /* every solve of the step converged */

@@ -292,7 +292,7 @@ static int run_step(runin_ctx *c, int s, mc_runin_row *row, mc_plastic_step *rec
     mc_lube_contact lc;
     if (!up && c->plastic && rc == MC_OK) {
         /* the traction of the yield check: [plasticity] friction, or (friction_in_yield) the mu
-         * of this step's equilibrium before it yields, along the sliding (theory.md §19.6) */
+         * of this step's equilibrium before it yields, along the sliding (theory.md §19.7) */
         double fr = c->sc->plasticity.friction;
         if (c->slide != 0) {
             rc = mc_lube_outcome(c->step, &vr, r, err);
@@ -340,6 +340,17 @@ static int run_step(runin_ctx *c, int s, mc_runin_row *row, mc_plastic_step *rec
     row->rz = rp.Rz;
     row->sa = rp.Sa;
     row->sq = rp.Sq;
+    row->rpk = rp.Rpk;
+    row->rk = rp.Rk;
+    row->rvk = rp.Rvk;
+    row->mr1 = rp.Mr1;
+    row->mr2 = rp.Mr2;
+    row->sp = rp.Sp;
+    row->spk = rp.Spk;
+    row->sk = rp.Sk;
+    row->svk = rp.Svk;
+    row->smr1 = rp.Smr1;
+    row->smr2 = rp.Smr2;
     for (size_t i = 0; i < c->n; i++)
         row->residual_max = fmax(row->residual_max, c->u_r[i]);
     row->seconds = mc_clock() - t0;

@@ -17,8 +17,9 @@
  *   run-up    n_m ... n_1: the same equilibrium, elastic, on the run-in surface;
  * and the next force starts from the surface the run-up ended on. Every step is a row of
  * runin.csv: h_EHD, p_lub, psi, the pocket height and mu of the loaded state, and the roughness
- * (Ra, Rq, Rz, Sa, Sq: surface/roughness.h with the options of roughness.initial) of the surface
- * after the step. Without [plasticity] the material is elastic: nothing runs in and every step
+ * of the surface after the step (surface/roughness.h with the options of roughness.initial): Ra,
+ * Rq, Rz, Sa, Sq and what shows running-in, the peaks: the ISO 13565-2 family Rpk, Rk, Rvk, Mr1,
+ * Mr2 (mean over the rows) and Sp with the areal Spk, Sk, Svk, Smr1, Smr2 (ISO 25178-2). Without [plasticity] the material is elastic: nothing runs in and every step
  * of a run-up repeats its run-down step exactly (bit for bit: the same solves from the same cold
  * start; a step never starts from the one before).
  *
@@ -38,7 +39,7 @@
  * contact, mu the friction coefficient of the step's volume equilibrium before it yields, s = +1
  * when disc 2's surface is the faster (it drags body 1 forward, +x), -1 otherwise: the step is
  * the plastic loop with friction = s mu (plastic/loop.h). Without it, [plasticity] friction
- * (default 0) is every step's (docs/theory.md §19.6).
+ * (default 0) is every step's (docs/theory.md §19.7).
  *
  * Hysteresis. Per force, the signed area between the run-down and run-up mu curves over the
  * decades of speed, H = integral of (mu_down - mu_up) d log10 n (trapezoids over the speeds):
