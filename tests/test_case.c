@@ -349,7 +349,7 @@ static const bad_case bad[] = {
     {"", {NAME ": empty case file"}},
     {"; only a comment\n\n   \n", {NAME ": empty case file"}},
     {"[meshh]\n",
-     {NAME ":1: unknown section [meshh]; known sections: mesh, geometry, roughness, body1, body2, "
+     {NAME ":1: unknown section [meshh]; known sections: mesh, geometry, roughness, roughness2, body1, body2, "
            "load, solver, stress, lubrication, plasticity, output"}},
     {"[Mesh]\nnx = 3\n", {NAME ":1: unknown section [Mesh]", "known sections: mesh,"}},
     {BASE "[mesh]\nnxx = 3\n",

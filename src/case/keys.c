@@ -39,6 +39,7 @@ _Static_assert(sizeof(mc_nominal_deflection) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_plan_rigor) == sizeof(int), "enum size");
 _Static_assert(MC_PLANS_MEASURE == 1 && MC_PLANS_WISDOM == 2,
                "[solver] plans choices follow the enum");
+_Static_assert(MC_PROFILE_HERTZ == 1, "[lubrication] lubricant_profile choices follow the enum");
 _Static_assert(MC_DEFLECTION_KEEP == 1, "[runin] nominal_deflection choices follow the enum");
 _Static_assert(MC_SHAPE_ELLIPSOID == 3 && MC_ROUGH_FILE == 3 && MC_BACKEND_DIRECT == 1 &&
                    MC_METHOD_ACTIVE_SET == 2 && MC_SPACING_GEOMETRIC == 1 && MC_STRESS_POINT == 1 &&
@@ -62,6 +63,95 @@ static const char *psi_help(int i) { return mc_psi_help((mc_psi_kind)i); }
 
 
 #define AT(field) offsetof(mc_scene, field)
+
+/* The keys of a roughness section: [roughness] (the composite gap surface, or body 1's with
+ * [roughness2]) and [roughness2] (body 2's) have the same rows, each over its own
+ * mc_roughness_spec (docs/theory.md §4.11). */
+#define ROUGHNESS_ROWS(SEC, FIELD, TYPEDOC, SEEDDEF, SEEDDOC, MESHDOC) \
+    {.section = SEC, .name = "type", .kind = K_ENUM, \
+     .choices = "none gaussian self_affine file", .def = "none", .off = AT(FIELD.type), \
+     .doc = TYPEDOC}, \
+    {.section = SEC, .name = "rq", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0, \
+     .hi = HUGE_VAL, .group = "height", .use = USE_WHEN, .use_key = "type", \
+     .use_values = "gaussian self_affine", .off = AT(FIELD.rq), \
+     .doc = "RMS height Rq (required for gaussian; for self_affine give rq or rms_slope)."}, \
+    {.section = SEC, .name = "rms_slope", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0, \
+     .lo_open = 1, .hi = HUGE_VAL, .group = "height", .use = USE_WHEN, .use_key = "type", \
+     .use_values = "self_affine", .off = AT(FIELD.rms_slope), \
+     .doc = "RMS slope, instead of rq."}, \
+    {.section = SEC, .name = "correlation_x", .kind = K_REAL, .unit = MC_UNIT_LENGTH, \
+     .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .required = 1, .use = USE_WHEN, .use_key = "type", \
+     .use_values = "gaussian", .off = AT(FIELD.correlation_x), \
+     .doc = "Correlation length along x: autocorrelation exp(-(tx/lx)^2 - (ty/ly)^2)."}, \
+    {.section = SEC, .name = "correlation_y", .kind = K_REAL, .unit = MC_UNIT_LENGTH, \
+     .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .def = "correlation_x", .def_from = "correlation_x", \
+     .use = USE_WHEN, .use_key = "type", .use_values = "gaussian", \
+     .off = AT(FIELD.correlation_y), .doc = "Correlation length along y."}, \
+    {.section = SEC, .name = "hurst", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0, \
+     .lo_open = 1, .hi = 1, .hi_open = 1, .def = "0.8", .use = USE_WHEN, .use_key = "type", \
+     .use_values = "self_affine", .off = AT(FIELD.hurst), \
+     .doc = "Hurst exponent H (power spectrum ~ q^-2(1+H))."}, \
+    {.section = SEC, .name = "lambda_long", .kind = K_REAL, .unit = MC_UNIT_LENGTH, \
+     .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .def = "the longer domain side", .def_rule = 1, \
+     .use = USE_WHEN, .use_key = "type", .use_values = "self_affine", \
+     .off = AT(FIELD.lambda_long), .doc = "Longest wavelength (long cut-off)."}, \
+    {.section = SEC, .name = "lambda_short", .kind = K_REAL, .unit = MC_UNIT_LENGTH, \
+     .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .def = "2 max(dx, dy)", .def_rule = 1, \
+     .use = USE_WHEN, .use_key = "type", .use_values = "self_affine", \
+     .off = AT(FIELD.lambda_short), \
+     .doc = "Shortest wavelength (short cut-off), below lambda_long."}, \
+    {.section = SEC, .name = "seed", .kind = K_SEED, .def = SEEDDEF, .use = USE_WHEN, \
+     .use_key = "type", .use_values = "gaussian self_affine", .off = AT(FIELD.seed), \
+     .doc = "Random seed: the same seed gives the same surface on every run" SEEDDOC}, \
+    {.section = SEC, .name = "file", .kind = K_PATH, .required = 1, .use = USE_WHEN, \
+     .use_key = "type", .use_values = "file", .off = AT(FIELD.file), .relative = 1, \
+     .doc = "Measured height map, relative to the case file: X3P, SDF, GSF, text matrix, x y z " \
+            "triplets or .npy (by extension, or format). " MESHDOC}, \
+    {.section = SEC, .name = "format", .kind = K_ENUM, \
+     .choices = "auto x3p sdf gsf txt xyz npy", .def = "auto", .use = USE_WHEN, .use_key = "type", \
+     .use_values = "file", .off = AT(FIELD.format), \
+     .doc = "File format; auto: by extension (.x3p .sdf .gsf .txt/.asc/.dat .xyz .npy)."}, \
+    {.section = SEC, .name = "units", .kind = K_ENUM, .choices = "m mm um nm", \
+     .def = "m", .use = USE_WHEN, .use_key = "type", .use_values = "file", \
+     .off = AT(FIELD.units), \
+     .doc = "Unit of the numbers in a txt, xyz or npy file (X3P, SDF and GSF carry their own)."}, \
+    {.section = SEC, .name = "verify_checksum", .kind = K_BOOL, .def = "yes", \
+     .use = USE_WHEN, .use_key = "type", .use_values = "file", \
+     .off = AT(FIELD.verify_checksum), \
+     .doc = "X3P: an MD5 mismatch is an error (no: read the file anyway)."}, \
+    {.section = SEC, .name = "region", .kind = K_REGION, .unit = MC_UNIT_LENGTH, \
+     .use = USE_WHEN, .use_key = "type", .use_values = "file", .off = AT(FIELD.region), \
+     .tagged = 1, .tag = 1, .tag_off = AT(FIELD.has_region), \
+     .doc = "Crop: x0, y0, width, height in the file's coordinates, e.g. 0 mm, 0 mm, 0.5 mm, " \
+            "0.2 mm."}, \
+    {.section = SEC, .name = "detrend", .kind = K_ENUM, \
+     .choices = "none mean plane quadratic", .def = "plane", .use = USE_WHEN, .use_key = "type", \
+     .use_values = "file", .off = AT(FIELD.detrend), \
+     .doc = "Levelling of the measured map by least squares (after the crop)."}, \
+    {.section = SEC, .name = "missing", .kind = K_ENUM, .choices = "error fill", \
+     .def = "error", .use = USE_WHEN, .use_key = "type", .use_values = "file", \
+     .off = AT(FIELD.missing), \
+     .doc = "Points the instrument did not measure: an error, or filled by harmonic " \
+            "interpolation from their neighbours (the count is reported)."}, \
+    {.section = SEC, .name = "resample", .kind = K_ENUM, .choices = "none linear", \
+     .def = "none", .use = USE_WHEN, .use_key = "type", .use_values = "file", \
+     .off = AT(FIELD.resample), \
+     .doc = "When [mesh] gives a grid other than the file's: none is an error naming both, " \
+            "linear interpolates onto the mesh."}, \
+    {.section = SEC, .name = "scale", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = -1e6, \
+     .hi = 1e6, .def = "1", .use = USE_WHEN, .use_key = "type", .use_values = "file", \
+     .off = AT(FIELD.scale), .doc = "Factor on the heights (not 0)."}, \
+    {.section = SEC, .name = "invert", .kind = K_BOOL, .def = "no", .use = USE_WHEN, \
+     .use_key = "type", .use_values = "file", .off = AT(FIELD.invert), \
+     .doc = "Negate the heights (a map of a replica, or a map that points into the body)."}, \
+ \
+    {.section = SEC, .name = "cutoff", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0, \
+     .lo_open = 1, .hi = 1, .def = "ISO 4288 from Ra", .def_rule = 1, .use = USE_WHEN, \
+     .use_key = "type", .use_values = "gaussian self_affine file", .off = AT(FIELD.cutoff), \
+     .doc = "Cut-off wavelength lambda_c of the Gaussian filter (ISO 16610-21) for the " \
+            "roughness parameters in summary.json; clipped with a warning on a short surface. " \
+            "[roughness]'s serves the gap's (composite) parameters and body 1's, [roughness2]'s " \
+            "body 2's."},
 
 const case_key mc_keys[] = {
     /* [mesh] */
@@ -100,90 +190,18 @@ const case_key mc_keys[] = {
      .use_values = "ellipsoid", .off = AT(geometry.radius_y),
      .doc = "Combined principal radius of curvature in the y-z plane."},
 
-    /* [roughness] */
-    {.section = "roughness", .name = "type", .kind = K_ENUM,
-     .choices = "none gaussian self_affine file", .def = "none", .off = AT(roughness.type),
-     .doc = "Roughness heights added to the surface (positive towards the counter body)."},
-    {.section = "roughness", .name = "rq", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
-     .hi = HUGE_VAL, .group = "height", .use = USE_WHEN, .use_key = "type",
-     .use_values = "gaussian self_affine", .off = AT(roughness.rq),
-     .doc = "RMS height Rq (required for gaussian; for self_affine give rq or rms_slope)."},
-    {.section = "roughness", .name = "rms_slope", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
-     .lo_open = 1, .hi = HUGE_VAL, .group = "height", .use = USE_WHEN, .use_key = "type",
-     .use_values = "self_affine", .off = AT(roughness.rms_slope),
-     .doc = "RMS slope, instead of rq."},
-    {.section = "roughness", .name = "correlation_x", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
-     .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .required = 1, .use = USE_WHEN, .use_key = "type",
-     .use_values = "gaussian", .off = AT(roughness.correlation_x),
-     .doc = "Correlation length along x: autocorrelation exp(-(tx/lx)^2 - (ty/ly)^2)."},
-    {.section = "roughness", .name = "correlation_y", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
-     .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .def = "correlation_x", .def_from = "correlation_x",
-     .use = USE_WHEN, .use_key = "type", .use_values = "gaussian",
-     .off = AT(roughness.correlation_y), .doc = "Correlation length along y."},
-    {.section = "roughness", .name = "hurst", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
-     .lo_open = 1, .hi = 1, .hi_open = 1, .def = "0.8", .use = USE_WHEN, .use_key = "type",
-     .use_values = "self_affine", .off = AT(roughness.hurst),
-     .doc = "Hurst exponent H (power spectrum ~ q^-2(1+H))."},
-    {.section = "roughness", .name = "lambda_long", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
-     .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .def = "the longer domain side", .def_rule = 1,
-     .use = USE_WHEN, .use_key = "type", .use_values = "self_affine",
-     .off = AT(roughness.lambda_long), .doc = "Longest wavelength (long cut-off)."},
-    {.section = "roughness", .name = "lambda_short", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
-     .lo = 0, .lo_open = 1, .hi = HUGE_VAL, .def = "2 max(dx, dy)", .def_rule = 1,
-     .use = USE_WHEN, .use_key = "type", .use_values = "self_affine",
-     .off = AT(roughness.lambda_short),
-     .doc = "Shortest wavelength (short cut-off), below lambda_long."},
-    {.section = "roughness", .name = "seed", .kind = K_SEED, .def = "1", .use = USE_WHEN,
-     .use_key = "type", .use_values = "gaussian self_affine", .off = AT(roughness.seed),
-     .doc = "Random seed: the same seed gives the same surface on every run."},
-    {.section = "roughness", .name = "file", .kind = K_PATH, .required = 1, .use = USE_WHEN,
-     .use_key = "type", .use_values = "file", .off = AT(roughness.file), .relative = 1,
-     .doc = "Measured height map, relative to the case file: X3P, SDF, GSF, text matrix, x y z "
-            "triplets or .npy (by extension, or format). Without nx, ny, dx, dy in [mesh] the "
-            "mesh is the file's."},
-    {.section = "roughness", .name = "format", .kind = K_ENUM,
-     .choices = "auto x3p sdf gsf txt xyz npy", .def = "auto", .use = USE_WHEN, .use_key = "type",
-     .use_values = "file", .off = AT(roughness.format),
-     .doc = "File format; auto: by extension (.x3p .sdf .gsf .txt/.asc/.dat .xyz .npy)."},
-    {.section = "roughness", .name = "units", .kind = K_ENUM, .choices = "m mm um nm",
-     .def = "m", .use = USE_WHEN, .use_key = "type", .use_values = "file",
-     .off = AT(roughness.units),
-     .doc = "Unit of the numbers in a txt, xyz or npy file (X3P, SDF and GSF carry their own)."},
-    {.section = "roughness", .name = "verify_checksum", .kind = K_BOOL, .def = "yes",
-     .use = USE_WHEN, .use_key = "type", .use_values = "file",
-     .off = AT(roughness.verify_checksum),
-     .doc = "X3P: an MD5 mismatch is an error (no: read the file anyway)."},
-    {.section = "roughness", .name = "region", .kind = K_REGION, .unit = MC_UNIT_LENGTH,
-     .use = USE_WHEN, .use_key = "type", .use_values = "file", .off = AT(roughness.region),
-     .tagged = 1, .tag = 1, .tag_off = AT(roughness.has_region),
-     .doc = "Crop: x0, y0, width, height in the file's coordinates, e.g. 0 mm, 0 mm, 0.5 mm, "
-            "0.2 mm."},
-    {.section = "roughness", .name = "detrend", .kind = K_ENUM,
-     .choices = "none mean plane quadratic", .def = "plane", .use = USE_WHEN, .use_key = "type",
-     .use_values = "file", .off = AT(roughness.detrend),
-     .doc = "Levelling of the measured map by least squares (after the crop)."},
-    {.section = "roughness", .name = "missing", .kind = K_ENUM, .choices = "error fill",
-     .def = "error", .use = USE_WHEN, .use_key = "type", .use_values = "file",
-     .off = AT(roughness.missing),
-     .doc = "Points the instrument did not measure: an error, or filled by harmonic "
-            "interpolation from their neighbours (the count is reported)."},
-    {.section = "roughness", .name = "resample", .kind = K_ENUM, .choices = "none linear",
-     .def = "none", .use = USE_WHEN, .use_key = "type", .use_values = "file",
-     .off = AT(roughness.resample),
-     .doc = "When [mesh] gives a grid other than the file's: none is an error naming both, "
-            "linear interpolates onto the mesh."},
-    {.section = "roughness", .name = "scale", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = -1e6,
-     .hi = 1e6, .def = "1", .use = USE_WHEN, .use_key = "type", .use_values = "file",
-     .off = AT(roughness.scale), .doc = "Factor on the heights (not 0)."},
-    {.section = "roughness", .name = "invert", .kind = K_BOOL, .def = "no", .use = USE_WHEN,
-     .use_key = "type", .use_values = "file", .off = AT(roughness.invert),
-     .doc = "Negate the heights (a counter body measured face up)."},
-
-    {.section = "roughness", .name = "cutoff", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
-     .lo_open = 1, .hi = 1, .def = "ISO 4288 from Ra", .def_rule = 1, .use = USE_WHEN,
-     .use_key = "type", .use_values = "gaussian self_affine file", .off = AT(roughness.cutoff),
-     .doc = "Cut-off wavelength lambda_c of the Gaussian filter (ISO 16610-21) for the "
-            "roughness parameters in summary.json; clipped with a warning on a short surface."},
+    /* [roughness], [roughness2] */
+    ROUGHNESS_ROWS("roughness", roughness,
+                   "Roughness heights added to the surface (positive towards the counter body); "
+                   "with [roughness2], body 1's surface.",
+                   "1", ".",
+                   "Without nx, ny, dx, dy in [mesh] the mesh is the file's.")
+    ROUGHNESS_ROWS("roughness2", roughness2,
+                   "Body 2's roughness heights, measured outward (towards body 1): the gap's "
+                   "roughness is the sum of [roughness] and [roughness2]. Needs [roughness].",
+                   "2", " (default 2: another surface than body 1's default seed).",
+                   "On the mesh of [mesh], or of [roughness] file: a map of another grid is an "
+                   "error naming both files, unless resample = linear.")
 
     /* [body1], [body2] */
     {.section = "body1", .name = "E", .kind = K_REAL, .unit = MC_UNIT_PRESSURE, .lo = 0,
@@ -357,6 +375,14 @@ const case_key mc_keys[] = {
     {.section = "lubrication", .name = "psi", .kind = K_ENUM, .choice = psi_choice,
      .choice_help = psi_help, .def = "load", .off = AT(lubrication.psi),
      .doc = "Solid contact ratio of the friction mix mu = psi mu_solid + (1 - psi) mu_fluid."},
+    {.section = "lubrication", .name = "lubricant_profile", .kind = K_ENUM,
+     .choices = "uniform hertz", .def = "uniform", .use = USE_WHEN, .use_key = "geometry.shape",
+     .use_values = "cylinder ellipsoid", .off = AT(lubrication.profile),
+     .doc = "The whole contact (shape = cylinder: the line contact on a strip; ellipsoid: the "
+            "crowned contact on a free grid): the lubricant pressure over the Hertz band (or "
+            "ellipse), the nominal area of the volume equilibrium. uniform: one p_lub in the "
+            "valleys (the paper's); hertz: a profile shaped like the smooth contact's pressure, "
+            "scaled by the unknown (theory.md §11.4)."},
     {.section = "lubrication", .name = "tolerance", .kind = K_REAL, .unit = MC_UNIT_NONE,
      .lo = 1e-12, .hi = 0.1, .def = "1e-6", .off = AT(lubrication.tolerance),
      .doc = "Relative tolerance of the volume root: abs(V - V*) / V*."},
@@ -511,7 +537,7 @@ const case_key mc_keys[] = {
      .doc = "Also write every surface height map as X3P (ISO 25178-72, heights in m, the same "
             "field as the .npy of the same name): topography.x3p, and where the run has them "
             "topography_final.x3p (elastic-plastic), surface_initial.x3p and surface_final.x3p "
-            "(running-in)."},
+            "(running-in), surface_initial_body1.x3p, ... (with [roughness2])."},
 };
 
 const int mc_nkeys = (int)(sizeof mc_keys / sizeof mc_keys[0]);
@@ -526,7 +552,14 @@ const case_section mc_key_sections[] = {
      "The combined gap of the two smooth bodies at zero load; its apex is at the grid centre."},
     {"roughness", NULL,
      "Roughness heights, positive towards the counter body, subtracted from the gap. Each type "
-     "uses only its own keys; a key of another type is an error."},
+     "uses only its own keys; a key of another type is an error. Alone, the composite roughness "
+     "of the gap; with [roughness2], body 1's surface."},
+    {"roughness2", NULL,
+     "Body 2's surface (the same keys as [roughness], which is then body 1's): each body's "
+     "heights are measured outward, towards the other body, and the gap's roughness is their sum "
+     "z1 + z2 (docs/theory.md §4.11). Both maps must come onto the same mesh. Each body's surface "
+     "before and after (surface_initial_body1.npy, ...) and its ISO parameters "
+     "(summary.json roughness.body1, roughness.body2) are written."},
     {"body1", NULL, "Body 1: an elastic half-space."},
     {"body2", NULL, "Body 2: an elastic half-space, or rigid."},
     {"load", NULL,

@@ -8,6 +8,7 @@
 #include "case/keys.h"
 #include "case/scene_effect.h"
 #include "kernels/kernel.h"
+#include "reference/hertz.h"
 
 void mc_scene_defaults(mc_scene *s)
 {
@@ -63,15 +64,100 @@ static int lubrication_rules(const mc_scene *s, mc_error *err, const char **sect
         BLAME("load", "force",
               "[lubrication] needs [load] force (the macro normal force F_N); approach, "
               "force_per_length and pressure_file are not supported with the volume equilibrium");
-    if (s->geometry.shape != MC_SHAPE_FLAT)
+    if (s->geometry.shape == MC_SHAPE_SPHERE)
         BLAME("geometry", "shape",
-              "[lubrication] needs [geometry] shape = flat: a rough patch standing for the "
-              "centre of the macro contact (a curved macro geometry is not supported yet)");
+              "[lubrication] needs [geometry] shape = flat (a rough patch standing for the "
+              "centre of the macro contact), cylinder (the whole line contact on a strip "
+              "periodic along y) or ellipsoid (the whole crowned contact, radius_x = R_x of the "
+              "discs, radius_y the crowning); for a sphere write shape = ellipsoid with "
+              "radius_x = radius_y");
+    const int crowned = s->geometry.shape == MC_SHAPE_ELLIPSOID;
+    if (crowned) {
+        /* the whole crowned contact (theory.md §11.4): an elliptical Hertz contact on a free grid */
+        if (s->grid.periodic_x || s->grid.periodic_y)
+            BLAME("mesh", s->grid.periodic_x ? "periodic_x" : "periodic_y",
+                  "[lubrication] with [geometry] shape = ellipsoid (the whole crowned contact) "
+                  "needs a grid free along x and y: the contact ellipse lies inside it");
+        if (s->lubrication.width > 0)
+            BLAME("lubrication", "width",
+                  "[lubrication] width has no effect on the whole crowned contact (shape = "
+                  "ellipsoid carries F_N on its ellipse): remove it");
+        if (s->lubrication.film == MC_FILM_EHL && !mc_film_formula_is_point(s->lubrication.formula))
+            BLAME("lubrication", "formula",
+                  "[lubrication] formula = %s is a line-contact formula: the whole crowned "
+                  "contact (shape = ellipsoid) needs a point-contact one (hamrock_dowson_central "
+                  "or hamrock_dowson_min)",
+                  mc_film_formula_name(s->lubrication.formula));
+        double rx = s->lubrication.macro_radius;
+        if (!(rx > 0) && s->lubrication.radius1 > 0 && s->lubrication.radius2 > 0)
+            rx = s->lubrication.radius1 * s->lubrication.radius2 /
+                 (s->lubrication.radius1 + s->lubrication.radius2);
+        if (rx > 0 && !(fabs(s->geometry.radius_x - rx) <= 1e-9 * rx))
+            BLAME("geometry", "radius_x",
+                  "[geometry] radius_x = %.9g mm is not the reduced radius R_x = %.9g mm of "
+                  "[lubrication]: the crowned contact's x radius is the discs' R1 R2 / (R1 + R2)",
+                  s->geometry.radius_x * 1e3, rx * 1e3);
+        double fmax_ = s->load.value;
+        for (int f = 0; s->runin.enabled && f < s->runin.nforces; f++)
+            fmax_ = fmax(fmax_, s->runin.forces[f]);
+        mc_hertz_ellipse he;
+        mc_error herr = {0};
+        if (mc_hertz_ellipse_from_load(s->geometry.radius_x, s->geometry.radius_y,
+                                       mc_scene_estar(s), fmax_, &he, &herr) != MC_OK)
+            BLAME("geometry", "radius_y", "[geometry] %s", herr.msg);
+        const double hx = 0.5 * s->grid.nx * s->grid.dx, hy = 0.5 * s->grid.ny * s->grid.dy;
+        if (!(1.1 * he.ax <= hx) || !(1.1 * he.ay <= hy))
+            BLAME("mesh", 1.1 * he.ax > hx ? "nx" : "ny",
+                  "[mesh] the grid spans %.4g x %.4g um, too small for the whole crowned contact "
+                  "at F_N = %.6g N: the Hertz ellipse of semi-axes %.4g um (x) and %.4g um (y) "
+                  "plus 10 %% needs nx >= %.0f and ny >= %.0f",
+                  2e6 * hx, 2e6 * hy, fmax_, he.ax * 1e6, he.ay * 1e6,
+                  ceil(2.2 * he.ax / s->grid.dx), ceil(2.2 * he.ay / s->grid.dy));
+    }
+    if (s->geometry.shape == MC_SHAPE_CYLINDER) {
+        /* the whole contact (theory.md §11.4): the grid carries the macro geometry */
+        if (!s->grid.periodic_y || s->grid.periodic_x)
+            BLAME("mesh", "periodic_y",
+                  "[lubrication] with [geometry] shape = cylinder (the whole line contact) needs "
+                  "a strip: periodic_y = yes and x free (the Hertz band lies across x)");
+        if (!(s->lubrication.width > 0))
+            BLAME("lubrication", "width",
+                  "[lubrication] with [geometry] shape = cylinder needs width (the strip carries "
+                  "w' = F_N / width per length along y)");
+        double rx = s->lubrication.macro_radius;
+        const char *rkey = "macro_radius";
+        if (!(rx > 0) && s->lubrication.radius1 > 0 && s->lubrication.radius2 > 0) {
+            rx = s->lubrication.radius1 * s->lubrication.radius2 /
+                 (s->lubrication.radius1 + s->lubrication.radius2);
+            rkey = "radius1";
+        }
+        if (rx > 0 && !(fabs(s->geometry.radius - rx) <= 1e-9 * rx))
+            BLAME("geometry", "radius",
+                  "[geometry] radius = %.9g mm is not the reduced radius R_x = %.9g mm of "
+                  "[lubrication] %s%s: the whole contact's cylinder is the discs' macro gap "
+                  "(R_x = R1 R2 / (R1 + R2)); make them equal",
+                  s->geometry.radius * 1e3, rx * 1e3, rkey,
+                  rkey[6] == '1' ? " and radius2" : "");
+        /* the Hertz band of the largest force must lie inside the grid (stage_lube.h: the same
+         * rule at run time, MC_WHOLE_BAND_MARGIN) */
+        double fmax_ = s->load.value;
+        for (int f = 0; s->runin.enabled && f < s->runin.nforces; f++)
+            fmax_ = fmax(fmax_, s->runin.forces[f]);
+        const double estar = mc_scene_estar(s), r = s->geometry.radius;
+        const double b = sqrt(4.0 * (fmax_ / s->lubrication.width) * r / (M_PI * estar));
+        const double half = 0.5 * s->grid.nx * s->grid.dx;
+        if (!(1.1 * b <= half))
+            BLAME("mesh", "nx",
+                  "[mesh] the grid spans |x| <= %.4g um, too narrow for the whole contact at "
+                  "F_N = %.6g N: the Hertz band |x| <= b = %.4g um plus 10 %% needs nx >= %.0f at "
+                  "dx = %.4g um",
+                  half * 1e6, fmax_, b * 1e6, ceil(2.2 * b / s->grid.dx), s->grid.dx * 1e6);
+    }
     if (isfinite(s->load.pressure_cap))
         BLAME("load", "pressure_cap",
               "[load] pressure_cap cannot be combined with [lubrication] (not supported)");
     const double rx = s->lubrication.macro_radius;
-    if (rx > 0 && !(s->lubrication.width > 0))
+    if (rx > 0 && !(s->lubrication.width > 0) && !crowned)
         BLAME("lubrication", "width",
               "[lubrication] macro_radius needs width (the load per length w' = F_N / width)");
     if (s->lubrication.film == MC_FILM_EHL) {
@@ -87,10 +173,10 @@ static int lubrication_rules(const mc_scene *s, mc_error *err, const char **sect
             BLAME("lubrication", "macro_radius",
                   "[lubrication] film = ehl needs the reduced radius R_x: macro_radius, or "
                   "radius1 and radius2");
-        if (!(s->lubrication.width > 0))
+        if (!(s->lubrication.width > 0) && !crowned)
             BLAME("lubrication", "width",
                   "[lubrication] film = ehl needs width (the load per length w' = F_N / width)");
-    } else if (!(rx > 0) && s->lubrication.width > 0)
+    } else if (!(rx > 0) && s->lubrication.width > 0 && s->geometry.shape != MC_SHAPE_CYLINDER)
         BLAME("lubrication", "width",
               "[lubrication] width has no effect without macro_radius when film = given (the "
               "scene's own load is used)");
@@ -272,25 +358,39 @@ static int scale_rules(const mc_scene *s, mc_error *err, const char **section,
     return MC_OK;
 }
 
+/* The rules of one roughness section (sec: "roughness" or "roughness2") over its spec r. */
+static int roughness_rules(const mc_scene *s, const mc_roughness_spec *r, const char *sec,
+                           mc_error *err, const char **section, const char **keyname)
+{
+    if (r->type != MC_ROUGH_SELF_AFFINE)
+        return MC_OK;
+    if (r->rq > 0 && r->rms_slope > 0)
+        BLAME(sec, "rms_slope", "[%s] type = self_affine takes rq or rms_slope, not both", sec);
+    if (!(r->rq > 0 || r->rms_slope > 0))
+        BLAME(sec, "rq", "[%s] type = self_affine needs rq > 0 or rms_slope > 0", sec);
+    double lo, hi;
+    mc_scene_spec_cutoffs(s, r, &hi, &lo);
+    if (!(lo < hi))
+        BLAME(sec, "lambda_short", "[%s] lambda_short = %g m: must be < lambda_long = %g m", sec,
+              lo, hi);
+    return MC_OK;
+}
+
 /* The rules that tie keys together; each key's own bounds are the table's (mc_keys_check_scene).
  * A key that is given but has no effect in its scene is refused here or by the table's use
  * conditions, never silently ignored. */
 static int scene_rules(const mc_scene *s, mc_error *err, const char **section,
                        const char **keyname)
 {
-    if (s->roughness.type == MC_ROUGH_SELF_AFFINE) {
-        if (s->roughness.rq > 0 && s->roughness.rms_slope > 0)
-            BLAME("roughness", "rms_slope",
-                  "[roughness] type = self_affine takes rq or rms_slope, not both");
-        if (!(s->roughness.rq > 0 || s->roughness.rms_slope > 0))
-            BLAME("roughness", "rq",
-                  "[roughness] type = self_affine needs rq > 0 or rms_slope > 0");
-        double lo, hi;
-        mc_scene_cutoffs(s, &hi, &lo);
-        if (!(lo < hi))
-            BLAME("roughness", "lambda_short",
-                  "[roughness] lambda_short = %g m: must be < lambda_long = %g m", lo, hi);
-    }
+    int rc = roughness_rules(s, &s->roughness, "roughness", err, section, keyname);
+    if (rc == MC_OK && s->roughness2.type != MC_ROUGH_NONE)
+        rc = roughness_rules(s, &s->roughness2, "roughness2", err, section, keyname);
+    if (rc != MC_OK)
+        return rc;
+    if (s->roughness2.type != MC_ROUGH_NONE && s->roughness.type == MC_ROUGH_NONE)
+        BLAME("roughness2", "type",
+              "[roughness2] (body 2's surface) needs [roughness] (body 1's surface): give "
+              "[roughness] type, or give one composite surface in [roughness] alone");
     if (s->load.kind == MC_LOAD_FORCE_PER_LENGTH && !s->grid.periodic_y)
         BLAME("load", "force_per_length",
               "[load] force_per_length needs [mesh] periodic_y = yes (a load per unit length is "
@@ -310,7 +410,7 @@ static int scene_rules(const mc_scene *s, mc_error *err, const char **section,
         BLAME("load", "pressure_cap",
               "[load] pressure_cap = %g Pa: must be > lubricant_pressure = %g Pa",
               s->load.pressure_cap, s->load.lubricant_pressure);
-    int rc = lubrication_rules(s, err, section, keyname);
+    rc = lubrication_rules(s, err, section, keyname);
     if (rc == MC_OK)
         rc = scale_rules(s, err, section, keyname);
     if (rc == MC_OK)
@@ -389,13 +489,18 @@ int mc_scene_depths(const mc_scene *s, double *depths, int *ndepths, mc_error *e
     return MC_OK;
 }
 
-void mc_scene_cutoffs(const mc_scene *s, double *lambda_long, double *lambda_short)
+void mc_scene_spec_cutoffs(const mc_scene *s, const mc_roughness_spec *r, double *lambda_long,
+                           double *lambda_short)
 {
     const mc_grid *g = &s->grid;
     double lx = g->nx * g->dx, ly = g->ny * g->dy;
-    *lambda_long = s->roughness.lambda_long > 0 ? s->roughness.lambda_long : fmax(lx, ly);
-    *lambda_short =
-        s->roughness.lambda_short > 0 ? s->roughness.lambda_short : 2.0 * fmax(g->dx, g->dy);
+    *lambda_long = r->lambda_long > 0 ? r->lambda_long : fmax(lx, ly);
+    *lambda_short = r->lambda_short > 0 ? r->lambda_short : 2.0 * fmax(g->dx, g->dy);
+}
+
+void mc_scene_cutoffs(const mc_scene *s, double *lambda_long, double *lambda_short)
+{
+    mc_scene_spec_cutoffs(s, &s->roughness, lambda_long, lambda_short);
 }
 
 int mc_scene_output_dir(const mc_scene *s, char *buf, size_t len, mc_error *err)

@@ -44,6 +44,9 @@ typedef enum { MC_STRESS_WINDOW_AUTO, MC_STRESS_WINDOW_FULL } mc_stress_window_m
 typedef enum { MC_FILM_EHL, MC_FILM_GIVEN } mc_film_source;
 typedef enum { MC_CRITERION_VON_MISES, MC_CRITERION_PRESSURE_CAP } mc_yield_criterion;
 typedef enum { MC_TABLE_UNIT_PA, MC_TABLE_UNIT_MPA, MC_TABLE_UNIT_GPA } mc_table_unit;
+/* [lubrication] lubricant_profile: the lubricant pressure over the Hertz band of the whole
+ * contact (theory.md §11.4): one p_lub on the band (the paper's), or a Hertz-shaped profile */
+typedef enum { MC_PROFILE_UNIFORM, MC_PROFILE_HERTZ } mc_lube_profile_kind;
 /* [runin] nominal_deflection: the patch's own bowl under its nominal pressure (pipeline/runin.h) */
 typedef enum { MC_DEFLECTION_REMOVE, MC_DEFLECTION_KEEP } mc_nominal_deflection;
 
@@ -67,7 +70,9 @@ typedef struct {
 
     mc_shape_spec geometry; /* [geometry] (surface.h) */
 
-    mc_roughness_spec roughness; /* [roughness] (surface.h) */
+    mc_roughness_spec roughness;  /* [roughness] (surface.h): the gap's composite roughness, or
+                                     body 1's surface when roughness2 is given */
+    mc_roughness_spec roughness2; /* [roughness2]: body 2's surface (type none: not given) */
 
     mc_material body1, body2; /* [body1], [body2] */
 
@@ -117,6 +122,7 @@ typedef struct {
         double mu_solid, mu_fluid;   /* friction coefficients of solid and fluid contact */
         mc_psi_kind psi;             /* load- or area-based solid contact ratio */
         double tolerance;            /* relative tolerance of the volume root */
+        mc_lube_profile_kind profile; /* the whole contact ([geometry] shape = cylinder) */
     } lubrication;
 
     struct { /* [plasticity]: the elastic-plastic stage (runs when enabled) */
@@ -202,6 +208,9 @@ int mc_scene_depths(const mc_scene *s, double *depths, int *ndepths, mc_error *e
 /* Effective self-affine cut-off wavelengths, m: the scene's values, or for 0 the defaults
  * lambda_long = max(nx dx, ny dy) and lambda_short = 2 max(dx, dy). */
 void mc_scene_cutoffs(const mc_scene *s, double *lambda_long, double *lambda_short);
+/* The same for the roughness spec r of the scene ([roughness] or [roughness2]). */
+void mc_scene_spec_cutoffs(const mc_scene *s, const mc_roughness_spec *r, double *lambda_long,
+                           double *lambda_short);
 
 /* Output directory: s->output.dir, or when it is "" "out/<file name of s->path without .ini>"
  * ("out/scene" when path is "" too). MC_ERR_INPUT if it does not fit in len bytes. */

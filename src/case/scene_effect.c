@@ -3,7 +3,8 @@
  * mc_scene_effect_rules, named as mc_scene_check_key names a key. Values are compared with the
  * defaults (scene.h: a key not given holds its documented default).
  *
- * The systematic pass (issue 23, class 5): every key of the table (keys.c, 104 keys) against the
+ * The systematic pass (issue 23, class 5): every key of the table (keys.c, 105 keys, friction_in_yield included; the 20 of
+ * [roughness2] since repeat those of [roughness]) against the
  * scene classes it can meet, 23 in all: the grid (free; periodic x; a strip periodic in y; doubly
  * periodic; one row, ny = 1, a line grid or a free row), the load (force, force_per_length,
  * approach, pressure_file), the roughness (none; gaussian or self_affine; a file with its own
@@ -32,6 +33,10 @@
  *  roughness verify_checksum      file that is not X3P                        here
  *  roughness resample             mesh from the file (nothing to resample)    reader.c
  *  roughness scale = 0            (a documented rule, not a pair)             here
+ *  roughness2 (every key)         as the same key of [roughness] above (the   here, scene.c,
+ *                                  mesh comes from [roughness] file only, so   the key table
+ *                                  roughness2 resample has an effect there)
+ *  roughness2 type                [roughness] type = none (no body 1)         scene.c
  *  lubrication radius1, radius2   film = ehl by speed with macro_radius (R_x  here (new)
  *                                  given; the radii only convert rpm)
  *  lubrication rpm2               without rpm                                 scene.c
@@ -87,28 +92,40 @@ static const char *file_format(const mc_roughness_spec *r)
     return f ? f : "";
 }
 
-static int roughness_file_rules(const mc_scene *s, mc_error *err, const char **section,
-                                const char **keyname)
+/* The file keys of one roughness section (sec: "roughness" or "roughness2") over its spec r. */
+static int roughness_file_rules(const mc_roughness_spec *r, const char *sec, mc_error *err,
+                                const char **section, const char **keyname)
 {
-    const mc_roughness_spec *r = &s->roughness;
     if (r->type != MC_ROUGH_FILE)
         return MC_OK;
     if (r->scale == 0) /* also -0: the key's doc says "not 0"; 0 was taken as 1 */
-        BLAME("roughness", "scale",
-              "[roughness] scale = 0: must not be 0 (a factor on the heights, in -1e6..1e6; 1 "
-              "leaves them as they are, invert = yes turns them over)");
+        BLAME(sec, "scale",
+              "[%s] scale = 0: must not be 0 (a factor on the heights, in -1e6..1e6; 1 "
+              "leaves them as they are, invert = yes turns them over)",
+              sec);
     const char *f = file_format(r);
     const int own_units = !strcmp(f, "x3p") || !strcmp(f, "sdf") || !strcmp(f, "gsf");
     if (own_units && r->units != 0)
-        BLAME("roughness", "units",
-              "[roughness] units has no effect with a %s file (it carries its own units): remove "
-              "it",
-              f);
+        BLAME(sec, "units",
+              "[%s] units has no effect with a %s file (it carries its own units): remove it",
+              sec, f);
     if (strcmp(f, "x3p") != 0 && !r->verify_checksum)
-        BLAME("roughness", "verify_checksum",
-              "[roughness] verify_checksum has no effect with a %s file (only X3P files carry "
+        BLAME(sec, "verify_checksum",
+              "[%s] verify_checksum has no effect with a %s file (only X3P files carry "
               "checksums): remove it",
-              f[0] ? f : "non-X3P");
+              sec, f[0] ? f : "non-X3P");
+    return MC_OK;
+}
+
+/* correlation_y of a gaussian section on one row (sec: "roughness" or "roughness2"). */
+static int one_row_rules(const mc_scene *s, const mc_roughness_spec *r, const char *sec,
+                         mc_error *err, const char **section, const char **keyname)
+{
+    if (r->type == MC_ROUGH_GAUSSIAN && s->grid.ny == 1 && r->correlation_y != r->correlation_x)
+        BLAME(sec, "correlation_y",
+              "[%s] correlation_y has no effect on a grid of one row (ny = 1: the heights "
+              "have no wavelengths along y): remove it",
+              sec);
     return MC_OK;
 }
 
@@ -121,11 +138,11 @@ static int grid_stress_lube_rules(const mc_scene *s, mc_error *err, const char *
         BLAME("geometry", "radius_y",
               "[geometry] radius_y has no effect on a grid of one row (ny = 1: y = 0 on every "
               "cell): use shape = cylinder with radius = radius_x");
-    if (s->roughness.type == MC_ROUGH_GAUSSIAN && g->ny == 1 &&
-        s->roughness.correlation_y != s->roughness.correlation_x)
-        BLAME("roughness", "correlation_y",
-              "[roughness] correlation_y has no effect on a grid of one row (ny = 1: the heights "
-              "have no wavelengths along y): remove it");
+    int rc = one_row_rules(s, &s->roughness, "roughness", err, section, keyname);
+    if (rc == MC_OK)
+        rc = one_row_rules(s, &s->roughness2, "roughness2", err, section, keyname);
+    if (rc != MC_OK)
+        return rc;
     if (s->stress.enabled) {
         if (s->stress.window == MC_STRESS_WINDOW_FULL && (g->periodic_x || g->periodic_y))
             BLAME("stress", "window",
@@ -189,6 +206,12 @@ static int plastic_runin_rules(const mc_scene *s, mc_error *err, const char **se
               "[runin] friction_in_yield = yes has no effect in pure rolling (equal surface "
               "speeds: no sliding, so no direction for the traction); accepted with "
               "[lubrication] rpm2 giving disc 2 another surface speed than disc 1");
+    if (s->runin.deflection != MC_DEFLECTION_REMOVE && s->lubrication.enabled &&
+        (s->geometry.shape == MC_SHAPE_CYLINDER || s->geometry.shape == MC_SHAPE_ELLIPSOID))
+        BLAME("runin", "nominal_deflection",
+              "[runin] nominal_deflection has no effect on the whole contact ([geometry] shape = "
+              "cylinder or ellipsoid): the macro contact's own deflection is part of the solve; "
+              "remove it");
     if (s->runin.deflection != MC_DEFLECTION_REMOVE && s->grid.periodic_x && s->grid.periodic_y)
         BLAME("runin", "nominal_deflection",
               "[runin] nominal_deflection has no effect on a grid periodic along x and y (the "
@@ -199,7 +222,9 @@ static int plastic_runin_rules(const mc_scene *s, mc_error *err, const char **se
 int mc_scene_effect_rules(const mc_scene *s, mc_error *err, const char **section,
                           const char **keyname)
 {
-    int rc = roughness_file_rules(s, err, section, keyname);
+    int rc = roughness_file_rules(&s->roughness, "roughness", err, section, keyname);
+    if (rc == MC_OK)
+        rc = roughness_file_rules(&s->roughness2, "roughness2", err, section, keyname);
     if (rc == MC_OK)
         rc = grid_stress_lube_rules(s, err, section, keyname);
     return rc != MC_OK ? rc : plastic_runin_rules(s, err, section, keyname);

@@ -27,6 +27,8 @@ double mc_scene_memory_estimate(const mc_scene *s)
     const mc_grid *g = &s->grid;
     double cells = (double)g->nx * (double)g->ny;
     double bytes = 4 * 8 * cells; /* topography, pressure, gap, displacement */
+    if (s->roughness2.type != MC_ROUGH_NONE)
+        bytes += 4 * 8 * cells; /* each body's surface before and after (pipeline/bodies.h) */
     if (s->load.kind == MC_LOAD_PRESSURE_FILE)
         bytes += 8 * cells; /* the map as read */
     bytes += operator_bytes(g->nx, g->ny, g->periodic_x, g->periodic_y, s->solver.backend);

@@ -54,7 +54,11 @@ typedef enum {
     OUT_X3P,           /* [output] x3p */
     OUT_X3P_PLASTIC,   /* x3p and the elastic-plastic fields */
     OUT_X3P_INITIAL,   /* x3p and the running-in's surface before */
-    OUT_X3P_FINAL      /* x3p and the running-in's surface after */
+    OUT_X3P_FINAL,     /* x3p and the running-in's surface after */
+    OUT_BODIES,        /* [roughness2]: each body's surface before */
+    OUT_BODIES_FINAL,  /* [roughness2] and a final surface (plastic stage, running-in) */
+    OUT_X3P_BODIES,    /* x3p and each body's surface before */
+    OUT_X3P_BODIES_FINAL /* x3p and each body's surface after */
 } out_when;
 
 static const struct {
@@ -63,7 +67,7 @@ static const struct {
     const char *help;
 } outputs[] = {
     {"summary.json", OUT_ALWAYS,
-     "mesh, materials, load, roughness with its ISO parameters, contact results, stress summary, lubrication{...} and plastic{...} when those stages ran, warnings, timings (SI units)"},
+     "mesh, materials, load, roughness with its ISO parameters (with [roughness2] also each body's, roughness.body1 and roughness.body2, before and after), contact results, stress summary, lubrication{...} and plastic{...} when those stages ran, warnings, timings (SI units)"},
     {"pressure.npy", OUT_ALWAYS,
      "contact pressure, ny x nx float64, Pa"},
     {"gap.npy", OUT_ALWAYS,
@@ -103,7 +107,7 @@ static const struct {
     {"topography_final.npy", OUT_PLASTIC,
      "the unloaded gap the next load sees (initial gap + residual displacement), ny x nx, m"},
     {"plastic_strain.npy", OUT_PLASTIC,
-     "accumulated equivalent plastic strain, nz x ny x nx (zero outside the columns under the contact)"},
+     "accumulated equivalent plastic strain of body 1, nz x ny x nx, depth into the body (zero outside the columns under the contact); with bodies = both body 2's too, the same field (one material deforming alike: summary.json roughness.body2.plastic_strain names this file)"},
     {"residual_von_mises.npy", OUT_PLASTIC,
      "von Mises stress of the residual stresses after unloading, nz x ny x nx, Pa"},
     {"plastic.csv", OUT_PLASTIC,
@@ -126,6 +130,22 @@ static const struct {
      "surface_initial.npy as X3P"},
     {"surface_final.x3p", OUT_X3P_FINAL,
      "surface_final.npy as X3P"},
+    {"surface_initial_body1.npy", OUT_BODIES,
+     "body 1's surface ([roughness]) before the run: its heights, outward towards body 2, ny x nx, m; the gap's roughness is the sum of the two bodies' (topography = shape - body 1 - body 2)"},
+    {"surface_initial_body2.npy", OUT_BODIES,
+     "body 2's surface ([roughness2]) before the run, outward towards body 1, ny x nx, m"},
+    {"surface_final_body1.npy", OUT_BODIES_FINAL,
+     "body 1's surface after the elastic-plastic stage or the running-in: surface_initial_body1 minus its residual dent (residual_displacement.npy; with an elastic material unchanged), ny x nx, m"},
+    {"surface_final_body2.npy", OUT_BODIES_FINAL,
+     "body 2's surface after: surface_initial_body2 minus residual_displacement.npy with [plasticity] bodies = both, else unchanged (body 2 stays elastic), ny x nx, m"},
+    {"surface_initial_body1.x3p", OUT_X3P_BODIES,
+     "surface_initial_body1.npy as X3P"},
+    {"surface_initial_body2.x3p", OUT_X3P_BODIES,
+     "surface_initial_body2.npy as X3P"},
+    {"surface_final_body1.x3p", OUT_X3P_BODIES_FINAL,
+     "surface_final_body1.npy as X3P"},
+    {"surface_final_body2.x3p", OUT_X3P_BODIES_FINAL,
+     "surface_final_body2.npy as X3P"},
 };
 #define N_OUTPUTS ((int)(sizeof outputs / sizeof outputs[0]))
 
@@ -142,7 +162,11 @@ static const char *const when_text[] = {
     [OUT_X3P] = "with [output] x3p = yes",
     [OUT_X3P_PLASTIC] = "with [output] x3p = yes and [plasticity]",
     [OUT_X3P_INITIAL] = "with [output] x3p = yes and [runin]",
-    [OUT_X3P_FINAL] = "with [output] x3p = yes and [runin]"};
+    [OUT_X3P_FINAL] = "with [output] x3p = yes and [runin]",
+    [OUT_BODIES] = "with [roughness2]",
+    [OUT_BODIES_FINAL] = "with [roughness2] and [plasticity] or [runin]",
+    [OUT_X3P_BODIES] = "with [output] x3p = yes and [roughness2]",
+    [OUT_X3P_BODIES_FINAL] = "with [output] x3p = yes, [roughness2] and [plasticity] or [runin]"};
 
 static int out_wanted(out_when w, const mc_scene *sc, const mc_results *r)
 {
@@ -161,6 +185,10 @@ static int out_wanted(out_when w, const mc_scene *sc, const mc_results *r)
     case OUT_X3P_PLASTIC: return sc->output.x3p && plastic;
     case OUT_X3P_INITIAL: return sc->output.x3p && r->runin.enabled && r->surface_initial;
     case OUT_X3P_FINAL: return sc->output.x3p && r->runin.enabled && r->surface_final;
+    case OUT_BODIES: return r->two_bodies;
+    case OUT_BODIES_FINAL: return r->two_bodies && r->body_has_final;
+    case OUT_X3P_BODIES: return sc->output.x3p && r->two_bodies;
+    case OUT_X3P_BODIES_FINAL: return sc->output.x3p && r->two_bodies && r->body_has_final;
     }
     return 0;
 }
@@ -358,6 +386,14 @@ static int write_x3p_surfaces(out_ctx *c, mc_error *err)
         st = write_x3p(c, "surface_initial.x3p", r->surface_initial, err);
     if (st == MC_OK && produced(c, "surface_final.npy"))
         st = write_x3p(c, "surface_final.x3p", r->surface_final, err);
+    static const char *const body_x3p[2][2] = {
+        {"surface_initial_body1.x3p", "surface_initial_body2.x3p"},
+        {"surface_final_body1.x3p", "surface_final_body2.x3p"}};
+    for (int k = 0; st == MC_OK && r->two_bodies && k < 2; k++) {
+        st = write_x3p(c, body_x3p[0][k], r->body_initial[k], err);
+        if (st == MC_OK && r->body_has_final)
+            st = write_x3p(c, body_x3p[1][k], r->body_final[k], err);
+    }
     return st;
 }
 
@@ -536,6 +572,23 @@ static int write_runin_maps(out_ctx *c, FILE *f, mc_error *err)
     }
     fprintf(f, "unset multiplot\n");
     return MC_OK;
+}
+
+/* [roughness2]: each body's surface before and after (pipeline/bodies.h). */
+static int write_bodies(out_ctx *c, mc_error *err)
+{
+    const mc_results *r = c->res;
+    size_t shape[2] = {(size_t)r->grid.ny, (size_t)r->grid.nx};
+    static const char *const name[2][2] = {
+        {"surface_initial_body1.npy", "surface_initial_body2.npy"},
+        {"surface_final_body1.npy", "surface_final_body2.npy"}};
+    int st = MC_OK;
+    for (int k = 0; st == MC_OK && k < 2; k++) {
+        st = write_npy(c, name[0][k], r->body_initial[k], 2, shape, err);
+        if (st == MC_OK && r->body_has_final)
+            st = write_npy(c, name[1][k], r->body_final[k], 2, shape, err);
+    }
+    return st;
 }
 
 /* The running-in: one row per step, the figures' script, the surfaces before and after and
@@ -990,6 +1043,8 @@ static int stage_and_commit(out_ctx *c, mc_error *err)
         st = write_plastic(c, err);
     if (st == MC_OK && res->runin.enabled)
         st = write_runin(c, err);
+    if (st == MC_OK && res->two_bodies)
+        st = write_bodies(c, err);
     if (st == MC_OK && c->scene->output.x3p)
         st = write_x3p_surfaces(c, err);
     if (st == MC_OK && c->scene->output.vtk)

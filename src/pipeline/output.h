@@ -99,9 +99,13 @@ int mc_output_prepare(const char *dir, mc_error *err);
  *             entrainment_speed,regime,plastic,contact_solves,volume_roots,root_error; SI but
  *             rpm), runin.gp (gnuplot: runin_ra.png, runin_psi.png, runin_mu.png, the paper's
  *             Figs. 4-1 to 4-3), surface_initial.npy, surface_final.npy (composite heights, m);
+ *  res->two_bodies ([roughness2], pipeline/bodies.h)
+ *             surface_initial_body1.npy, surface_initial_body2.npy (each body's outward heights,
+ *             m), and with a final surface (res->body_has_final: elastic-plastic stage, running-in)
+ *             surface_final_body1.npy, surface_final_body2.npy (minus each body's own dent);
  *  scene->output.x3p
  *             topography.x3p, and beside each of topography_final.npy, surface_initial.npy,
- *             surface_final.npy that is written its .x3p (io/surface_file.h mc_x3p_write: the same
+ *             surface_final.npy and the body surfaces that is written its .x3p (io/surface_file.h mc_x3p_write: the same
  *             heights bit for bit, the grid's spacings, offsets at the centre of cell (0, 0));
  *  scene->output.vtk
  *             field.vti (ImageData, the four surface fields as CellData) and, with stress,
@@ -117,7 +121,10 @@ int mc_output_prepare(const char *dir, mc_error *err);
  * contact (the mc_contact_summary, plus the solver tolerance and max_iterations of the scene),
  * stress (the mc_stress_summary, when stress was run), timing (total_s, setup_s, contact_s,
  * stress_s), with a running-in runin (forces, speeds, hysteresis per force, steps, roots),
- * roughness.final where the results hold a final surface (running-in, elastic-plastic), and files (every file written, summary.json last).
+ * roughness.final where the results hold a final surface (running-in, elastic-plastic), with
+ * [roughness2] roughness.body1 and roughness.body2 (section, inputs, initial and final ISO
+ * parameters, dents, residual_max, plastic_strain), and files (every file written, summary.json
+ * last).
  * Returns MC_OK; MC_ERR_ENV (DIR cannot be created or locked, a write failed - disk full,
  * file too large -, a result file name in DIR is taken by a directory: DIR unchanged);
  * MC_ERR_NOMEM (DIR unchanged); MC_ERR_INPUT (empty path, invalid grid); MC_ERR_INTERNAL

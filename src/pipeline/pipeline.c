@@ -9,6 +9,7 @@
 #include "core/alloc.h"
 #include "contact/contact.h"
 #include "io/heightmap.h"
+#include "pipeline/bodies.h"
 #include "pipeline/memguard.h"
 #include "operator/operator.h"
 #include "stress/stress.h"
@@ -192,7 +193,18 @@ static int roughness_parameters(const mc_scene *sc, mc_results *res, mc_error *e
     if (!heights)
         return mc_fail(err, MC_ERR_NOMEM, "out of memory for the roughness heights");
     int rc;
-    if (sc->roughness.type == MC_ROUGH_FILE) { /* also what the file held: format, missing */
+    if (res->two_bodies) { /* the composite of the two bodies' heights (bodies.h) */
+        for (size_t i = 0; i < mc_grid_cells(g); i++)
+            heights[i] = res->body_initial[0][i] + res->body_initial[1][i];
+        res->surface_missing = res->body_file[0].missing;
+        res->surface_filled = res->body_file[0].filled;
+        memcpy(res->surface_format, res->body_file[0].format, sizeof res->surface_format);
+        for (int k = 0; k < 2; k++)
+            if (res->body_file[k].warning[0])
+                mc_results_warn(res, "surface_file", "[roughness%s] file: %s", k ? "2" : "",
+                                res->body_file[k].warning);
+        rc = MC_OK;
+    } else if (sc->roughness.type == MC_ROUGH_FILE) { /* also what the file held: format, missing */
         mc_measured_spec ms;
         mc_measured m;
         mc_surface_measured_spec(&sc->roughness, &ms);
@@ -216,6 +228,12 @@ static int roughness_parameters(const mc_scene *sc, mc_results *res, mc_error *e
          * (MC_ERR_LIMIT, also exit 2, tells run_stages the message names its key already) */
         if (rc == MC_ERR_INPUT && err && strstr(err->msg, "cut-off lambda_c"))
             rc = blame_key(sc, "roughness", "cutoff", MC_ERR_LIMIT, err);
+    }
+    if (rc == MC_OK && res->two_bodies) { /* each body's, with its own section's cutoff */
+        const char *sec = "roughness";
+        rc = mc_bodies_initial_parameters(sc, 0, res, &sec, err);
+        if (rc == MC_ERR_INPUT && err && strstr(err->msg, "cut-off lambda_c"))
+            rc = blame_key(sc, sec, "cutoff", MC_ERR_LIMIT, err);
     }
     mc_free(heights);
     return rc;
@@ -258,14 +276,15 @@ static int run_stages(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_resul
         if (!(*fields[k] = mc_zeros(n)))
             return mc_fail(err, MC_ERR_NOMEM, "out of memory for the %d x %d surface fields",
                            sc->grid.nx, sc->grid.ny);
-    rc = mc_surface_topography(&sc->grid, &sc->geometry, &sc->roughness, res->topography, err);
+    const char *rsec = "roughness"; /* the section at fault: [roughness2] is body 2's */
+    rc = mc_bodies_topography(sc, res, res->topography, &rsec, err);
     if (rc == MC_OK && sc->roughness.type != MC_ROUGH_NONE)
         rc = roughness_parameters(sc, res, err);
     if (rc == MC_ERR_LIMIT) /* named its key already ([roughness] cutoff) */
         return rc;
-    if (rc != MC_OK && rc != MC_ERR_NOMEM && sc->roughness.type != MC_ROUGH_NONE)
-        return blame_key(sc, "roughness", sc->roughness.type == MC_ROUGH_FILE ? "file" : "type",
-                         rc, err);
+    const mc_roughness_spec *rs = strcmp(rsec, "roughness2") ? &sc->roughness : &sc->roughness2;
+    if (rc != MC_OK && rc != MC_ERR_NOMEM && rs->type != MC_ROUGH_NONE)
+        return blame_key(sc, rsec, rs->type == MC_ROUGH_FILE ? "file" : "type", rc, err);
     if (rc != MC_OK)
         return rc;
 
@@ -287,6 +306,8 @@ static int run_stages(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_resul
     if ((rc == MC_OK || rc == MC_NOT_CONVERGED) && res->has_roughness && res->topography_final) {
         mc_error ferr = {0};
         int frc = final_roughness(sc, res, &ferr);
+        if (frc == MC_OK) /* each body's, minus its own dent (bodies.h) */
+            frc = mc_bodies_final(sc, 0, res->residual_displacement, res, NULL, &ferr);
         if (frc != MC_OK) {
             *err = ferr;
             rc = frc;

@@ -8,6 +8,7 @@
 #include "operator/operator.h"
 #include "contact/contact.h"
 #include "surface/roughness.h"
+#include "surface/surface.h"
 #include "plastic/loop.h"
 
 typedef struct {
@@ -62,6 +63,13 @@ typedef struct {
     double psi_load, psi_area, pocket_height; /* solid contact ratios; V / (A_nom - A_C), m */
     double mu;             /* mu = psi mu_solid + (1 - psi) mu_fluid */
     const char *psi_kind;  /* "load" | "area": the psi of mu */
+    int whole;             /* 1: the whole contact (the grid carries the macro cylinder, the
+                              nominal area is the Hertz band |x| <= b; theory.md §11.4) */
+    const char *profile;   /* whole: "uniform" | "hertz", the lubricant pressure profile */
+    int crowned;           /* whole and crowned ([geometry] shape = ellipsoid): the nominal area
+                              is the Hertz ellipse |x/b|^2 + |y/a|^2 <= 1 */
+    double hertz_half_length; /* crowned: the ellipse's semi-axis a along y, m (0 otherwise) */
+    double nominal_area;   /* the volume equilibrium's nominal area, m^2 */
 } mc_lube_summary;
 
 /* The elastic-plastic stage ([plasticity]). */
@@ -155,6 +163,8 @@ typedef struct {
     mc_stress_layout stress_layout;
 
     mc_lube_summary lube;
+    double *lube_profile; /* ny*nx: the whole contact's lubricant pressure profile w (lube/
+                             volume.h), NULL for a patch (stage_lube.h mc_lube_profile) */
 
     /* elastic-plastic stage (NULL / 0 when not run) */
     mc_plastic_summary plastic;
@@ -176,6 +186,19 @@ typedef struct {
     double *surface_initial, *surface_final;
     int has_roughness_final;
     mc_roughness_params roughness_final;
+
+    /* two surfaces ([roughness2], pipeline/bodies.h; NULL / 0 without): index 0 body 1, 1 body 2.
+     * Each body's roughness heights, outward towards the other body (m, ny*nx), before, and
+     * where the results hold a final surface (elastic-plastic stage, running-in) after: the
+     * initial heights minus the body's own residual dent; their ISO parameters (the options of
+     * roughness_initial, each with its own section's cutoff); what each file held */
+    int two_bodies;
+    double *body_initial[2], *body_final[2];
+    mc_roughness_params body_roughness_initial[2], body_roughness_final[2];
+    int body_has_final;
+    int body_dents[2]; /* the body takes the residual displacement (body 1 with [plasticity],
+                          body 2 with bodies = both) */
+    mc_surface_file_info body_file[2];
 
     mc_timing timing;
     unsigned long long roughness_seed;

@@ -174,6 +174,58 @@ static json_t *jseed(unsigned long long seed)
     return json_string(t);
 }
 
+/* A roughness section's inputs: its type and that type's parameters; a file's name, the format
+ * read and its missing and filled points. */
+static void roughness_inputs(jbuild *b, json_t *o, const mc_roughness_spec *rs,
+                             unsigned long long seed, const char *format, long missing,
+                             long filled)
+{
+    const mc_roughness_type t = rs->type;
+    jset(b, o, "type", jstr(rough_name(t)));
+    if (t == MC_ROUGH_GAUSSIAN || t == MC_ROUGH_SELF_AFFINE) {
+        jset(b, o, "seed", jseed(seed));
+        jset(b, o, "rq", jnum(rs->rq));
+    }
+    if (t == MC_ROUGH_GAUSSIAN) {
+        jset(b, o, "correlation_x", jnum(rs->correlation_x));
+        jset(b, o, "correlation_y", jnum(rs->correlation_y));
+    } else if (t == MC_ROUGH_SELF_AFFINE) {
+        jset(b, o, "hurst", jnum(rs->hurst));
+        jset(b, o, "rms_slope", jnum(rs->rms_slope));
+        jset(b, o, "lambda_long", jnum(rs->lambda_long));
+        jset(b, o, "lambda_short", jnum(rs->lambda_short));
+    } else if (t == MC_ROUGH_FILE) {
+        jset(b, o, "file", jstr(rs->file));
+        jset(b, o, "format", jstr(format));
+        jset(b, o, "missing_points", json_integer(missing));
+        jset(b, o, "filled_points", json_integer(filled));
+    }
+}
+
+/* roughness.body1 / body2 ([roughness2]): the body's section and inputs, its ISO parameters
+ * before and after, and what of the plastic results is its own: whether it takes the residual
+ * dent, and the file of its plastic strain (null where it stays elastic; with bodies = both
+ * the one field of both bodies). */
+static void body_roughness(jbuild *b, json_t *o, const mc_scene *s, const mc_results *r, int k)
+{
+    json_t *bo = jchild(b, o, k ? "body2" : "body1", json_object());
+    const mc_roughness_spec *rs = k ? &s->roughness2 : &s->roughness;
+    jset(b, bo, "section", jstr(k ? "roughness2" : "roughness"));
+    roughness_inputs(b, bo, rs, rs->seed, r->body_file[k].format, r->body_file[k].missing,
+                     r->body_file[k].filled);
+    roughness_params(b, bo, "initial", &r->body_roughness_initial[k]);
+    if (r->body_has_final)
+        roughness_params(b, bo, "final", &r->body_roughness_final[k]);
+    if (!r->plastic.enabled)
+        return;
+    const int dents = r->body_dents[k];
+    jset(b, bo, "dents", json_boolean(dents));
+    jset(b, bo, "residual_max", jnum(dents ? r->plastic.residual_max : 0.0));
+    const int strain = dents && r->plastic_strain && s->plasticity.criterion ==
+                                                         MC_CRITERION_VON_MISES;
+    jset(b, bo, "plastic_strain", strain ? jstr("plastic_strain.npy") : json_null());
+}
+
 static void summary_inputs(jbuild *b, json_t *root, const mc_scene *s, const mc_results *r)
 {
     const mc_grid *g = &r->grid;
@@ -218,30 +270,14 @@ static void summary_inputs(jbuild *b, json_t *root, const mc_scene *s, const mc_
     jset(b, o, "pressure_cap", jnum(s->load.pressure_cap));
 
     o = jchild(b, root, "roughness", json_object());
-    const mc_roughness_type t = s->roughness.type;
-    jset(b, o, "type", jstr(rough_name(t)));
-    if (t == MC_ROUGH_GAUSSIAN || t == MC_ROUGH_SELF_AFFINE) {
-        jset(b, o, "seed", jseed(r->roughness_seed));
-        jset(b, o, "rq", jnum(s->roughness.rq));
-    }
-    if (t == MC_ROUGH_GAUSSIAN) {
-        jset(b, o, "correlation_x", jnum(s->roughness.correlation_x));
-        jset(b, o, "correlation_y", jnum(s->roughness.correlation_y));
-    } else if (t == MC_ROUGH_SELF_AFFINE) {
-        jset(b, o, "hurst", jnum(s->roughness.hurst));
-        jset(b, o, "rms_slope", jnum(s->roughness.rms_slope));
-        jset(b, o, "lambda_long", jnum(s->roughness.lambda_long));
-        jset(b, o, "lambda_short", jnum(s->roughness.lambda_short));
-    } else if (t == MC_ROUGH_FILE) {
-        jset(b, o, "file", jstr(s->roughness.file));
-        jset(b, o, "format", jstr(r->surface_format));
-        jset(b, o, "missing_points", json_integer(r->surface_missing));
-        jset(b, o, "filled_points", json_integer(r->surface_filled));
-    }
-    if (r->has_roughness)
+    roughness_inputs(b, o, &s->roughness, r->roughness_seed, r->surface_format,
+                     r->surface_missing, r->surface_filled);
+    if (r->has_roughness) /* the gap's (composite) roughness: with [roughness2] z1 + z2 */
         roughness_params(b, o, "initial", &r->roughness_initial);
     if (r->has_roughness_final) /* the final surface (elastic-plastic, running-in) */
         roughness_params(b, o, "final", &r->roughness_final);
+    for (int k = 0; r->two_bodies && k < 2; k++) /* each body's surface (pipeline/bodies.h) */
+        body_roughness(b, o, s, r, k);
 }
 
 /* The running-in (pipeline/runin.h): the forces and speeds, the hysteresis per force, and how
@@ -431,13 +467,26 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
         jset(b, o, "hertz_half_width", jnum(l->hertz_half_width));
         jset(b, o, "nominal_pressure", jnum(l->nominal_pressure));
         jset(b, o, "patch_load", jnum(l->patch_load));
+        jset(b, o, "contact", jstr(l->whole ? "whole" : "patch"));
+        jset(b, o, "nominal_area", jnum(l->nominal_area));
+        if (l->whole)
+            jset(b, o, "lubricant_profile", jstr(l->profile));
+        if (l->crowned)
+            jset(b, o, "hertz_half_length", jnum(l->hertz_half_length));
         jset(b, o, "volume", jnum(l->volume));
         jset(b, o, "volume_target", jnum(l->v_target));
         jset(b, o, "volume_rel_error", jnum(l->rel_error));
         jset(b, o, "contact_solves", json_integer(l->solves));
         jset(b, o, "converged", json_boolean(l->converged));
         jset(b, o, "note",
-             jstr(l->hertz_pressure > 0
+             jstr(l->crowned
+                      ? "the whole crowned contact: the grid carries the macro ellipsoid and "
+                        "F_N; the lubricant volume equilibrium is over the Hertz ellipse"
+                  : l->whole
+                      ? "the whole line contact: the strip carries the macro cylinder and w' "
+                        "times its length; the lubricant volume equilibrium is over the Hertz "
+                        "band |x| <= b"
+                  : l->hertz_pressure > 0
                       ? "the patch stands for the centre of the macro line contact and carries "
                         "its Hertz pressure p_H as nominal pressure"
                       : "the scene's own load on the whole grid (no macro contact)"));

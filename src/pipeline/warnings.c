@@ -180,4 +180,10 @@ void mc_results_warnings(const mc_scene *sc, mc_results *r)
     if (r->has_roughness && r->roughness_initial.warning[0])
         mc_results_warn(r, "roughness_cutoff", "roughness parameters: %s",
                         r->roughness_initial.warning);
+    for (int k = 0; r->two_bodies && k < 2; k++) /* each body's, with its section's cutoff */
+        if (r->body_roughness_initial[k].warning[0] &&
+            strcmp(r->body_roughness_initial[k].warning, r->roughness_initial.warning) != 0)
+            mc_results_warn(r, "roughness_cutoff", "roughness parameters of body %d ([%s]): %s",
+                            k + 1, k ? "roughness2" : "roughness",
+                            r->body_roughness_initial[k].warning);
 }

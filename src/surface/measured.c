@@ -2,6 +2,7 @@
 #include "surface/measured.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "core/alloc.h"
@@ -81,10 +82,10 @@ int mc_measured_load(const mc_measured_spec *spec, mc_measured *out, mc_error *e
                 first++;
             rc = mc_fail(err, MC_ERR_INPUT,
                          "%s: %ld of %ld points are missing (not measured or not finite; the "
-                         "first at row %zu, column %zu): set [roughness] missing = fill to "
+                         "first at row %zu, column %zu): set %s missing = fill to "
                          "interpolate them from their neighbours",
                          spec->path, d.missing, (long)d.nx * d.ny, first / (size_t)d.nx,
-                         first % (size_t)d.nx);
+                         first % (size_t)d.nx, spec->label ? spec->label : "[roughness]");
         } else {
             int filled = 0;
             rc = mc_level_fill_missing(d.z, d.valid, d.nx, d.ny, &filled, err);
@@ -111,12 +112,32 @@ int mc_measured_load(const mc_measured_spec *spec, mc_measured *out, mc_error *e
         memcpy(out->format, d.format, sizeof out->format);
         memcpy(out->warning, d.warning, sizeof out->warning);
         out->path = spec->path;
+        out->label = spec->label ? spec->label : "[roughness]";
     }
     mc_surface_data_free(&d);
     return rc;
 }
 
 static int same(double a, double b) { return fabs(a - b) <= 1e-9 * fmax(fabs(a), fabs(b)); }
+
+int mc_measured_matches(const mc_measured *m, const mc_grid *g)
+{
+    const mc_level_grid *s = &m->grid;
+    const int spacing_known = s->dx > 0 && s->dy > 0;
+    return s->nx == g->nx && s->ny == g->ny &&
+           (!spacing_known || (same(s->dx, g->dx) && same(s->dy, g->dy)));
+}
+
+void mc_measured_describe(const mc_measured *m, char *buf, size_t len)
+{
+    const mc_level_grid *s = &m->grid;
+    if (s->dx > 0 && s->dy > 0)
+        snprintf(buf, len, "%s: %d x %d points of %g x %g m (nx x ny, dx x dy)",
+                 m->path ? m->path : "?", s->nx, s->ny, s->dx, s->dy);
+    else
+        snprintf(buf, len, "%s: %d x %d points (nx x ny) without a lateral spacing",
+                 m->path ? m->path : "?", s->nx, s->ny);
+}
 
 int mc_measured_onto(const mc_measured *m, const mc_grid *g, mc_resample_rule resample,
                      double *heights, mc_error *err)
@@ -137,10 +158,10 @@ int mc_measured_onto(const mc_measured *m, const mc_grid *g, mc_resample_rule re
     if (resample == MC_RESAMPLE_NONE)
         return mc_fail(err, MC_ERR_INPUT,
                        "%s: the height map is %d x %d points of %g x %g m (nx x ny, dx x dy), the "
-                       "mesh %d x %d cells of %g x %g m: set [roughness] resample = linear to "
+                       "mesh %d x %d cells of %g x %g m: set %s resample = linear to "
                        "interpolate, or omit nx, ny, dx, dy in [mesh] to take them from the file",
                        m->path ? m->path : "?", s->nx, s->ny, s->dx, s->dy, g->nx, g->ny, g->dx,
-                       g->dy);
+                       g->dy, m->label ? m->label : "[roughness]");
     /* both centred on the origin: the mesh's cell centres and the map's samples */
     mc_level_grid src = *s;
     src.x0 = (1.0 - s->nx) * s->dx / 2;

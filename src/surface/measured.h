@@ -5,6 +5,8 @@
 #ifndef MC_MEASURED_H
 #define MC_MEASURED_H
 
+#include <stddef.h>
+
 #include "core/error.h"
 #include "core/grid.h"
 #include "surface/level.h"
@@ -29,7 +31,9 @@ typedef struct {
     mc_missing_rule missing;
     mc_detrend_kind detrend;
     double scale;            /* heights multiplied by scale (0 = 1) */
-    int invert;              /* heights negated (a counter body measured face up) */
+    int invert;              /* heights negated (a map of a replica, or pointing into the body) */
+    const char *label;       /* the case section its messages name: "[roughness]" (NULL) or
+                                "[roughness2]" */
 } mc_measured_spec;
 
 typedef struct {
@@ -40,6 +44,7 @@ typedef struct {
     long filled;        /* of which filled (missing = fill) */
     char format[16];    /* the format read */
     const char *path;   /* the file (the spec's), for messages */
+    const char *label;  /* the spec's label ("[roughness]" when it had none), for messages */
     char warning[320];  /* "" or the reader's warning (io/surface_file.h), for the user */
 } mc_measured;
 
@@ -54,6 +59,14 @@ int mc_measured_load(const mc_measured_spec *spec, mc_measured *out, mc_error *e
  * centres, and with resample = none MC_ERR_INPUT naming both grids. */
 int mc_measured_onto(const mc_measured *m, const mc_grid *g, mc_resample_rule resample,
                      double *heights, mc_error *err);
+
+/* 1 when mc_measured_onto puts m onto g without resampling (the same size, and the same
+ * spacing to 1e-9 relative or none stated), else 0. */
+int mc_measured_matches(const mc_measured *m, const mc_grid *g);
+
+/* "FILE: 256 x 128 points of 5e-07 x 5e-07 m (nx x ny, dx x dy)" (or "... points without a
+ * lateral spacing"): the grid of m for a message, into buf (always NUL-terminated). */
+void mc_measured_describe(const mc_measured *m, char *buf, size_t len);
 
 void mc_measured_free(mc_measured *m);
 

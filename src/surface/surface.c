@@ -5,6 +5,7 @@
 
 #include <fftw3.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "core/alloc.h"
@@ -217,8 +218,22 @@ void mc_surface_measured_spec(const mc_roughness_spec *s, mc_measured_spec *out)
     out->invert = s->invert;
 }
 
-int mc_surface_roughness(const mc_grid *g, const mc_roughness_spec *s, double *heights,
-                         mc_error *err)
+/* synthesize's messages start "[roughness]: "; another section's name replaces it. */
+static int relabel(int rc, const char *label, mc_error *err)
+{
+    static const char tag[] = "[roughness]:";
+    if (rc != MC_OK && err && strcmp(label, "[roughness]") != 0 &&
+        strncmp(err->msg, tag, sizeof tag - 1) == 0) {
+        const size_t drop = sizeof tag - 2; /* keep the ':' */
+        memmove(err->msg, err->msg + drop, strlen(err->msg + drop) + 1);
+        mc_error_prefix(err, "%s", label);
+    }
+    return rc;
+}
+
+/* mc_surface_roughness with the messages naming label ("[roughness]", "[roughness2]"). */
+static int roughness_as(const mc_grid *g, const mc_roughness_spec *s, const char *label,
+                        double *heights, mc_error *err)
 {
     size_t n = mc_grid_cells(g);
     int st = mc_grid_check(g, err);
@@ -234,52 +249,53 @@ int mc_surface_roughness(const mc_grid *g, const mc_roughness_spec *s, double *h
         mc_measured_spec ms;
         mc_measured m;
         mc_surface_measured_spec(s, &ms);
+        ms.label = label;
         st = mc_measured_load(&ms, &m, err);
         if (st == MC_OK)
             st = mc_measured_onto(&m, g, (mc_resample_rule)s->resample, heights, err);
         mc_measured_free(&m);
         if (st != MC_OK && err)
-            mc_error_prefix(err, "[roughness] file: ");
+            mc_error_prefix(err, "%s file: ", label);
         return st;
     }
     case MC_ROUGH_GAUSSIAN:
         if (!finite_nonneg(s->rq) || !finite_nonneg(s->correlation_x) ||
             !finite_nonneg(s->correlation_y))
             return mc_fail(err, MC_ERR_INPUT,
-                           "[roughness] gaussian: rq = %g m, correlation_x = %g m, correlation_y = "
+                           "%s gaussian: rq = %g m, correlation_x = %g m, correlation_y = "
                            "%g m: each must be finite and >= 0",
-                           s->rq, s->correlation_x, s->correlation_y);
+                           label, s->rq, s->correlation_x, s->correlation_y);
         if (s->rq == 0.0) {
             memset(heights, 0, n * sizeof(double));
             return MC_OK;
         }
         p.lx = s->correlation_x;
         p.ly = s->correlation_y;
-        return synthesize(g, s->seed, &p, s->rq, 0.0, heights, err);
+        return relabel(synthesize(g, s->seed, &p, s->rq, 0.0, heights, err), label, err);
     case MC_ROUGH_SELF_AFFINE: {
         if (!finite_nonneg(s->rq) || !finite_nonneg(s->rms_slope))
             return mc_fail(err, MC_ERR_INPUT,
-                           "[roughness] self_affine: rq = %g m, rms_slope = %g: each must be "
+                           "%s self_affine: rq = %g m, rms_slope = %g: each must be "
                            "finite and >= 0",
-                           s->rq, s->rms_slope);
+                           label, s->rq, s->rms_slope);
         if (!(s->hurst >= 0.0 && s->hurst <= 1.0))
             return mc_fail(err, MC_ERR_INPUT,
-                           "[roughness] self_affine: hurst = %g: must be in 0..1",
+                           "%s self_affine: hurst = %g: must be in 0..1", label,
                            s->hurst);
         if (!finite_nonneg(s->lambda_long) || !finite_nonneg(s->lambda_short))
             return mc_fail(err, MC_ERR_INPUT,
-                           "[roughness] self_affine: lambda_long = %g m, lambda_short = %g m: each "
+                           "%s self_affine: lambda_long = %g m, lambda_short = %g m: each "
                            "must be finite and >= 0 (0 = automatic)",
-                           s->lambda_long, s->lambda_short);
+                           label, s->lambda_long, s->lambda_short);
         double Lx = g->nx * g->dx, Ly = g->ny * g->dy;
         double ll = s->lambda_long > 0 ? s->lambda_long : fmax(Lx, Ly);
         double ls = s->lambda_short > 0 ? s->lambda_short
                                                    : 2.0 * fmax(g->dx, g->dy);
         if (!(ls < ll))
             return mc_fail(err, MC_ERR_INPUT,
-                           "[roughness] self_affine: lambda_short = %g m must be below "
+                           "%s self_affine: lambda_short = %g m must be below "
                            "lambda_long = %g m",
-                           ls, ll);
+                           label, ls, ll);
         if (s->rq == 0.0 && s->rms_slope == 0.0) {
             memset(heights, 0, n * sizeof(double));
             return MC_OK;
@@ -288,11 +304,23 @@ int mc_surface_roughness(const mc_grid *g, const mc_roughness_spec *s, double *h
         p.q_long = 2.0 * M_PI / ll;
         p.q_short = 2.0 * M_PI / ls;
         p.expo = -2.0 * (1.0 + s->hurst);
-        return synthesize(g, s->seed, &p, s->rq, s->rms_slope,
-                          heights, err);
+        return relabel(synthesize(g, s->seed, &p, s->rq, s->rms_slope, heights, err), label,
+                       err);
     }
     }
-    return mc_fail(err, MC_ERR_INPUT, "[roughness]: unknown type %d", (int)s->type);
+    return mc_fail(err, MC_ERR_INPUT, "%s: unknown type %d", label, (int)s->type);
+}
+
+int mc_surface_roughness(const mc_grid *g, const mc_roughness_spec *s, double *heights,
+                         mc_error *err)
+{
+    return roughness_as(g, s, "[roughness]", heights, err);
+}
+
+int mc_surface_roughness_labelled(const mc_grid *g, const mc_roughness_spec *s, const char *label,
+                                  double *heights, mc_error *err)
+{
+    return roughness_as(g, s, label ? label : "[roughness]", heights, err);
 }
 
 int mc_surface_topography(const mc_grid *g, const mc_shape_spec *shape,

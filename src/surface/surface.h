@@ -98,6 +98,33 @@ void mc_surface_shape(const mc_grid *g, const mc_shape_spec *s, double *h);
 int mc_surface_roughness(const mc_grid *g, const mc_roughness_spec *s, double *heights,
                          mc_error *err);
 
+/* mc_surface_roughness with its messages naming label ("[roughness]", "[roughness2]") instead
+ * of "[roughness]". */
+int mc_surface_roughness_labelled(const mc_grid *g, const mc_roughness_spec *s, const char *label,
+                                  double *heights, mc_error *err);
+
+/* What a measured file held (summary.json): format read, points missing and filled, and the
+ * reader's warning ("" when none). Zeros for a synthetic surface. */
+typedef struct {
+    char format[16];
+    long missing, filled;
+    char warning[320];
+} mc_surface_file_info;
+
+/* The roughness heights of the two bodies of a contact on the mesh g (ny*nx each, m), each
+ * measured outward, towards the other body (theory.md §4.11): z1 of s1 ([roughness], body 1),
+ * z2 of s2 ([roughness2], body 2); the gap's roughness is z1 + z2 and the topography
+ * shape - (z1 + z2). Each map is read and prepared as mc_surface_roughness does (messages name
+ * "[roughness]" or "[roughness2]"), each file once. Both must come onto the mesh: a map whose
+ * grid differs from it with resample = none is MC_ERR_INPUT naming both bodies (files and
+ * grids, or the synthetic type) and the mesh. *which (may be NULL) is the body whose input
+ * failed (1, 2; 0 on success); info1, info2 (may be NULL) what each file held. Errors as
+ * mc_surface_roughness. */
+int mc_surface_two_bodies(const mc_grid *g, const mc_roughness_spec *s1,
+                          const mc_roughness_spec *s2, double *z1, double *z2,
+                          mc_surface_file_info *info1, mc_surface_file_info *info2, int *which,
+                          mc_error *err);
+
 /* The measured-map settings of a file roughness spec. */
 void mc_surface_measured_spec(const mc_roughness_spec *s, mc_measured_spec *out);
 

@@ -194,7 +194,7 @@ row empty_file        o 1 "empty.ini" "empty case file" -- empty.ini --out o
 row case_is_directory o 1 "a_directory" "cannot read: Is a directory" -- a_directory --out o
 row case_is_device    o 1 "/dev/zero" "larger than 16 MiB; not a case file" -- /dev/zero --out o
 row unknown_section   o 1 "unknown_section.ini:10:" "unknown section [lod]" \
-    "known sections: mesh, geometry, roughness, body1, body2, load, solver, stress, lubrication, plasticity, output" \
+    "known sections: mesh, geometry, roughness, roughness2, body1, body2, load, solver, stress, lubrication, plasticity, output" \
     -- unknown_section.ini --out o
 row unknown_key       o 1 "unknown_key.ini:4:" "[mesh] unknown key 'nz'" \
     "keys of [mesh]: nx, ny, dx, dy, periodic_x, periodic_y" -- unknown_key.ini --out o
@@ -283,7 +283,30 @@ row lube_speed_and_rpm o 1 "lube_ok.ini" "give exactly one of speed, rpm" \
 row lube_rpm_radius   o 1 "lube_rpm_noradius.ini" "[lubrication] rpm needs radius1 and radius2" \
     -- lube_rpm_noradius.ini --out o
 row lube_curved       o 1 "--set geometry.shape=sphere" "[lubrication] needs [geometry] shape = flat" \
+    "cylinder (the whole line contact" "ellipsoid (the whole crowned contact" \
     -- lube_ok.ini --out o --set geometry.shape=sphere --set geometry.radius=10mm
+# the whole line contact (shape = cylinder): the Hertz band of the discs on a strip
+control control_whole         o 0 whole_ok.ini --out o
+control control_whole_hertz   o 0 whole_ok.ini --out o --set lubrication.lubricant_profile=hertz
+row whole_not_strip    o 1 "--set mesh.periodic_y=no" "needs a strip: periodic_y = yes and x free" \
+    -- whole_ok.ini --out o --set mesh.periodic_y=no
+row whole_radius       o 1 "--set geometry.radius=3mm" "[geometry] radius = 3 mm is not the reduced radius R_x = 2 mm" \
+    "[lubrication] radius1 and radius2" -- whole_ok.ini --out o --set geometry.radius=3mm
+row whole_narrow       o 1 "--set mesh.nx=64" "[mesh] the grid spans |x| <= 25.6 um, too narrow for the whole contact" \
+    "b = 34.68 um" "needs nx >= 96" -- whole_ok.ini --out o --set mesh.nx=64
+row whole_no_width     o 1 "[lubrication] with [geometry] shape = cylinder needs width" -- whole_ok.ini --out o --set lubrication.width=
+control control_crowned       o 0 crown_ok.ini --out o
+row crowned_line_film  o 1 "--set lubrication.formula=pan_hamrock_central" "is a line-contact formula" \
+    "needs a point-contact one (hamrock_dowson_central or hamrock_dowson_min)" \
+    -- crown_ok.ini --out o --set lubrication.formula=pan_hamrock_central
+row crowned_width      o 1 "--set lubrication.width=2mm" "[lubrication] width has no effect on the whole crowned contact" \
+    -- crown_ok.ini --out o --set lubrication.width=2mm
+row crowned_periodic   o 1 "--set mesh.periodic_y=yes" "needs a grid free along x and y" \
+    -- crown_ok.ini --out o --set mesh.periodic_y=yes
+row crowned_small      o 1 "--set mesh.ny=200" "too small for the whole crowned contact" "needs nx >= 61 and ny >= 273" \
+    -- crown_ok.ini --out o --set mesh.ny=200
+row profile_on_patch   o 1 "--set lubrication.lubricant_profile=hertz" "[lubrication] lubricant_profile is not used by" \
+    -- lube_ok.ini --out o --set lubrication.lubricant_profile=hertz
 # the running-in ([runin]) and its resume
 control control_runin         o 0 runin_ok.ini --out o --quiet
 row runin_speeds_rise  o 1 "runin_increasing.ini:23:" "[runin] speeds = 200, 500, 1000 rpm" \
@@ -326,6 +349,22 @@ row roughness_nan_text o 1 "nan_16x16.txt: 1 of 256 points are missing" \
     "set [roughness] missing = fill" "[roughness] file" -- roughness_nan_text.ini --out o
 row roughness_missing  o 1 "does_not_exist.txt" "cannot open: No such file or directory" \
     "[roughness] file" -- roughness_missing.ini --out o
+# two measured surfaces: [roughness2] is body 2's (then [roughness] is body 1's); both maps on one
+# mesh, a mismatch names both files; the rules of [roughness] hold for [roughness2]
+control control_two_surfaces o 0 roughness_ok_npy.ini --out o --set roughness2.type=file \
+    --set roughness2.file=micro.npy
+row roughness2_alone   o 1 "--set roughness2.type" "[roughness2] (body 2's surface) needs [roughness]" \
+    -- good.ini --out o --set roughness2.type=gaussian --set roughness2.rq=0.1um \
+    --set roughness2.correlation_x=8um
+row roughness2_grid    o 1 "roughness_ok_npy.ini" "[roughness2] file" "the two surfaces do not come onto one grid" \
+    "body 2's map shape_8x16.npy: 16 x 8 points" "micro.npy: 16 x 16 points" "the mesh 16 x 16 cells" \
+    -- roughness_ok_npy.ini --out o --set roughness2.type=file --set roughness2.file=shape_8x16.npy
+row roughness2_scale   o 1 "--set roughness2.scale" "[roughness2] scale = 0: must not be 0" \
+    -- roughness_ok_npy.ini --out o --set roughness2.type=file --set roughness2.file=micro.npy \
+    --set roughness2.scale=0
+row roughness2_unused  o 1 "--set roughness2.hurst" "[roughness2] hurst is not used by type = file" \
+    -- roughness_ok_npy.ini --out o --set roughness2.type=file --set roughness2.file=micro.npy \
+    --set roughness2.hurst=0.5
 # text and profile inputs: a header is named as a header, a profile as a profile
 row text_header_words  o 1 "header_words.txt:1: 'h=16 w=16' is a header line" "[roughness] file" \
     -- roughness_ok_text.ini --out o --set roughness.file=header_words.txt
