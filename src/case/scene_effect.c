@@ -3,7 +3,8 @@
  * mc_scene_effect_rules, named as mc_scene_check_key names a key. Values are compared with the
  * defaults (scene.h: a key not given holds its documented default).
  *
- * The systematic pass (issue 23, class 5): every key of the table (keys.c, 105 keys, friction_in_yield included; the 20 of
+ * The systematic pass (issue 23, class 5): every key of the table (keys.c, 105 keys with
+ * friction_in_yield; the 20 of
  * [roughness2] since repeat those of [roughness]) against the
  * scene classes it can meet, 23 in all: the grid (free; periodic x; a strip periodic in y; doubly
  * periodic; one row, ny = 1, a line grid or a free row), the load (force, force_per_length,
