@@ -17,6 +17,7 @@
 #include "contact/contact.h"
 #include "core/alloc.h"
 #include "core/threads.h"
+#include "io/npy.h"
 #include "kernels/kernel.h"
 #include "operator/operator.h"
 #include "io/npy.h"
@@ -158,6 +159,44 @@ START_TEST(rules)
                          MC_ERR_INPUT);
         ck_assert_msg(strstr(err.msg, rows[k].want), "%s: %s", rows[k].set[0], err.msg);
     }
+}
+END_TEST
+
+/* [runin] friction_in_yield refused where it has no effect, naming the key: without
+ * [plasticity], in pure rolling (no sliding direction), and beside [plasticity] friction, which
+ * it replaces. */
+START_TEST(friction_rules)
+{
+    static const struct {
+        const char *plastic, *set[3], *want;
+    } rows[] = {
+        {"", {"runin.friction_in_yield=yes", "lubrication.rpm2=1100 rpm", NULL},
+         "[runin] friction_in_yield = yes has no effect without [plasticity]"},
+        {"[plasticity]\nyield_stress = 1 GPa\n", {"runin.friction_in_yield=yes", NULL, NULL},
+         "[runin] friction_in_yield = yes has no effect in pure rolling"},
+        {"[plasticity]\nyield_stress = 1 GPa\n",
+         {"runin.friction_in_yield=yes", "lubrication.rpm2=1000 rpm", NULL},
+         "[runin] friction_in_yield = yes has no effect in pure rolling"},
+        {"[plasticity]\nyield_stress = 1 GPa\nfriction = 0.1\n",
+         {"runin.friction_in_yield=yes", "lubrication.rpm2=1100 rpm", NULL},
+         "[plasticity] friction has no effect with [runin] friction_in_yield = yes"},
+    };
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+        char text[4096];
+        snprintf(text, sizeof text, BASE, "", 1, rows[k].plastic);
+        int nset = 0;
+        while (nset < 3 && rows[k].set[nset])
+            nset++;
+        mc_scene s;
+        mc_error err = {0};
+        ck_assert_int_eq(mc_case_parse_text(text, "r.ini", "", nset, rows[k].set, &s, &err),
+                         MC_ERR_INPUT);
+        ck_assert_msg(strstr(err.msg, rows[k].want), "row %zu: %s", k, err.msg);
+    }
+    mc_scene s; /* accepted: plastic, rolling-sliding */
+    const char *ok[] = {"runin.friction_in_yield=yes", "lubrication.rpm2=900 rpm"};
+    scene(&s, "", 1, PLASTIC, 2, ok);
+    ck_assert_int_eq(s.runin.friction_in_yield, 1);
 }
 END_TEST
 
@@ -917,6 +956,155 @@ START_TEST(checkpoint_nonfinite)
 }
 END_TEST
 
+/* ---- friction in the yield check ([runin] friction_in_yield) ------------------------------ */
+
+/* The PLASTIC scene, rolling-sliding (disc 2 10 % faster than disc 1), with extra --set values. */
+static void run_sliding(int nset, const char *const *set, mc_results *r)
+{
+    const char *all[8] = {"lubrication.rpm2=1100 rpm"};
+    for (int k = 0; k < nset; k++)
+        all[k + 1] = set[k];
+    mc_scene s;
+    scene(&s, "", 2, PLASTIC, nset + 1, all);
+    mc_error err = {0};
+    ck_assert_msg(mc_runin_run(&s, NULL, r, &err) == MC_OK, "%s", err.msg);
+}
+
+static int plastic_steps(const mc_results *r)
+{
+    int n = 0;
+    for (int k = 0; k < r->runin.done; k++)
+        n += r->runin.rows[k].plastic;
+    return n;
+}
+
+/* mu = 0 (mu_solid = mu_fluid = 0): the option changes nothing, to the bit. */
+START_TEST(friction_zero_identical)
+{
+    const char *off[] = {"lubrication.mu_solid=0", "lubrication.mu_fluid=0"};
+    const char *on[] = {"lubrication.mu_solid=0", "lubrication.mu_fluid=0",
+                        "runin.friction_in_yield=yes"};
+    mc_results a, b;
+    run_sliding(2, off, &a);
+    run_sliding(3, on, &b);
+    ck_assert_int_gt(plastic_steps(&a), 0);
+    assert_same_rows(&a, &b);
+    mc_results_free(&a);
+    mc_results_free(&b);
+}
+END_TEST
+
+/* A step with the option is the plastic stage with that step's mu as [plasticity] friction: with
+ * mu_solid = mu_fluid = 0.125 every step's mu is 0.125 exactly (psi 0.125 + (1 - psi) 0.125: a
+ * power of two scales the sum psi + (1 - psi), which rounds to 1), so the run must equal the one
+ * with [plasticity] friction = 0.125 to the bit; and the traction must act (the run without it
+ * ends on another surface). */
+START_TEST(friction_step_mu)
+{
+    const char *on[] = {"lubrication.mu_solid=0.125", "lubrication.mu_fluid=0.125",
+                        "runin.friction_in_yield=yes"};
+    const char *stage[] = {"lubrication.mu_solid=0.125", "lubrication.mu_fluid=0.125",
+                           "plasticity.friction=0.125"};
+    const char *none[] = {"lubrication.mu_solid=0.125", "lubrication.mu_fluid=0.125"};
+    mc_results a, b, c;
+    run_sliding(3, on, &a);
+    run_sliding(3, stage, &b);
+    run_sliding(2, none, &c);
+    ck_assert_int_gt(plastic_steps(&a), 0);
+    for (int k = 0; k < a.runin.done; k++)
+        ck_assert_double_eq(a.runin.rows[k].mu, 0.125);
+    assert_same_rows(&a, &b);
+    const size_t n = mc_grid_cells(&a.grid);
+    double d = 0;
+    for (size_t i = 0; i < n; i++)
+        d = fmax(d, fabs(a.residual_displacement[i] - c.residual_displacement[i]));
+    ck_assert_msg(d > 1e-3 * a.plastic.residual_max, "the traction changed u_r by only %g of %g",
+                  d, a.plastic.residual_max);
+    mc_results_free(&a);
+    mc_results_free(&b);
+    mc_results_free(&c);
+}
+END_TEST
+
+/* The traction follows the sliding. Disc 2 faster (+x) on surface z, against disc 1 faster (-x)
+ * on the x-mirrored surface: the second run is the mirror image of the first (the problem is;
+ * the grid's cell centres are symmetric), up to round-off. The same surface with the two
+ * directions differs by the traction's effect, which bounds the mirror error from above: a sign
+ * that did not follow the sliding would make the mirror error as large as that effect. */
+START_TEST(friction_sign)
+{
+    mc_scene s0;
+    scene(&s0, "", 2, "", 0, NULL);
+    const int nx = s0.grid.nx, ny = s0.grid.ny;
+    const size_t n = mc_grid_cells(&s0.grid);
+    double *z = mc_zeros(n), *zm = mc_zeros(n);
+    mc_error err = {0};
+    ck_assert(z && zm);
+    ck_assert_msg(mc_surface_topography(&s0.grid, &s0.geometry, &s0.roughness, z, &err) == MC_OK,
+                  "%s", err.msg);
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            zm[(size_t)j * nx + i] = -z[(size_t)j * nx + (nx - 1 - i)];
+    for (size_t i = 0; i < n; i++)
+        z[i] = -z[i]; /* heights: a flat shape, h0 = -z */
+    char fz[512], fm[512];
+    snprintf(fz, sizeof fz, "%s/z.npy", test_tmpdir());
+    snprintf(fm, sizeof fm, "%s/zm.npy", test_tmpdir());
+    const size_t shape[2] = {(size_t)ny, (size_t)nx};
+    ck_assert(mc_npy_write(fz, z, 2, shape, &err) == MC_OK);
+    ck_assert(mc_npy_write(fm, zm, 2, shape, &err) == MC_OK);
+    static const char *const TEXT =
+        "[mesh]\nnx = %d\nny = %d\ndx = 0.8 um\n"
+        "[roughness]\ntype = file\nfile = %s\nunits = m\ndetrend = none\n"
+        "[load]\nforce = 1086 N\nlubricant_pressure = auto\n"
+        "[lubrication]\nviscosity = 30 mPa*s\npressure_viscosity = 2e-8\nrpm = %s rpm\n"
+        "rpm2 = %s rpm\nradius1 = 40 mm\nradius2 = 40 mm\nwidth = 10 mm\nmu_solid = 0.12\n"
+        "mu_fluid = 0.03\n[solver]\nthreads = 1\n"
+        "[runin]\nspeeds = %s rpm\nfriction_in_yield = yes\n%s";
+    const struct {
+        const char *file, *rpm, *rpm2, *speeds;
+    } runs[3] = {{fz, "1000", "1100", "1000, 500, 200"},  /* disc 2 faster: +x */
+                 {fz, "1100", "1000", "1100, 550, 220"},  /* disc 1 faster: -x, same u */
+                 {fm, "1100", "1000", "1100, 550, 220"}}; /* the same, mirrored surface */
+    mc_results r[3];
+    for (int k = 0; k < 3; k++) {
+        char text[4096];
+        snprintf(text, sizeof text, TEXT, nx, ny, runs[k].file, runs[k].rpm, runs[k].rpm2,
+                 runs[k].speeds, PLASTIC);
+        mc_scene s;
+        ck_assert_msg(mc_case_parse_text(text, "r.ini", "", 0, NULL, &s, &err) == MC_OK, "%s",
+                      err.msg);
+        ck_assert_msg(mc_runin_run(&s, NULL, &r[k], &err) == MC_OK, "%s", err.msg);
+        ck_assert_int_gt(plastic_steps(&r[k]), 0);
+    }
+    double d_dir = 0, d_mirror = 0;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) {
+            const size_t a = (size_t)j * nx + i, m = (size_t)j * nx + (nx - 1 - i);
+            d_dir = fmax(d_dir, fabs(r[0].residual_displacement[a] -
+                                     r[1].residual_displacement[a]));
+            d_mirror = fmax(d_mirror, fabs(r[0].residual_displacement[a] -
+                                           r[2].residual_displacement[m]));
+        }
+    if (getenv("MC_TEST_VERBOSE"))
+        printf("friction_sign: max |u_r(+x) - u_r(-x)| %.3e m, mirror error %.3e m (u_r max "
+               "%.3e m)\n",
+               d_dir, d_mirror, r[0].plastic.residual_max);
+    /* MIRROR_TOL: the mirrored run differs only by the round-off of the mirrored sums and of the
+     * speeds' unit conversions, carried through solves to 1e-8 and a plastic fixed point to
+     * 1e-5 relative, i.e. far below the traction's own effect; 1e-3 of that effect */
+    const double MIRROR_TOL = 1e-3;
+    ck_assert_msg(d_dir > 1e-3 * r[0].plastic.residual_max, "the direction has no effect: %g",
+                  d_dir);
+    ck_assert_msg(d_mirror <= MIRROR_TOL * d_dir, "mirror error %g against the direction's %g",
+                  d_mirror, d_dir);
+    for (int k = 0; k < 3; k++)
+        mc_results_free(&r[k]);
+    mc_free(z);
+    mc_free(zm);
+}
+END_TEST
+
 /* Computed once, before the tests of the case fork (unchecked fixture): they share it. */
 static void setup(void) { (void)plastic_reference(); }
 
@@ -935,6 +1123,7 @@ Suite *suite_runin(void)
     tcase_add_test(t, list_units);
     tcase_add_loop_test(t, bad_input, 0, (int)(sizeof bad_rows / sizeof bad_rows[0]));
     tcase_add_test(t, rules);
+    tcase_add_test(t, friction_rules);
     tcase_add_test(t, hysteresis_measure);
     tcase_add_test(t, checkpoint_round_trip);
     tcase_add_loop_test(t, checkpoint_nonfinite, 0, 5);
@@ -950,6 +1139,9 @@ Suite *suite_runin(void)
     tcase_add_test(t, lubricated_plastic_stage);
     tcase_add_test(t, resume_identical);
     tcase_add_test(t, resume_refused);
+    tcase_add_test(t, friction_zero_identical);
+    tcase_add_test(t, friction_step_mu);
+    tcase_add_test(t, friction_sign);
     suite_add_tcase(s, t);
     return s;
 }

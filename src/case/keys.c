@@ -518,6 +518,14 @@ const case_key mc_keys[] = {
             "pressure (the bowl K p_nom of a load on a grid with free axes belongs to the macro "
             "contact; on a periodic grid it is zero); keep: the patch deflects as a loaded "
             "island."},
+    {.section = "runin", .name = "friction_in_yield", .kind = K_BOOL, .def = "no",
+     .off = AT(runin.friction_in_yield),
+     .doc = "yes: every elastic-plastic run-down step loads its yield check with the friction "
+            "traction q_x = mu (p - p_lub) in solid contact, mu the step's friction coefficient "
+            "(psi mu_solid + (1 - psi) mu_fluid at the step's volume equilibrium), along the "
+            "sliding of disc 2 against disc 1 (+x when disc 2 is the faster surface); needs "
+            "[plasticity] and rolling-sliding ([lubrication] rpm2), and replaces [plasticity] "
+            "friction (docs/theory.md §19.7). no: pressure alone, as the paper's model."},
 
     /* [output] */
     {.section = "output", .name = "dir", .kind = K_PATH, .def = "out/(case file name without .ini)",

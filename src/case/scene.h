@@ -156,6 +156,8 @@ typedef struct {
         int nspeeds;
         double speeds[MC_RUNIN_MAX];  /* run-down speeds of disc 1, rad/s, strictly decreasing */
         mc_nominal_deflection deflection; /* remove (default) or keep the nominal bowl */
+        int friction_in_yield;        /* 1: each run-down step's mu loads its yield check with
+                                         q_x = +-mu (p - p_lub), sign of the sliding (runin.h) */
     } runin;
 
     struct { /* [output] */

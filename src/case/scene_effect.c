@@ -3,7 +3,8 @@
  * mc_scene_effect_rules, named as mc_scene_check_key names a key. Values are compared with the
  * defaults (scene.h: a key not given holds its documented default).
  *
- * The systematic pass (issue 23, class 5): every key of the table (keys.c, 104 keys; the 20 of
+ * The systematic pass (issue 23, class 5): every key of the table (keys.c, 105 keys with
+ * friction_in_yield; the 20 of
  * [roughness2] since repeat those of [roughness]) against the
  * scene classes it can meet, 23 in all: the grid (free; periodic x; a strip periodic in y; doubly
  * periodic; one row, ny = 1, a line grid or a free row), the load (force, force_per_length,
@@ -46,6 +47,9 @@
  *  plasticity margin              doubly periodic grid (the volume spans the  here (new)
  *                                  whole period along x and y)
  *  runin nominal_deflection       doubly periodic grid (no bowl)              here
+ *  runin friction_in_yield        no [plasticity] (von_mises); pure rolling   here (new)
+ *                                  (no sliding direction)
+ *  plasticity friction            runin friction_in_yield = yes (replaced)    here (new)
  *  stress / lubrication /         the section's enabled = no                  accepted: the
  *   plasticity / runin keys                                                    switch keeps a
  *                                                                              section for later
@@ -188,6 +192,21 @@ static int plastic_runin_rules(const mc_scene *s, mc_error *err, const char **se
         BLAME("plasticity", "margin",
               "[plasticity] margin has no effect in a running-in ([runin]): every step's plastic "
               "columns span the whole grid; remove it");
+    if (s->runin.friction_in_yield && !vm)
+        BLAME("runin", "friction_in_yield",
+              "[runin] friction_in_yield = yes has no effect without [plasticity] (criterion = "
+              "von_mises): nothing yields; remove it, or add [plasticity]");
+    if (s->runin.friction_in_yield && vm && s->plasticity.friction > 0)
+        BLAME("plasticity", "friction",
+              "[plasticity] friction has no effect with [runin] friction_in_yield = yes (each "
+              "step's mu replaces it): remove one of them");
+    if (s->runin.friction_in_yield && vm && s->lubrication.rpm > 0 &&
+        !(s->lubrication.rpm2 > 0 && s->lubrication.rpm2 * s->lubrication.radius2 !=
+                                         s->lubrication.rpm * s->lubrication.radius1))
+        BLAME("runin", "friction_in_yield",
+              "[runin] friction_in_yield = yes has no effect in pure rolling (equal surface "
+              "speeds: no sliding, so no direction for the traction); accepted with "
+              "[lubrication] rpm2 giving disc 2 another surface speed than disc 1");
     if (s->runin.deflection != MC_DEFLECTION_REMOVE && s->lubrication.enabled &&
         (s->geometry.shape == MC_SHAPE_CYLINDER || s->geometry.shape == MC_SHAPE_ELLIPSOID))
         BLAME("runin", "nominal_deflection",

@@ -107,6 +107,9 @@ typedef struct {
     mc_plastic_ops ops;       /* the loop's operators, built at the first plastic step and kept
                                  for the others (plastic/loop.h) */
     double *s_full[6], *qx;
+    int qx_loads;             /* the yield check and the loop's operators take q_x too */
+    double slide;             /* friction_in_yield: +1 (-1) when disc 2 slides in +x (-x)
+                                 against disc 1, the sign of the traction on body 1; else 0 */
     uint64_t hash;
     double seconds;           /* compute time of the steps done (also those of a checkpoint) */
     /* a plastic loop that stopped short (plastic/loop.h): the running-in ends with that step */
@@ -182,15 +185,15 @@ static int equilibrium(runin_ctx *c, mc_volume_result *vr, mc_error *err)
                                  err);
 }
 
-/* Does anything yield under pressure p (lubricant pressure p_lub) with the residual stress and
- * hardening of the state? The loop's first sweep (plastic/loop.c) from a zero increment. */
-static int yields(runin_ctx *c, const double *p, double p_lub, int *any, mc_error *err)
+/* Does anything yield under pressure p (lubricant pressure p_lub) and the traction
+ * q_x = f (p - p_lub) in solid contact (f signed, 0: none) with the residual stress and hardening
+ * of the state? The loop's first sweep (plastic/loop.c) from a zero increment. */
+static int yields(runin_ctx *c, const double *p, double p_lub, double f, int *any, mc_error *err)
 {
-    const double f = c->sc->plasticity.friction;
-    if (f > 0)
+    if (f != 0)
         for (size_t i = 0; i < c->n; i++)
             c->qx[i] = p[i] > p_lub ? f * (p[i] - p_lub) : 0.0;
-    int rc = mc_stress_field(c->splan, p, f > 0 ? c->qx : NULL, NULL, c->s_full, err);
+    int rc = mc_stress_field(c->splan, p, f != 0 ? c->qx : NULL, NULL, c->s_full, err);
     if (rc != MC_OK)
         return rc;
     int hit = 0, bad = 0;
@@ -211,15 +214,16 @@ static int yields(runin_ctx *c, const double *p, double p_lub, int *any, mc_erro
     return MC_OK;
 }
 
-/* The elastic-plastic loop of a run-down step from the carried state; the state is updated. */
-static int plastic_step(runin_ctx *c, mc_plastic_step *record, mc_lube_contact *lc, int *conv,
-                        mc_error *err)
+/* The elastic-plastic loop of a run-down step from the carried state, with the traction
+ * coefficient f (signed; 0: none); the state is updated. */
+static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_lube_contact *lc,
+                        int *conv, mc_error *err)
 {
     const mc_scene *sc = c->sc;
     mc_results *r = c->res;
     if (!c->ops.resid) {
         int rc = mc_plastic_ops_create(&c->g, &c->vol, sc->body1.nu, sc->solver.backend,
-                                       sc->plasticity.friction > 0, &c->ops, err);
+                                       c->qx_loads, &c->ops, err);
         if (rc != MC_OK)
             return rc;
     }
@@ -231,7 +235,7 @@ static int plastic_step(runin_ctx *c, mc_plastic_step *record, mc_lube_contact *
     mc_plastic_problem pb = {.h = c->h_base,
                              .load = r->lube.patch_load,
                              .p_lub = r->lube.p_lub,
-                             .friction = sc->plasticity.friction,
+                             .friction = f,
                              .load_steps = sc->plasticity.load_steps,
                              .E = sc->body1.E,
                              .nu = sc->body1.nu,
@@ -298,14 +302,23 @@ static int run_step(runin_ctx *c, int s, mc_runin_row *row, mc_plastic_step *rec
     const mc_volume_result *last = &vr;
     mc_lube_contact lc;
     if (!up && c->plastic && rc == MC_OK) {
+        /* the traction of the yield check: [plasticity] friction, or (friction_in_yield) the mu
+         * of this step's equilibrium before it yields, along the sliding (theory.md §19.7) */
+        double fr = c->sc->plasticity.friction;
+        if (c->slide != 0) {
+            rc = mc_lube_outcome(c->step, &vr, r, err);
+            if (rc != MC_OK)
+                return rc;
+            fr = c->slide * r->lube.mu;
+        }
         int any = 0;
-        rc = yields(c, r->pressure, vr.p_lub, &any, err);
+        rc = yields(c, r->pressure, vr.p_lub, fr, &any, err);
         if (rc != MC_OK)
             return rc;
         if (any) {
             int conv = 0;
             memset(record, 0, sizeof *record);
-            rc = plastic_step(c, record, &lc, &conv, err);
+            rc = plastic_step(c, fr, record, &lc, &conv, err);
             if (rc != MC_OK && rc != MC_NOT_CONVERGED)
                 return rc;
             row->plastic = 1;
@@ -492,6 +505,18 @@ static int setup(runin_ctx *c, mc_error *err)
         if (rc != MC_OK)
             mc_error_prefix(err, "[plasticity] ");
         c->G = sc->body1.E / (2.0 * (1.0 + sc->body1.nu));
+        /* the surface speeds of the first step (every step keeps their ratio); pure rolling is
+         * refused by the scene rules */
+        if (sc->runin.friction_in_yield && sc->lubrication.rpm2 > 0) {
+            const double u1 = sc->lubrication.rpm * sc->lubrication.radius1;
+            const double u2 = sc->lubrication.rpm2 * sc->lubrication.radius2;
+            c->slide = u2 > u1 ? 1.0 : u2 < u1 ? -1.0 : 0.0;
+        }
+        /* with mu_solid = mu_fluid = 0 every step's traction is 0: the operators without q_x, so
+         * the run is the one without the option to the bit */
+        c->qx_loads = sc->plasticity.friction > 0 ||
+                      (c->slide != 0 &&
+                       (sc->lubrication.mu_solid > 0 || sc->lubrication.mu_fluid > 0));
         if (rc == MC_OK)
             rc = plan_volume(c, err);
         const size_t nv = (size_t)c->nvol;
@@ -512,8 +537,7 @@ static int setup(runin_ctx *c, mc_error *err)
                                 .nlayers = c->vol.nz,
                                 .depths = depths,
                                 .backend = sc->solver.backend,
-                                .loads = MC_TRACTION_P |
-                                         (sc->plasticity.friction > 0 ? MC_TRACTION_QX : 0)};
+                                .loads = MC_TRACTION_P | (c->qx_loads ? MC_TRACTION_QX : 0)};
         if (rc == MC_OK)
             rc = mc_stress_create(&c->g, &so, &c->splan, err);
         mc_free(depths);

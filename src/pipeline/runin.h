@@ -34,6 +34,13 @@
  * solves every step on h0 - K p_nom, so only the deviation from the nominal pressure deforms
  * the patch (what a periodic patch does by itself: there K 1 = 0); keep leaves the bowl in.
  *
+ * Friction in the yield check. With [runin] friction_in_yield (rolling-sliding only) every
+ * run-down step's yield check and plastic loop take the traction q_x = s mu (p - p_lub) in solid
+ * contact, mu the friction coefficient of the step's volume equilibrium before it yields, s = +1
+ * when disc 2's surface is the faster (it drags body 1 forward, +x), -1 otherwise: the step is
+ * the plastic loop with friction = s mu (plastic/loop.h). Without it, [plasticity] friction
+ * (default 0) is every step's (docs/theory.md §19.7).
+ *
  * Hysteresis. Per force, the signed area between the run-down and run-up mu curves over the
  * decades of speed, H = integral of (mu_down - mu_up) d log10 n (trapezoids over the speeds):
  * positive when the run-up, on the smoother surface, has less solid friction.

@@ -153,11 +153,11 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
             ops->g.periodic_x != g->periodic_x || ops->g.periodic_y != g->periodic_y ||
             memcmp(&ops->volume, &pb->volume, sizeof ops->volume) != 0 ||
             !(ops->nu == pb->nu) || ops->backend != pb->backend ||
-            ops->friction != (pb->friction > 0))
+            (pb->friction != 0 && !ops->friction))
             return mc_fail(err, MC_ERR_INPUT,
                            "plastic loop: the operators given were made for another problem");
     } else {
-        rc = mc_plastic_ops_create(g, &pb->volume, pb->nu, pb->backend, pb->friction > 0,
+        rc = mc_plastic_ops_create(g, &pb->volume, pb->nu, pb->backend, pb->friction != 0,
                                    &c->own, err);
         ops = &c->own;
     }
@@ -203,7 +203,7 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
 {
     const mc_plastic_problem *pb = c->pb;
     const double *qx = NULL;
-    if (pb->friction > 0) {
+    if (pb->friction != 0) { /* signed: the sign is the sliding direction (loop.h) */
         for (size_t i = 0; i < c->ncell; i++)
             c->qx[i] = p[i] > c->p_lub ? pb->friction * (p[i] - c->p_lub) : 0.0;
         qx = c->qx;

@@ -64,7 +64,8 @@ typedef struct {
     const double *h;   /* initial gap at zero approach (ny*nx), m */
     double load;       /* the maximum load, N */
     double p_lub;      /* uniform lubricant pressure (lower bound), Pa, >= 0 */
-    double friction;   /* q_x = friction (p - p_lub) where in solid contact; 0 = none */
+    double friction;   /* q_x = friction (p - p_lub) where in solid contact; 0 = none; signed:
+                          > 0 the counter body slides in +x relative to body 1, < 0 in -x */
     int load_steps;    /* >= 1 */
     /* body 1 */
     double E, nu;              /* Pa; 0 <= nu < 0.5 */
@@ -104,8 +105,9 @@ typedef struct {
     mc_plastic_contact_fn contact;
     void *contact_ctx;
     /* the operators, made by mc_plastic_ops_create for this grid, volume, nu, backend and
-     * friction (> 0 or not), borrowed for the run (NULL: the run builds its own and frees them;
-     * the results are the same bits either way). Another problem's: MC_ERR_INPUT. */
+     * friction (!= 0 or not), borrowed for the run (NULL: the run builds its own and frees them;
+     * the results are the same bits either way; operators with friction serve a problem with
+     * friction 0 too). Another problem's: MC_ERR_INPUT. */
     mc_plastic_ops *ops;
     /* polled before every outer iteration (NULL: never); non-zero abandons the run with
      * MC_ERR_INTERRUPTED (the result is then incomplete and only to be freed) */
