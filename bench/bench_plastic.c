@@ -104,7 +104,7 @@ static void ke_solve(int n, double p_pc, ke_run *r)
     r->t = mc_clock() - t0;
     r->ok = rc == MC_OK || rc == MC_NOT_CONVERGED;
     if (r->ok) {
-        const mc_plastic_summary *pl = &res.plastic;
+        const mc_stage_plastic_summary *pl = &res.plastic;
         r->converged = rc == MC_OK && pl->converged;
         r->w = res.contact.approach / k.wc;
         r->a = res.contact.area / (M_PI * k.ac * k.ac);

@@ -60,7 +60,7 @@ static void make_results(mc_results *r, int with_stress)
     r->von_mises = field(n * NL, 20);
     r->hydrostatic = field(n * NL, 21);
     r->tresca = field(n * NL, 22);
-    mc_stress_summary ss = {2.5e9, {1e-6, -2e-6, 3e-7}, -1e9, 1.25e9, {0, 0, 4e-7}, NL, 0.5e-6,
+    mc_stage_stress_summary ss = {2.5e9, {1e-6, -2e-6, 3e-7}, -1e9, 1.25e9, {0, 0, 4e-7}, NL, 0.5e-6,
                             2e-6, "patch", 0.1};
     r->stress_summary = ss;
 }

@@ -972,7 +972,7 @@ START_TEST(test_stage)
     memcpy(res.pressure, p, sizeof *p * mc_grid_cells(&sc.grid));
     mc_error err;
     for (int run = 0; run < 2; run++) /* the second run replaces the first's arrays */
-        ck_assert_msg(mc_stress_stage(&sc, &res, &err) == MC_OK, "%s", err.msg);
+        ck_assert_msg(mc_stage_stress(&sc, &res, &err) == MC_OK, "%s", err.msg);
     const size_t n = mc_grid_cells(&sc.grid), nv = 3 * n;
     ck_assert_int_eq(res.nlayers, 3);
     ck_assert_double_eq(res.depths[1], 0.48);
@@ -991,7 +991,7 @@ START_TEST(test_stage)
     }
     /* the summary: the first cells in volume order within MC_STRESS_TIE of the maxima, at their
      * cell centres and layer depths */
-    const mc_stress_summary *ss = &res.stress_summary;
+    const mc_stage_stress_summary *ss = &res.stress_summary;
     const size_t iv = first_max(res.von_mises, nv), it = first_max(res.tresca, nv);
     const size_t at[2] = {iv, it};
     const double *got[2] = {ss->vm_max_at, ss->tresca_max_at};
@@ -1045,7 +1045,7 @@ START_TEST(test_stage_nomem)
     for (long k = 1;; k++) {
         const long before = mc_alloc_injected();
         mc_alloc_fail_at(k);
-        const int rc = mc_stress_stage(&sc, &res, &err);
+        const int rc = mc_stage_stress(&sc, &res, &err);
         mc_alloc_fail_at(0);
         if (mc_alloc_injected() == before) {
             ck_assert_int_eq(rc, MC_OK);
@@ -1075,13 +1075,13 @@ START_TEST(test_stage_bad)
     memset(&res, 0, sizeof res);
     res.grid = sc.grid;
     mc_error err;
-    ck_assert_int_eq(mc_stress_stage(&sc, &res, &err), MC_ERR_INPUT); /* no pressure */
+    ck_assert_int_eq(mc_stage_stress(&sc, &res, &err), MC_ERR_INPUT); /* no pressure */
     res.pressure = hertz_pressure(&sc.grid);
     sc.stress.ndepths = 0;
-    ck_assert_int_eq(mc_stress_stage(&sc, &res, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_stage_stress(&sc, &res, &err), MC_ERR_INPUT);
     sc.stress.ndepths = 2;
     sc.stress.kernel = MC_STRESS_POINT; /* depth 0 */
-    ck_assert_int_eq(mc_stress_stage(&sc, &res, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_stage_stress(&sc, &res, &err), MC_ERR_INPUT);
     ck_assert_ptr_null(res.von_mises);
     free(res.pressure);
 }
@@ -1378,7 +1378,7 @@ static void run_stage(const mc_scene *sc, const double *p, const mc_stress_tunin
     ck_assert(res->pressure != NULL);
     memcpy(res->pressure, p, sizeof *p * mc_grid_cells(&sc->grid));
     mc_error err;
-    ck_assert_msg(mc_stress_stage_tuned(sc, res, tune, &err) == MC_OK, "%s", err.msg);
+    ck_assert_msg(mc_stage_stress_tuned(sc, res, tune, &err) == MC_OK, "%s", err.msg);
 }
 
 typedef struct {
@@ -1411,7 +1411,7 @@ START_TEST(test_window)
     const mc_stress_tuning off = {MC_STRESS_AUTO, MC_STRESS_AUTO, MC_STRESS_OFF};
     run_stage(&sc, p, NULL, &win);
     run_stage(&sc, p, &off, &full);
-    const mc_stress_layout *lay = &win.stress_layout;
+    const mc_stage_stress_layout *lay = &win.stress_layout;
     ck_assert_int_eq(lay->windowed, 1);
     ck_assert_int_ge(lay->nwindows, 2);
     ck_assert_int_eq(full.stress_layout.windowed, 0);
@@ -1419,7 +1419,7 @@ START_TEST(test_window)
     ck_assert_int_eq(lay->window[lay->nwindows - 1].k1, 6);
     double worst_vm = 0.0, worst_c = 0.0;
     for (int w = 0; w < lay->nwindows; w++) {
-        const mc_stress_window *wn = &lay->window[w];
+        const mc_stage_stress_window *wn = &lay->window[w];
         if (w > 0)
             ck_assert_int_eq(wn->k0, lay->window[w - 1].k1 + 1);
         for (int k = wn->k0; k <= wn->k1; k++) {
@@ -1456,7 +1456,7 @@ START_TEST(test_window)
     ck_assert_msg(worst_vm <= MC_STRESS_WINDOW_FRACTION, "von Mises left out: %.3g", worst_vm);
     ck_assert_msg(worst_c <= MC_STRESS_WINDOW_FRACTION, "components left out: %.3g", worst_c);
     ck_assert(worst_vm > 0.0); /* the window did leave something out */
-    const mc_stress_summary *a = &win.stress_summary, *b = &full.stress_summary;
+    const mc_stage_stress_summary *a = &win.stress_summary, *b = &full.stress_summary;
     for (int d = 0; d < 3; d++) {
         ck_assert_double_eq(a->vm_max_at[d], b->vm_max_at[d]);
         ck_assert_double_eq(a->tresca_max_at[d], b->tresca_max_at[d]);
@@ -1543,8 +1543,8 @@ START_TEST(test_depth_auto_hertz)
     res.pressure = p;
     res.contact.solved = _i == 1;
     mc_error err;
-    ck_assert_msg(mc_stress_stage(&sc, &res, &err) == MC_OK, "%s", err.msg);
-    const mc_stress_layout *lay = &res.stress_layout;
+    ck_assert_msg(mc_stage_stress(&sc, &res, &err) == MC_OK, "%s", err.msg);
+    const mc_stage_stress_layout *lay = &res.stress_layout;
     long cells = 0;
     for (size_t i = 0; i < n; i++)
         cells += p[i] > (_i == 1 ? p_lub : 0.0);
@@ -1623,9 +1623,9 @@ START_TEST(test_depth_auto_rough)
     for (int k = 0; k < 24; k++) /* radii 0.1 ... 0.5: 2 ... 10 cells */
         add_hertz(&sc.grid, 60.0 * v[3 * k], 44.0 * v[3 * k + 1], 0.3 + 0.2 * v[3 * k + 2], p);
     add_hertz(&sc.grid, 10.0, -48.0, 0.35, p); /* across the periodic edge y = -Ly/2 */
-    mc_stress_patches pt;
+    mc_stage_stress_patches pt;
     mc_error err;
-    ck_assert_int_eq(mc_stress_find_patches(&sc.grid, p, 0.0, &pt, &err), MC_OK);
+    ck_assert_int_eq(mc_stage_stress_find_patches(&sc.grid, p, 0.0, &pt, &err), MC_OK);
     long largest;
     const int count = count_patches(&sc.grid, p, 0.0, &largest);
     ck_assert_int_ge(count, 5); /* several patches */
@@ -1642,7 +1642,7 @@ START_TEST(test_depth_auto_rough)
     for (int j = 0; j < sc.grid.ny; j++)
         for (int i = 60; i < 60 + 5 + (j % 3); i++)
             p[(size_t)j * sc.grid.nx + i] = 1.0;
-    ck_assert_int_eq(mc_stress_find_patches(&sc.grid, p, 0.0, &pt, &err), MC_OK);
+    ck_assert_int_eq(mc_stage_stress_find_patches(&sc.grid, p, 0.0, &pt, &err), MC_OK);
     ck_assert_int_eq(pt.patches, 1);
     ck_assert_double_le(fabs(pt.radius - 0.5 * 6.0 * sc.grid.dx), TOL_TIGHT);
     free(p);
@@ -1662,7 +1662,7 @@ START_TEST(test_depth_auto_bad)
     res.grid = sc.grid;
     res.pressure = hertz_pressure(&sc.grid);
     mc_error err;
-    ck_assert_int_eq(mc_stress_stage(&sc, &res, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_stage_stress(&sc, &res, &err), MC_ERR_INPUT);
     ck_assert_msg(strstr(err.msg, "depth_max = auto") && strstr(err.msg, "depth_min"), "%s",
                   err.msg);
     ck_assert_ptr_null(res.von_mises);

@@ -194,7 +194,7 @@ double mc_scene_estar(const mc_scene *s);
  * z_k = depth_min + k (depth_max - depth_min)/(layers - 1) (layers = 1: depth_min alone);
  * geometric z_k = depth_min (depth_max/depth_min)^(k/(layers - 1)); list: as given. The ends are
  * exact. MC_ERR_INPUT (as mc_scene_check) if the stress settings are invalid, or if depth_max is
- * auto (which only the stress stage resolves, from the contact patches: mc_stress_stage). */
+ * auto (which only the stress stage resolves, from the contact patches: mc_stage_stress). */
 int mc_scene_depths(const mc_scene *s, double *depths, int *ndepths, mc_error *err);
 
 /* Effective self-affine cut-off wavelengths, m: the scene's values, or for 0 the defaults

@@ -22,7 +22,7 @@ static double operator_bytes(int nx, int ny, int px, int py, mc_backend b)
     return 16 * half * 2 + 8 * tx * ty + 8 * tx * ty;
 }
 
-double mc_scene_memory_estimate(const mc_scene *s)
+double mc_memory_estimate(const mc_scene *s)
 {
     const mc_grid *g = &s->grid;
     double cells = (double)g->nx * (double)g->ny;
@@ -80,7 +80,7 @@ double mc_memory_available(void)
 
 int mc_memory_check(const mc_scene *s, mc_error *err)
 {
-    double need = mc_scene_memory_estimate(s), have = mc_memory_available();
+    double need = mc_memory_estimate(s), have = mc_memory_available();
     if (need <= have)
         return MC_OK;
     const double GiB = 1073741824.0;

@@ -9,7 +9,7 @@
 /* Estimated peak bytes of running scene s (surface fields, operator, contact solver with its
  * coarse levels, stress volumes and workspaces). A model calibrated against measured peaks
  * (reports/bench: memory): it errs on the high side by design. */
-double mc_scene_memory_estimate(const mc_scene *s);
+double mc_memory_estimate(const mc_scene *s);
 
 /* Memory the system can still give, bytes (MemAvailable of /proc/meminfo; physical memory if
  * that is unreadable); MC_MEMORY_LIMIT in the environment (bytes, for tests) overrides it. */

@@ -147,7 +147,7 @@ static int step_macro(runin_ctx *c, double F, double speed, mc_error *err)
     c->step->lubrication.rpm = speed;
     if (c->sc->lubrication.rpm2 > 0) /* rolling-sliding: the slide-to-roll ratio stays */
         c->step->lubrication.rpm2 = c->sc->lubrication.rpm2 * speed / c->sc->lubrication.rpm;
-    int rc = mc_lube_macro(c->step, &c->g, &c->res->lube, err);
+    int rc = mc_stage_lube_macro(c->step, &c->g, &c->res->lube, err);
     if (rc != MC_OK)
         return rc;
     const double pnom = c->res->lube.nominal_pressure;
@@ -202,7 +202,7 @@ static int yields(runin_ctx *c, const double *p, double p_lub, int *any, mc_erro
 }
 
 /* The elastic-plastic loop of a run-down step from the carried state; the state is updated. */
-static int plastic_step(runin_ctx *c, mc_plastic_step *record, mc_lube_contact *lc, int *conv,
+static int plastic_step(runin_ctx *c, mc_plastic_step *record, mc_stage_lube_contact *lc, int *conv,
                         mc_error *err)
 {
     const mc_scene *sc = c->sc;
@@ -213,7 +213,7 @@ static int plastic_step(runin_ctx *c, mc_plastic_step *record, mc_lube_contact *
         if (rc != MC_OK)
             return rc;
     }
-    *lc = (mc_lube_contact){.solver = c->solver,
+    *lc = (mc_stage_lube_contact){.solver = c->solver,
                             .K = c->K,
                             .h_target = r->lube.h_ehd,
                             .tolerance = sc->lubrication.tolerance};
@@ -236,7 +236,7 @@ static int plastic_step(runin_ctx *c, mc_plastic_step *record, mc_lube_contact *
                              .anderson = MC_RUNIN_ANDERSON,
                              .eps_p0 = c->eps_p,
                              .peq0 = c->peq,
-                             .contact = mc_lube_contact_step,
+                             .contact = mc_stage_lube_contact_step,
                              .contact_ctx = lc,
                              .ops = &c->ops,
                              .stop = stop_poll,
@@ -285,7 +285,7 @@ static int run_step(runin_ctx *c, int s, mc_runin_row *row, mc_plastic_step *rec
     row->solves = vr.solves;
     row->roots = 1;
     const mc_volume_result *last = &vr;
-    mc_lube_contact lc;
+    mc_stage_lube_contact lc;
     if (!up && c->plastic && rc == MC_OK) {
         int any = 0;
         rc = yields(c, r->pressure, vr.p_lub, &any, err);
@@ -305,10 +305,10 @@ static int run_step(runin_ctx *c, int s, mc_runin_row *row, mc_plastic_step *rec
                 last = &lc.last;
         }
     }
-    int src = mc_lube_outcome(c->step, last, r, err);
+    int src = mc_stage_lube_outcome(c->step, last, r, err);
     if (src != MC_OK)
         return src;
-    const mc_lube_summary *l = &r->lube;
+    const mc_stage_lube_summary *l = &r->lube;
     row->entrainment = l->entrainment;
     row->h_ehd = l->h_ehd;
     row->p_lub = l->p_lub;
@@ -363,7 +363,7 @@ static int plan_volume(runin_ctx *c, mc_error *err)
         for (int k = 0; k < NPROBE; k++)
             z[k] = (k + 0.5) * dz;
         if (rc == MC_OK)
-            rc = mc_plastic_stage_layer_maxima(sc, &c->g, c->res->pressure, 0.0, z, NPROBE, vm,
+            rc = mc_stage_plastic_layer_maxima(sc, &c->g, c->res->pressure, 0.0, z, NPROBE, vm,
                                                err);
         if (rc != MC_OK)
             return rc;
@@ -446,7 +446,7 @@ static int setup(runin_ctx *c, mc_error *err)
         mc_free(one);
     }
     if (rc == MC_OK && c->plastic) {
-        rc = mc_plastic_stage_law(sc, &c->law, err);
+        rc = mc_stage_plastic_law(sc, &c->law, err);
         if (rc != MC_OK)
             mc_error_prefix(err, "[plasticity] ");
         c->G = sc->body1.E / (2.0 * (1.0 + sc->body1.nu));
@@ -554,7 +554,7 @@ static int plastic_results(runin_ctx *c, const mc_plastic_step *records, int nre
 {
     const mc_scene *sc = c->sc;
     mc_results *r = c->res;
-    mc_plastic_summary *ps = &r->plastic;
+    mc_stage_plastic_summary *ps = &r->plastic;
     const size_t n = c->n, nv = (size_t)c->nvol;
     memset(ps, 0, sizeof *ps);
     ps->enabled = 1;

@@ -10,7 +10,7 @@
 
 static const double RAD_S_PER_RPM = 6.283185307179586476925286766559 / 60.0;
 
-int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, mc_error *err)
+int mc_stage_lube_macro(const mc_scene *sc, const mc_grid *g, mc_stage_lube_summary *lube, mc_error *err)
 {
     const double estar = mc_scene_estar(sc);
     const double a_nom = mc_grid_cell_area(g) * (double)mc_grid_cells(g);
@@ -73,11 +73,11 @@ int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, m
     return rc;
 }
 
-int mc_lube_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, const double *h_extra,
+int mc_stage_lube(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, const double *h_extra,
                   const double *p_start, mc_results *res, mc_error *err)
 {
-    mc_lube_summary *lube = &res->lube;
-    int rc = mc_lube_macro(sc, &res->grid, lube, err);
+    mc_stage_lube_summary *lube = &res->lube;
+    int rc = mc_stage_lube_macro(sc, &res->grid, lube, err);
     if (rc != MC_OK)
         return rc;
     mc_volume_problem prob = {.h = res->topography,
@@ -91,7 +91,7 @@ int mc_lube_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, cons
     if (rc != MC_OK && rc != MC_NOT_CONVERGED)
         return rc;
     mc_error oerr = {0};
-    int orc = mc_lube_outcome(sc, &vr, res, &oerr);
+    int orc = mc_stage_lube_outcome(sc, &vr, res, &oerr);
     if (orc != MC_OK) {
         *err = oerr;
         return orc;
@@ -99,10 +99,10 @@ int mc_lube_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, cons
     return rc;
 }
 
-int mc_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_results *res,
+int mc_stage_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_results *res,
                     mc_error *err)
 {
-    mc_lube_summary *lube = &res->lube;
+    mc_stage_lube_summary *lube = &res->lube;
     res->contact = vr->contact;
     lube->p_lub = vr->p_lub;
     lube->regime = mc_lube_regime_name(vr->regime);
@@ -135,10 +135,10 @@ int mc_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_results *
     return MC_OK;
 }
 
-int mc_lube_contact_step(void *ctx, const mc_contact_problem *cp, double *p, double *u,
+int mc_stage_lube_contact_step(void *ctx, const mc_contact_problem *cp, double *p, double *u,
                          double *gap, mc_contact_summary *sum, double *p_lub, mc_error *err)
 {
-    mc_lube_contact *lc = ctx;
+    mc_stage_lube_contact *lc = ctx;
     mc_volume_problem prob = {.h = cp->h,
                               .h_extra = cp->h_extra,
                               .load = cp->load,
