@@ -322,7 +322,7 @@ static void section_operators(vf_ctx *ctx, int quick, double *ratio256, double *
     mc_threads_begin(1, &scope);
     int last_n = 0, last_nz = 0;
     for (int k = 0; k < nop; k++) {
-        const int n = on[k], nz = onz[k], m = mc_fft_good_size(n);
+        const int n = on[k], nz = onz[k], m = mc_fftsize_good(n);
         const double pair = pair_time(2 * m, 2 * m, n <= 128 ? 20 : 7);
         op_cost c = {NAN, NAN, NAN, NAN, NAN, NAN};
         if (op_measure(n, nz, 0, n <= 128 ? 7 : 3, &c) != MC_OK) {

@@ -366,7 +366,7 @@ START_TEST(test_images_rule)
 END_TEST
 
 /* ny = 1, periodic in y: the images tile the y axis, so the table is the plane-strain strip of
- * width dx (mc_strip_uniform, with sigma_yy = nu (sigma_xx + sigma_zz), no xy, yz). */
+ * width dx (mc_flamant_strip_uniform, with sigma_yy = nu (sigma_xx + sigma_zz), no xy, yz). */
 START_TEST(test_strip_exact)
 {
     const mc_grid g = {9, 1, 1.0, 0.4, 0, 1};
@@ -382,7 +382,7 @@ START_TEST(test_strip_exact)
         for (int it = 0; it < tx; it++) {
             int used, ox = mc_table_offset(it, g.nx, tx, &used);
             double s[MC_NSTRESS];
-            mc_strip_uniform(ox * g.dx, zs[iz], 0.5 * g.dx, NU, s);
+            mc_flamant_strip_uniform(ox * g.dx, zs[iz], 0.5 * g.dx, NU, s);
             for (int c = 0; c < MC_NSTRESS; c++) {
                 md = fmax(md, fabs(k[c][it] - s[c]));
                 mb = fmax(mb, fabs(s[c]));
@@ -412,7 +412,7 @@ START_TEST(test_periodic_means)
             const int eq = (li == 0 && c == MC_SZZ) || (li == 1 && c == MC_SXZ) ||
                            (li == 2 && c == MC_SYZ);
             ck_assert_msg(fabs(m - (eq ? -1.0 : 0.0)) <= TOL_ROUNDOFF, "load %d %s: sum %.17g",
-                          li, mc_stress_name(c), m);
+                          li, mc_component_name(c), m);
         }
     }
     vols_free(k, 6);
@@ -642,7 +642,7 @@ START_TEST(test_uniform_patch)
         mc_rect_stress_p(0.0, 0.0, z[k], A, B, NU, r);
         for (int c = 0; c < MC_NSTRESS; c++)
             ck_assert_msg(fabs(s[c][(size_t)k * n + ic] - r[c]) <= TOL_BACKEND,
-                          "z=%g %s: %.17g vs %.17g", z[k], mc_stress_name(c),
+                          "z=%g %s: %.17g vs %.17g", z[k], mc_component_name(c),
                           s[c][(size_t)k * n + ic], r[c]);
     }
     /* just below: the rectangle's sigma_zz differs from -p by ~(z/A)^3 */
@@ -697,7 +697,7 @@ START_TEST(test_hertz_point_axis)
             for (int c = 0; c < 3; c++) {
                 err[gi][k][c] = fabs(s[c][(size_t)k * n + ic] - ref[c]);
                 ck_assert_msg(err[gi][k][c] <= tol, "a/dx=%d z=%g %s: error %.3g p0 > %.3g", r,
-                              z[k], mc_stress_name(c), err[gi][k][c], tol);
+                              z[k], mc_component_name(c), err[gi][k][c], tol);
             }
         }
         vols_free(s, 6);
@@ -707,7 +707,7 @@ START_TEST(test_hertz_point_axis)
         for (int c = 0; c < 3; c++)
             ck_assert_msg(err[0][k][c] >= RATIO_DX2 * err[1][k][c],
                           "z=%g %s: error %.3g -> %.3g does not fall as dx^2", z[k],
-                          mc_stress_name(c), err[0][k][c], err[1][k][c]);
+                          mc_component_name(c), err[0][k][c], err[1][k][c]);
 }
 END_TEST
 
@@ -1108,7 +1108,7 @@ static void check_each_component(double *const a[6], double *const b[6], size_t 
             md = fmax(md, fabs(a[c][i] - b[c][i]));
             mb = fmax(mb, fabs(b[c][i]));
         }
-        ck_assert_msg(md <= tol * mb, "%s, %s: %.3g relative", what, mc_stress_name(c),
+        ck_assert_msg(md <= tol * mb, "%s, %s: %.3g relative", what, mc_component_name(c),
                       mb > 0 ? md / mb : md);
     }
 }
@@ -1149,7 +1149,7 @@ START_TEST(test_parity_table)
             const int par = mc_stress_parity(load_bits[li], c);
             const double ex = (par & 1) ? -1.0 : 1.0, ey = (par & 2) ? -1.0 : 1.0;
             ck_assert_msg(fabs(s[c]) > TOL_TIGHT, "load %d %s vanishes at the test point", li,
-                          mc_stress_name(c));
+                          mc_component_name(c));
             ck_assert_double_le(fabs(sx[c] - ex * s[c]), TOL_TIGHT * fabs(s[c]));
             ck_assert_double_le(fabs(sy[c] - ey * s[c]), TOL_TIGHT * fabs(s[c]));
         }
@@ -1195,7 +1195,7 @@ static void check_quadrant(const grid_case *gc, mc_stress_kernel kernel)
                         }
                         const double ref = k[c][(size_t)j * tx + i];
                         ck_assert_msg(v == ref, "grid %dx%d load %d %s z=%g (%d,%d): %.17g vs %.17g",
-                                      g.nx, g.ny, li, mc_stress_name(c), z, i, j, v, ref);
+                                      g.nx, g.ny, li, mc_component_name(c), z, i, j, v, ref);
                         /* the mirror images: offsets (-i, j), (i, -j), (-i, -j) */
                         const int im = i ? tx - i : 0, jm = j ? ty - j : 0;
                         const double sx = (par & 1) ? -1.0 : 1.0, sy = (par & 2) ? -1.0 : 1.0;
@@ -1206,7 +1206,7 @@ static void check_quadrant(const grid_case *gc, mc_stress_kernel kernel)
                             ck_assert_msg(fabs(mirror[m]) <= TOL_MIRROR,
                                           "load %d %s (%d,%d) mirror %d: %.3g (largest entry "
                                           "%.3g)",
-                                          li, mc_stress_name(c), i, j, m, mirror[m], mk);
+                                          li, mc_component_name(c), i, j, m, mirror[m], mk);
                     }
             }
         }
@@ -1440,7 +1440,7 @@ START_TEST(test_window)
                         if (inside)
                             ck_assert_msg(d <= TOL_ROUNDOFF * smax,
                                           "layer %d cell (%d,%d) %s: %.3g relative", k, i, j,
-                                          mc_stress_name(c), d / smax);
+                                          mc_component_name(c), d / smax);
                         else
                             ck_assert_msg(win.stress[c][q] == 0.0, "outside holds %g",
                                           win.stress[c][q]);

@@ -225,8 +225,8 @@ int mc_conv_create(const mc_grid *g, mc_backend b, mc_conv **out, mc_error *err)
         return mc_fail(err, MC_ERR_NOMEM, "convolution engine: out of memory");
     c->g = *g;
     c->ops = ops;
-    c->tx = g->periodic_x ? g->nx : mc_fft_good_size(2 * g->nx - 1);
-    c->ty = g->periodic_y ? g->ny : mc_fft_good_size(2 * g->ny - 1);
+    c->tx = g->periodic_x ? g->nx : mc_fftsize_good(2 * g->nx - 1);
+    c->ty = g->periodic_y ? g->ny : mc_fftsize_good(2 * g->ny - 1);
     if ((rc = ops->create(c, err))) {
         ops->destroy(c);
         mc_free(c);

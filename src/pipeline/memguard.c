@@ -10,7 +10,7 @@
 #include "core/fftsize.h"
 
 /* Cells of the transform of one axis (padded when free, as conv.c). */
-static double axis_len(int n, int periodic) { return periodic ? n : mc_fft_good_size(2 * n - 1); }
+static double axis_len(int n, int periodic) { return periodic ? n : mc_fftsize_good(2 * n - 1); }
 
 /* Bytes of one operator on grid (nx, ny): fft - kernel spectrum, real and complex work buffers,
  * and the kernel table while it is built; direct - the table. */
