@@ -7,10 +7,13 @@
 #include <gsl/gsl_min.h>
 #include <gsl/gsl_multimin.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "contact/contact.h"
 #include "core/error.h"
+#include "core/grid.h"
 #include "reference/hertz.h"
 #include "kernels/invariants.h"
 #include "kernels/kernel.h"
@@ -1035,6 +1038,74 @@ START_TEST(test_line_equilibrium)
 }
 END_TEST
 
+
+
+/* The elliptical Hertz contact: the circle at equal radii; against an independent numerical
+ * solve (the FFT contact solver on a smooth ellipsoid, Rx = 2 mm, Ry = 8 mm) and against Hamrock
+ * & Brewe's fit k = 1.0339 (Ry/Rx)^0.636 of the axis ratio (their stated accuracy ~3 %). */
+START_TEST(test_ellipse)
+{
+    mc_error err = {0};
+    mc_hertz_ellipse h;
+    mc_hertz_point c;
+    const double es = 115.4e9, P = 5.0;
+    ck_assert_int_eq(mc_hertz_ellipse_from_load(3e-3, 3e-3, es, P, &h, &err), MC_OK);
+    ck_assert_int_eq(mc_hertz_point_from_load(3e-3, es, P, &c, &err), MC_OK);
+    ck_assert_double_eq_tol(h.ax, c.a, 1e-15 * c.a);
+    ck_assert_double_eq_tol(h.p0, c.p0, 1e-14 * c.p0);
+    ck_assert_double_eq_tol(h.delta, c.a * c.a / 3e-3, 1e-12 * h.delta);
+    /* continuity near the circle: ratio 1.01 within its own first-order change */
+    ck_assert_int_eq(mc_hertz_ellipse_from_load(3e-3, 3.03e-3, es, P, &h, &err), MC_OK);
+    ck_assert_double_le(fabs(h.ay / h.ax - 1.0), 0.01);
+    ck_assert_double_le(fabs(h.p0 / c.p0 - 1.0), 0.01);
+    /* the numerical solve */
+    ck_assert_int_eq(mc_hertz_ellipse_from_load(2e-3, 8e-3, es, P, &h, &err), MC_OK);
+    ck_assert_double_gt(h.ay, h.ax);
+    const double k_hb = 1.0339 * pow(4.0, 0.636);
+    ck_assert_double_le(fabs(h.ay / h.ax / k_hb - 1.0), 0.02);
+    const double dx = h.ax / 16.0;
+    const int nx = 64, ny = (int)ceil(4.0 * h.ay / dx) + 1;
+    mc_grid g = {nx, ny, dx, dx, 0, 0};
+    const size_t n = (size_t)nx * (size_t)ny;
+    double *hh = calloc(n, sizeof *hh), *p = calloc(n, sizeof *p), *gap = calloc(n, sizeof *gap);
+    ck_assert(hh && p && gap);
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) {
+            const double x = mc_grid_x(&g, i), y = mc_grid_y(&g, j);
+            hh[(size_t)j * nx + i] = x * x / (2 * h.Rx) + y * y / (2 * h.Ry);
+        }
+    mc_operator *K = NULL;
+    mc_contact_solver *s = NULL;
+    ck_assert_int_eq(mc_operator_plan_love(&g, es, MC_BACKEND_FFT, &K, &err), MC_OK);
+    mc_contact_options opt = {MC_METHOD_CG, 1e-10, 5000, 0, 0};
+    ck_assert_int_eq(mc_contact_create(K, &opt, &s, &err), MC_OK);
+    mc_contact_problem prob = {.h = hh, .p_cap = INFINITY, .control = MC_CONTROL_FORCE, .load = P};
+    mc_contact_summary sum;
+    ck_assert_int_eq(mc_contact_solve(s, &prob, p, NULL, gap, &sum, &err), MC_OK);
+    /* the extents: the last loaded cell along each axis through the centre, within one cell */
+    double xmax = 0, ymax = 0, pmax = 0;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            if (p[(size_t)j * nx + i] > 0) {
+                xmax = fmax(xmax, fabs(mc_grid_x(&g, i)));
+                ymax = fmax(ymax, fabs(mc_grid_y(&g, j)));
+                pmax = fmax(pmax, p[(size_t)j * nx + i]);
+            }
+    if (getenv("MC_TEST_VERBOSE"))
+        printf("ellipse: p_max/p0 %.5f, x extent/ax %.4f, y extent/ay %.4f, approach/delta %.5f\n",
+               pmax / h.p0, xmax / h.ax, ymax / h.ay, sum.approach / h.delta);
+    ck_assert_double_le(fabs(pmax / h.p0 - 1.0), 0.01); /* 16 cells per short semi-axis */
+    ck_assert_double_le(fabs(xmax - h.ax), dx);
+    ck_assert_double_le(fabs(ymax - h.ay), dx);
+    ck_assert_double_le(fabs(sum.approach / h.delta - 1.0), 0.01);
+    mc_contact_destroy(&s);
+    mc_operator_destroy(&K);
+    free(hh);
+    free(p);
+    free(gap);
+}
+END_TEST
+
 Suite *suite_hertz(void);
 Suite *suite_hertz(void)
 {
@@ -1044,6 +1115,7 @@ Suite *suite_hertz(void)
     tcase_set_timeout(tc, 120);
     tcase_add_loop_test(tc, test_point_relations, 0, 3);
     tcase_add_test(tc, test_input_errors);
+    tcase_add_test(tc, test_ellipse);
     tcase_add_loop_test(tc, test_point_uz_quadrature, 0, (int)(sizeof uz_rho / sizeof uz_rho[0]));
     tcase_add_test(tc, test_point_uz_far_field);
     tcase_add_test(tc, test_point_axis_table);

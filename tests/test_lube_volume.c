@@ -2,6 +2,8 @@
  * independent contact solves and the checks of theory.md §11, and the friction
  * split (lube/friction.h) against hand values. */
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -422,6 +424,215 @@ START_TEST(friction_hand_values)
 }
 END_TEST
 
+/* max(a, b) that keeps a NaN (fmax drops it): a NaN deviation must fail the bound it meets */
+static double max_keep_nan(double a, double b) { return isnan(a) || isnan(b) ? NAN : fmax(a, b); }
+
+/* ---- the whole contact: a lubricant pressure profile over the Hertz band (theory.md §11.4) -- */
+
+/* A smooth cylinder R on a line grid (ny = 1, periodic y: plane strain), nx cells of dx; the band
+ * |x| <= b holds the profile w = 1. */
+typedef struct {
+    mc_grid g;
+    size_t n;
+    double *h, *w, *p, *u, *gap;
+    double R, b, dx, wprime; /* load per length, N/m */
+    mc_operator *K;
+    mc_contact_solver *s;
+} line_band;
+
+static void make_line_band(line_band *lb, int nx, double dx, double R, double wprime)
+{
+    mc_grid g = {nx, 1, dx, dx, 0, 1};
+    lb->g = g;
+    lb->n = (size_t)nx;
+    lb->dx = dx;
+    lb->R = R;
+    lb->wprime = wprime;
+    lb->b = sqrt(8.0 * wprime * R / (M_PI * 2.0 * E_STAR)); /* Hertz line: b^2 = 4 w' R / (pi E*) */
+    lb->h = mc_zeros(lb->n);
+    lb->w = mc_zeros(lb->n);
+    lb->p = mc_zeros(lb->n);
+    lb->u = mc_zeros(lb->n);
+    lb->gap = mc_zeros(lb->n);
+    ck_assert(lb->h && lb->w && lb->p && lb->u && lb->gap);
+    for (int i = 0; i < nx; i++) {
+        const double x = mc_grid_x(&g, i);
+        lb->h[i] = x * x / (2.0 * R);
+        lb->w[i] = fabs(x) <= lb->b ? 1.0 : 0.0;
+    }
+    mc_error err = {0};
+    lb->K = NULL;
+    lb->s = NULL;
+    ck_assert_msg(mc_operator_plan_love(&g, E_STAR, MC_BACKEND_FFT, &lb->K, &err) == MC_OK, "%s",
+                  err.msg);
+    mc_contact_options opt = {MC_METHOD_CG, CT, 20000, 0, 0};
+    ck_assert_msg(mc_contact_create(lb->K, &opt, &lb->s, &err) == MC_OK, "%s", err.msg);
+}
+
+static void free_line_band(line_band *lb)
+{
+    mc_contact_destroy(&lb->s);
+    mc_operator_destroy(&lb->K);
+    double *a[] = {lb->h, lb->w, lb->p, lb->u, lb->gap};
+    for (int k = 0; k < 5; k++)
+        mc_free(a[k]);
+}
+
+/* Dry: the profile's band does not change a solve at p_lub = 0, and the pressure is Hertz's
+ * (p0 = 2 w' / (pi b)) within the edge cell's error: at dx = b/40 the cell straddling the edge
+ * sees sqrt(1 - (x/b)^2) change by ~sqrt(2 dx / b) = 0.22 of p0 across it; the discrete
+ * solution's largest deviation is ~1 % there, 1e-6 of p0 at the centre. */
+START_TEST(whole_band_dry_is_hertz)
+{
+    line_band lb;
+    make_line_band(&lb, 200, 0.5e-6, 2e-3, 2e4);
+    const double ly = lb.g.dy, p0 = 2.0 * lb.wprime / (M_PI * lb.b);
+    mc_volume_problem vp = {.h = lb.h, .load = lb.wprime * ly, .h_target = 0, .weight = lb.w};
+    mc_volume_result res;
+    mc_error err = {0};
+    ck_assert_msg(mc_volume_equilibrium(lb.s, lb.K, &vp, lb.p, lb.u, lb.gap, &res, &err) == MC_OK,
+                  "%s", err.msg);
+    ck_assert_int_eq(res.regime, MC_REGIME_DRY);
+    double worst = 0, centre = 0;
+    for (size_t i = 0; i < lb.n; i++) {
+        const double t = mc_grid_x(&lb.g, (int)i) / lb.b;
+        const double ph = fabs(t) < 1 ? p0 * sqrt(1 - t * t) : 0.0;
+        worst = max_keep_nan(worst, fabs(lb.p[i] - ph) / p0);
+        if (fabs(t) < 0.5)
+            centre = max_keep_nan(centre, fabs(lb.p[i] - ph) / p0);
+    }
+    if (getenv("MC_TEST_VERBOSE"))
+        printf("whole band dry: |p - p_Hertz| / p0 max %.3g, |x| < b/2 %.3g\n", worst, centre);
+    ck_assert_double_le(worst, 0.03);   /* measured 0.013 */
+    ck_assert_double_le(centre, 1e-4);  /* measured 1.6e-6 */
+    /* the nominal area is the band, not the grid */
+    size_t nb = 0;
+    for (size_t i = 0; i < lb.n; i++)
+        nb += lb.w[i] > 0;
+    ck_assert_double_eq_tol(res.a_nom, (double)nb * lb.dx * ly, 1e-15 * res.a_nom);
+    free_line_band(&lb);
+}
+END_TEST
+
+/* Full film: the fluid carries w' as a uniform pressure on the band's cells, whose plane-strain
+ * deflection is closed form (both bodies, 1/E* = sum (1 - nu^2)/E):
+ *   u(x) = -(2 p / (pi E*)) [(x + c) ln|x + c| - (x - c) ln|x - c|] + const,
+ * c the half-width of the loaded cells (a whole number of cells). The onset gap is
+ * h + u - min(h + u) (the solids touch at one point): compared cell by cell, and V with the sum
+ * over the band alone. The line operator integrates the strip pressure exactly (operator.h), so
+ * only round-off remains: 1e-9 of the largest gap. */
+START_TEST(whole_band_full_film_closed_form)
+{
+    line_band lb;
+    make_line_band(&lb, 240, 0.5e-6, 2e-3, 2e4);
+    const double ly = lb.g.dy;
+    mc_volume_problem vp = {.h = lb.h, .load = lb.wprime * ly, .h_target = 1e-3, .weight = lb.w};
+    mc_volume_result res;
+    mc_error err = {0};
+    ck_assert_msg(mc_volume_equilibrium(lb.s, lb.K, &vp, lb.p, lb.u, lb.gap, &res, &err) == MC_OK,
+                  "%s", err.msg);
+    ck_assert_int_eq(res.regime, MC_REGIME_FULL_FILM);
+    size_t nb = 0;
+    for (size_t i = 0; i < lb.n; i++)
+        nb += lb.w[i] > 0;
+    const double c = 0.5 * (double)nb * lb.dx, pf = lb.wprime / (2.0 * c);
+    ck_assert_double_eq_tol(res.p_lub, pf, 1e-14 * pf);
+    /* the closed form's gap at onset, lifted by the separation */
+    double *ref = mc_zeros(lb.n);
+    ck_assert_ptr_nonnull(ref);
+    double lo = INFINITY;
+    for (size_t i = 0; i < lb.n; i++) {
+        const double x = mc_grid_x(&lb.g, (int)i);
+        const double f = (x + c) * log(fabs(x + c)) - (x - c) * log(fabs(x - c));
+        ref[i] = lb.h[i] - 2.0 * pf / (M_PI * E_STAR) * f;
+        lo = fmin(lo, ref[i]);
+    }
+    double worst = 0, gmax = 0, vref = 0;
+    for (size_t i = 0; i < lb.n; i++) {
+        ref[i] += res.separation - lo;
+        gmax = fmax(gmax, ref[i]);
+        worst = max_keep_nan(worst, fabs(lb.gap[i] - ref[i]));
+        if (lb.w[i] > 0)
+            vref += ref[i] * lb.dx * ly;
+        ck_assert_double_eq_tol(lb.p[i], lb.w[i] > 0 ? pf : 0.0, 1e-14 * pf);
+    }
+    if (getenv("MC_TEST_VERBOSE"))
+        printf("whole band full film: gap vs closed form %.3g of the largest gap; V %.9g vs %.9g\n",
+               worst / gmax, res.volume, vref);
+    ck_assert_double_le(worst, 1e-9 * gmax);
+    ck_assert_double_eq_tol(res.volume, vref, 1e-9 * vref);
+    ck_assert_double_eq_tol(res.volume, 1e-3 * res.a_nom, 1e-9 * res.volume); /* V = V* */
+    mc_free(ref);
+    free_line_band(&lb);
+}
+END_TEST
+
+/* Mixed, rough: the root meets V = V* over the band; the bound is p_lub on the band and 0
+ * outside (p >= bound, gap ~ 0 where p exceeds it); the split counts the band alone; and
+ * w = 1 everywhere reproduces the solve without a profile. */
+START_TEST(whole_band_mixed_rough)
+{
+    line_band lb;
+    make_line_band(&lb, 256, 0.5e-6, 2e-3, 2e4);
+    double *rough = mc_zeros(lb.n);
+    ck_assert_ptr_nonnull(rough);
+    uint64_t st = 7;
+    for (size_t i = 0; i < lb.n; i++) { /* a few tenths of a um of random-walk roughness */
+        st = st * 6364136223846793005ULL + 1442695040888963407ULL;
+        rough[i] = (i ? rough[i - 1] : 0.0) + 0.05e-6 * ((double)(st >> 11) / 9007199254740992.0 - 0.5);
+    }
+    for (size_t i = 0; i < lb.n; i++)
+        lb.h[i] += rough[i];
+    const double ly = lb.g.dy;
+    mc_volume_problem vp = {.h = lb.h, .load = lb.wprime * ly, .h_target = 0, .weight = lb.w};
+    mc_volume_result res;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_volume_equilibrium(lb.s, lb.K, &vp, lb.p, lb.u, lb.gap, &res, &err), MC_OK);
+    /* a target between the dry pocket volume over the band and the onset's */
+    const double vt = res.volume + 0.3 * (res.v_onset - res.volume);
+    vp.h_target = vt / res.a_nom;
+    ck_assert_msg(mc_volume_equilibrium(lb.s, lb.K, &vp, lb.p, lb.u, lb.gap, &res, &err) == MC_OK,
+                  "%s", err.msg);
+    ck_assert_int_eq(res.regime, MC_REGIME_MIXED);
+    double vband = 0, gscale = 0;
+    for (size_t i = 0; i < lb.n; i++)
+        gscale = fmax(gscale, fabs(lb.h[i]));
+    for (size_t i = 0; i < lb.n; i++) {
+        const double lo = res.p_lub * lb.w[i];
+        ck_assert_double_ge(lb.p[i], lo - 1e-9 * res.p_nominal);
+        if (lb.p[i] > lo * (1 + 1e-9) + 1e-9 * res.p_nominal)
+            ck_assert_double_le(fabs(lb.gap[i]), 1e-6 * gscale);
+        if (lb.w[i] > 0)
+            vband += lb.gap[i] * lb.dx * ly;
+    }
+    ck_assert_double_le(fabs(vband - vt), 2 * ROOT_TOL * vt);
+    mc_lube_split sp;
+    ck_assert_int_eq(mc_lube_split_weighted(lb.p, lb.gap, lb.w, lb.n, lb.dx * ly, res.p_lub,
+                                            vp.load, &sp, &err), MC_OK);
+    ck_assert_double_eq_tol(sp.a_nom, res.a_nom, 1e-15 * res.a_nom);
+    ck_assert_double_eq_tol(sp.volume, vband, 1e-12 * vband);
+    /* the load balance: solid + fluid = F (force control) */
+    ck_assert_double_eq_tol(sp.f_solid + sp.f_fluid, vp.load, 1e-8 * vp.load);
+    /* w = 1 everywhere is the solve without a profile */
+    for (size_t i = 0; i < lb.n; i++)
+        lb.w[i] = 1.0;
+    vp.h_target = vt / res.a_nom;
+    mc_volume_result r1, r2;
+    double *p2 = mc_zeros(lb.n), *g2 = mc_zeros(lb.n);
+    ck_assert(p2 && g2);
+    ck_assert_int_eq(mc_volume_equilibrium(lb.s, lb.K, &vp, lb.p, NULL, lb.gap, &r1, &err), MC_OK);
+    vp.weight = NULL;
+    ck_assert_int_eq(mc_volume_equilibrium(lb.s, lb.K, &vp, p2, NULL, g2, &r2, &err), MC_OK);
+    ck_assert_double_eq_tol(r1.p_lub, r2.p_lub, 1e-10 * r2.p_nominal);
+    for (size_t i = 0; i < lb.n; i++)
+        ck_assert_double_eq_tol(lb.p[i], p2[i], 1e-8 * r2.p_nominal);
+    mc_free(p2);
+    mc_free(g2);
+    mc_free(rough);
+    free_line_band(&lb);
+}
+END_TEST
+
 Suite *suite_lube_volume(void);
 Suite *suite_lube_volume(void)
 {
@@ -433,6 +644,9 @@ Suite *suite_lube_volume(void)
     tcase_add_loop_test(tc, limits, 0, 2);
     tcase_add_test(tc, not_converged_and_bad_input);
     tcase_add_test(tc, friction_hand_values);
+    tcase_add_test(tc, whole_band_dry_is_hertz);
+    tcase_add_test(tc, whole_band_full_film_closed_form);
+    tcase_add_test(tc, whole_band_mixed_rough);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -317,6 +317,8 @@ static mc_material_ratio rk_by_hand(const double *h, size_t n)
         a2 += h[k] < c100 ? (c100 - h[k]) * 100.0 / (double)n : 0;
     }
     mc_material_ratio m = {.k = c0 - c100,
+                           .c0 = c0,
+                           .c100 = c100,
                            .mr1 = 100.0 * (double)above / (double)n,
                            .mr2 = 100.0 * (double)atleast / (double)n};
     m.pk = m.mr1 > 0 ? 2 * a1 / m.mr1 : 0;
@@ -446,6 +448,65 @@ static double ellip_e(double m)
     }
     return M_PI / (2 * a) * (1 - sum);
 }
+
+/* The areal material-ratio curve (mc_roughness_material_curve). Heights a permutation of
+ * 0 .. n-1 (uniform): the j-th highest, n - 1 - j, sits at Mr = 100 (j + 1/2) / n, so the curve
+ * about the mean (n - 1) / 2 is exactly h(Mr) = (n - 1) / 2 - (n Mr / 100 - 1/2) between the
+ * first and last points and constant beyond. Its Sk family is mc_roughness_compute's to the bit
+ * (the same heights about the same mean), the line's c0 and c100 those of the contract written
+ * out in rk_by_hand; a mask leaves the masked points out; bad input is refused. */
+START_TEST(test_material_curve)
+{
+    enum { NX = 20, NY = 15, N = NX * NY, NPTS = 41 };
+    double z[N], curve[NPTS], hm[N];
+    for (int k = 0; k < N; k++)
+        z[k] = 1e-7 * (double)((k * 7) % N); /* 7 and 300 coprime: a permutation */
+    mc_material_ratio line;
+    mc_error err = {0};
+    ck_assert_int_eq(mc_roughness_material_curve(z, NULL, N, NPTS, curve, &line, &err), MC_OK);
+    const double t = 1e-7 * N * TOL_ROUNDOFF; /* round-off of the mean of N heights */
+    for (int k = 0; k < NPTS; k++) {
+        double mr = 100.0 * k / (NPTS - 1), x = N * mr / 100.0 - 0.5;
+        x = x < 0 ? 0 : x > N - 1 ? N - 1 : x;
+        ck_assert_double_eq_tol(curve[k], 1e-7 * (0.5 * (N - 1) - x), t);
+        if (k)
+            ck_assert_double_le(curve[k], curve[k - 1]);
+    }
+    mc_roughness_params p = compute(z, NULL, NX, NY, 1e-6, 1e-6, 0, 0, 0);
+    ck_assert_double_eq(curve[0], p.Sp);
+    ck_assert_double_eq(curve[NPTS - 1], -p.Sv);
+    ck_assert_double_eq(line.k, p.Sk);
+    ck_assert_double_eq(line.pk, p.Spk);
+    ck_assert_double_eq(line.vk, p.Svk);
+    ck_assert_double_eq(line.mr1, p.Smr1);
+    ck_assert_double_eq(line.mr2, p.Smr2);
+    double mean = 0;
+    for (int k = 0; k < N; k++)
+        mean += z[k];
+    mean /= N;
+    for (int k = 0; k < N; k++)
+        hm[k] = z[k] - mean;
+    mc_material_ratio m = rk_by_hand(hm, N);
+    ck_assert_double_eq_tol(line.c0, m.c0, t);
+    ck_assert_double_eq_tol(line.c100, m.c100, t);
+    ck_assert_double_eq_tol(line.c0 - line.c100, line.k, t);
+    /* a mask: without the highest point the curve starts at the next one */
+    unsigned char v[N];
+    memset(v, 1, sizeof v);
+    for (int k = 0; k < N; k++)
+        v[k] = z[k] < 1e-7 * (N - 1.5);
+    ck_assert_int_eq(mc_roughness_material_curve(z, v, N, NPTS, curve, NULL, &err), MC_OK);
+    ck_assert_double_eq_tol(curve[0], 1e-7 * (N - 2) - 1e-7 * 0.5 * (N - 2), t);
+    ck_assert_int_eq(mc_roughness_material_curve(z, NULL, N, 1, curve, NULL, &err), MC_ERR_INPUT);
+    ck_assert_msg(strstr(err.msg, "at least 2"), "%s", err.msg);
+    z[5] = NAN;
+    ck_assert_int_eq(mc_roughness_material_curve(z, NULL, N, NPTS, curve, NULL, &err),
+                     MC_ERR_INPUT);
+    ck_assert_msg(strstr(err.msg, "not finite"), "%s", err.msg);
+    memset(v, 0, sizeof v);
+    ck_assert_int_eq(mc_roughness_material_curve(z, v, N, NPTS, curve, NULL, &err), MC_ERR_INPUT);
+}
+END_TEST
 
 START_TEST(test_areal_slopes)
 {
@@ -716,6 +777,7 @@ Suite *suite_roughness(void)
     tcase_add_test(tc, test_rk_gaussian);
     tcase_add_loop_test(tc, test_skewed_signed_parameters, 0, 2);
     tcase_add_test(tc, test_areal_slopes);
+    tcase_add_test(tc, test_material_curve);
     tcase_add_test(tc, test_cutoff_below_sampling);
     tcase_add_test(tc, test_iso4288_table);
     tcase_add_test(tc, test_iso4288_iteration);

@@ -10,17 +10,23 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <ctype.h>
+#include <stddef.h>
+
 #include "case/case.h"
 #include "contact/contact.h"
 #include "core/alloc.h"
 #include "core/threads.h"
 #include "kernels/kernel.h"
 #include "operator/operator.h"
+#include "io/npy.h"
 #include "pipeline/checkpoint.h"
+#include "pipeline/output.h"
 #include "pipeline/pipeline.h"
 #include "pipeline/runin.h"
 #include "plastic/hardening.h"
 #include "plastic/loop.h"
+#include "surface/roughness.h"
 #include "surface/surface.h"
 #include "test_util.h"
 
@@ -410,6 +416,278 @@ START_TEST(lubricated_plastic_stage)
 }
 END_TEST
 
+/* ---- what shows running-in: the ISO columns, the material-ratio curves, the figures --------- */
+
+/* The lines of a file written by a run (at most max; each malloc'ed, newline removed). */
+static int read_lines(const char *dir, const char *name, char **lines, int max)
+{
+    char path[700], buf[8192];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "r");
+    ck_assert_msg(f != NULL, "cannot open %s", path);
+    int n = 0;
+    while (n < max && fgets(buf, sizeof buf, f)) {
+        buf[strcspn(buf, "\n")] = '\0';
+        lines[n] = strdup(buf);
+        ck_assert(lines[n] != NULL);
+        n++;
+    }
+    ck_assert_msg(!fgets(buf, sizeof buf, f), "%s has more than %d lines", path, max);
+    fclose(f);
+    return n;
+}
+
+/* 0-based column of name in a CSV header line (-1: none). */
+static int csv_col(const char *header, const char *name)
+{
+    const size_t len = strlen(name);
+    int col = 0;
+    for (const char *p = header;; col++) {
+        const char *q = strchr(p, ',');
+        size_t l = q ? (size_t)(q - p) : strlen(p);
+        if (l == len && strncmp(p, name, len) == 0)
+            return col;
+        if (!q)
+            return -1;
+        p = q + 1;
+    }
+}
+
+/* Field col of a CSV line as a number (the test fails when it is not one). */
+static double csv_num(const char *line, int col)
+{
+    const char *p = line;
+    for (int c = 0; c < col; c++) {
+        p = strchr(p, ',');
+        ck_assert_msg(p != NULL, "no column %d in '%s'", col, line);
+        p++;
+    }
+    char *end;
+    double v = strtod(p, &end);
+    ck_assert_msg(end != p && (*end == ',' || *end == '\0'), "column %d of '%s' is no number",
+                  col, line);
+    return v;
+}
+
+/* Does text hold name as a word (no letter, digit or '_' on either side)? */
+static int has_word(const char *text, const char *name)
+{
+    const size_t len = strlen(name);
+    for (const char *p = strstr(text, name); p; p = strstr(p + 1, name)) {
+        int before = p > text && (isalnum((unsigned char)p[-1]) || p[-1] == '_');
+        int after = isalnum((unsigned char)p[len]) || p[len] == '_';
+        if (!before && !after)
+            return 1;
+    }
+    return 0;
+}
+
+/* The roughness columns of runin.csv, the parameter of mc_roughness_params each holds and the
+ * field of the row (results.h) it comes from. */
+static const struct {
+    const char *name;
+    size_t param, row;
+} iso_cols[] = {
+#define ISO(n, f) {#n, offsetof(mc_roughness_params, n), offsetof(mc_runin_row, f)}
+    ISO(Ra, ra),   ISO(Rq, rq),   ISO(Rz, rz),   ISO(Sa, sa),   ISO(Sq, sq),     ISO(Rpk, rpk),
+    ISO(Rk, rk),   ISO(Rvk, rvk), ISO(Mr1, mr1), ISO(Mr2, mr2), ISO(Sp, sp),     ISO(Spk, spk),
+    ISO(Sk, sk),   ISO(Svk, svk), ISO(Smr1, smr1), ISO(Smr2, smr2),
+#undef ISO
+};
+#define N_ISO ((int)(sizeof iso_cols / sizeof iso_cols[0]))
+
+static double field_at(const void *base, size_t off)
+{
+    double v;
+    memcpy(&v, (const char *)base + off, sizeof v);
+    return v;
+}
+
+/* The Mr (%) at which a non-increasing sampled curve (Mr_k = 100 k / (n - 1)) falls to level:
+ * below it (strict) or to it (at), linear between the samples. */
+static double crossing(const double *mr, const double *h, int n, double level, int strict)
+{
+    for (int k = 0; k < n; k++)
+        if (strict ? h[k] < level : h[k] <= level) {
+            if (k == 0)
+                return mr[0];
+            double t = (h[k - 1] - level) / (h[k - 1] - h[k]);
+            return mr[k - 1] + t * (mr[k] - mr[k - 1]);
+        }
+    return mr[n - 1];
+}
+
+/* runin.csv's roughness columns read back equal the roughness module's parameters recomputed
+ * here from the written surface_initial.npy (rows before the first yielding step) and
+ * surface_final.npy (rows from the last yielding step on), and the driver's rows in between;
+ * material_ratio.csv holds the areal curves of the two files: non-increasing, from Sp down to
+ * -Sv, crossing its equivalent straight line's ends at Smr1 and Smr2 of the csv; docs/outputs.md
+ * names the columns; runin.gp draws its five figures (where gnuplot is installed). */
+START_TEST(iso_columns)
+{
+    const mc_results *r = plastic_reference();
+    const mc_runin_summary *ri = &r->runin;
+    mc_scene s;
+    scene(&s, "", 2, PLASTIC, 0, NULL);
+    char dir[700];
+    snprintf(dir, sizeof dir, "%s/out", test_tmpdir());
+    mc_error err = {0};
+    ck_assert_msg(mc_output_write(dir, &s, r, &err) == MC_OK, "%s", err.msg);
+    /* the parameters of the written surfaces, with the options the driver documents: those of
+     * roughness.initial (no [roughness] cutoff: rows levelled, not filtered) */
+    mc_roughness_options o;
+    mc_roughness_options_default(&o);
+    o.cutoff = s.roughness.cutoff;
+    o.filter = s.roughness.cutoff > 0;
+    o.periodic_x = s.grid.periodic_x;
+    o.periodic_y = s.grid.periodic_y;
+    const char *files[2] = {"surface_initial.npy", "surface_final.npy"};
+    mc_roughness_params p[2];
+    double *z[2];
+    int nx = 0, ny = 0;
+    for (int k = 0; k < 2; k++) {
+        char path[800];
+        snprintf(path, sizeof path, "%s/%s", dir, files[k]);
+        ck_assert_msg(mc_npy_read(path, &z[k], &ny, &nx, &err) == MC_OK, "%s", err.msg);
+        ck_assert(nx == s.grid.nx && ny == s.grid.ny);
+        ck_assert_msg(mc_roughness_compute(z[k], NULL, nx, ny, s.grid.dx, s.grid.dy, &o, &p[k],
+                                           &err) == MC_OK,
+                      "%s", err.msg);
+        /* Sp from its definition: the highest point above the mean plane */
+        double mean = 0, hi = -INFINITY;
+        for (int i = 0; i < nx * ny; i++)
+            mean += z[k][i];
+        mean /= nx * ny;
+        for (int i = 0; i < nx * ny; i++)
+            hi = fmax(hi, z[k][i] - mean);
+        ck_assert_double_eq_tol(p[k].Sp, hi, TOL_ROUNDOFF * p[k].Sq);
+    }
+    ck_assert_msg(p[1].Sp < p[0].Sp && p[1].Spk < p[0].Spk, "the peaks did not fall: Sp %g -> %g",
+                  p[0].Sp, p[1].Sp);
+    char *lines[64];
+    int nl = read_lines(dir, "runin.csv", lines, 64);
+    ck_assert_int_eq(nl, ri->done + 1);
+    int first_plastic = -1, last_plastic = -1;
+    for (int k = 0; k < ri->done; k++)
+        if (ri->rows[k].plastic) {
+            first_plastic = first_plastic < 0 ? k : first_plastic;
+            last_plastic = k;
+        }
+    ck_assert(first_plastic > 0); /* at least one row of each surface */
+    int ncols = 1;
+    for (const char *c = lines[0]; (c = strchr(c, ',')); c++)
+        ncols++;
+    for (int k = 0; k < ri->done; k++) {
+        int n = 1;
+        for (const char *c = lines[k + 1]; (c = strchr(c, ',')); c++)
+            n++;
+        ck_assert_int_eq(n, ncols);
+        const mc_roughness_params *want = k < first_plastic   ? &p[0]
+                                          : k >= last_plastic ? &p[1]
+                                                              : NULL;
+        for (int c = 0; c < N_ISO; c++) {
+            int col = csv_col(lines[0], iso_cols[c].name);
+            ck_assert_msg(col >= 0, "runin.csv has no column %s", iso_cols[c].name);
+            double v = csv_num(lines[k + 1], col);
+            /* %.17g reads back to the bit; the recomputation is the same function on the same
+             * heights (the .npy holds them to the bit): equality */
+            double ref = want ? field_at(want, iso_cols[c].param)
+                              : field_at(&ri->rows[k], iso_cols[c].row);
+            ck_assert_msg(v == ref, "row %d %s: csv %.17g, recomputed %.17g", k + 1,
+                          iso_cols[c].name, v, ref);
+        }
+    }
+    /* material_ratio.csv */
+    char *mr_lines[1100];
+    int nm = read_lines(dir, "material_ratio.csv", mr_lines, 1100);
+    ck_assert_int_ge(nm, 3);
+    const int npts = nm - 1;
+    double *mr = malloc(sizeof(double) * 5 * (size_t)npts);
+    ck_assert(mr != NULL);
+    const char *mcols[5] = {"Mr", "initial", "final", "line_initial", "line_final"};
+    for (int c = 0; c < 5; c++) {
+        int col = csv_col(mr_lines[0], mcols[c]);
+        ck_assert_msg(col >= 0, "material_ratio.csv has no column %s", mcols[c]);
+        for (int k = 0; k < npts; k++)
+            mr[c * npts + k] = csv_num(mr_lines[k + 1], col);
+    }
+    const char *smr1 = "Smr1", *smr2 = "Smr2";
+    for (int k = 0; k < 2; k++) {
+        const double *h = mr + (1 + k) * npts, *line = mr + (3 + k) * npts;
+        const char *row = lines[k ? ri->done : 1]; /* the first row: the initial surface */
+        for (int i = 0; i < npts; i++) {
+            ck_assert_double_eq_tol(mr[i], 100.0 * i / (npts - 1), TOL_TIGHT * 100);
+            if (i)
+                ck_assert_msg(h[i] <= h[i - 1], "%s: the curve rises at Mr = %g %%", mcols[1 + k],
+                              mr[i]);
+        }
+        ck_assert_double_eq(h[0], p[k].Sp);
+        ck_assert_double_eq(h[npts - 1], -p[k].Sv);
+        /* the equivalent straight line: its drop over 0 .. 100 % is Sk (round-off of the
+         * line's evaluation, a few ulp of heights of 1e-7 m) */
+        const double sk = csv_num(row, csv_col(lines[0], "Sk"));
+        ck_assert_double_eq_tol(line[0] - line[npts - 1], sk, TOL_ROUNDOFF * sk);
+        /* where the curve crosses the line's ends: Smr1 (heights above c0) and Smr2 (at or
+         * above c100). The n heights sit at Mr = 100 (j + 1/2) / n, so the crossing of the
+         * piecewise-linear curve lies within 50 / n % of the share, and the sampling of the file
+         * (step 100 / (npts - 1)) adds at most one step. */
+        const double tol = 50.0 / (nx * ny) + 100.0 / (npts - 1);
+        const double c1 = crossing(mr, h, npts, line[0], 0);
+        const double c2 = crossing(mr, h, npts, line[npts - 1], 1);
+        const double want1 = csv_num(row, csv_col(lines[0], smr1));
+        const double want2 = csv_num(row, csv_col(lines[0], smr2));
+        if (getenv("MC_TEST_VERBOSE"))
+            printf("material ratio %s: crossings %.3f %% (Smr1 %.3f %%), %.3f %% (Smr2 %.3f %%), "
+                   "tolerance %.3f %%\n", mcols[1 + k], c1, want1, c2, want2, tol);
+        ck_assert_msg(fabs(c1 - want1) <= tol, "%s: the curve crosses c0 at %g %%, Smr1 %g %%",
+                      mcols[1 + k], c1, want1);
+        ck_assert_msg(fabs(c2 - want2) <= tol, "%s: the curve crosses c100 at %g %%, Smr2 %g %%",
+                      mcols[1 + k], c2, want2);
+    }
+    /* docs/outputs.md (generated from the output table, test_output checks that) names every
+     * roughness column of runin.csv */
+    FILE *f = fopen("docs/outputs.md", "r");
+    ck_assert_msg(f != NULL, "cannot open docs/outputs.md (run the tests from the repository root)");
+    char doc[8192];
+    int found = 0;
+    while (fgets(doc, sizeof doc, f))
+        if (strncmp(doc, "| `runin.csv` |", 15) == 0) {
+            found = 1;
+            break;
+        }
+    fclose(f);
+    ck_assert_msg(found, "docs/outputs.md has no row of runin.csv");
+    for (int c = 0; c < N_ISO; c++)
+        ck_assert_msg(has_word(doc, iso_cols[c].name), "docs/outputs.md: runin.csv lacks %s",
+                      iso_cols[c].name);
+    ck_assert(has_word(doc, "Rpk") && !has_word(doc, "Rp")); /* has_word tells words apart */
+    /* the figures, where gnuplot is there to draw them */
+    if (system("command -v gnuplot > /dev/null 2>&1") == 0) {
+        char cmd[900];
+        snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot runin.gp > gnuplot.log 2>&1", dir);
+        ck_assert_msg(system(cmd) == 0, "gnuplot runin.gp failed (%s/gnuplot.log)", dir);
+        const char *png[] = {"runin_ra.png", "runin_psi.png", "runin_mu.png", "runin_mr.png",
+                             "runin_surface.png"};
+        for (size_t k = 0; k < sizeof png / sizeof png[0]; k++) {
+            char path[800];
+            struct stat sb;
+            snprintf(path, sizeof path, "%s/%s", dir, png[k]);
+            ck_assert_msg(stat(path, &sb) == 0 && sb.st_size > 1000, "no figure %s", path);
+        }
+        char *log[4];
+        int nlog = read_lines(dir, "gnuplot.log", log, 4);
+        ck_assert_msg(nlog == 0, "gnuplot said: %s", nlog ? log[0] : "");
+    }
+    for (int k = 0; k < nl; k++)
+        free(lines[k]);
+    for (int k = 0; k < nm; k++)
+        free(mr_lines[k]);
+    free(mr);
+    mc_free(z[0]);
+    mc_free(z[1]);
+}
+END_TEST
+
 /* ---- checkpoints and resume ----------------------------------------------------------------- */
 
 typedef struct {
@@ -668,6 +946,7 @@ Suite *suite_runin(void)
     tcase_add_test(t, elastic_material);
     tcase_add_test(t, never_yields);
     tcase_add_test(t, running_in);
+    tcase_add_test(t, iso_columns);
     tcase_add_test(t, lubricated_plastic_stage);
     tcase_add_test(t, resume_identical);
     tcase_add_test(t, resume_refused);

@@ -64,14 +64,16 @@ static void table(vf_ctx *ctx, const mc_results *r)
 {
     const mc_runin_summary *ri = &r->runin;
     vf_text(ctx, "| step | F_N [N] | phase | speed [rpm] | h_EHD [um] | p_lub [MPa] | psi_load | "
-                 "h_pocket [um] | mu | Ra [um] | plastic | seconds |\n"
-                 "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                 "h_pocket [um] | mu | Ra [um] | Rpk [um] | Sp [um] | plastic | seconds |\n"
+                 "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < ri->done; k++) {
         const mc_runin_row *w = &ri->rows[k];
-        vf_text(ctx, "| %d | %.0f | %s | %.0f | %.3f | %.1f | %.4f | %.3f | %.5f | %.5f | %s | %.1f |\n",
+        vf_text(ctx,
+                "| %d | %.0f | %s | %.0f | %.3f | %.1f | %.4f | %.3f | %.5f | %.5f | %.5f | %.5f | "
+                "%s | %.1f |\n",
                 k + 1, w->force, w->up ? "up" : "down", w->speed * RPM, w->h_ehd * 1e6,
                 w->p_lub * 1e-6, w->psi_load, w->pocket_height * 1e6, w->mu, w->ra * 1e6,
-                w->plastic ? "yes" : "", w->seconds);
+                w->rpk * 1e6, w->sp * 1e6, w->plastic ? "yes" : "", w->seconds);
     }
     vf_text(ctx, "\n");
 }
@@ -126,6 +128,11 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
             "AISI 52100, both discs plastic, %s of 0.4 um layers. Speeds %s: the run-down takes "
             "them in this order (elastic-plastic, with the lubricant volume equilibrium at every "
             "contact solve), the run-up in reverse (elastic on the run-in surface).\n\n"
+            "What shows the running-in (issue 21 item 3): per force, the change over its run-down "
+            "of Ra, of the reduced peak height Rpk (ISO 13565-2, mean over the rows) and of the "
+            "highest peak Sp and the areal Spk (ISO 25178-2): information rows, in %% of the value "
+            "before the run-down. Running-in acts on the peaks: Ra and the core change by "
+            "tenths of a percent where Rpk and Sp fall by percents.\n\n"
             "Checks: during each run-down Ra never rises and ends below where it began; during "
             "each run-up it stays exactly (nothing deforms); the hysteresis H = integral of "
             "(mu_down - mu_up) d log10(n) is positive at the lowest force and largest there; the "
@@ -183,6 +190,26 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
         snprintf(q, sizeof q, "F_N = %.0f N: max |Ra - Ra(end of run-down)| over the run-up, m",
                  first->force);
         vf_check(ctx, id, q, "the run-up is elastic", 0, up_dev, 0, VF_MAX);
+        /* what shows running-in: the peaks (information; the row before the run-down is the
+         * surface it starts from, the initial one for the first force) */
+        const mc_runin_row *before = f == 0 ? NULL : &ri->rows[2 * m * f - 1];
+        const double rpk0 = before ? before->rpk : r.roughness_initial.Rpk;
+        const double sp0 = before ? before->sp : r.roughness_initial.Sp;
+        const double spk0 = before ? before->spk : r.roughness_initial.Spk;
+        const struct {
+            const char *id, *what;
+            double from, to;
+        } peaks[] = {{"ra_change", "Ra", ra_before, last->ra},
+                     {"rpk_change", "Rpk (ISO 13565-2)", rpk0, last->rpk},
+                     {"sp_change", "Sp (highest peak, ISO 25178-2)", sp0, last->sp},
+                     {"spk_change", "Spk (ISO 25178-2)", spk0, last->spk}};
+        for (size_t q2 = 0; q2 < sizeof peaks / sizeof peaks[0]; q2++) {
+            snprintf(id, sizeof id, "%s_F%d", peaks[q2].id, f + 1);
+            snprintf(q, sizeof q, "F_N = %.0f N: change of %s over the run-down, %%", first->force,
+                     peaks[q2].what);
+            vf_info(ctx, id, q, "running-in lowers the peaks", NAN,
+                    100.0 * (peaks[q2].to / peaks[q2].from - 1.0));
+        }
         snprintf(id, sizeof id, "hysteresis_F%d", f + 1);
         snprintf(q, sizeof q, "F_N = %.0f N: hysteresis H (mu x decades of speed)", first->force);
         /* against H recomputed here from the rows: the same trapezoid sum in another order, a
@@ -260,13 +287,14 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
     FILE *f = vf_open(ctx, "runin.csv");
     if (f) {
         fprintf(f, "force,phase,rpm,h_ehd_um,p_lub_MPa,psi_load,psi_area,pocket_um,mu,Ra_um,"
-                   "Sa_um,plastic\n");
+                   "Sa_um,plastic,Rpk_um,Sp_um,Spk_um\n");
         for (int k = 0; k < ri->done; k++) {
             const mc_runin_row *w = &ri->rows[k];
-            fprintf(f, "%.0f,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.8g,%.8g,%.8g,%d\n", w->force,
-                    w->up ? "up" : "down", w->speed * RPM, w->h_ehd * 1e6, w->p_lub * 1e-6,
-                    w->psi_load, w->psi_area, w->pocket_height * 1e6, w->mu, w->ra * 1e6,
-                    w->sa * 1e6, w->plastic);
+            fprintf(f, "%.0f,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.8g,%.8g,%.8g,%d,%.8g,%.8g,%.8g\n",
+                    w->force, w->up ? "up" : "down", w->speed * RPM, w->h_ehd * 1e6,
+                    w->p_lub * 1e-6, w->psi_load, w->psi_area, w->pocket_height * 1e6, w->mu,
+                    w->ra * 1e6, w->sa * 1e6, w->plastic, w->rpk * 1e6, w->sp * 1e6,
+                    w->spk * 1e6);
         }
         vf_close(ctx, f);
     }
@@ -297,15 +325,17 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
     char plot[4096];
     size_t o = 0;
     static const char *const pt_down = "pt 7", *const pt_up = "pt 6";
-    const char *figs[3][4] = {
+    const char *figs[4][4] = {
         {"runin_ra.png", "Ra of the surface against the mean lubrication pocket height (paper Fig. 4-1)",
          "h_{pocket} [um]", "Ra [um]"},
         {"runin_psi.png", "Solid contact ratio against the mean pocket height (paper Fig. 4-2)",
          "h_{pocket} [um]", "psi_{load}"},
         {"runin_mu.png", "Friction coefficient against the disc speed: run-down and run-up "
-         "(paper Fig. 4-3)", "disc speed [rpm]", "mu"}};
-    const char *cols[3] = {"8:10", "8:6", "3:9"};
-    for (int g = 0; g < 3; g++) {
+         "(paper Fig. 4-3)", "disc speed [rpm]", "mu"},
+        {"runin_rpk.png", "Reduced peak height Rpk (ISO 13565-2) against the mean pocket height: "
+         "what shows running-in", "h_{pocket} [um]", "Rpk [um]"}};
+    const char *cols[4] = {"8:10", "8:6", "3:9", "8:13"};
+    for (int g = 0; g < 4; g++) {
         o = (size_t)snprintf(plot, sizeof plot,
                              "set datafile separator ','\nset grid\nset key outside right\n"
                              "set xlabel '%s'\nset ylabel '%s'\n%splot",

@@ -50,6 +50,10 @@ static const vf_suite all[] = {
     {.name = "runin",
      .title = "Running-in: the friction hysteresis of three forces (paper Figs. 4-1 to 4-3)",
      .run = vf_suite_runin},
+    {.name = "whole_contact",
+     .title = "The whole lubricated line contact: Hertz, McEwen, the patch, the running-in at "
+              "the paper's pressures",
+     .run = vf_suite_whole_contact},
 };
 
 const vf_suite *vf_suites(int *count)

@@ -13,6 +13,7 @@ int vf_suite_lubricant_bc(vf_ctx *ctx, int fast);
 int vf_suite_ehl_film(vf_ctx *ctx, int fast);
 int vf_suite_volume_equilibrium(vf_ctx *ctx, int fast);
 int vf_suite_runin(vf_ctx *ctx, int fast);
+int vf_suite_whole_contact(vf_ctx *ctx, int fast);
 int vf_suite_mesh_convergence(vf_ctx *ctx, int fast);
 int vf_suite_yield_criterion(vf_ctx *ctx, int fast);
 int vf_suite_yield_onset(vf_ctx *ctx, int fast);

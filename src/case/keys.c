@@ -39,6 +39,7 @@ _Static_assert(sizeof(mc_nominal_deflection) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_plan_rigor) == sizeof(int), "enum size");
 _Static_assert(MC_PLANS_MEASURE == 1 && MC_PLANS_WISDOM == 2,
                "[solver] plans choices follow the enum");
+_Static_assert(MC_PROFILE_HERTZ == 1, "[lubrication] lubricant_profile choices follow the enum");
 _Static_assert(MC_DEFLECTION_KEEP == 1, "[runin] nominal_deflection choices follow the enum");
 _Static_assert(MC_SHAPE_ELLIPSOID == 3 && MC_ROUGH_FILE == 3 && MC_BACKEND_DIRECT == 1 &&
                    MC_METHOD_ACTIVE_SET == 2 && MC_SPACING_GEOMETRIC == 1 && MC_STRESS_POINT == 1 &&
@@ -357,6 +358,14 @@ const case_key mc_keys[] = {
     {.section = "lubrication", .name = "psi", .kind = K_ENUM, .choice = psi_choice,
      .choice_help = psi_help, .def = "load", .off = AT(lubrication.psi),
      .doc = "Solid contact ratio of the friction mix mu = psi mu_solid + (1 - psi) mu_fluid."},
+    {.section = "lubrication", .name = "lubricant_profile", .kind = K_ENUM,
+     .choices = "uniform hertz", .def = "uniform", .use = USE_WHEN, .use_key = "geometry.shape",
+     .use_values = "cylinder ellipsoid", .off = AT(lubrication.profile),
+     .doc = "The whole contact (shape = cylinder: the line contact on a strip; ellipsoid: the "
+            "crowned contact on a free grid): the lubricant pressure over the Hertz band (or "
+            "ellipse), the nominal area of the volume equilibrium. uniform: one p_lub in the "
+            "valleys (the paper's); hertz: a profile shaped like the smooth contact's pressure, "
+            "scaled by the unknown (theory.md §11.4)."},
     {.section = "lubrication", .name = "tolerance", .kind = K_REAL, .unit = MC_UNIT_NONE,
      .lo = 1e-12, .hi = 0.1, .def = "1e-6", .off = AT(lubrication.tolerance),
      .doc = "Relative tolerance of the volume root: abs(V - V*) / V*."},
@@ -550,7 +559,8 @@ const case_section mc_key_sections[] = {
      "then the run-up, elastic on the run-in surface. The scene itself is the first step: [load] "
      "force is the first force, [lubrication] rpm (film = ehl, with radius1, radius2) the first "
      "speed, [load] lubricant_pressure = auto. Without [plasticity] the material is elastic and "
-     "nothing runs in. Writes runin.csv, runin.gp, surface_initial.npy, surface_final.npy; "
+     "nothing runs in. Writes runin.csv, runin.gp, surface_initial.npy, surface_final.npy, "
+     "material_ratio.csv; "
      "checkpoints in DIR/checkpoint/ for --resume."},
 };
 

@@ -8,6 +8,7 @@
 #include "case/keys.h"
 #include "case/scene_effect.h"
 #include "kernels/kernel.h"
+#include "reference/hertz.h"
 
 void mc_scene_defaults(mc_scene *s)
 {
@@ -63,15 +64,100 @@ static int lubrication_rules(const mc_scene *s, mc_error *err, const char **sect
         BLAME("load", "force",
               "[lubrication] needs [load] force (the macro normal force F_N); approach, "
               "force_per_length and pressure_file are not supported with the volume equilibrium");
-    if (s->geometry.shape != MC_SHAPE_FLAT)
+    if (s->geometry.shape == MC_SHAPE_SPHERE)
         BLAME("geometry", "shape",
-              "[lubrication] needs [geometry] shape = flat: a rough patch standing for the "
-              "centre of the macro contact (a curved macro geometry is not supported yet)");
+              "[lubrication] needs [geometry] shape = flat (a rough patch standing for the "
+              "centre of the macro contact), cylinder (the whole line contact on a strip "
+              "periodic along y) or ellipsoid (the whole crowned contact, radius_x = R_x of the "
+              "discs, radius_y the crowning); for a sphere write shape = ellipsoid with "
+              "radius_x = radius_y");
+    const int crowned = s->geometry.shape == MC_SHAPE_ELLIPSOID;
+    if (crowned) {
+        /* the whole crowned contact (theory.md §11.4): an elliptical Hertz contact on a free grid */
+        if (s->grid.periodic_x || s->grid.periodic_y)
+            BLAME("mesh", s->grid.periodic_x ? "periodic_x" : "periodic_y",
+                  "[lubrication] with [geometry] shape = ellipsoid (the whole crowned contact) "
+                  "needs a grid free along x and y: the contact ellipse lies inside it");
+        if (s->lubrication.width > 0)
+            BLAME("lubrication", "width",
+                  "[lubrication] width has no effect on the whole crowned contact (shape = "
+                  "ellipsoid carries F_N on its ellipse): remove it");
+        if (s->lubrication.film == MC_FILM_EHL && !mc_film_formula_is_point(s->lubrication.formula))
+            BLAME("lubrication", "formula",
+                  "[lubrication] formula = %s is a line-contact formula: the whole crowned "
+                  "contact (shape = ellipsoid) needs a point-contact one (hamrock_dowson_central "
+                  "or hamrock_dowson_min)",
+                  mc_film_formula_name(s->lubrication.formula));
+        double rx = s->lubrication.macro_radius;
+        if (!(rx > 0) && s->lubrication.radius1 > 0 && s->lubrication.radius2 > 0)
+            rx = s->lubrication.radius1 * s->lubrication.radius2 /
+                 (s->lubrication.radius1 + s->lubrication.radius2);
+        if (rx > 0 && !(fabs(s->geometry.radius_x - rx) <= 1e-9 * rx))
+            BLAME("geometry", "radius_x",
+                  "[geometry] radius_x = %.9g mm is not the reduced radius R_x = %.9g mm of "
+                  "[lubrication]: the crowned contact's x radius is the discs' R1 R2 / (R1 + R2)",
+                  s->geometry.radius_x * 1e3, rx * 1e3);
+        double fmax_ = s->load.value;
+        for (int f = 0; s->runin.enabled && f < s->runin.nforces; f++)
+            fmax_ = fmax(fmax_, s->runin.forces[f]);
+        mc_hertz_ellipse he;
+        mc_error herr = {0};
+        if (mc_hertz_ellipse_from_load(s->geometry.radius_x, s->geometry.radius_y,
+                                       mc_scene_estar(s), fmax_, &he, &herr) != MC_OK)
+            BLAME("geometry", "radius_y", "[geometry] %s", herr.msg);
+        const double hx = 0.5 * s->grid.nx * s->grid.dx, hy = 0.5 * s->grid.ny * s->grid.dy;
+        if (!(1.1 * he.ax <= hx) || !(1.1 * he.ay <= hy))
+            BLAME("mesh", 1.1 * he.ax > hx ? "nx" : "ny",
+                  "[mesh] the grid spans %.4g x %.4g um, too small for the whole crowned contact "
+                  "at F_N = %.6g N: the Hertz ellipse of semi-axes %.4g um (x) and %.4g um (y) "
+                  "plus 10 %% needs nx >= %.0f and ny >= %.0f",
+                  2e6 * hx, 2e6 * hy, fmax_, he.ax * 1e6, he.ay * 1e6,
+                  ceil(2.2 * he.ax / s->grid.dx), ceil(2.2 * he.ay / s->grid.dy));
+    }
+    if (s->geometry.shape == MC_SHAPE_CYLINDER) {
+        /* the whole contact (theory.md §11.4): the grid carries the macro geometry */
+        if (!s->grid.periodic_y || s->grid.periodic_x)
+            BLAME("mesh", "periodic_y",
+                  "[lubrication] with [geometry] shape = cylinder (the whole line contact) needs "
+                  "a strip: periodic_y = yes and x free (the Hertz band lies across x)");
+        if (!(s->lubrication.width > 0))
+            BLAME("lubrication", "width",
+                  "[lubrication] with [geometry] shape = cylinder needs width (the strip carries "
+                  "w' = F_N / width per length along y)");
+        double rx = s->lubrication.macro_radius;
+        const char *rkey = "macro_radius";
+        if (!(rx > 0) && s->lubrication.radius1 > 0 && s->lubrication.radius2 > 0) {
+            rx = s->lubrication.radius1 * s->lubrication.radius2 /
+                 (s->lubrication.radius1 + s->lubrication.radius2);
+            rkey = "radius1";
+        }
+        if (rx > 0 && !(fabs(s->geometry.radius - rx) <= 1e-9 * rx))
+            BLAME("geometry", "radius",
+                  "[geometry] radius = %.9g mm is not the reduced radius R_x = %.9g mm of "
+                  "[lubrication] %s%s: the whole contact's cylinder is the discs' macro gap "
+                  "(R_x = R1 R2 / (R1 + R2)); make them equal",
+                  s->geometry.radius * 1e3, rx * 1e3, rkey,
+                  rkey[6] == '1' ? " and radius2" : "");
+        /* the Hertz band of the largest force must lie inside the grid (stage_lube.h: the same
+         * rule at run time, MC_WHOLE_BAND_MARGIN) */
+        double fmax_ = s->load.value;
+        for (int f = 0; s->runin.enabled && f < s->runin.nforces; f++)
+            fmax_ = fmax(fmax_, s->runin.forces[f]);
+        const double estar = mc_scene_estar(s), r = s->geometry.radius;
+        const double b = sqrt(4.0 * (fmax_ / s->lubrication.width) * r / (M_PI * estar));
+        const double half = 0.5 * s->grid.nx * s->grid.dx;
+        if (!(1.1 * b <= half))
+            BLAME("mesh", "nx",
+                  "[mesh] the grid spans |x| <= %.4g um, too narrow for the whole contact at "
+                  "F_N = %.6g N: the Hertz band |x| <= b = %.4g um plus 10 %% needs nx >= %.0f at "
+                  "dx = %.4g um",
+                  half * 1e6, fmax_, b * 1e6, ceil(2.2 * b / s->grid.dx), s->grid.dx * 1e6);
+    }
     if (isfinite(s->load.pressure_cap))
         BLAME("load", "pressure_cap",
               "[load] pressure_cap cannot be combined with [lubrication] (not supported)");
     const double rx = s->lubrication.macro_radius;
-    if (rx > 0 && !(s->lubrication.width > 0))
+    if (rx > 0 && !(s->lubrication.width > 0) && !crowned)
         BLAME("lubrication", "width",
               "[lubrication] macro_radius needs width (the load per length w' = F_N / width)");
     if (s->lubrication.film == MC_FILM_EHL) {
@@ -87,10 +173,10 @@ static int lubrication_rules(const mc_scene *s, mc_error *err, const char **sect
             BLAME("lubrication", "macro_radius",
                   "[lubrication] film = ehl needs the reduced radius R_x: macro_radius, or "
                   "radius1 and radius2");
-        if (!(s->lubrication.width > 0))
+        if (!(s->lubrication.width > 0) && !crowned)
             BLAME("lubrication", "width",
                   "[lubrication] film = ehl needs width (the load per length w' = F_N / width)");
-    } else if (!(rx > 0) && s->lubrication.width > 0)
+    } else if (!(rx > 0) && s->lubrication.width > 0 && s->geometry.shape != MC_SHAPE_CYLINDER)
         BLAME("lubrication", "width",
               "[lubrication] width has no effect without macro_radius when film = given (the "
               "scene's own load is used)");

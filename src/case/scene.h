@@ -44,6 +44,9 @@ typedef enum { MC_STRESS_WINDOW_AUTO, MC_STRESS_WINDOW_FULL } mc_scene_stress_wi
 typedef enum { MC_FILM_EHL, MC_FILM_GIVEN } mc_scene_film_source;
 typedef enum { MC_CRITERION_VON_MISES, MC_CRITERION_PRESSURE_CAP } mc_yield_criterion;
 typedef enum { MC_TABLE_UNIT_PA, MC_TABLE_UNIT_MPA, MC_TABLE_UNIT_GPA } mc_scene_table_unit;
+/* [lubrication] lubricant_profile: the lubricant pressure over the Hertz band of the whole
+ * contact (theory.md §11.4): one p_lub on the band (the paper's), or a Hertz-shaped profile */
+typedef enum { MC_PROFILE_UNIFORM, MC_PROFILE_HERTZ } mc_scene_lube_profile;
 /* [runin] nominal_deflection: the patch's own bowl under its nominal pressure (pipeline/runin.h) */
 typedef enum { MC_DEFLECTION_REMOVE, MC_DEFLECTION_KEEP } mc_nominal_deflection;
 
@@ -117,6 +120,7 @@ typedef struct {
         double mu_solid, mu_fluid;   /* friction coefficients of solid and fluid contact */
         mc_psi_kind psi;             /* load- or area-based solid contact ratio */
         double tolerance;            /* relative tolerance of the volume root */
+        mc_scene_lube_profile profile; /* the whole contact ([geometry] shape = cylinder) */
     } lubrication;
 
     struct { /* [plasticity]: the elastic-plastic stage (runs when enabled) */

@@ -171,6 +171,12 @@ static int plastic_runin_rules(const mc_scene *s, mc_error *err, const char **se
         BLAME("plasticity", "margin",
               "[plasticity] margin has no effect in a running-in ([runin]): every step's plastic "
               "columns span the whole grid; remove it");
+    if (s->runin.deflection != MC_DEFLECTION_REMOVE && s->lubrication.enabled &&
+        (s->geometry.shape == MC_SHAPE_CYLINDER || s->geometry.shape == MC_SHAPE_ELLIPSOID))
+        BLAME("runin", "nominal_deflection",
+              "[runin] nominal_deflection has no effect on the whole contact ([geometry] shape = "
+              "cylinder or ellipsoid): the macro contact's own deflection is part of the solve; "
+              "remove it");
     if (s->runin.deflection != MC_DEFLECTION_REMOVE && s->grid.periodic_x && s->grid.periodic_y)
         BLAME("runin", "nominal_deflection",
               "[runin] nominal_deflection has no effect on a grid periodic along x and y (the "

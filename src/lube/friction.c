@@ -79,36 +79,53 @@ double mc_lube_split_psi(const mc_lube_split *s, mc_psi_kind k)
 int mc_lube_split_of(const double *p, const double *gap, size_t n, double dA, double p_lub,
                      double f_n, mc_lube_split *s, mc_error *err)
 {
+    return mc_lube_split_weighted(p, gap, NULL, n, dA, p_lub, f_n, s, err);
+}
+
+int mc_lube_split_weighted(const double *p, const double *gap, const double *w, size_t n,
+                           double dA, double p_lub, double f_n, mc_lube_split *s, mc_error *err)
+{
     if (n == 0 || !(dA > 0 && isfinite(dA)) || !(p_lub >= 0 && isfinite(p_lub)) ||
         !(f_n > 0 && isfinite(f_n)))
         return mc_fail(err, MC_ERR_INPUT,
                        "lubricant split: need cells > 0 (%zu), cell area > 0 (%g m^2), lubricant "
                        "pressure >= 0 (%g Pa) and load > 0 (%g N), all finite",
                        n, dA, p_lub, f_n);
-    double sum_c = 0, sum_cx = 0, sum_g = 0;
-    size_t nc = 0;
+    double sum_c = 0, sum_cx = 0, sum_g = 0, sum_f = 0;
+    size_t nc = 0, nnom = 0, nc_nom = 0;
     for (size_t i = 0; i < n; i++) {
-        if (!isfinite(p[i]) || !isfinite(gap[i]))
-            return mc_fail(err, MC_ERR_INPUT, "lubricant split: non-finite pressure or gap at cell %zu",
-                           i);
-        if (p[i] > p_lub) {
+        const double wi = w ? w[i] : 1.0;
+        if (!isfinite(p[i]) || !isfinite(gap[i]) || !(wi >= 0 && isfinite(wi)))
+            return mc_fail(err, MC_ERR_INPUT,
+                           "lubricant split: non-finite pressure, gap or profile at cell %zu", i);
+        const double lo = p_lub * wi;
+        const int nominal = wi > 0;
+        nnom += (size_t)nominal;
+        if (p[i] > lo) {
             sum_c += p[i];
-            sum_cx += p[i] - p_lub;
+            sum_cx += p[i] - lo;
             nc++;
-        }
-        sum_g += gap[i];
+            nc_nom += (size_t)nominal;
+        } else
+            sum_f += lo;
+        if (nominal)
+            sum_g += gap[i];
     }
+    if (nnom == 0)
+        return mc_fail(err, MC_ERR_INPUT, "lubricant split: the profile is zero everywhere");
     memset(s, 0, sizeof *s);
-    s->a_nom = dA * (double)n;
+    s->a_nom = dA * (double)nnom;
     s->a_contact = dA * (double)nc;
     s->f_solid = dA * sum_c;
     s->f_solid_excess = dA * sum_cx;
-    s->f_fluid = p_lub * dA * (double)(n - nc);
+    s->f_fluid = dA * sum_f;
     s->volume = dA * sum_g;
     s->psi_load = s->f_solid / f_n;
-    s->psi_area = (double)nc / (double)n;
+    /* solid contact just outside a profile's nominal area (a rough peak beyond the Hertz band)
+     * counts as solid contact; the area ratio is of the nominal area's own cells */
+    s->psi_area = (double)nc_nom / (double)nnom;
     s->psi_load_excess = s->f_solid_excess / f_n;
     /* a gap within round-off of zero may sum slightly negative in a nearly closed contact */
     double v = s->volume > 0 ? s->volume : 0.0;
-    return mc_pocket_height(v, s->a_nom, s->a_contact, &s->pocket_height, err);
+    return mc_pocket_height(v, s->a_nom, dA * (double)nc_nom, &s->pocket_height, err);
 }

@@ -51,6 +51,12 @@ typedef struct {
 int mc_lube_split_of(const double *p, const double *gap, size_t n, double dA, double p_lub,
                      double f_n, mc_lube_split *s, mc_error *err);
 
+/* The same with a lubricant pressure profile w (volume.h; NULL = 1 everywhere): solid contact
+ * cells are those with p_i > p_lub w_i; A_nom, V and psi_area are of the nominal area (w > 0);
+ * F_solid counts every solid contact cell; f_fluid = dA sum over the other cells of p_lub w. */
+int mc_lube_split_weighted(const double *p, const double *gap, const double *w, size_t n,
+                           double dA, double p_lub, double f_n, mc_lube_split *s, mc_error *err);
+
 /* h_pocket = V / (A_nom - A_C), m, from V >= 0 (m^3), A_nom > 0 and 0 <= A_C <= A_nom (m^2);
  * 0 when A_C = A_nom. MC_OK or MC_ERR_INPUT. */
 int mc_pocket_height(double volume, double a_nom, double a_contact, double *h, mc_error *err);

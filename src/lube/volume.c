@@ -14,6 +14,8 @@ typedef struct {
     const mc_volume_problem *prob;
     size_t n;
     double dA, pnom;
+    const double *w;     /* the lubricant pressure profile (volume.h), or NULL */
+    double *plower;      /* p_lub w, the contact solves' lower bound (with a profile) */
     double *p, *u, *gap; /* the caller's outputs: always the state of the last evaluation */
     double *warm;        /* pressure of the last solve, the next one's start */
     int have_warm;
@@ -32,11 +34,13 @@ const char *mc_lube_regime_name(mc_lube_regime r)
     return "?";
 }
 
-static double gap_volume(const double *gap, size_t n, double dA)
+/* V = dA sum of the gap over the nominal area (the cells with w > 0; all without a profile). */
+static double gap_volume(const double *gap, const double *w, size_t n, double dA)
 {
     double v = 0;
     for (size_t i = 0; i < n; i++)
-        v += gap[i];
+        if (!w || w[i] > 0)
+            v += gap[i];
     return dA * v;
 }
 
@@ -47,8 +51,11 @@ static double gap_volume(const double *gap, size_t n, double dA)
 static double onset_state(eval_ctx *c, double lift)
 {
     const size_t n = c->n;
-    for (size_t i = 0; i < n; i++)
-        c->p[i] = c->pnom;
+    double wsum = 0;
+    for (size_t i = 0; i < n; i++) {
+        c->p[i] = c->w ? c->pnom * c->w[i] : c->pnom;
+        wsum += c->w ? c->w[i] : 1.0;
+    }
     mc_operator_apply(c->K, c->p, c->gap); /* K p, the lubricant's deformation */
     if (c->u)
         memcpy(c->u, c->gap, n * sizeof *c->u);
@@ -62,13 +69,16 @@ static double onset_state(eval_ctx *c, double lift)
     mc_contact_summary *sum = &c->res->contact;
     memset(sum, 0, sizeof *sum);
     sum->solved = 1;
-    sum->load = c->pnom * c->dA * (double)n;
-    sum->p_max = c->pnom;
+    sum->load = c->pnom * c->dA * wsum;
+    double pmax = 0;
+    for (size_t i = 0; i < n; i++)
+        pmax = fmax(pmax, c->p[i]);
+    sum->p_max = pmax;
     sum->approach = hmin - lift;
     sum->converged = 1;
     sum->solver = "full-film";
     sum->backend = mc_operator_backend(c->K);
-    return gap_volume(c->gap, n, c->dA);
+    return gap_volume(c->gap, c->w, n, c->dA);
 }
 
 /* One contact solve at lubricant pressure plub; *v = V(plub). p_lub >= p_nominal is the onset
@@ -80,9 +90,13 @@ static int eval_volume(eval_ctx *c, double plub, double *v, mc_error *err)
         return MC_OK;
     }
     const mc_volume_problem *pr = c->prob;
+    if (c->w)
+        for (size_t i = 0; i < c->n; i++)
+            c->plower[i] = plub * c->w[i];
     mc_contact_problem cp = {.h = pr->h,
                              .h_extra = pr->h_extra,
                              .p_lub = plub,
+                             .p_lower = c->plower,
                              .p_cap = INFINITY,
                              .control = MC_CONTROL_FORCE,
                              .load = pr->load,
@@ -92,7 +106,7 @@ static int eval_volume(eval_ctx *c, double plub, double *v, mc_error *err)
     c->res->iterations += c->res->contact.iterations;
     if (rc == MC_NOT_CONVERGED) { /* the outputs hold this state: say which it is */
         c->res->p_lub = plub;
-        c->res->volume = gap_volume(c->gap, c->n, c->dA);
+        c->res->volume = gap_volume(c->gap, c->w, c->n, c->dA);
         c->res->rel_error = c->res->v_target > 0
                                 ? fabs(c->res->volume - c->res->v_target) / c->res->v_target
                                 : 0.0;
@@ -106,7 +120,7 @@ static int eval_volume(eval_ctx *c, double plub, double *v, mc_error *err)
         return mc_error_prefix(err, "volume equilibrium at p_lub = %.6g Pa: ", plub);
     memcpy(c->warm, c->p, c->n * sizeof *c->warm);
     c->have_warm = 1;
-    *v = gap_volume(c->gap, c->n, c->dA);
+    *v = gap_volume(c->gap, c->w, c->n, c->dA);
     c->last_x[1] = c->last_x[0];
     c->last_v[1] = c->last_v[0];
     c->last_x[0] = plub;
@@ -308,12 +322,30 @@ int mc_volume_equilibrium(mc_contact_solver *s, mc_operator *K, const mc_volume_
         return rc;
     const mc_grid *g = mc_operator_grid(K);
     eval_ctx c = {.s = s, .K = K, .prob = prob, .n = mc_grid_cells(g), .dA = mc_grid_cell_area(g),
-                  .p = p, .u = u, .gap = gap, .res = res};
-    const double a_nom = c.dA * (double)c.n;
+                  .p = p, .u = u, .gap = gap, .res = res, .w = prob->weight};
+    double wsum = (double)c.n, ncells = (double)c.n;
+    if (c.w) {
+        wsum = ncells = 0;
+        for (size_t i = 0; i < c.n; i++) {
+            if (!(c.w[i] >= 0 && isfinite(c.w[i])))
+                return mc_fail(err, MC_ERR_INPUT,
+                               "volume equilibrium: lubricant pressure profile %g at cell %zu "
+                               "(must be finite and >= 0)",
+                               c.w[i], i);
+            wsum += c.w[i];
+            ncells += c.w[i] > 0;
+        }
+        if (!(wsum > 0))
+            return mc_fail(err, MC_ERR_INPUT,
+                           "volume equilibrium: the lubricant pressure profile is zero everywhere "
+                           "(no nominal area)");
+    }
+    const double a_nom = c.dA * ncells;
     const double tol = prob->tolerance > 0 ? prob->tolerance : MC_VOLUME_TOL_DEFAULT;
     const int cap = prob->max_solves > 0 ? prob->max_solves : MC_VOLUME_MAX_SOLVES;
-    c.pnom = prob->load / a_nom;
+    c.pnom = prob->load / (c.dA * wsum);
     res->p_nominal = c.pnom;
+    res->a_nom = a_nom;
     res->v_target = prob->h_target * a_nom;
     const double vstar = res->v_target;
 
@@ -328,8 +360,11 @@ int mc_volume_equilibrium(mc_contact_solver *s, mc_operator *K, const mc_volume_
         return MC_OK;
     }
 
-    if (!(c.warm = mc_malloc(c.n * sizeof *c.warm)))
+    if (!(c.warm = mc_malloc(c.n * sizeof *c.warm)) ||
+        (c.w && !(c.plower = mc_malloc(c.n * sizeof *c.plower)))) {
+        mc_free(c.warm);
         return mc_fail(err, MC_ERR_NOMEM, "volume equilibrium: out of memory for %zu cells", c.n);
+    }
     if (prob->p_lub_guess > 0 && prob->p_lub_guess < c.pnom && prob->slope_guess > 0 &&
         isfinite(prob->slope_guess)) {
         int done = 0;
@@ -337,6 +372,7 @@ int mc_volume_equilibrium(mc_contact_solver *s, mc_operator *K, const mc_volume_
         if (rc != MC_OK || done) {
             record_slope(&c);
             mc_free(c.warm);
+            mc_free(c.plower);
             return rc;
         }
     }
@@ -356,5 +392,6 @@ int mc_volume_equilibrium(mc_contact_solver *s, mc_operator *K, const mc_volume_
     }
     record_slope(&c);
     mc_free(c.warm);
+    mc_free(c.plower);
     return rc;
 }

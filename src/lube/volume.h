@@ -63,12 +63,20 @@ typedef struct {
      * 0); otherwise (or when that finds no bracket) the cold start from V(0). Same regimes and
      * tolerance either way. Pa and m^3/Pa; 0 = none. */
     double p_lub_guess, slope_guess;
+    /* The lubricant pressure profile w (ny*nx, >= 0, finite; NULL = 1 everywhere, the patch):
+     * the lubricant pressure of cell i is p_lub w_i, the nominal area is the cells with
+     * w_i > 0 (A_nom = dA |{w > 0}|) and V sums the gap over them alone. The whole contact of a
+     * macro geometry (theory.md §11.4) sets w = 1 on the Hertz band |x| <= b and 0 outside (or
+     * a Hertz-shaped profile): the macro gap outside the band is not lubricant of the contact.
+     * p_nominal = F_N / (dA sum w) is the p_lub at which the fluid carries the whole load. */
+    const double *weight;
 } mc_volume_problem;
 
 typedef struct {
     mc_lube_regime regime;
     double p_lub;         /* lubricant pressure, Pa (0 dry, p_nominal full film) */
-    double p_nominal;     /* F_N / A_nom, Pa */
+    double p_nominal;     /* F_N / A_nom (F_N / (dA sum w) with a profile), Pa */
+    double a_nom;         /* the nominal area, m^2 (n dA, or the cells with w > 0) */
     double v_target;      /* V* = h_target A_nom, m^3 */
     double volume;        /* V of the returned gap, m^3 (= V* in full film) */
     double rel_error;     /* mixed: |V - V*| / V* of the returned state; dry, full film: 0 */

@@ -27,6 +27,7 @@
 #include "io/npy.h"
 #include "io/surface_file.h"
 #include "pipeline/summary_json.h"
+#include "surface/roughness.h"
 
 #define OUT_PATH_MAX 4096
 
@@ -49,6 +50,7 @@ typedef enum {
     OUT_RUNIN,         /* [runin] */
     OUT_RUNIN_INITIAL, /* [runin] with the surface before */
     OUT_RUNIN_FINAL,   /* [runin] with the surface after */
+    OUT_RUNIN_BOTH,    /* [runin] with the surfaces before and after */
     OUT_X3P,           /* [output] x3p */
     OUT_X3P_PLASTIC,   /* x3p and the elastic-plastic fields */
     OUT_X3P_INITIAL,   /* x3p and the running-in's surface before */
@@ -107,13 +109,15 @@ static const struct {
     {"plastic.csv", OUT_PLASTIC,
      "one row per load step: load, approach, p_max, contact area, plastic volume, largest plastic strain and its position, largest residual displacement, iterations"},
     {"runin.csv", OUT_RUNIN,
-     "one row per running-in step: force, phase down/up, speed, h_EHD, p_lub, psi_load, psi_area, pocket height, mu, Ra, Rq, Rz, Sa, Sq, largest residual displacement, converged, seconds, ..."},
+     "one row per running-in step: force, phase down/up, speed, h_EHD, p_lub, psi_load, psi_area, pocket height, mu; the roughness of the surface after the step: Ra, Rq, Rz, Sa, Sq, Rpk, Rk, Rvk, Mr1, Mr2 (ISO 13565-2, mean over the rows), Sp, Spk, Sk, Svk, Smr1, Smr2 (ISO 25178-2, the whole map); largest residual displacement, converged, seconds, ... (SI: m, Pa, rad/s; material ratios in %)"},
     {"runin.gp", OUT_RUNIN,
-     "the gnuplot script of the three running-in figures (cd DIR; gnuplot runin.gp)"},
+     "the gnuplot script of the running-in figures (cd DIR; gnuplot runin.gp): Ra, psi and mu (the paper's Figs. 4-1 to 4-3), the material-ratio curves, the height maps before and after"},
     {"surface_initial.npy", OUT_RUNIN_INITIAL,
      "the composite surface before the running-in, ny x nx, m"},
     {"surface_final.npy", OUT_RUNIN_FINAL,
      "the composite surface after the running-in, ny x nx, m"},
+    {"material_ratio.csv", OUT_RUNIN_BOTH,
+     "the areal material-ratio (Abbott-Firestone) curves of the surface before and after the running-in: Mr in % (steps of 0.1 %), height of each about its mean plane, and the equivalent straight line of each (ISO 13565-2, 25178-2: its heights at Mr = 0 and 100 % bound the core Sk; the curve crosses them at Smr1 and Smr2), m"},
     {"topography.x3p", OUT_X3P,
      "topography.npy as X3P (ISO 25178-72), heights in m"},
     {"topography_final.x3p", OUT_X3P_PLASTIC,
@@ -134,6 +138,7 @@ static const char *const when_text[] = {
     [OUT_RUNIN] = "with [runin]",
     [OUT_RUNIN_INITIAL] = "with [runin]",
     [OUT_RUNIN_FINAL] = "with [runin]",
+    [OUT_RUNIN_BOTH] = "with [runin]",
     [OUT_X3P] = "with [output] x3p = yes",
     [OUT_X3P_PLASTIC] = "with [output] x3p = yes and [plasticity]",
     [OUT_X3P_INITIAL] = "with [output] x3p = yes and [runin]",
@@ -151,6 +156,7 @@ static int out_wanted(out_when w, const mc_scene *sc, const mc_results *r)
     case OUT_RUNIN: return r->runin.enabled;
     case OUT_RUNIN_INITIAL: return r->runin.enabled && r->surface_initial;
     case OUT_RUNIN_FINAL: return r->runin.enabled && r->surface_final;
+    case OUT_RUNIN_BOTH: return r->runin.enabled && r->surface_initial && r->surface_final;
     case OUT_X3P: return sc->output.x3p;
     case OUT_X3P_PLASTIC: return sc->output.x3p && plastic;
     case OUT_X3P_INITIAL: return sc->output.x3p && r->runin.enabled && r->surface_initial;
@@ -405,7 +411,135 @@ static int write_plastic(out_ctx *c, mc_error *err)
     return close_staged(c, "plastic.csv", f, err);
 }
 
-/* The running-in: one row per step, the figures' script, the surfaces before and after. */
+/* runin.csv's columns, in order; runin.gp finds the columns it plots here, by name. */
+static const char runin_header[] =
+    "force,phase,speed,h_ehd,p_lub,psi_load,psi_area,pocket_height,mu,Ra,Rq,Rz,Sa,Sq,Rpk,Rk,Rvk,"
+    "Mr1,Mr2,Sp,Spk,Sk,Svk,Smr1,Smr2,residual_max,converged,seconds,step,rpm,entrainment_speed,"
+    "regime,plastic,contact_solves,volume_roots,root_error";
+
+/* 1-based column of name in runin_header (0: none; a figure then plots nothing). */
+static int runin_column(const char *name)
+{
+    const size_t len = strlen(name);
+    int col = 1;
+    for (const char *p = runin_header;; col++) {
+        const char *q = strchr(p, ',');
+        size_t l = q ? (size_t)(q - p) : strlen(p);
+        if (l == len && strncmp(p, name, len) == 0)
+            return col;
+        if (!q)
+            return 0;
+        p = q + 1;
+    }
+}
+
+/* Points of material_ratio.csv's curves: Mr in steps of 0.1 %. */
+#define MR_POINTS 1001
+
+/* The material-ratio curves of the surfaces before and after (surface/roughness.h). */
+static int write_material_ratio(out_ctx *c, mc_error *err)
+{
+    const mc_results *r = c->res;
+    const size_t n = cells(c);
+    double *z = mc_malloc(2 * MR_POINTS * sizeof *z);
+    if (!z)
+        return mc_fail(err, MC_ERR_NOMEM, "material_ratio.csv: out of memory");
+    mc_material_ratio line[2];
+    int st = mc_roughness_material_curve(r->surface_initial, NULL, n, MR_POINTS, z, &line[0], err);
+    if (st == MC_OK)
+        st = mc_roughness_material_curve(r->surface_final, NULL, n, MR_POINTS, z + MR_POINTS,
+                                         &line[1], err);
+    FILE *f = NULL;
+    if (st == MC_OK)
+        st = open_staged(c, "material_ratio.csv", &f, err);
+    if (st != MC_OK) {
+        mc_free(z);
+        return st;
+    }
+    fprintf(f, "Mr,initial,final,line_initial,line_final\n");
+    for (int k = 0; k < MR_POINTS; k++) {
+        const double mr = 100.0 * k / (MR_POINTS - 1);
+        fprintf(f, "%.17g,%.17g,%.17g,%.17g,%.17g\n", mr, z[k], z[MR_POINTS + k],
+                line[0].c0 + (line[0].c100 - line[0].c0) * mr / 100.0,
+                line[1].c0 + (line[1].c100 - line[1].c0) * mr / 100.0);
+    }
+    mc_free(z);
+    return close_staged(c, "material_ratio.csv", f, err);
+}
+
+/* Bytes before the data of a .npy file written by this run (gnuplot skips them). */
+static long npy_skip(const out_ctx *c, const char *name, mc_error *err)
+{
+    char path[OUT_PATH_MAX];
+    struct stat sb;
+    if (join(path, c->stage, name, err) != MC_OK)
+        return -1;
+    if (stat(path, &sb) != 0) {
+        mc_fail(err, MC_ERR_IO, "%s: cannot stat: %s", path, strerror(errno));
+        return -1;
+    }
+    return (long)sb.st_size - (long)(8 * cells(c));
+}
+
+/* runin.gp's height maps: the surface before and after on one colour scale, and with the
+ * plastic fields the change, -f u_r (f = 2 when both bodies deform), in nm. */
+static int write_runin_maps(out_ctx *c, FILE *f, mc_error *err)
+{
+    const mc_results *r = c->res;
+    const mc_grid *g = &r->grid;
+    const size_t n = cells(c);
+    const int change = produced(c, "residual_displacement.npy");
+    const double factor = c->scene->plasticity.both ? 2.0 : 1.0;
+    long skip_i = npy_skip(c, "surface_initial.npy", err);
+    long skip_f = skip_i >= 0 ? npy_skip(c, "surface_final.npy", err) : -1;
+    long skip_u = change && skip_f >= 0 ? npy_skip(c, "residual_displacement.npy", err) : 0;
+    if (skip_i < 0 || skip_f < 0 || skip_u < 0)
+        return err ? err->code : MC_ERR_IO;
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < n; i++) {
+        lo = fmin(lo, fmin(r->surface_initial[i], r->surface_final[i]));
+        hi = fmax(hi, fmax(r->surface_initial[i], r->surface_final[i]));
+    }
+    if (!(hi > lo))
+        hi = lo + 1e-9;
+    const double w = g->nx * g->dx * 1e6, h = g->ny * g->dy * 1e6;
+    fprintf(f, "\n# the height maps: the .npy files read as raw float64, ny x nx with x fastest, "
+               "after their\n# header (skip = its bytes); x and y in um at the cell centres, "
+               "heights in um\n"
+               "set output 'runin_surface.png'\n"
+               "set terminal pngcairo size %d,%d font 'sans,11'\n"
+               "unset logscale x\nunset key\nset size ratio -1\nset xlabel 'x [um]'\n"
+               "set ylabel 'y [um]'\nset xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n"
+               "set palette rgbformulae 33,13,10\nset multiplot layout 1,%d\n"
+               "set cbrange [%.17g:%.17g]\nset cblabel 'height [um]'\n",
+            change ? 1500 : 1000, h > w ? 700 : 500, -0.5 * w, 0.5 * w, -0.5 * h, 0.5 * h,
+            change ? 3 : 2, lo * 1e6, hi * 1e6);
+    const char *what[2] = {"surface_initial.npy", "surface_final.npy"};
+    const char *title[2] = {"before the running-in", "after the running-in"};
+    const long skip[2] = {skip_i, skip_f};
+    for (int k = 0; k < 2 + change; k++) {
+        fprintf(f, "set title '%s'\n", k < 2 ? title[k] : "change (after - before)");
+        if (k == 2) { /* lowered blue, raised red, on a scale symmetric about 0 */
+            double m = 0;
+            for (size_t i = 0; i < n; i++)
+                m = fmax(m, fabs(factor * r->residual_displacement[i]));
+            fprintf(f, "set cbrange [%.17g:%.17g]\nset cblabel 'change [nm]'\n"
+                       "set palette defined (0 'blue', 1 'white', 2 'red')\n",
+                    -(m > 0 ? m : 1e-12) * 1e9, (m > 0 ? m : 1e-12) * 1e9);
+        }
+        fprintf(f,
+                "plot '%s' binary skip=%ld array=(%d,%d) format='%%float64' endian=little "
+                "dx=%.17g dy=%.17g origin=(%.17g,%.17g) using ($1 * %.17g) with image\n",
+                k < 2 ? what[k] : "residual_displacement.npy", k < 2 ? skip[k] : skip_u, g->nx,
+                g->ny, g->dx * 1e6, g->dy * 1e6, mc_grid_x(g, 0) * 1e6, mc_grid_y(g, 0) * 1e6,
+                k < 2 ? 1e6 : -factor * 1e9);
+    }
+    fprintf(f, "unset multiplot\n");
+    return MC_OK;
+}
+
+/* The running-in: one row per step, the figures' script, the surfaces before and after and
+ * their material-ratio curves. */
 static int write_runin(out_ctx *c, mc_error *err)
 {
     const mc_results *r = c->res;
@@ -416,24 +550,27 @@ static int write_runin(out_ctx *c, mc_error *err)
         st = write_npy(c, "surface_initial.npy", r->surface_initial, 2, shape, err);
     if (st == MC_OK && r->surface_final)
         st = write_npy(c, "surface_final.npy", r->surface_final, 2, shape, err);
+    const int both = r->surface_initial && r->surface_final;
+    if (st == MC_OK && both)
+        st = write_material_ratio(c, err);
     FILE *f;
     if (st == MC_OK)
         st = open_staged(c, "runin.csv", &f, err);
     if (st != MC_OK)
         return st;
     static const char *const regimes[] = {"dry", "mixed", "full_film"};
-    fprintf(f, "force,phase,speed,h_ehd,p_lub,psi_load,psi_area,pocket_height,mu,Ra,Rq,Rz,Sa,Sq,"
-               "residual_max,converged,seconds,step,rpm,entrainment_speed,regime,plastic,"
-               "contact_solves,volume_roots,root_error\n");
+    fprintf(f, "%s\n", runin_header);
     for (int k = 0; k < ri->done; k++) {
         const mc_runin_row *w = &ri->rows[k];
         fprintf(f,
                 "%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
-                "%.17g,%.17g,%d,%.6g,%d,%.17g,%.17g,%s,%d,%d,%d,%.6g\n",
+                "%.17g,",
                 w->force, w->up ? "up" : "down", w->speed, w->h_ehd, w->p_lub, w->psi_load,
-                w->psi_area, w->pocket_height, w->mu, w->ra, w->rq, w->rz, w->sa, w->sq,
-                w->residual_max, w->converged, w->seconds, k + 1,
-                w->speed * 60.0 / (2.0 * M_PI), w->entrainment,
+                w->psi_area, w->pocket_height, w->mu, w->ra, w->rq, w->rz, w->sa, w->sq);
+        fprintf(f, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,", w->rpk,
+                w->rk, w->rvk, w->mr1, w->mr2, w->sp, w->spk, w->sk, w->svk, w->smr1, w->smr2);
+        fprintf(f, "%.17g,%d,%.6g,%d,%.17g,%.17g,%s,%d,%d,%d,%.6g\n", w->residual_max,
+                w->converged, w->seconds, k + 1, w->speed * 60.0 / (2.0 * M_PI), w->entrainment,
                 w->regime >= 0 && w->regime < 3 ? regimes[w->regime] : "?", w->plastic,
                 w->solves, w->roots, w->root_error);
     }
@@ -444,37 +581,72 @@ static int write_runin(out_ctx *c, mc_error *err)
         return st;
     /* gnuplot selects each force's rows by value: the forces are written in full precision */
     fprintf(f, "# runin.gp - the running-in figures from runin.csv (Mevissen et al. 2025, Figs.\n"
-               "# 4-1 to 4-3): cd into this directory and run  gnuplot runin.gp\n"
-               "# runin_ra.png   Ra of the surface against the mean lubrication pocket height\n"
-               "# runin_psi.png  solid contact ratio psi (load and area) against it\n"
-               "# runin_mu.png   mu against the disc speed: run-down and run-up (hysteresis)\n"
+               "# 4-1 to 4-3) and from the surfaces: cd into this directory and run  gnuplot "
+               "runin.gp\n"
+               "# runin_ra.png       Ra of the surface against the mean lubrication pocket "
+               "height\n"
+               "# runin_psi.png      solid contact ratio psi (load and area) against it\n"
+               "# runin_mu.png       mu against the disc speed: run-down and run-up "
+               "(hysteresis)\n"
+               "# runin_mr.png       material-ratio (Abbott-Firestone) curves before and after\n"
+               "# runin_surface.png  height maps before and after (and the change)\n"
                "set datafile separator ','\nset terminal pngcairo size 900,600 font 'sans,11'\n"
                "set key outside right\nset grid\n");
     fprintf(f, "down(F, v) = (strcol(2) eq 'down' && abs($1 - F) <= 1e-9 * F) ? v : 1/0\n"
                "up(F, v) = (strcol(2) eq 'up' && abs($1 - F) <= 1e-9 * F) ? v : 1/0\n");
-    static const char *const figs[3][4] = {
-        {"runin_ra.png", "mean pocket height h_pocket [um]", "Ra [um]",
-         "($8 * 1e6):(%s(%.17g, $10 * 1e6))"},
+    static const struct {
+        const char *png, *xlabel, *ylabel, *x, *y;
+        double xscale, yscale;
+    } figs[] = {
+        {"runin_ra.png", "mean pocket height h_pocket [um]", "Ra [um]", "pocket_height", "Ra",
+         1e6, 1e6},
         {"runin_psi.png", "mean pocket height h_pocket [um]", "solid contact ratio psi_load",
-         "($8 * 1e6):(%s(%.17g, $6))"},
-        {"runin_mu.png", "disc speed [rpm]", "friction coefficient mu", "19:(%s(%.17g, $9))"}};
+         "pocket_height", "psi_load", 1e6, 1},
+        {"runin_mu.png", "disc speed [rpm]", "friction coefficient mu", "rpm", "mu", 1, 1}};
+    for (int g = 0; g < 3; g++)
+        if (!runin_column(figs[g].x) || !runin_column(figs[g].y)) {
+            fclose(f);
+            return mc_fail(err, MC_ERR_INTERNAL, "runin.gp: '%s' or '%s' is not a column of "
+                           "runin.csv", figs[g].x, figs[g].y);
+        }
     for (int g = 0; g < 3; g++) {
-        fprintf(f, "\nset output '%s'\nset xlabel '%s'\nset ylabel '%s'\n%s", figs[g][0],
-                figs[g][1], figs[g][2], g == 2 ? "set logscale x\n" : "unset logscale x\n");
+        fprintf(f, "\nset output '%s'\nset xlabel '%s'\nset ylabel '%s'\n%s", figs[g].png,
+                figs[g].xlabel, figs[g].ylabel, g == 2 ? "set logscale x\n" : "unset logscale x\n");
         fprintf(f, "plot");
         for (int k = 0; k < ri->nforces; k++) {
             const int first = 2 * ri->nspeeds * k;
             const double F = first < ri->done ? ri->rows[first].force : 0.0;
-            for (int ph = 0; ph < 2; ph++) {
-                char using[160];
-                snprintf(using, sizeof using, figs[g][3], ph ? "up" : "down", F);
-                fprintf(f, "%s'runin.csv' every ::1 using %s with linespoints pt %d lc %d "
-                           "title '%.6g N %s'",
-                        k || ph ? ", \\\n    " : " ", using, ph ? 6 : 7, k + 1, F,
-                        ph ? "run-up" : "run-down");
-            }
+            for (int ph = 0; ph < 2; ph++)
+                fprintf(f, "%s'runin.csv' every ::1 using ($%d * %g):(%s(%.17g, $%d * %g)) "
+                           "with linespoints pt %d lc %d title '%.6g N %s'",
+                        k || ph ? ", \\\n    " : " ", runin_column(figs[g].x), figs[g].xscale,
+                        ph ? "up" : "down", F, runin_column(figs[g].y), figs[g].yscale,
+                        ph ? 6 : 7, k + 1, F, ph ? "run-up" : "run-down");
         }
         fprintf(f, "\n");
+    }
+    if (both) {
+        /* the material ratio: the whole curve, and its peak zone where running-in acts first */
+        fprintf(f, "\n# material_ratio.csv: Mr [%%], heights about the mean plane [m]\n"
+                   "set output 'runin_mr.png'\nset terminal pngcairo size 1200,600 font "
+                   "'sans,11'\nunset logscale x\nset key inside top right\n"
+                   "set xlabel 'material ratio Mr [%%]'\nset ylabel 'height [um]'\n"
+                   "set multiplot layout 1,2\n");
+        for (int zoom = 0; zoom < 2; zoom++)
+            fprintf(f,
+                    "set title '%s'\nset xrange [0:%d]\nplot 'material_ratio.csv' every ::1 using "
+                    "1:($2 * 1e6) with lines lw 2 lc 1 title 'before', '' every ::1 using "
+                    "1:($3 * 1e6) with lines lw 2 lc 2 title 'after', '' every ::1 using "
+                    "1:($4 * 1e6) with lines dt 2 lc 1 title 'Sk line before', '' every ::1 "
+                    "using 1:($5 * 1e6) with lines dt 2 lc 2 title 'Sk line after'\n",
+                    zoom ? "the peaks: Mr 0 - 10 %" : "material-ratio (Abbott-Firestone) curve",
+                    zoom ? 10 : 100);
+        fprintf(f, "unset multiplot\nset xrange [*:*]\nunset title\n");
+        st = write_runin_maps(c, f, err);
+        if (st != MC_OK) {
+            fclose(f);
+            return st;
+        }
     }
     return close_staged(c, "runin.gp", f, err);
 }

@@ -56,6 +56,7 @@ void mc_results_free(mc_results *r)
     mc_free(r->displacement);
     mc_results_free_stress(r);
     mc_free(r->residual_displacement);
+    mc_free(r->lube_profile);
     mc_free(r->topography_final);
     mc_free(r->plastic_strain);
     mc_free(r->residual_von_mises);

@@ -62,6 +62,13 @@ typedef struct {
     double psi_load, psi_area, pocket_height; /* solid contact ratios; V / (A_nom - A_C), m */
     double mu;             /* mu = psi mu_solid + (1 - psi) mu_fluid */
     const char *psi_kind;  /* "load" | "area": the psi of mu */
+    int whole;             /* 1: the whole contact (the grid carries the macro cylinder, the
+                              nominal area is the Hertz band |x| <= b; theory.md §11.4) */
+    const char *profile;   /* whole: "uniform" | "hertz", the lubricant pressure profile */
+    int crowned;           /* whole and crowned ([geometry] shape = ellipsoid): the nominal area
+                              is the Hertz ellipse |x/b|^2 + |y/a|^2 <= 1 */
+    double hertz_half_length; /* crowned: the ellipse's semi-axis a along y, m (0 otherwise) */
+    double nominal_area;   /* the volume equilibrium's nominal area, m^2 */
 } mc_stage_lube_summary;
 
 /* The elastic-plastic stage ([plasticity]). */
@@ -102,6 +109,9 @@ typedef struct {
     double psi_load, psi_area, pocket_height, mu; /* pocket height in m */
     int regime;              /* lube/volume.h mc_lube_regime */
     double ra, rq, rz, sa, sq; /* of the surface after the step (ISO, as roughness.initial), m */
+    double rpk, rk, rvk, mr1, mr2; /* its ISO 13565-2 family (mean over the rows), m and % */
+    double sp, spk, sk, svk, smr1, smr2; /* its highest peak and areal material ratio
+                                            (ISO 25178-2), m and % */
     double residual_max;     /* largest residual displacement of body 1 so far, m */
     int plastic;             /* the step ran the plastic loop (something yielded) */
     int converged;           /* every solve of the step converged */
@@ -152,6 +162,8 @@ typedef struct {
     mc_stage_stress_layout stress_layout;
 
     mc_stage_lube_summary lube;
+    double *lube_profile; /* ny*nx: the whole contact's lubricant pressure profile w (lube/
+                             volume.h), NULL for a patch (stage_lube.h mc_stage_lube_profile) */
 
     /* elastic-plastic stage (NULL / 0 when not run) */
     mc_stage_plastic_summary plastic;

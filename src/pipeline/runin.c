@@ -89,6 +89,10 @@ typedef struct {
     double *bowl;             /* K 1: the patch's deflection per unit nominal pressure, m/Pa */
     double *h_base, *h_extra; /* per step: h0 - p_nom bowl, f u_r */
     double *z;                /* scratch: the composite surface */
+    double *shape;            /* the whole contact: the macro cylinder (topography = shape -
+                                 heights), NULL for a patch */
+    unsigned char *rmask;     /* the whole contact: the roughness is evaluated on the Hertz band
+                                 of the largest force (the track every force runs on), else NULL */
     mc_roughness_options ropt;
     double factor;            /* gap opening per residual displacement of body 1 (1 or 2) */
     /* the material: state carried from step to step */
@@ -115,7 +119,9 @@ static void ctx_free(runin_ctx *c)
     mc_free(c->step);
     mc_contact_destroy(&c->solver);
     mc_operator_destroy(&c->K);
-    double *a[] = {c->bowl, c->h_base, c->h_extra, c->z, c->eps_p, c->peq, c->sig_r, c->u_r, c->qx};
+    double *a[] = {c->bowl, c->h_base, c->h_extra, c->z,   c->eps_p,
+                   c->peq,  c->sig_r,  c->u_r,     c->qx, c->shape};
+    mc_free(c->rmask);
     for (size_t k = 0; k < sizeof a / sizeof a[0]; k++)
         mc_free(a[k]);
     for (int k = 0; k < 6; k++)
@@ -136,8 +142,8 @@ static int stop_poll(void *ctx) { return stopped(ctx); }
 static int surface_roughness(runin_ctx *c, double *z, mc_roughness_params *out, mc_error *err)
 {
     for (size_t i = 0; i < c->n; i++)
-        z[i] = -(c->h0[i] + c->factor * c->u_r[i]);
-    return mc_roughness_compute(z, NULL, c->g.nx, c->g.ny, c->g.dx, c->g.dy, &c->ropt, out, err);
+        z[i] = (c->shape ? c->shape[i] : 0.0) - (c->h0[i] + c->factor * c->u_r[i]);
+    return mc_roughness_compute(z, c->rmask, c->g.nx, c->g.ny, c->g.dx, c->g.dy, &c->ropt, out, err);
 }
 
 /* The macro contact of step (force F, disc speed n) into res->lube; the step's base gap. */
@@ -148,6 +154,8 @@ static int step_macro(runin_ctx *c, double F, double speed, mc_error *err)
     if (c->sc->lubrication.rpm2 > 0) /* rolling-sliding: the slide-to-roll ratio stays */
         c->step->lubrication.rpm2 = c->sc->lubrication.rpm2 * speed / c->sc->lubrication.rpm;
     int rc = mc_stage_lube_macro(c->step, &c->g, &c->res->lube, err);
+    if (rc == MC_OK)
+        rc = mc_stage_lube_profile(c->step, c->res, err);
     if (rc != MC_OK)
         return rc;
     const double pnom = c->res->lube.nominal_pressure;
@@ -164,6 +172,7 @@ static int equilibrium(runin_ctx *c, mc_volume_result *vr, mc_error *err)
 {
     mc_results *r = c->res;
     mc_volume_problem prob = {.h = c->h_base,
+                              .weight = r->lube_profile,
                               .h_extra = c->h_extra,
                               .load = r->lube.patch_load,
                               .h_target = r->lube.h_ehd,
@@ -216,6 +225,7 @@ static int plastic_step(runin_ctx *c, mc_plastic_step *record, mc_stage_lube_con
     *lc = (mc_stage_lube_contact){.solver = c->solver,
                             .K = c->K,
                             .h_target = r->lube.h_ehd,
+                            .weight = r->lube_profile,
                             .tolerance = sc->lubrication.tolerance};
     mc_plastic_problem pb = {.h = c->h_base,
                              .load = r->lube.patch_load,
@@ -327,6 +337,17 @@ static int run_step(runin_ctx *c, int s, mc_runin_row *row, mc_plastic_step *rec
     row->rz = rp.Rz;
     row->sa = rp.Sa;
     row->sq = rp.Sq;
+    row->rpk = rp.Rpk;
+    row->rk = rp.Rk;
+    row->rvk = rp.Rvk;
+    row->mr1 = rp.Mr1;
+    row->mr2 = rp.Mr2;
+    row->sp = rp.Sp;
+    row->spk = rp.Spk;
+    row->sk = rp.Sk;
+    row->svk = rp.Svk;
+    row->smr1 = rp.Smr1;
+    row->smr2 = rp.Smr2;
     for (size_t i = 0; i < c->n; i++)
         row->residual_max = fmax(row->residual_max, c->u_r[i]);
     row->seconds = mc_clock() - t0;
@@ -409,6 +430,23 @@ static int setup(runin_ctx *c, mc_error *err)
     if (rc != MC_OK)
         return rc;
     c->hash = mc_runin_case_hash(sc, c->h0, c->n);
+    if (mc_lube_is_whole(sc)) { /* the whole contact (stage_lube.h) */
+        double fmax_ = 0;
+        for (int f = 0; f < c->nf; f++)
+            fmax_ = fmax(fmax_, c->forces[f]);
+        mc_stage_lube_summary widest;
+        c->step->load.value = fmax_; /* the largest band must fit the grid: say so up front */
+        rc = mc_stage_lube_macro(c->step, &c->g, &widest, err);
+        if (rc != MC_OK)
+            return rc;
+        if (!(c->shape = mc_zeros(c->n)) || !(c->rmask = mc_malloc(c->n)))
+            return mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory");
+        mc_surface_shape(&c->g, &sc->geometry, c->shape);
+        for (int j = 0; j < c->g.ny; j++)
+            for (int i = 0; i < c->g.nx; i++)
+                c->rmask[(size_t)j * c->g.nx + i] =
+                    mc_stage_lube_nominal_shape(&widest, mc_grid_x(&c->g, i), mc_grid_y(&c->g, j), 0) > 0;
+    }
     /* a simulated window is much shorter than the ISO 4288 cut-off (0.8 mm for ground
      * surfaces): without a [roughness] cutoff the rows are only levelled (their mean removed),
      * not filtered (dossier plastic-lubrication §6.2) */
@@ -434,7 +472,8 @@ static int setup(runin_ctx *c, mc_error *err)
                                .estar = estar};
     if (rc == MC_OK)
         rc = mc_contact_create(c->K, &copt, &c->solver, err);
-    if (rc == MC_OK && sc->runin.deflection == MC_DEFLECTION_REMOVE) {
+    const int whole = mc_lube_is_whole(sc);
+    if (rc == MC_OK && sc->runin.deflection == MC_DEFLECTION_REMOVE && !whole) {
         double *one = mc_zeros(c->n);
         if (!one || !(c->bowl = mc_zeros(c->n))) {
             mc_free(one);
@@ -614,7 +653,7 @@ static int final_results(runin_ctx *c, const mc_plastic_step *records, int nrec,
 {
     mc_results *r = c->res;
     for (size_t i = 0; i < c->n; i++)
-        r->surface_final[i] = -(c->h0[i] + c->factor * c->u_r[i]);
+        r->surface_final[i] = (c->shape ? c->shape[i] : 0.0) - (c->h0[i] + c->factor * c->u_r[i]);
     if (r->has_roughness) {
         int rc = surface_roughness(c, c->z, &r->roughness_final, err);
         if (rc != MC_OK)

@@ -17,8 +17,9 @@
  *   run-up    n_m ... n_1: the same equilibrium, elastic, on the run-in surface;
  * and the next force starts from the surface the run-up ended on. Every step is a row of
  * runin.csv: h_EHD, p_lub, psi, the pocket height and mu of the loaded state, and the roughness
- * (Ra, Rq, Rz, Sa, Sq: surface/roughness.h with the options of roughness.initial) of the surface
- * after the step. Without [plasticity] the material is elastic: nothing runs in and every step
+ * of the surface after the step (surface/roughness.h with the options of roughness.initial): Ra,
+ * Rq, Rz, Sa, Sq and what shows running-in, the peaks: the ISO 13565-2 family Rpk, Rk, Rvk, Mr1,
+ * Mr2 (mean over the rows) and Sp with the areal Spk, Sk, Svk, Smr1, Smr2 (ISO 25178-2). Without [plasticity] the material is elastic: nothing runs in and every step
  * of a run-up repeats its run-down step exactly (bit for bit: the same solves from the same cold
  * start; a step never starts from the one before).
  *

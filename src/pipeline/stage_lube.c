@@ -4,9 +4,11 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/alloc.h"
 #include "lube/film.h"
 #include "lube/friction.h"
 #include "lube/volume.h"
+#include "reference/hertz.h"
 
 static const double RAD_S_PER_RPM = 6.283185307179586476925286766559 / 60.0;
 
@@ -20,13 +22,27 @@ int mc_stage_lube_macro(const mc_scene *sc, const mc_grid *g, mc_stage_lube_summ
     lube->film = sc->lubrication.film == MC_FILM_EHL ? "ehl" : "given";
     lube->formula = "";
     lube->psi_kind = mc_psi_name(sc->lubrication.psi);
+    lube->whole = mc_lube_is_whole(sc);
+    lube->crowned = sc->geometry.shape == MC_SHAPE_ELLIPSOID;
     double rx = sc->lubrication.macro_radius;
+    if (lube->whole) /* the scene checked that it equals macro_radius or R1 R2 / (R1 + R2) */
+        rx = lube->crowned ? sc->geometry.radius_x : sc->geometry.radius;
     if (!(rx > 0) && sc->lubrication.radius1 > 0 && sc->lubrication.radius2 > 0) {
         int rc = mc_film_reduced_radius(sc->lubrication.radius1, sc->lubrication.radius2, &rx, err);
         if (rc != MC_OK)
             return rc;
     }
-    if (rx > 0 && sc->lubrication.width > 0) {
+    if (lube->crowned) { /* the elliptical Hertz contact of F_N */
+        mc_hertz_ellipse he;
+        int rc = mc_hertz_ellipse_from_load(rx, sc->geometry.radius_y, estar, sc->load.value, &he,
+                                            err);
+        if (rc != MC_OK)
+            return rc;
+        lube->macro_radius = rx;
+        lube->hertz_half_width = he.ax;
+        lube->hertz_half_length = he.ay;
+        lube->hertz_pressure = he.p0;
+    } else if (rx > 0 && sc->lubrication.width > 0) {
         lube->macro_radius = rx;
         lube->load_per_length = sc->load.value / sc->lubrication.width;
         int rc = mc_film_hertz_line(lube->load_per_length, rx, estar, &lube->hertz_half_width,
@@ -34,9 +50,40 @@ int mc_stage_lube_macro(const mc_scene *sc, const mc_grid *g, mc_stage_lube_summ
         if (rc != MC_OK)
             return rc;
     }
-    /* with a macro radius the patch is the centre of the macro contact, loaded with p_H */
-    lube->patch_load = lube->hertz_pressure > 0 ? lube->hertz_pressure * a_nom : sc->load.value;
-    lube->nominal_pressure = lube->patch_load / a_nom;
+    if (lube->whole) {
+        /* the whole contact: the strip carries w' per length along y; the nominal area is the
+         * Hertz band, which must lie inside the grid with a margin for the rough edge */
+        const double half = 0.5 * g->nx * g->dx, b = lube->hertz_half_width;
+        const double halfy = 0.5 * g->ny * g->dy, a = lube->hertz_half_length;
+        if (lube->crowned && !(MC_WHOLE_BAND_MARGIN * a <= halfy))
+            return mc_fail(err, MC_ERR_INPUT,
+                           "[mesh] the grid spans |y| <= %.6g um, too short for the whole crowned "
+                           "contact at F_N = %.6g N: its Hertz ellipse reaches a = %.6g um",
+                           halfy * 1e6, sc->load.value, a * 1e6);
+        if (!(MC_WHOLE_BAND_MARGIN * b <= half))
+            return mc_fail(err, MC_ERR_INPUT,
+                           "[mesh] the grid spans |x| <= %.6g um, too narrow for the whole "
+                           "contact at F_N = %.6g N: the Hertz band |x| <= b = %.6g um plus %.0f %% "
+                           "needs nx >= %.0f at dx = %.6g um",
+                           half * 1e6, sc->load.value, b * 1e6,
+                           (MC_WHOLE_BAND_MARGIN - 1.0) * 100.0,
+                           ceil(2.0 * MC_WHOLE_BAND_MARGIN * b / g->dx), g->dx * 1e6);
+        size_t nband = 0;
+        for (int j = 0; j < g->ny; j++)
+            for (int i = 0; i < g->nx; i++)
+                nband += mc_stage_lube_nominal_shape(lube, mc_grid_x(g, i), mc_grid_y(g, j), 0) > 0;
+        lube->nominal_area = (double)nband * mc_grid_cell_area(g);
+        /* the strip carries w' per length; the crowned contact the whole F_N */
+        lube->patch_load = lube->crowned ? sc->load.value : lube->load_per_length * g->ny * g->dy;
+        lube->nominal_pressure = lube->patch_load / lube->nominal_area;
+        lube->profile = sc->lubrication.profile == MC_PROFILE_HERTZ ? "hertz" : "uniform";
+    } else {
+        /* with a macro radius the patch is the centre of the macro contact, loaded with p_H */
+        lube->patch_load = lube->hertz_pressure > 0 ? lube->hertz_pressure * a_nom
+                                                    : sc->load.value;
+        lube->nominal_area = a_nom;
+        lube->nominal_pressure = lube->patch_load / a_nom;
+    }
     if (sc->lubrication.film == MC_FILM_GIVEN) {
         lube->h_ehd = sc->lubrication.film_thickness;
         return MC_OK;
@@ -66,11 +113,53 @@ int mc_stage_lube_macro(const mc_scene *sc, const mc_grid *g, mc_stage_lube_summ
                         /* line formulas take w', point formulas F_N with a circular contact */
                         .load = mc_film_formula_is_point(f) ? sc->load.value
                                                             : lube->load_per_length,
-                        .k = mc_film_ellipticity(1.0)};
+                        /* the crowned contact's ellipticity, else the circle's */
+                        .k = mc_film_ellipticity(lube->crowned ? sc->geometry.radius_y /
+                                                                     sc->geometry.radius_x
+                                                               : 1.0)};
     rc = mc_film_thickness(f, &in, &lube->h_ehd, err);
     if (rc != MC_OK)
         mc_error_prefix(err, "[lubrication] film = ehl: ");
     return rc;
+}
+
+double mc_stage_lube_nominal_shape(const mc_stage_lube_summary *lube, double x, double y, int hertz)
+{
+    const double tx = x / lube->hertz_half_width;
+    const double ty = lube->crowned ? y / lube->hertz_half_length : 0.0;
+    const double r2 = tx * tx + ty * ty;
+    if (!(r2 <= 1.0))
+        return 0.0;
+    return hertz ? sqrt(1.0 - r2) : 1.0;
+}
+
+int mc_stage_lube_profile(const mc_scene *sc, mc_results *res, mc_error *err)
+{
+    if (!res->lube.whole)
+        return MC_OK;
+    const mc_grid *g = &res->grid;
+    const size_t n = mc_grid_cells(g);
+    if (!res->lube_profile && !(res->lube_profile = mc_malloc(n * sizeof *res->lube_profile)))
+        return mc_fail(err, MC_ERR_NOMEM, "lubrication: out of memory for the profile");
+    const int hertz = sc->lubrication.profile == MC_PROFILE_HERTZ;
+    double sum = 0;
+    long nband = 0;
+    double *w = res->lube_profile;
+    for (int j = 0; j < g->ny; j++)
+        for (int i = 0; i < g->nx; i++) {
+            double *wi = &w[(size_t)j * g->nx + i];
+            *wi = mc_stage_lube_nominal_shape(&res->lube, mc_grid_x(g, i), mc_grid_y(g, j), hertz);
+            sum += *wi;
+            nband += *wi > 0;
+        }
+    if (!(sum > 0))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "lubrication: the Hertz contact (b = %.6g um) holds no cell centre of the "
+                       "grid (dx = %.6g um)",
+                       res->lube.hertz_half_width * 1e6, g->dx * 1e6);
+    for (size_t i = 0; i < n; i++) /* mean 1 over the nominal area: p_lub is its mean */
+        w[i] *= (double)nband / sum;
+    return MC_OK;
 }
 
 int mc_stage_lube(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, const double *h_extra,
@@ -78,9 +167,12 @@ int mc_stage_lube(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, cons
 {
     mc_stage_lube_summary *lube = &res->lube;
     int rc = mc_stage_lube_macro(sc, &res->grid, lube, err);
+    if (rc == MC_OK)
+        rc = mc_stage_lube_profile(sc, res, err);
     if (rc != MC_OK)
         return rc;
-    mc_volume_problem prob = {.h = res->topography,
+    mc_volume_problem prob = {.weight = res->lube_profile,
+                              .h = res->topography,
                               .h_extra = h_extra,
                               .load = lube->patch_load,
                               .h_target = lube->h_ehd,
@@ -114,8 +206,10 @@ int mc_stage_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_res
     const size_t n = mc_grid_cells(&res->grid);
     mc_lube_split split;
     mc_error serr = {0};
-    int src = mc_lube_split_of(res->pressure, res->gap, n, mc_grid_cell_area(&res->grid),
-                               vr->p_lub, lube->patch_load, &split, &serr);
+    int src = mc_lube_split_weighted(res->pressure, res->gap,
+                                     lube->whole ? res->lube_profile : NULL, n,
+                                     mc_grid_cell_area(&res->grid), vr->p_lub, lube->patch_load,
+                                     &split, &serr);
     /* psi_load = F_solid / F_N reaches 1 + round-off in the dry regime (the load is met to the
      * contact tolerance): clamp what is within that, refuse anything beyond */
     double psi = mc_lube_split_psi(&split, sc->lubrication.psi);
@@ -144,6 +238,7 @@ int mc_stage_lube_contact_step(void *ctx, const mc_contact_problem *cp, double *
                               .load = cp->load,
                               .h_target = lc->h_target,
                               .tolerance = lc->tolerance,
+                              .weight = lc->weight,
                               .p_start = cp->p_start};
     if (lc->calls > 0 && lc->last.regime == MC_REGIME_MIXED) { /* the last root as the guess */
         prob.p_lub_guess = lc->last.p_lub;

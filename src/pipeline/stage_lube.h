@@ -17,6 +17,28 @@
  * res->lube. MC_OK or MC_ERR_INPUT (a film formula input out of its range). */
 int mc_stage_lube_macro(const mc_scene *sc, const mc_grid *g, mc_stage_lube_summary *lube, mc_error *err);
 
+/* Whether the scene is a whole contact (theory.md §11.4): the grid carries the macro geometry,
+ * a cylinder on a strip (the line contact) or an ellipsoid on a free grid (the crowned one). */
+static inline int mc_lube_is_whole(const mc_scene *sc)
+{
+    return sc->geometry.shape == MC_SHAPE_CYLINDER || sc->geometry.shape == MC_SHAPE_ELLIPSOID;
+}
+
+/* The whole contact's Hertz band must lie within the grid with this factor of margin on b. */
+#define MC_WHOLE_BAND_MARGIN 1.1
+
+/* The lubricant pressure profile w of the whole contact (lube/volume.h, theory.md §11.4) into
+ * res->lube_profile (allocated on first use), from the macro contact in res->lube
+ * (mc_stage_lube_macro): uniform 1 on the Hertz band |x| <= b, or (hertz) sqrt(1 - (x/b)^2) scaled to
+ * mean 1 over the band's cells; 0 outside. For a patch (res->lube.whole = 0) nothing is done
+ * and res->lube_profile stays NULL. MC_OK or MC_ERR_NOMEM. */
+int mc_stage_lube_profile(const mc_scene *sc, mc_results *res, mc_error *err);
+
+/* The nominal area's shape at (x, y): for the line contact |x| <= b, for the crowned one the
+ * ellipse (x/b)^2 + (y/a)^2 <= 1 (lube: the macro contact of mc_stage_lube_macro); 1 inside (or with
+ * hertz the smooth contact's sqrt(1 - r^2)), 0 outside. */
+double mc_stage_lube_nominal_shape(const mc_stage_lube_summary *lube, double x, double y, int hertz);
+
 /* Solve the patch: the lubricant pressure from the volume equilibrium (lube/volume.h) with the
  * contact solver s over K (h_extra, e.g. a residual displacement, may be NULL; p_start a warm
  * start or NULL), the fields into res (pressure, displacement, gap), res->contact and
@@ -42,6 +64,7 @@ typedef struct {
     mc_contact_solver *solver;
     mc_operator *K;
     double h_target, tolerance;
+    const double *weight;  /* the whole contact's profile (res->lube_profile), NULL: a patch */
     mc_volume_result last; /* of the last call */
     int calls, solves;     /* equilibria solved, contact solves in all */
 } mc_stage_lube_contact;

@@ -269,6 +269,7 @@ int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
     mc_stage_lube_contact lc = {.solver = solver,
                           .K = K,
                           .h_target = res->lube.h_ehd,
+                          .weight = res->lube_profile,
                           .tolerance = sc->lubrication.tolerance};
     mc_plastic_problem pb = {.h = res->topography,
                              .load = lubricated ? res->lube.patch_load : stage_load(sc, &res->grid),

@@ -431,13 +431,26 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
         jset(b, o, "hertz_half_width", jnum(l->hertz_half_width));
         jset(b, o, "nominal_pressure", jnum(l->nominal_pressure));
         jset(b, o, "patch_load", jnum(l->patch_load));
+        jset(b, o, "contact", jstr(l->whole ? "whole" : "patch"));
+        jset(b, o, "nominal_area", jnum(l->nominal_area));
+        if (l->whole)
+            jset(b, o, "lubricant_profile", jstr(l->profile));
+        if (l->crowned)
+            jset(b, o, "hertz_half_length", jnum(l->hertz_half_length));
         jset(b, o, "volume", jnum(l->volume));
         jset(b, o, "volume_target", jnum(l->v_target));
         jset(b, o, "volume_rel_error", jnum(l->rel_error));
         jset(b, o, "contact_solves", json_integer(l->solves));
         jset(b, o, "converged", json_boolean(l->converged));
         jset(b, o, "note",
-             jstr(l->hertz_pressure > 0
+             jstr(l->crowned
+                      ? "the whole crowned contact: the grid carries the macro ellipsoid and "
+                        "F_N; the lubricant volume equilibrium is over the Hertz ellipse"
+                  : l->whole
+                      ? "the whole line contact: the strip carries the macro cylinder and w' "
+                        "times its length; the lubricant volume equilibrium is over the Hertz "
+                        "band |x| <= b"
+                  : l->hertz_pressure > 0
                       ? "the patch stands for the centre of the macro line contact and carries "
                         "its Hertz pressure p_H as nominal pressure"
                       : "the scene's own load on the whole grid (no macro contact)"));

@@ -3,6 +3,8 @@
 
 #include <math.h>
 
+#include <gsl/gsl_sf_ellint.h>
+
 #include "kernels/kernel.h"
 
 static int positive_finite(double v) { return isfinite(v) && v > 0.0; }
@@ -23,6 +25,63 @@ int mc_hertz_point_from_load(double R, double Estar, double P, mc_hertz_point *h
     h->a = cbrt(3.0 * P * R / (4.0 * Estar));
     h->p0 = 3.0 * P / (2.0 * M_PI * h->a * h->a);
     h->delta = h->a * h->a / R;
+    return MC_OK;
+}
+
+/* B/A of the elliptical contact as a function of the eccentricity (hertz.h); rises from 1 at
+ * e = 0 without bound as e -> 1. */
+static double ellipse_ratio(double e)
+{
+    const double K = gsl_sf_ellint_Kcomp(e, GSL_PREC_DOUBLE);
+    const double E = gsl_sf_ellint_Ecomp(e, GSL_PREC_DOUBLE);
+    return (E / (1.0 - e * e) - K) / (K - E);
+}
+
+int mc_hertz_ellipse_from_load(double Rx, double Ry, double Estar, double P, mc_hertz_ellipse *h,
+                               mc_error *err)
+{
+    if (!h)
+        return mc_fail(err, MC_ERR_INPUT, "hertz ellipse: NULL result");
+    if (!positive_finite(Rx) || !positive_finite(Ry) || !positive_finite(Estar) ||
+        !positive_finite(P))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "hertz ellipse: need Rx, Ry, E*, P > 0 (got %g m, %g m, %g Pa, %g N)", Rx, Ry,
+                       Estar, P);
+    h->Rx = Rx;
+    h->Ry = Ry;
+    h->Estar = Estar;
+    h->load = P;
+    const double rl = fmax(Rx, Ry), rs = fmin(Rx, Ry), ratio = rl / rs;
+    double e = 0.0, lng, shrt;
+    /* below e = 1e-4 the ratio differs from 1 by ~1e-8, where K - E loses its digits: the
+     * circle's formulas are exact to that order there */
+    if (ratio <= ellipse_ratio(1e-4)) {
+        lng = shrt = cbrt(3.0 * P * sqrt(rl * rs) / (4.0 * Estar));
+    } else {
+        double lo = 1e-4, hi = 1.0 - 1e-15;
+        if (!(ellipse_ratio(hi) >= ratio))
+            return mc_fail(err, MC_ERR_INPUT,
+                           "hertz ellipse: radius ratio %g beyond the reach of the elliptic "
+                           "integrals (a line contact)",
+                           ratio);
+        for (int it = 0; it < 200 && hi - lo > 4e-16; it++) {
+            const double mid = 0.5 * (lo + hi);
+            if (ellipse_ratio(mid) < ratio)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        e = 0.5 * (lo + hi);
+        const double K = gsl_sf_ellint_Kcomp(e, GSL_PREC_DOUBLE);
+        const double E = gsl_sf_ellint_Ecomp(e, GSL_PREC_DOUBLE);
+        lng = cbrt(3.0 * P * rl * (K - E) / (M_PI * Estar * e * e));
+        shrt = lng * sqrt(1.0 - e * e);
+    }
+    h->e = e;
+    h->ax = Rx >= Ry ? lng : shrt;
+    h->ay = Rx >= Ry ? shrt : lng;
+    h->p0 = 3.0 * P / (2.0 * M_PI * lng * shrt);
+    h->delta = h->p0 * shrt * gsl_sf_ellint_Kcomp(e, GSL_PREC_DOUBLE) / Estar;
     return MC_OK;
 }
 

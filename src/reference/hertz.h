@@ -91,6 +91,27 @@ void mc_hertz_hamilton_tangential(double x, double y, double z, double nu, doubl
  * s = normal + mu * tangential (Hamilton 1983). */
 void mc_hertz_point_sliding(double x, double y, double z, double nu, double mu, double s[6]);
 
+/* ---- Hertz elliptical contact (ellipsoid on flat), SI; Johnson (1985) §4.2 ----------------- */
+
+typedef struct {
+    double Rx, Ry; /* principal radii of the gap h = x^2/(2 Rx) + y^2/(2 Ry), m */
+    double Estar;  /* combined modulus E*, Pa */
+    double load;   /* normal load P, N */
+    double ax, ay; /* semi-axes of the contact ellipse along x and y, m (the longer one lies
+                      along the larger radius) */
+    double e;      /* eccentricity sqrt(1 - (short/long)^2) */
+    double p0;     /* maximum pressure 3 P / (2 pi ax ay), Pa */
+    double delta;  /* rigid approach p0 short K(e) / E*, m */
+} mc_hertz_ellipse;
+
+/* Fill *h from Rx, Ry, E*, P > 0 (finite). With A = 1/(2 R_long), B = 1/(2 R_short) the
+ * eccentricity solves B/A = [E(e)/(1 - e^2) - K(e)] / [K(e) - E(e)] (bisection; K, E complete
+ * elliptic integrals of modulus e), then long^3 = 3 P R_long (K - E)/(pi E* e^2),
+ * short = long sqrt(1 - e^2) (Johnson 1985 eqs. 4.36-4.39). A ratio within 1e-8 of 1 is the
+ * circle of mc_hertz_point_from_load (radius sqrt(Rx Ry)). MC_ERR_INPUT otherwise. */
+int mc_hertz_ellipse_from_load(double Rx, double Ry, double Estar, double P, mc_hertz_ellipse *h,
+                               mc_error *err);
+
 /* ---- Hertz line contact (cylinder on flat, plane strain), SI; Johnson (1985) ch. 4 ---------- */
 
 typedef struct {

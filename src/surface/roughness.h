@@ -56,17 +56,32 @@ typedef struct {
     double k;        /* core roughness depth Rk (Sk), m */
     double pk, vk;   /* reduced peak height Rpk and valley depth Rvk, m */
     double mr1, mr2; /* material ratios at the core's top and bottom, % */
+    double c0, c100; /* heights of the equivalent straight line at Mr = 0 and 100 %, m
+                        (k = c0 - c100) */
 } mc_material_ratio;
 
-/* Rk family of n heights h (any order; work: n doubles of scratch). The material-ratio curve
+/* Rk family of n heights h (any order; work: n doubles, on return the heights sorted highest
+ * first: the material-ratio curve). The material-ratio curve
  * puts the k-th highest of n heights (k = 0..n-1) at Mr = 100 (k + 1/2) / n %. The equivalent
  * straight line is the secant spanning round(0.4 n) samples (Delta Mr = 40 %) with the smallest
  * |slope|; its heights at Mr = 0 and 100 % are c0, c100 and Rk = c0 - c100. Mr1 is the share of
  * heights above c0, Mr2 the share at or above c100; Rpk = 2 A1 / Mr1 and Rvk =
  * 2 A2 / (100 - Mr2) with A1 = sum over h > c0 of (h - c0) 100/n and A2 = sum over h < c100
  * of (c100 - h) 100/n (0 when the share is 0). n < 2 gives Rk = Rpk = Rvk = 0, Mr1 = 0,
- * Mr2 = 100. (Dossier §6.4.) */
+ * Mr2 = 100, c0 = c100 = the height (0 for n = 0). (Dossier §6.4.) */
 void mc_roughness_material_ratio(const double *h, size_t n, double *work, mc_material_ratio *out);
+
+/* The areal material-ratio (Abbott-Firestone) curve of a height map (n points, mask valid as
+ * above, NULL: all) sampled at npts >= 2 equally spaced ratios Mr_k = 100 k / (npts - 1) %:
+ * height[k], m, about the mean of the valid points (the reference of the areal parameters). The
+ * curve is that of mc_roughness_material_ratio (the j-th highest of the cnt valid heights at
+ * Mr = 100 (j + 1/2) / cnt), linear between those points and constant beyond the first and the
+ * last: height[0] = Sp and height[npts - 1] = -Sv. *line (may be NULL) receives the Sk family
+ * of the same heights with its equivalent straight line c0 + (c100 - c0) Mr / 100: the same
+ * numbers as Sk, Spk, Svk, Smr1, Smr2 of mc_roughness_compute on that map. (theory.md §13.4.)
+ * Errors: MC_ERR_INPUT (npts < 2, no valid point, a non-finite valid height), MC_ERR_NOMEM. */
+int mc_roughness_material_curve(const double *z, const unsigned char *valid, size_t n, int npts,
+                                double *height, mc_material_ratio *line, mc_error *err);
 
 /* ---- all parameters ---------------------------------------------------------------------- */
 

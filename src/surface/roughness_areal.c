@@ -110,3 +110,51 @@ int mc_rough_areal(const double *z, const unsigned char *valid, int nx, int ny, 
     mc_free(work);
     return MC_OK;
 }
+
+int mc_roughness_material_curve(const double *z, const unsigned char *valid, size_t n, int npts,
+                                double *height, mc_material_ratio *line, mc_error *err)
+{
+    if (npts < 2 || !z || !height)
+        return mc_fail(err, MC_ERR_INPUT,
+                       "material-ratio curve: %d points asked; accepted: at least 2", npts);
+    size_t cnt = 0;
+    double mean = 0;
+    for (size_t k = 0; k < n; k++) {
+        if (valid && !valid[k])
+            continue;
+        if (!isfinite(z[k]))
+            return mc_fail(err, MC_ERR_INPUT,
+                           "material-ratio curve: height %zu of %zu is not finite", k, n);
+        mean += z[k];
+        cnt++;
+    }
+    if (cnt == 0)
+        return mc_fail(err, MC_ERR_INPUT, "material-ratio curve: the map has no valid point");
+    mean /= (double)cnt; /* as mc_rough_areal: the same reference to the bit */
+    double *h = mc_malloc(sizeof(double) * 2 * cnt);
+    if (!h)
+        return mc_fail(err, MC_ERR_NOMEM, "material-ratio curve: out of memory for %zu points",
+                       cnt);
+    for (size_t k = 0, c = 0; k < n; k++)
+        if (!valid || valid[k])
+            h[c++] = z[k] - mean;
+    mc_material_ratio mr;
+    mc_roughness_material_ratio(h, cnt, h + cnt, &mr);
+    const double *s = h + cnt; /* the curve: the j-th highest at Mr = 100 (j + 1/2) / cnt */
+    for (int k = 0; k < npts; k++) {
+        double x = (double)k / (double)(npts - 1) * (double)cnt - 0.5; /* fractional j */
+        if (x <= 0)
+            height[k] = s[0];
+        else if (x >= (double)(cnt - 1))
+            height[k] = s[cnt - 1];
+        else {
+            size_t j = (size_t)x;
+            double t = x - (double)j;
+            height[k] = s[j] + t * (s[j + 1] - s[j]);
+        }
+    }
+    if (line)
+        *line = mr;
+    mc_free(h);
+    return MC_OK;
+}

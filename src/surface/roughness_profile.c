@@ -18,6 +18,9 @@ void mc_roughness_material_ratio(const double *h, size_t n, double *work, mc_mat
     out->k = out->pk = out->vk = 0.0;
     out->mr1 = 0.0;
     out->mr2 = 100.0;
+    out->c0 = out->c100 = n == 1 ? h[0] : 0.0;
+    if (n == 1)
+        work[0] = h[0];
     if (n < 2)
         return;
     memcpy(work, h, sizeof(double) * n);
@@ -51,6 +54,8 @@ void mc_roughness_material_ratio(const double *h, size_t n, double *work, mc_mat
     }
     double pct = 100.0 / (double)n;
     out->k = c0 - c100;
+    out->c0 = c0;
+    out->c100 = c100;
     out->mr1 = above * pct;
     out->mr2 = atleast * pct;
     out->pk = above ? 2.0 * a1 * pct / out->mr1 : 0.0;

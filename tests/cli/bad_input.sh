@@ -283,7 +283,30 @@ row lube_speed_and_rpm o 1 "lube_ok.ini" "give exactly one of speed, rpm" \
 row lube_rpm_radius   o 1 "lube_rpm_noradius.ini" "[lubrication] rpm needs radius1 and radius2" \
     -- lube_rpm_noradius.ini --out o
 row lube_curved       o 1 "--set geometry.shape=sphere" "[lubrication] needs [geometry] shape = flat" \
+    "cylinder (the whole line contact" "ellipsoid (the whole crowned contact" \
     -- lube_ok.ini --out o --set geometry.shape=sphere --set geometry.radius=10mm
+# the whole line contact (shape = cylinder): the Hertz band of the discs on a strip
+control control_whole         o 0 whole_ok.ini --out o
+control control_whole_hertz   o 0 whole_ok.ini --out o --set lubrication.lubricant_profile=hertz
+row whole_not_strip    o 1 "--set mesh.periodic_y=no" "needs a strip: periodic_y = yes and x free" \
+    -- whole_ok.ini --out o --set mesh.periodic_y=no
+row whole_radius       o 1 "--set geometry.radius=3mm" "[geometry] radius = 3 mm is not the reduced radius R_x = 2 mm" \
+    "[lubrication] radius1 and radius2" -- whole_ok.ini --out o --set geometry.radius=3mm
+row whole_narrow       o 1 "--set mesh.nx=64" "[mesh] the grid spans |x| <= 25.6 um, too narrow for the whole contact" \
+    "b = 34.68 um" "needs nx >= 96" -- whole_ok.ini --out o --set mesh.nx=64
+row whole_no_width     o 1 "[lubrication] with [geometry] shape = cylinder needs width" -- whole_ok.ini --out o --set lubrication.width=
+control control_crowned       o 0 crown_ok.ini --out o
+row crowned_line_film  o 1 "--set lubrication.formula=pan_hamrock_central" "is a line-contact formula" \
+    "needs a point-contact one (hamrock_dowson_central or hamrock_dowson_min)" \
+    -- crown_ok.ini --out o --set lubrication.formula=pan_hamrock_central
+row crowned_width      o 1 "--set lubrication.width=2mm" "[lubrication] width has no effect on the whole crowned contact" \
+    -- crown_ok.ini --out o --set lubrication.width=2mm
+row crowned_periodic   o 1 "--set mesh.periodic_y=yes" "needs a grid free along x and y" \
+    -- crown_ok.ini --out o --set mesh.periodic_y=yes
+row crowned_small      o 1 "--set mesh.ny=200" "too small for the whole crowned contact" "needs nx >= 61 and ny >= 273" \
+    -- crown_ok.ini --out o --set mesh.ny=200
+row profile_on_patch   o 1 "--set lubrication.lubricant_profile=hertz" "[lubrication] lubricant_profile is not used by" \
+    -- lube_ok.ini --out o --set lubrication.lubricant_profile=hertz
 # the running-in ([runin]) and its resume
 control control_runin         o 0 runin_ok.ini --out o --quiet
 row runin_speeds_rise  o 1 "runin_increasing.ini:23:" "[runin] speeds = 200, 500, 1000 rpm" \

@@ -607,12 +607,15 @@ warn warn_flat_patch_no_edge patch.ini --
   printf '[plasticity]\nhardening = swift\nswift_B = 1280 MPa\nswift_C = 4\nswift_n = 0.095\n'
   printf 'bodies = both\nload_steps = 1\ndz = 0.4 um\ndepth = 2 um\nplastic_tolerance = 1e-5\n'
   printf '[runin]\nforces = 1086 N, 2172 N\nspeeds = 3000, 1000, 700, 500, 350, 200 rpm\n'; } > runin.ini
-# runin.csv without its seconds column (17), the one that may differ
-nosec() { cut -d, -f1-16,18- "$1"; }
+# runin.csv without its seconds column (found by its name in the header), the one that may differ
+nosec() {
+    awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "seconds") s = i }
+             { o = ""; for (i = 1; i <= NF; i++) if (i != s) o = o (o == "" ? "" : ",") $i; print o }' "$1"
+}
 "$PROG" run runin.ini --out rref --quiet > /dev/null 2>&1 || { echo "robustness: running-in reference failed"; exit 2; }
 why=""
 [ -e rref/checkpoint ] && why="$why the checkpoint of a finished run is left;"
-for f in runin.csv runin.gp surface_initial.npy surface_final.npy; do
+for f in runin.csv runin.gp surface_initial.npy surface_final.npy material_ratio.csv; do
     [ -f "rref/$f" ] || why="$why no $f;"
 done
 row runin_outputs "$why"
@@ -641,7 +644,8 @@ runin_resume() {
     [ "$st" -eq 0 ] || why="$why resume: exit $st: $(cat err);"
     [ -s err ] && why="$why resume --quiet wrote to stderr: $(cat err);"
     [ "$(nosec rs/runin.csv)" = "$(nosec rref/runin.csv)" ] || why="$why runin.csv differs;"
-    for f in pressure.npy gap.npy surface_final.npy plastic_strain.npy residual_displacement.npy; do
+    for f in pressure.npy gap.npy surface_final.npy plastic_strain.npy residual_displacement.npy \
+             material_ratio.csv runin.gp; do
         cmp -s "rs/$f" "rref/$f" || why="$why $f differs;"
     done
     [ -e rs/checkpoint ] && why="$why the checkpoint is left after the resumed run;"
