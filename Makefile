@@ -156,6 +156,7 @@ check: deps
 
 _check: $(PROGRAM) $(TESTS)
 	tools/check_includes.sh
+	tools/prefixes.sh $(BUILD)
 	CK_DEFAULT_TIMEOUT=600 ./$(TESTS)
 	./$(PROGRAM) verify --fast --baselines verify/baselines --reports $(BUILD)/reports-fast
 	tests/cli/bad_input.sh ./$(PROGRAM)

@@ -64,7 +64,7 @@ static double t_elastic(int n)
     vu_scene(&sc, n, n, 3 * a / n, 3 * a / n);
     sc.geometry.shape = MC_SHAPE_SPHERE;
     sc.geometry.radius = R_SPHERE;
-    sc.body1 = sc.body2 = (mc_material){E_STEEL, NU, 0};
+    sc.body1 = sc.body2 = (mc_scene_material){E_STEEL, NU, 0};
     sc.load.kind = MC_LOAD_FORCE;
     sc.load.value = LOAD;
     mc_results res;

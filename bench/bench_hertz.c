@@ -39,7 +39,7 @@ static int run(const mc_hertz_point *hz, int N, const config_t *cf, int with_str
     vu_scene(&sc, N, N, 3 * hz->a / N, 3 * hz->a / N);
     sc.geometry.shape = MC_SHAPE_SPHERE;
     sc.geometry.radius = R_SPHERE;
-    sc.body1 = sc.body2 = (mc_material){E_STEEL, NU, 0};
+    sc.body1 = sc.body2 = (mc_scene_material){E_STEEL, NU, 0};
     sc.load.kind = MC_LOAD_FORCE;
     sc.load.value = LOAD;
     sc.solver.method = cf->method;

@@ -109,7 +109,7 @@ static void ke_solve(int n, double p_pc, ke_run *r)
     r->t = mc_clock() - t0;
     r->ok = rc == MC_OK || rc == MC_NOT_CONVERGED;
     if (r->ok) {
-        const mc_plastic_summary *pl = &res.plastic;
+        const mc_stage_plastic_summary *pl = &res.plastic;
         r->converged = rc == MC_OK && pl->converged;
         r->w = res.contact.approach / k.wc;
         r->a = res.contact.area / (M_PI * k.ac * k.ac);
@@ -327,7 +327,7 @@ static void section_operators(vf_ctx *ctx, int quick, double *ratio256, double *
     mc_threads_begin(1, &scope);
     int last_n = 0, last_nz = 0;
     for (int k = 0; k < nop; k++) {
-        const int n = on[k], nz = onz[k], m = mc_fft_good_size(n);
+        const int n = on[k], nz = onz[k], m = mc_fftsize_good(n);
         const double pair = pair_time(2 * m, 2 * m, n <= 128 ? 20 : 7);
         op_cost c = {NAN, NAN, NAN, NAN, NAN, NAN};
         if (op_measure(n, nz, 0, n <= 128 ? 7 : 3, &c) != MC_OK) {

@@ -20,7 +20,7 @@ typedef struct {
 static void rough_scene(mc_scene *sc, const rough_t *r)
 {
     vu_scene(sc, r->N, r->N, DX, DX);
-    sc->body1 = sc->body2 = (mc_material){E_STEEL, NU, 0};
+    sc->body1 = sc->body2 = (mc_scene_material){E_STEEL, NU, 0};
     double estar = E_STEEL / (2 * (1 - NU * NU)), L = r->N * DX;
     if (r->periodic) {
         sc->grid.periodic_x = sc->grid.periodic_y = 1;

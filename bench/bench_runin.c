@@ -146,13 +146,13 @@ static void section_warm(vf_ctx *ctx, const mc_scene *sc0)
                                   .estar = mc_scene_estar(&sc)};
         if (mc_contact_create(K, &opt, &s, &err) == MC_OK) {
             sc.lubrication.rpm = 500 * 2 * M_PI / 60; /* rad/s */
-            int rc = mc_lube_stage(&sc, K, s, NULL, NULL, &res, &err);
+            int rc = mc_stage_lube(&sc, K, s, NULL, NULL, &res, &err);
             ok = rc == MC_OK;
             memcpy(prev, res.pressure, n * sizeof *prev);
             sc.lubrication.rpm = 350 * 2 * M_PI / 60;
             for (int w = 0; w < 2 && ok; w++) {
                 const double t0 = mc_clock();
-                rc = mc_lube_stage(&sc, K, s, NULL, w ? prev : NULL, &res, &err);
+                rc = mc_stage_lube(&sc, K, s, NULL, w ? prev : NULL, &res, &err);
                 t[w] = mc_clock() - t0;
                 nsolves[w] = res.lube.solves;
                 plub[w] = res.lube.p_lub;
@@ -168,7 +168,7 @@ static void section_warm(vf_ctx *ctx, const mc_scene *sc0)
                 "The running-in driver starts every step's equilibrium cold (pipeline/runin.c: "
                 "steps are a deterministic function of the carried state, for checkpoints); it "
                 "has no switch for a warm start, so the saving is measured beside it with the "
-                "public stage call (mc_lube_stage, p_start): the default scene's first force on "
+                "public stage call (mc_stage_lube, p_start): the default scene's first force on "
                 "its initial surface (without the nominal-deflection bowl the driver removes), "
                 "the equilibrium at 350 rpm cold and warm-started from the one at 500 rpm.\n\n"
                 "| start | contact solves | time (s) | p_lub (MPa) |\n|---|---|---|---|\n"

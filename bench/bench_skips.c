@@ -105,7 +105,7 @@ static double stage_time(const mc_scene *sc, mc_results *res, const mc_stress_tu
     for (int k = 0; k < 3; k++) {
         mc_error err = {0};
         double t0 = mc_clock();
-        if (mc_stress_stage_tuned(sc, res, tune, &err) != MC_OK)
+        if (mc_stage_stress_tuned(sc, res, tune, &err) != MC_OK)
             return NAN;
         best = fmin(best, mc_clock() - t0);
     }

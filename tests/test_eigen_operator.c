@@ -345,10 +345,10 @@ START_TEST(test_stress_uniform_layer)
         for (int c = 0; c < 6; c++) {
             const double want = (k == kl && c < 2) ? ref : 0.0, got = sig[c][k * nw + mid];
             ck_assert_msg(fabs(got - want) <= tol, "%s layer %d %s: %.6g Pa, want %.6g, tol %.2g",
-                          _i ? "line" : "patch", k, mc_stress_name(c), got, want, tol);
+                          _i ? "line" : "patch", k, mc_component_name(c), got, want, tol);
             if (getenv("MC_TEST_VERBOSE"))
                 fprintf(stderr, "%s layer %d %s: error %.3g (t/W) |sigma|\n", _i ? "line" : "patch",
-                        k, mc_stress_name(c), fabs(got - want) / (t / w) / fabs(ref));
+                        k, mc_component_name(c), fabs(got - want) / (t / w) / fabs(ref));
         }
     mc_eigen_stress_destroy(&op);
     free(b1);

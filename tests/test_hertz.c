@@ -916,7 +916,7 @@ START_TEST(test_strip_vs_flamant)
                 gsl_integration_qags(&F, -STRIP_A, STRIP_A, 1e-14, 1e-12, 1000, w, &ref[c], &e),
                 GSL_SUCCESS);
     }
-    mc_strip_uniform(p[0], p[1], STRIP_A, NU, s);
+    mc_flamant_strip_uniform(p[0], p[1], STRIP_A, NU, s);
     ck_assert_msg(maxabs_diff6(s, ref) <= TOL_QUAD, "(%g,%g): strip vs quadrature %g", p[0], p[1],
                   maxabs_diff6(s, ref));
     gsl_integration_workspace_free(w);
@@ -928,16 +928,16 @@ START_TEST(test_strip_surface)
     double s[6];
     for (int k = -40; k <= 40; k++) {
         double x = 0.05 * k + 1e-3;
-        mc_strip_uniform(x, 0.0, STRIP_A, NU, s);
+        mc_flamant_strip_uniform(x, 0.0, STRIP_A, NU, s);
         double expect = fabs(x) < STRIP_A ? -1.0 : 0.0;
         ck_assert(fabs(s[MC_SXX] - expect) <= TOL_TIGHT && fabs(s[MC_SZZ] - expect) <= TOL_TIGHT);
         ck_assert(fabs(s[MC_SXZ]) <= TOL_TIGHT);
     }
-    mc_strip_uniform(STRIP_A, 0.0, STRIP_A, NU, s); /* edge: mean of the one-sided values */
+    mc_flamant_strip_uniform(STRIP_A, 0.0, STRIP_A, NU, s); /* edge: mean of the one-sided values */
     ck_assert(fabs(s[MC_SZZ] + 0.5) <= TOL_TIGHT);
     /* far away the strip acts as a Flamant line load of 2a */
     double f[6];
-    mc_strip_uniform(300.0, 400.0, STRIP_A, NU, s);
+    mc_flamant_strip_uniform(300.0, 400.0, STRIP_A, NU, s);
     mc_flamant_normal(300.0, 400.0, NU, f);
     for (int c = 0; c < 6; c++)
         ck_assert(fabs(s[c] - 2.0 * STRIP_A * f[c]) <=
@@ -1003,7 +1003,7 @@ static void flamant_antiplane2(double x, double z, double nu, double s[6])
 }
 static void strip2(double x, double z, double nu, double s[6])
 {
-    mc_strip_uniform(x, z, STRIP_A, nu, s);
+    mc_flamant_strip_uniform(x, z, STRIP_A, nu, s);
 }
 
 /* plane problems: d/dx sxx + d/dz sxz = 0, d/dx sxz + d/dz szz = 0, d/dx sxy + d/dz syz = 0 */

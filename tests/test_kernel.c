@@ -310,14 +310,14 @@ START_TEST(test_rect_stress_table)
         rect_fn[L](x, y, z, t.a, t.b, t.nu, s);
         for (int c = 0; c < MC_NSTRESS; c++) {
             char col[32];
-            snprintf(col, sizeof col, "s%s_%s", mc_stress_name(c), load_name[L]);
+            snprintf(col, sizeof col, "s%s_%s", mc_component_name(c), load_name[L]);
             want[c] = ref_at(&t, r, col);
         }
         double scale = max_abs6(want);
         for (int c = 0; c < MC_NSTRESS; c++)
             ck_assert_msg(fabs(s[c] - want[c]) <= tol * scale,
                           "row %d (%g,%g,%g) %s s%s: %.16e want %.16e (tol %.1e)", r, x, y, z,
-                          load_name[L], mc_stress_name(c), s[c], want[c], tol * scale);
+                          load_name[L], mc_component_name(c), s[c], want[c], tol * scale);
     }
     free(t.data);
 }
@@ -365,7 +365,7 @@ START_TEST(test_rect_stress_quadrature)
                                  QUAD_EPSREL);
         ck_assert_msg(fabs(s[c] - want) <= tol * scale,
                       "%s at (%g a, %g b, %g a) s%s: %.16e vs quadrature %.16e", load_name[L],
-                      quad_pts[k][0], quad_pts[k][1], quad_pts[k][2], mc_stress_name(c), s[c],
+                      quad_pts[k][0], quad_pts[k][1], quad_pts[k][2], mc_component_name(c), s[c],
                       want);
     }
 }
@@ -423,10 +423,10 @@ START_TEST(test_surface_continuity)
         rect_fn[L](x, y, z, HA, HB, NU, s1);
         for (int c = 0; c < MC_NSTRESS; c++) {
             ck_assert_msg(isfinite(s0[c]), "%s s%s not finite at cell (%d,%d)", load_name[L],
-                          mc_stress_name(c), k, l);
+                          mc_component_name(c), k, l);
             ck_assert_msg(fabs(s1[c] - s0[c]) <= TOL_CONTINUITY,
                           "%s s%s at cell (%d,%d): z=0 %.16e, z=1e-9a %.16e", load_name[L],
-                          mc_stress_name(c), k, l, s0[c], s1[c]);
+                          mc_component_name(c), k, l, s0[c], s1[c]);
         }
     }
 }
@@ -445,7 +445,7 @@ START_TEST(test_corner_finite)
                     corner_fn_of[L](X, Y, zi * 0.3 * HA, NU, f);
                     for (int c = 0; c < MC_NSTRESS; c++)
                         ck_assert_msg(isfinite(f[c]), "%s corner (%d,%d) z%d s%s", load_name[L],
-                                      k, l, zi, mc_stress_name(c));
+                                      k, l, zi, mc_component_name(c));
                 }
             double Xs = k * HA, Ys = l * HB; /* lattice including the lines X = 0, Y = 0 */
             for (int L = 0; L < 3; L++) {
@@ -458,7 +458,7 @@ START_TEST(test_corner_finite)
             mc_rect_corner_p(Xs, Ys, 0.0, NU, f);
             for (int c = 0; c < MC_NSTRESS; c++)
                 ck_assert_msg(isfinite(f[c]), "p corner (%g,%g,0) s%s", Xs, Ys,
-                              mc_stress_name(c));
+                              mc_component_name(c));
         }
     /* the documented singular half-lines of the tractions at z = 0 give -inf, never NaN */
     double f[MC_NSTRESS];
@@ -532,9 +532,9 @@ START_TEST(test_point_traction_free)
             const int iz[3] = {MC_SZZ, MC_SXZ, MC_SYZ};
             for (int c = 0; c < 3; c++) {
                 ck_assert_msg(fabs(s0[iz[c]]) <= TOL_TIGHT * m0, "%s s%s at z=0", load_name[L],
-                              mc_stress_name(iz[c]));
+                              mc_component_name(iz[c]));
                 ck_assert_msg(fabs(s1[iz[c]]) <= TOL_NEAR_SURFACE * m1, "%s s%s near z=0",
-                              load_name[L], mc_stress_name(iz[c]));
+                              load_name[L], mc_component_name(iz[c]));
             }
         }
 }
@@ -587,7 +587,7 @@ START_TEST(test_point_resultant)
     ck_assert_msg(k.status == GSL_SUCCESS, "inner quadrature: %s", gsl_strerror(k.status));
     const double want = own[L] == j ? -1.0 : 0.0;
     ck_assert_msg(fabs(v - want) <= TOL_QUAD, "%s: int s%s dA = %.12f, want %g", load_name[L],
-                  mc_stress_name(comp[j]), v, want);
+                  mc_component_name(comp[j]), v, want);
     gsl_integration_workspace_free(wp);
     gsl_integration_workspace_free(wr);
 }
@@ -626,11 +626,11 @@ START_TEST(test_point_literal)
     double mb = max_abs6(b), mcx = max_abs6(c);
     for (int i = 0; i < MC_NSTRESS; i++)
         ck_assert_msg(fabs(s[i] - b[i]) <= TOL_ROUNDOFF * mb, "Boussinesq s%s %.16e vs %.16e",
-                      mc_stress_name(i), s[i], b[i]);
+                      mc_component_name(i), s[i], b[i]);
     mc_point_stress_qx(x, y, z, nu, s);
     for (int i = 0; i < MC_NSTRESS; i++)
         ck_assert_msg(fabs(s[i] - c[i]) <= TOL_ROUNDOFF * mcx, "Cerruti s%s %.16e vs %.16e",
-                      mc_stress_name(i), s[i], c[i]);
+                      mc_component_name(i), s[i], c[i]);
 }
 END_TEST
 
@@ -663,7 +663,7 @@ START_TEST(test_point_qy_reflection)
                                      [MC_SYZ] = g[MC_SXZ], [MC_SXZ] = g[MC_SYZ]};
     const double m = max_abs6(want);
     for (int c = 0; c < MC_NSTRESS; c++)
-        ck_assert_msg(fabs(s[c] - want[c]) <= TOL_TIGHT * m, "s%s", mc_stress_name(c));
+        ck_assert_msg(fabs(s[c] - want[c]) <= TOL_TIGHT * m, "s%s", mc_component_name(c));
 }
 END_TEST
 
@@ -691,7 +691,7 @@ START_TEST(test_qy_rotation)
     const double m = max_abs6(want);
     for (int c = 0; c < MC_NSTRESS; c++)
         ck_assert_msg(fabs(s[c] - want[c]) <= TOL_ROUNDOFF * m, "s%s: %.16e vs %.16e",
-                      mc_stress_name(c), s[c], want[c]);
+                      mc_component_name(c), s[c], want[c]);
 }
 END_TEST
 
@@ -709,7 +709,7 @@ START_TEST(test_corner_sum)
         for (int c = 0; c < MC_NSTRESS; c++) {
             double S = pp[c] - pm[c] - mp[c] + mm[c];
             ck_assert_msg(fabs(S - s[c]) <= TOL_ROUNDOFF * m, "%s s%s: S[f] %.16e rect %.16e",
-                          load_name[L], mc_stress_name(c), S, s[c]);
+                          load_name[L], mc_component_name(c), S, s[c]);
         }
     }
 }
@@ -744,13 +744,13 @@ START_TEST(test_parity)
         double mt = max_abs6(t);
         for (int c = 0; c < MC_NSTRESS; c++) {
             ck_assert_msg(fabs(sx[c] - parity[L][c][0] * s[c]) <= TOL_ROUNDOFF * m,
-                          "%s s%s x-parity", load_name[L], mc_stress_name(c));
+                          "%s s%s x-parity", load_name[L], mc_component_name(c));
             ck_assert_msg(fabs(sy[c] - parity[L][c][1] * s[c]) <= TOL_ROUNDOFF * m,
-                          "%s s%s y-parity", load_name[L], mc_stress_name(c));
+                          "%s s%s y-parity", load_name[L], mc_component_name(c));
             ck_assert_msg(fabs(tx[c] - parity[L][c][0] * t[c]) <= TOL_TIGHT * mt,
-                          "point %s s%s x-parity", load_name[L], mc_stress_name(c));
+                          "point %s s%s x-parity", load_name[L], mc_component_name(c));
             ck_assert_msg(fabs(ty[c] - parity[L][c][1] * t[c]) <= TOL_TIGHT * mt,
-                          "point %s s%s y-parity", load_name[L], mc_stress_name(c));
+                          "point %s s%s y-parity", load_name[L], mc_component_name(c));
         }
     }
 }
@@ -760,8 +760,8 @@ START_TEST(test_stress_names)
 {
     static const char *want[MC_NSTRESS] = {"xx", "yy", "zz", "xy", "yz", "xz"};
     for (int c = 0; c < MC_NSTRESS; c++)
-        ck_assert_str_eq(mc_stress_name(c), want[c]);
-    ck_assert_str_eq(mc_stress_name(MC_NSTRESS), "?");
+        ck_assert_str_eq(mc_component_name(c), want[c]);
+    ck_assert_str_eq(mc_component_name(MC_NSTRESS), "?");
 }
 END_TEST
 

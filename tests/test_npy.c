@@ -81,7 +81,7 @@ START_TEST(test_roundtrip_2d)
 
     unsigned char *buf;
     size_t len;
-    ck_assert_int_eq(mc_file_read(path, &buf, &len, &err), MC_OK);
+    ck_assert_int_eq(mc_io_read_file(path, &buf, &len, &err), MC_OK);
     ck_assert_mem_eq(buf, "\x93NUMPY\x01\x00", 8);
     size_t hlen = buf[8] | (size_t)buf[9] << 8;
     ck_assert_uint_eq((10 + hlen) % 64, 0);
@@ -130,7 +130,7 @@ START_TEST(test_roundtrip_1d_and_3d)
     ck_assert_int_eq(mc_npy_write(path, v, 3, s3, &err), MC_OK);
     unsigned char *buf;
     size_t len;
-    ck_assert_int_eq(mc_file_read(path, &buf, &len, &err), MC_OK);
+    ck_assert_int_eq(mc_io_read_file(path, &buf, &len, &err), MC_OK);
     const char *dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3, 4), }";
     ck_assert_mem_eq(buf + 10, dict, strlen(dict));
     mc_free(buf);

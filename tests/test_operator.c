@@ -620,7 +620,7 @@ START_TEST(test_love_one_axis_fast_vs_plain)
     int tx, ty;
     table_dims(&g, &tx, &ty);
     mc_kernel_table fast, plain;
-    mc_love_ctx ctx;
+    mc_kernel_love_ctx ctx;
     mc_kernel_fn fn;
     mc_error err;
     mc_kernel_fn_love(&g, ESTAR, &ctx, &fn);
@@ -645,7 +645,7 @@ static void remove_mean(double *k, size_t n)
 
 static void plain_love(const mc_grid *g, int tx, int ty, int images, mc_kernel_table *t)
 {
-    mc_love_ctx ctx;
+    mc_kernel_love_ctx ctx;
     mc_kernel_fn fn;
     mc_error err;
     mc_kernel_fn_love(g, ESTAR, &ctx, &fn);

@@ -60,7 +60,7 @@ static void make_results(mc_results *r, int with_stress)
     r->von_mises = field(n * NL, 20);
     r->hydrostatic = field(n * NL, 21);
     r->tresca = field(n * NL, 22);
-    mc_stress_summary ss = {2.5e9, {1e-6, -2e-6, 3e-7}, -1e9, 1.25e9, {0, 0, 4e-7}, NL, 0.5e-6,
+    mc_stage_stress_summary ss = {2.5e9, {1e-6, -2e-6, 3e-7}, -1e9, 1.25e9, {0, 0, 4e-7}, NL, 0.5e-6,
                             2e-6, "patch", 0.1};
     r->stress_summary = ss;
 }
@@ -179,7 +179,7 @@ static void check_npy3(const char *dir, const char *name, const double *want)
     unsigned char *b;
     size_t len;
     mc_error err = {0};
-    ck_assert_int_eq(mc_file_read(path_in(dir, name), &b, &len, &err), MC_OK);
+    ck_assert_int_eq(mc_io_read_file(path_in(dir, name), &b, &len, &err), MC_OK);
     size_t hlen = b[8] | (size_t)b[9] << 8, n = (size_t)NL * NY * NX;
     char dict[128];
     snprintf(dict, sizeof dict, "{'descr': '<f8', 'fortran_order': False, 'shape': (%d, %d, %d), }",
@@ -418,7 +418,7 @@ static void check_vtk(const char *dir, const mc_results *r)
     size_t len;
     uint64_t nb;
     mc_error err = {0};
-    ck_assert_int_eq(mc_file_read(path_in(dir, "field.vti"), &b, &len, &err), MC_OK);
+    ck_assert_int_eq(mc_io_read_file(path_in(dir, "field.vti"), &b, &len, &err), MC_OK);
     ck_assert(strstr((char *)b, "type=\"ImageData\"") &&
               strstr((char *)b, "header_type=\"UInt64\""));
     char ext[128];
@@ -441,7 +441,7 @@ static void check_vtk(const char *dir, const mc_results *r)
         ck_assert(!exists(dir, "stress.vtr"));
         return;
     }
-    ck_assert_int_eq(mc_file_read(path_in(dir, "stress.vtr"), &b, &len, &err), MC_OK);
+    ck_assert_int_eq(mc_io_read_file(path_in(dir, "stress.vtr"), &b, &len, &err), MC_OK);
     ck_assert(strstr((char *)b, "type=\"RectilinearGrid\"") && strstr((char *)b, "<PointData"));
     snprintf(ext, sizeof ext, "WholeExtent=\"0 %d 0 %d 0 %d\"", NX - 1, NY - 1, NL - 1);
     ck_assert(strstr((char *)b, ext) != NULL);

@@ -108,11 +108,11 @@ START_TEST(memory_guard_refuses)
     mc_results_free(&r);
     /* the limit from the environment, and the estimate grows with layers */
     hertz_scene(&s, 64, 1e-6);
-    double e0 = mc_scene_memory_estimate(&s);
+    double e0 = mc_memory_estimate(&s);
     s.stress.enabled = 1;
     s.stress.layers = 32;
     s.stress.depth_max = 10e-6;
-    ck_assert(mc_scene_memory_estimate(&s) > e0 + 9 * 8 * 64.0 * 64 * 32);
+    ck_assert(mc_memory_estimate(&s) > e0 + 9 * 8 * 64.0 * 64 * 32);
     setenv("MC_MEMORY_LIMIT", "100000", 1);
     ck_assert_int_eq(mc_memory_check(&s, &err), MC_ERR_NOMEM);
     unsetenv("MC_MEMORY_LIMIT");

@@ -55,7 +55,7 @@ START_TEST(first_yield_below_the_surface)
     mc_results r;
     mc_error err = {0};
     ck_assert_msg(mc_pipeline_run(&s, &r, &err) == MC_OK, "%s", err.msg);
-    const mc_plastic_summary *q = &r.plastic;
+    const mc_stage_plastic_summary *q = &r.plastic;
     ck_assert(!q->elastic_shortcut && q->converged && q->steps_done == 4);
     ck_assert(q->peq_max > 0);
     mc_hertz_point hz;

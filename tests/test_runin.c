@@ -430,7 +430,7 @@ START_TEST(lubricated_plastic_stage)
     mc_results r;
     mc_error err = {0};
     ck_assert_msg(mc_pipeline_run(&s, &r, &err) == MC_OK, "%s", err.msg);
-    const mc_lube_summary *l = &r.lube;
+    const mc_stage_lube_summary *l = &r.lube;
     ck_assert(r.plastic.enabled && r.plastic.converged && r.plastic.residual_max > 0);
     ck_assert_str_eq(l->regime, "mixed");
     const size_t n = mc_grid_cells(&r.grid);

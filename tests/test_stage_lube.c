@@ -32,9 +32,9 @@ START_TEST(macro_contact_of_the_disc_case)
 {
     mc_scene s;
     load_case(&s, 0, NULL);
-    mc_lube_summary l;
+    mc_stage_lube_summary l;
     mc_error err = {0};
-    ck_assert_int_eq(mc_lube_macro(&s, &s.grid, &l, &err), MC_OK);
+    ck_assert_int_eq(mc_stage_lube_macro(&s, &s.grid, &l, &err), MC_OK);
     ck_assert_msg(fabs(l.hertz_half_width - 154.8e-6) <= 0.05e-6, "b = %g", l.hertz_half_width);
     ck_assert_msg(fabs(l.hertz_pressure - 447e6) <= 0.5e6, "p_H = %g", l.hertz_pressure);
     ck_assert_msg(fabs(l.h_ehd - 0.55e-6) <= 0.005e-6, "h_EHD = %g", l.h_ehd);
@@ -56,12 +56,12 @@ START_TEST(unequal_discs_rolling_sliding)
 {
     mc_scene s;
     mc_error err = {0};
-    mc_lube_summary l0, la, lb;
+    mc_stage_lube_summary l0, la, lb;
     load_case(&s, 0, NULL);
-    ck_assert_int_eq(mc_lube_macro(&s, &s.grid, &l0, &err), MC_OK);
+    ck_assert_int_eq(mc_stage_lube_macro(&s, &s.grid, &l0, &err), MC_OK);
     s.lubrication.radius1 = 0.030;
     s.lubrication.radius2 = 0.050;
-    ck_assert_msg(mc_lube_macro(&s, &s.grid, &la, &err) == MC_OK, "%s", err.msg);
+    ck_assert_msg(mc_stage_lube_macro(&s, &s.grid, &la, &err) == MC_OK, "%s", err.msg);
     const double u0 = 2 * M_PI * 500 / 60 * 0.04, u1 = 2 * M_PI * 500 / 60 * 0.03;
     const double rx0 = 0.02, rx = 1 / (1 / 0.03 + 1 / 0.05);
     ck_assert_msg(fabs(la.entrainment - u1) <= 1e-12 * u1, "u = %.17g, want %.17g", la.entrainment,
@@ -73,7 +73,7 @@ START_TEST(unequal_discs_rolling_sliding)
     ck_assert_msg(fabs(la.h_ehd / l0.h_ehd - want) <= 1e-12 * want, "h ratio %.17g, want %.17g",
                   la.h_ehd / l0.h_ehd, want);
     s.lubrication.rpm2 = 700 * s.lubrication.rpm / 500; /* the same unit as rpm */
-    ck_assert_msg(mc_lube_macro(&s, &s.grid, &lb, &err) == MC_OK, "%s", err.msg);
+    ck_assert_msg(mc_stage_lube_macro(&s, &s.grid, &lb, &err) == MC_OK, "%s", err.msg);
     const double u2 = 2 * M_PI * 700 / 60 * 0.05, u = (u1 + u2) / 2;
     ck_assert_msg(fabs(lb.entrainment - u) <= 1e-12 * u, "u = %.17g, want %.17g", lb.entrainment,
                   u);
@@ -94,7 +94,7 @@ START_TEST(equilibrium_from_the_fields)
     mc_results r;
     mc_error err = {0};
     ck_assert_msg(mc_pipeline_run(&s, &r, &err) == MC_OK, "%s", err.msg);
-    const mc_lube_summary *l = &r.lube;
+    const mc_stage_lube_summary *l = &r.lube;
     ck_assert_str_eq(l->regime, "mixed");
     const size_t n = mc_grid_cells(&r.grid);
     const double dA = mc_grid_cell_area(&r.grid), a_nom = dA * (double)n;

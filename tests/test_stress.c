@@ -366,7 +366,7 @@ START_TEST(test_images_rule)
 END_TEST
 
 /* ny = 1, periodic in y: the images tile the y axis, so the table is the plane-strain strip of
- * width dx (mc_strip_uniform, with sigma_yy = nu (sigma_xx + sigma_zz), no xy, yz). */
+ * width dx (mc_flamant_strip_uniform, with sigma_yy = nu (sigma_xx + sigma_zz), no xy, yz). */
 START_TEST(test_strip_exact)
 {
     const mc_grid g = {9, 1, 1.0, 0.4, 0, 1};
@@ -382,7 +382,7 @@ START_TEST(test_strip_exact)
         for (int it = 0; it < tx; it++) {
             int used, ox = mc_table_offset(it, g.nx, tx, &used);
             double s[MC_NSTRESS];
-            mc_strip_uniform(ox * g.dx, zs[iz], 0.5 * g.dx, NU, s);
+            mc_flamant_strip_uniform(ox * g.dx, zs[iz], 0.5 * g.dx, NU, s);
             for (int c = 0; c < MC_NSTRESS; c++) {
                 md = fmax(md, fabs(k[c][it] - s[c]));
                 mb = fmax(mb, fabs(s[c]));
@@ -412,7 +412,7 @@ START_TEST(test_periodic_means)
             const int eq = (li == 0 && c == MC_SZZ) || (li == 1 && c == MC_SXZ) ||
                            (li == 2 && c == MC_SYZ);
             ck_assert_msg(fabs(m - (eq ? -1.0 : 0.0)) <= TOL_ROUNDOFF, "load %d %s: sum %.17g",
-                          li, mc_stress_name(c), m);
+                          li, mc_component_name(c), m);
         }
     }
     vols_free(k, 6);
@@ -642,7 +642,7 @@ START_TEST(test_uniform_patch)
         mc_rect_stress_p(0.0, 0.0, z[k], A, B, NU, r);
         for (int c = 0; c < MC_NSTRESS; c++)
             ck_assert_msg(fabs(s[c][(size_t)k * n + ic] - r[c]) <= TOL_BACKEND,
-                          "z=%g %s: %.17g vs %.17g", z[k], mc_stress_name(c),
+                          "z=%g %s: %.17g vs %.17g", z[k], mc_component_name(c),
                           s[c][(size_t)k * n + ic], r[c]);
     }
     /* just below: the rectangle's sigma_zz differs from -p by ~(z/A)^3 */
@@ -697,7 +697,7 @@ START_TEST(test_hertz_point_axis)
             for (int c = 0; c < 3; c++) {
                 err[gi][k][c] = fabs(s[c][(size_t)k * n + ic] - ref[c]);
                 ck_assert_msg(err[gi][k][c] <= tol, "a/dx=%d z=%g %s: error %.3g p0 > %.3g", r,
-                              z[k], mc_stress_name(c), err[gi][k][c], tol);
+                              z[k], mc_component_name(c), err[gi][k][c], tol);
             }
         }
         vols_free(s, 6);
@@ -707,7 +707,7 @@ START_TEST(test_hertz_point_axis)
         for (int c = 0; c < 3; c++)
             ck_assert_msg(err[0][k][c] >= RATIO_DX2 * err[1][k][c],
                           "z=%g %s: error %.3g -> %.3g does not fall as dx^2", z[k],
-                          mc_stress_name(c), err[0][k][c], err[1][k][c]);
+                          mc_component_name(c), err[0][k][c], err[1][k][c]);
 }
 END_TEST
 
@@ -972,7 +972,7 @@ START_TEST(test_stage)
     memcpy(res.pressure, p, sizeof *p * mc_grid_cells(&sc.grid));
     mc_error err;
     for (int run = 0; run < 2; run++) /* the second run replaces the first's arrays */
-        ck_assert_msg(mc_stress_stage(&sc, &res, &err) == MC_OK, "%s", err.msg);
+        ck_assert_msg(mc_stage_stress(&sc, &res, &err) == MC_OK, "%s", err.msg);
     const size_t n = mc_grid_cells(&sc.grid), nv = 3 * n;
     ck_assert_int_eq(res.nlayers, 3);
     ck_assert_double_eq(res.depths[1], 0.48);
@@ -991,7 +991,7 @@ START_TEST(test_stage)
     }
     /* the summary: the first cells in volume order within MC_STRESS_TIE of the maxima, at their
      * cell centres and layer depths */
-    const mc_stress_summary *ss = &res.stress_summary;
+    const mc_stage_stress_summary *ss = &res.stress_summary;
     const size_t iv = first_max(res.von_mises, nv), it = first_max(res.tresca, nv);
     const size_t at[2] = {iv, it};
     const double *got[2] = {ss->vm_max_at, ss->tresca_max_at};
@@ -1045,7 +1045,7 @@ START_TEST(test_stage_nomem)
     for (long k = 1;; k++) {
         const long before = mc_alloc_injected();
         mc_alloc_fail_at(k);
-        const int rc = mc_stress_stage(&sc, &res, &err);
+        const int rc = mc_stage_stress(&sc, &res, &err);
         mc_alloc_fail_at(0);
         if (mc_alloc_injected() == before) {
             ck_assert_int_eq(rc, MC_OK);
@@ -1075,13 +1075,13 @@ START_TEST(test_stage_bad)
     memset(&res, 0, sizeof res);
     res.grid = sc.grid;
     mc_error err;
-    ck_assert_int_eq(mc_stress_stage(&sc, &res, &err), MC_ERR_INPUT); /* no pressure */
+    ck_assert_int_eq(mc_stage_stress(&sc, &res, &err), MC_ERR_INPUT); /* no pressure */
     res.pressure = hertz_pressure(&sc.grid);
     sc.stress.ndepths = 0;
-    ck_assert_int_eq(mc_stress_stage(&sc, &res, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_stage_stress(&sc, &res, &err), MC_ERR_INPUT);
     sc.stress.ndepths = 2;
     sc.stress.kernel = MC_STRESS_POINT; /* depth 0 */
-    ck_assert_int_eq(mc_stress_stage(&sc, &res, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_stage_stress(&sc, &res, &err), MC_ERR_INPUT);
     ck_assert_ptr_null(res.von_mises);
     free(res.pressure);
 }
@@ -1108,7 +1108,7 @@ static void check_each_component(double *const a[6], double *const b[6], size_t 
             md = fmax(md, fabs(a[c][i] - b[c][i]));
             mb = fmax(mb, fabs(b[c][i]));
         }
-        ck_assert_msg(md <= tol * mb, "%s, %s: %.3g relative", what, mc_stress_name(c),
+        ck_assert_msg(md <= tol * mb, "%s, %s: %.3g relative", what, mc_component_name(c),
                       mb > 0 ? md / mb : md);
     }
 }
@@ -1149,7 +1149,7 @@ START_TEST(test_parity_table)
             const int par = mc_stress_parity(load_bits[li], c);
             const double ex = (par & 1) ? -1.0 : 1.0, ey = (par & 2) ? -1.0 : 1.0;
             ck_assert_msg(fabs(s[c]) > TOL_TIGHT, "load %d %s vanishes at the test point", li,
-                          mc_stress_name(c));
+                          mc_component_name(c));
             ck_assert_double_le(fabs(sx[c] - ex * s[c]), TOL_TIGHT * fabs(s[c]));
             ck_assert_double_le(fabs(sy[c] - ey * s[c]), TOL_TIGHT * fabs(s[c]));
         }
@@ -1195,7 +1195,7 @@ static void check_quadrant(const grid_case *gc, mc_stress_kernel kernel)
                         }
                         const double ref = k[c][(size_t)j * tx + i];
                         ck_assert_msg(v == ref, "grid %dx%d load %d %s z=%g (%d,%d): %.17g vs %.17g",
-                                      g.nx, g.ny, li, mc_stress_name(c), z, i, j, v, ref);
+                                      g.nx, g.ny, li, mc_component_name(c), z, i, j, v, ref);
                         /* the mirror images: offsets (-i, j), (i, -j), (-i, -j) */
                         const int im = i ? tx - i : 0, jm = j ? ty - j : 0;
                         const double sx = (par & 1) ? -1.0 : 1.0, sy = (par & 2) ? -1.0 : 1.0;
@@ -1206,7 +1206,7 @@ static void check_quadrant(const grid_case *gc, mc_stress_kernel kernel)
                             ck_assert_msg(fabs(mirror[m]) <= TOL_MIRROR,
                                           "load %d %s (%d,%d) mirror %d: %.3g (largest entry "
                                           "%.3g)",
-                                          li, mc_stress_name(c), i, j, m, mirror[m], mk);
+                                          li, mc_component_name(c), i, j, m, mirror[m], mk);
                     }
             }
         }
@@ -1378,7 +1378,7 @@ static void run_stage(const mc_scene *sc, const double *p, const mc_stress_tunin
     ck_assert(res->pressure != NULL);
     memcpy(res->pressure, p, sizeof *p * mc_grid_cells(&sc->grid));
     mc_error err;
-    ck_assert_msg(mc_stress_stage_tuned(sc, res, tune, &err) == MC_OK, "%s", err.msg);
+    ck_assert_msg(mc_stage_stress_tuned(sc, res, tune, &err) == MC_OK, "%s", err.msg);
 }
 
 typedef struct {
@@ -1411,7 +1411,7 @@ START_TEST(test_window)
     const mc_stress_tuning off = {MC_STRESS_AUTO, MC_STRESS_AUTO, MC_STRESS_OFF};
     run_stage(&sc, p, NULL, &win);
     run_stage(&sc, p, &off, &full);
-    const mc_stress_layout *lay = &win.stress_layout;
+    const mc_stage_stress_layout *lay = &win.stress_layout;
     ck_assert_int_eq(lay->windowed, 1);
     ck_assert_int_ge(lay->nwindows, 2);
     ck_assert_int_eq(full.stress_layout.windowed, 0);
@@ -1419,7 +1419,7 @@ START_TEST(test_window)
     ck_assert_int_eq(lay->window[lay->nwindows - 1].k1, 6);
     double worst_vm = 0.0, worst_c = 0.0;
     for (int w = 0; w < lay->nwindows; w++) {
-        const mc_stress_window *wn = &lay->window[w];
+        const mc_stage_stress_window *wn = &lay->window[w];
         if (w > 0)
             ck_assert_int_eq(wn->k0, lay->window[w - 1].k1 + 1);
         for (int k = wn->k0; k <= wn->k1; k++) {
@@ -1440,7 +1440,7 @@ START_TEST(test_window)
                         if (inside)
                             ck_assert_msg(d <= TOL_ROUNDOFF * smax,
                                           "layer %d cell (%d,%d) %s: %.3g relative", k, i, j,
-                                          mc_stress_name(c), d / smax);
+                                          mc_component_name(c), d / smax);
                         else
                             ck_assert_msg(win.stress[c][q] == 0.0, "outside holds %g",
                                           win.stress[c][q]);
@@ -1456,7 +1456,7 @@ START_TEST(test_window)
     ck_assert_msg(worst_vm <= MC_STRESS_WINDOW_FRACTION, "von Mises left out: %.3g", worst_vm);
     ck_assert_msg(worst_c <= MC_STRESS_WINDOW_FRACTION, "components left out: %.3g", worst_c);
     ck_assert(worst_vm > 0.0); /* the window did leave something out */
-    const mc_stress_summary *a = &win.stress_summary, *b = &full.stress_summary;
+    const mc_stage_stress_summary *a = &win.stress_summary, *b = &full.stress_summary;
     for (int d = 0; d < 3; d++) {
         ck_assert_double_eq(a->vm_max_at[d], b->vm_max_at[d]);
         ck_assert_double_eq(a->tresca_max_at[d], b->tresca_max_at[d]);
@@ -1543,8 +1543,8 @@ START_TEST(test_depth_auto_hertz)
     res.pressure = p;
     res.contact.solved = _i == 1;
     mc_error err;
-    ck_assert_msg(mc_stress_stage(&sc, &res, &err) == MC_OK, "%s", err.msg);
-    const mc_stress_layout *lay = &res.stress_layout;
+    ck_assert_msg(mc_stage_stress(&sc, &res, &err) == MC_OK, "%s", err.msg);
+    const mc_stage_stress_layout *lay = &res.stress_layout;
     long cells = 0;
     for (size_t i = 0; i < n; i++)
         cells += p[i] > (_i == 1 ? p_lub : 0.0);
@@ -1623,9 +1623,9 @@ START_TEST(test_depth_auto_rough)
     for (int k = 0; k < 24; k++) /* radii 0.1 ... 0.5: 2 ... 10 cells */
         add_hertz(&sc.grid, 60.0 * v[3 * k], 44.0 * v[3 * k + 1], 0.3 + 0.2 * v[3 * k + 2], p);
     add_hertz(&sc.grid, 10.0, -48.0, 0.35, p); /* across the periodic edge y = -Ly/2 */
-    mc_stress_patches pt;
+    mc_stage_stress_patches pt;
     mc_error err;
-    ck_assert_int_eq(mc_stress_find_patches(&sc.grid, p, 0.0, &pt, &err), MC_OK);
+    ck_assert_int_eq(mc_stage_stress_find_patches(&sc.grid, p, 0.0, &pt, &err), MC_OK);
     long largest;
     const int count = count_patches(&sc.grid, p, 0.0, &largest);
     ck_assert_int_ge(count, 5); /* several patches */
@@ -1642,7 +1642,7 @@ START_TEST(test_depth_auto_rough)
     for (int j = 0; j < sc.grid.ny; j++)
         for (int i = 60; i < 60 + 5 + (j % 3); i++)
             p[(size_t)j * sc.grid.nx + i] = 1.0;
-    ck_assert_int_eq(mc_stress_find_patches(&sc.grid, p, 0.0, &pt, &err), MC_OK);
+    ck_assert_int_eq(mc_stage_stress_find_patches(&sc.grid, p, 0.0, &pt, &err), MC_OK);
     ck_assert_int_eq(pt.patches, 1);
     ck_assert_double_le(fabs(pt.radius - 0.5 * 6.0 * sc.grid.dx), TOL_TIGHT);
     free(p);
@@ -1662,7 +1662,7 @@ START_TEST(test_depth_auto_bad)
     res.grid = sc.grid;
     res.pressure = hertz_pressure(&sc.grid);
     mc_error err;
-    ck_assert_int_eq(mc_stress_stage(&sc, &res, &err), MC_ERR_INPUT);
+    ck_assert_int_eq(mc_stage_stress(&sc, &res, &err), MC_ERR_INPUT);
     ck_assert_msg(strstr(err.msg, "depth_max = auto") && strstr(err.msg, "depth_min"), "%s",
                   err.msg);
     ck_assert_ptr_null(res.von_mises);

@@ -55,7 +55,7 @@ static void w_truncated_x3p(const char *path, void (*t)(tk_x3p *))
     unsigned char *b;
     size_t n;
     mc_error err = {0};
-    ck_assert_int_eq(mc_file_read(path, &b, &n, &err), MC_OK);
+    ck_assert_int_eq(mc_io_read_file(path, &b, &n, &err), MC_OK);
     tk_write(path, b, n * 6 / 10);
     mc_free(b);
 }

@@ -169,23 +169,23 @@ END_TEST
 START_TEST(test_quote)
 {
     char buf[128];
-    mc_text_quote("a\tb\xff \xc2\xb5m", buf, sizeof buf);
+    mc_case_quote("a\tb\xff \xc2\xb5m", buf, sizeof buf);
     ck_assert_str_eq(buf, "a\\x09b\\xFF \xc2\xb5m");
     char longtext[300];
     memset(longtext, 'x', sizeof longtext - 1);
     longtext[sizeof longtext - 1] = '\0';
-    mc_text_quote(longtext, buf, sizeof buf);
+    mc_case_quote(longtext, buf, sizeof buf);
     ck_assert_uint_eq(strlen(buf), 63);
     ck_assert_str_eq(buf + 60, "...");
     char small[10];
-    mc_text_quote(longtext, small, sizeof small);
+    mc_case_quote(longtext, small, sizeof small);
     ck_assert_uint_lt(strlen(small), sizeof small);
     ck_assert_str_eq(small + strlen(small) - 3, "...");
     /* a multi-byte character is never split */
     char mu[200] = "";
     for (int k = 0; k < 40; k++)
         strcat(mu, "\xc2\xb5");
-    mc_text_quote(mu, buf, sizeof buf);
+    mc_case_quote(mu, buf, sizeof buf);
     size_t n = strlen(buf) - 3;
     ck_assert(mc_utf8_check(buf, n, NULL));
 }

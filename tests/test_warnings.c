@@ -201,8 +201,8 @@ START_TEST(checkered_fraction_of_known_fields)
                 smooth[v] = 1e-3 * exp(-r2);
                 checker[v] = smooth[v] * (1.0 + 0.5 * (((i + k) % 2) ? -1.0 : 1.0));
             }
-    const double fs = mc_plastic_checkered_fraction(&g, nz, smooth);
-    const double fc = mc_plastic_checkered_fraction(&g, nz, checker);
+    const double fs = mc_stage_plastic_checkered_fraction(&g, nz, smooth);
+    const double fc = mc_stage_plastic_checkered_fraction(&g, nz, checker);
     ck_assert_msg(fs < 0.1, "smooth bump: %g", fs);
     ck_assert_msg(fc > MC_WARN_CHECKERED, "checkerboard: %g", fc);
     /* isolated one-cell spikes (asperity tips under a rough load), three cells apart: every
@@ -214,12 +214,12 @@ START_TEST(checkered_fraction_of_known_fields)
         for (int j = 1; j < 19; j += 3)
             for (int i = 1; i < 23; i += 3)
                 spikes[((size_t)k * 20 + j) * 24 + i] = 1e-3 * (1.0 + 0.1 * k);
-    const double fp = mc_plastic_checkered_fraction(&g, nz, spikes);
+    const double fp = mc_stage_plastic_checkered_fraction(&g, nz, spikes);
     ck_assert_msg(fp < 0.1, "isolated spikes: %g", fp);
     free(spikes);
     for (size_t v = 0; v < n; v++)
         smooth[v] = 0.0;
-    ck_assert_double_eq(mc_plastic_checkered_fraction(&g, nz, smooth), 0.0);
+    ck_assert_double_eq(mc_stage_plastic_checkered_fraction(&g, nz, smooth), 0.0);
     free(smooth), free(checker);
 }
 END_TEST

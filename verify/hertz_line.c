@@ -46,8 +46,8 @@ static int run_mesh(const mc_hertz_line *hz, int N, int ny, row_t *row, mc_resul
     sc.grid.periodic_y = 1;
     sc.geometry.shape = MC_SHAPE_CYLINDER;
     sc.geometry.radius = R_CYL;
-    sc.body1 = (mc_material){E_STEEL, NU, 0};
-    sc.body2 = (mc_material){E_STEEL, NU, 0};
+    sc.body1 = (mc_scene_material){E_STEEL, NU, 0};
+    sc.body2 = (mc_scene_material){E_STEEL, NU, 0};
     sc.load.kind = MC_LOAD_FORCE_PER_LENGTH;
     sc.load.value = LOAD_PER_LENGTH;
     sc.solver.tolerance = SOLVER_TOL;

@@ -49,8 +49,8 @@ static int run_mesh(const mc_hertz_point *hz, int N, mc_backend op, row_t *row, 
     vu_scene(&sc, nx, nx, dx, dx);
     sc.geometry.shape = MC_SHAPE_SPHERE;
     sc.geometry.radius = R_SPHERE;
-    sc.body1 = (mc_material){E1, NU1, 0};
-    sc.body2 = (mc_material){E2, NU2, 0};
+    sc.body1 = (mc_scene_material){E1, NU1, 0};
+    sc.body2 = (mc_scene_material){E2, NU2, 0};
     sc.load.kind = MC_LOAD_FORCE;
     sc.load.value = LOAD;
     sc.solver.tolerance = SOLVER_TOL;

@@ -260,8 +260,8 @@ static int solve(const solve_t *s, double half, mc_results *res, mc_error *err)
     sc.grid.periodic_y = s->line;
     sc.geometry.shape = s->line ? MC_SHAPE_CYLINDER : MC_SHAPE_SPHERE;
     sc.geometry.radius = R_BODY;
-    sc.body1 = (mc_material){E_STEEL, NU_STEEL, 0};
-    sc.body2 = s->same ? (mc_material){E_STEEL, NU_STEEL, 0} : (mc_material){E_FLAT, NU_FLAT, 0};
+    sc.body1 = (mc_scene_material){E_STEEL, NU_STEEL, 0};
+    sc.body2 = s->same ? (mc_scene_material){E_STEEL, NU_STEEL, 0} : (mc_scene_material){E_FLAT, NU_FLAT, 0};
     sc.load.kind = s->line ? MC_LOAD_FORCE_PER_LENGTH : MC_LOAD_FORCE;
     sc.load.value = s->line ? LOAD_LINE : LOAD_POINT;
     sc.solver.tolerance = SOLVER_TOL;

@@ -125,8 +125,8 @@ static int run_load(double P, double Pc, double yscale, ke_out *o, mc_error *err
     vu_scene(&sc, n, n, dx, dx);
     sc.geometry.shape = MC_SHAPE_SPHERE;
     sc.geometry.radius = R_SPHERE;
-    sc.body1 = (mc_material){E1, NU, 0};
-    sc.body2 = (mc_material){E1, NU, 1};
+    sc.body1 = (mc_scene_material){E1, NU, 0};
+    sc.body2 = (mc_scene_material){E1, NU, 1};
     sc.load.kind = MC_LOAD_FORCE;
     sc.load.value = P * Pc;
     sc.plasticity.enabled = 1;

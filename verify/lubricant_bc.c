@@ -110,8 +110,8 @@ static int solve(const setup_t *s, double p_lub, double pbar_load, mc_contact_me
     vu_scene(&sc, s->nx, 1, s->dx, s->dx);
     sc.grid.periodic_x = 1;
     sc.grid.periodic_y = 1;
-    sc.body1 = (mc_material){E_STEEL, NU, 0};
-    sc.body2 = (mc_material){E_STEEL, NU, 0};
+    sc.body1 = (mc_scene_material){E_STEEL, NU, 0};
+    sc.body2 = (mc_scene_material){E_STEEL, NU, 0};
     sc.roughness.type = MC_ROUGH_FILE;
     memcpy(sc.roughness.file, s->surface, sizeof sc.roughness.file);
     sc.roughness.format = MC_FORMAT_NPY;

@@ -191,8 +191,8 @@ static int run_mesh(mesh_t *m, int have_point, double *px, double *py, mc_error 
     m->n = n;
     mc_scene sc;
     vu_scene(&sc, n, n, m->dx * UM, m->dx * UM);
-    sc.body1 = (mc_material){E1, NU, 0};
-    sc.body2 = (mc_material){E1, NU, 1}; /* rigid flat */
+    sc.body1 = (mc_scene_material){E1, NU, 0};
+    sc.body2 = (mc_scene_material){E1, NU, 1}; /* rigid flat */
     sc.load.kind = MC_LOAD_FORCE;
     sc.load.value = LOAD;
     sc.solver.tolerance = 1e-10;

@@ -652,7 +652,7 @@ static void measure(const mc_scene *sc, const mc_results *res, st_record *rec)
             bad += count_nonfinite(res->stress[k], nv) + !res->stress[k];
         bad += count_nonfinite(res->von_mises, nv) + count_nonfinite(res->hydrostatic, nv) +
                count_nonfinite(res->tresca, nv);
-        const mc_stress_summary *ss = &res->stress_summary;
+        const mc_stage_stress_summary *ss = &res->stress_summary;
         double sv[] = {ss->vm_max, ss->hydro_at_vm_max, ss->tresca_max, ss->vm_max_at[2],
                        ss->tresca_max_at[2]};
         bad += count_nonfinite(sv, sizeof sv / sizeof sv[0]);

@@ -67,8 +67,8 @@ static int run_grid(const grid_t *gr, double a, double bscale, out_t *o, mc_erro
     vu_scene(&sc, gr->n, gr->n, dx, dx);
     sc.geometry.shape = MC_SHAPE_SPHERE;
     sc.geometry.radius = R_SPHERE;
-    sc.body1 = (mc_material){E1, NU, 0};
-    sc.body2 = (mc_material){E1, NU, 1};
+    sc.body1 = (mc_scene_material){E1, NU, 0};
+    sc.body2 = (mc_scene_material){E1, NU, 1};
     sc.load.kind = MC_LOAD_FORCE;
     sc.load.value = LOAD;
     sc.plasticity.enabled = 1;

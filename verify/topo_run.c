@@ -49,7 +49,7 @@ static int run(const mc_scene *sc, const double *topo, mc_results *res, double *
             memcpy(p_elastic, res->pressure, n * sizeof *p_elastic);
     }
     if (rc == MC_OK && sc->plasticity.enabled)
-        rc = mc_plastic_stage(sc, K, solver, res, err);
+        rc = mc_stage_plastic(sc, K, solver, res, err);
     mc_contact_destroy(&solver);
     mc_operator_destroy(&K);
     return rc;

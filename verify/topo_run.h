@@ -3,7 +3,7 @@
  * mesh (mesh_convergence, yield_criterion) rather than a [roughness] spec or a file.
  *
  * It does what the pipeline's contact path does (pipeline.c: the Love operator of the scene's
- * grid, a contact solver planned over it, then mc_plastic_stage or a plain force-controlled
+ * grid, a contact solver planned over it, then mc_stage_plastic or a plain force-controlled
  * solve) with the scene's thread count scoped to the call; the scene's [geometry] and
  * [roughness] are ignored (the topography replaces them). A front-end helper: it may print
  * nothing either, errors go to err.

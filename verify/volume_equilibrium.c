@@ -2,10 +2,11 @@
  * (lube/volume.h; Mevissen et al. 2025; docs/theory.md §11) against an independent solve of the
  * dossier's checks (plastic-lubrication §5): V(p_lub) rises monotonically, the load splits into
  * F_solid + p_lub A_free = F_N, the full-film and dry limits, the root of Brent's method against
- * a bisection of its own over another contact solver (Polonsky-Keer), and the paper's active-set
- * solver agreeing with cg at the root. The dossier's reference figures (a 96 x 96 patch of its
- * own random surface) are reported beside ours: the surfaces differ, so they are read, not
- * checked. */
+ * a bisection of its own over another contact solver (Polonsky-Keer), V(0) and V(0.95 p_nom)
+ * against dry Polonsky-Keer solves at the load the solids carry (the periodic identity), and the
+ * paper's active-set solver agreeing with cg at the root. The dossier's reference figures (a
+ * 96 x 96 patch of its own random surface) are reported beside ours: the surfaces differ, so
+ * they are read, not checked. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -43,6 +44,7 @@
 #define SPLIT_TOL (1e3 * CONTACT_TOL)
 #define ROOT_CMP_TOL (3 * ROOT_TOL)
 #define AS_TOL 1e-9
+#define DRY_TOL (1e3 * CONTACT_TOL)
 
 typedef struct {
     mc_grid g;
@@ -112,6 +114,23 @@ static int volume_at(patch *pt, mc_contact_solver *s, double plub, double *v, do
     return rc;
 }
 
+/* The periodic identity (dossier §5.1: in a periodic formulation K 1 is a rigid shift): p >= p_lub
+ * under F_N has the gap of p' = p - p_lub >= 0 under F_N - p_lub A_nom, i.e. V(p_lub) = V_dry(F_N -
+ * p_lub A_nom). The dry solve here is an independent route: the other solver (pk), no lower bound,
+ * the reduced load. */
+static int volume_dry(patch *pt, double load, double *v, mc_error *err)
+{
+    mc_contact_problem cp = {.h = pt->h, .p_lub = 0, .p_cap = INFINITY,
+                             .control = MC_CONTROL_FORCE, .load = load};
+    mc_contact_summary cs;
+    int rc = mc_contact_solve(pt->pk, &cp, pt->p, pt->u, pt->gap, &cs, err);
+    double sum = 0;
+    for (size_t i = 0; i < pt->n; i++)
+        sum += pt->gap[i];
+    *v = pt->dA * sum;
+    return rc;
+}
+
 /* The independent root: bisection on p_lub in [0, p_nom) with solver pk until |V - V*| <=
  * 1e-9 V* or the bracket is below 1e-12 p_nom. */
 static int bisect(patch *pt, double vstar, double *root, int *solves, mc_error *err)
@@ -150,7 +169,7 @@ static int sweep_and_limits(vf_ctx *ctx, patch *pt, double *slope_at, double roo
 {
     mc_error err = {0};
     const int np = vf_fast(ctx) ? 8 : 20;
-    double vprev = -INFINITY, worst_split = 0, v0 = 0, v95 = 0;
+    double vprev = -INFINITY, worst_split = 0, v0 = 0, v95 = 0, p95 = 0;
     int nonmono = 0;
     FILE *f = vf_open(ctx, "volume_vs_plub.csv");
     if (f)
@@ -169,8 +188,10 @@ static int sweep_and_limits(vf_ctx *ctx, patch *pt, double *slope_at, double roo
         worst_split = vf_worst(worst_split, split);
         if (k == 0)
             v0 = v;
-        if (k == np)
+        if (k == np) {
             v95 = v;
+            p95 = frac * P_NOM;
+        }
         if (frac * P_NOM <= root_guess) { /* the secant just below and above the root */
             vlast[0] = v;
             plast[0] = frac * P_NOM;
@@ -192,10 +213,28 @@ static int sweep_and_limits(vf_ctx *ctx, patch *pt, double *slope_at, double roo
      * F_solid + p_lub A_free = F_N cannot fail here */
     vf_info(ctx, "load_split", "max |F_solid + p_lub A_free - F_N| / F_N over the sweep",
             "by construction: the load a force-controlled solve enforces", NAN, worst_split);
-    vf_info(ctx, "V0", "V(0) / A_nom, um (dry contact)", "dossier 96 x 96 patch: 0.204 um",
-            0.204, v0 / pt->a_nom * 1e6);
-    vf_info(ctx, "V95", "V(0.95 p_nom) / A_nom, um", "dossier 96 x 96 patch: 0.636 um", 0.636,
-            v95 / pt->a_nom * 1e6);
+    /* V0 and V95 against the dry solves of the other solver (the periodic identity above): both
+     * solvers stop at a relative residual of CONTACT_TOL; V is a sum of gaps of the contact scale,
+     * so they may differ by a few hundred CONTACT_TOL relative: DRY_TOL = 1e3 CONTACT_TOL (measured
+     * 3e-15 and 2e-15 on 48 x 48). A lubricant bound that the solver does not carry as a
+     * uniform shift (p_lub on the free cells, not subtracted from the load) moves V95 by order 1. */
+    double v0_pk = NAN, v95_pk = NAN;
+    if (volume_dry(pt, pt->load, &v0_pk, &err) != MC_OK ||
+        volume_dry(pt, pt->load - p95 * pt->a_nom, &v95_pk, &err) != MC_OK)
+        vf_fail(ctx, "dry_pk", "%s", err.msg);
+    vf_check(ctx, "V0", "V(0) / A_nom, um (dry contact, cg)",
+             "the same patch solved by pk (another solver)", v0_pk / pt->a_nom * 1e6,
+             v0 / pt->a_nom * 1e6, DRY_TOL, VF_REL);
+    vf_check(ctx, "V95", "V(0.95 p_nom) / A_nom, um (cg, p >= p_lub)",
+             "V_dry(0.05 F_N) by pk: the periodic identity V(p_lub) = V_dry(F_N - p_lub A_nom)",
+             v95_pk / pt->a_nom * 1e6, v95 / pt->a_nom * 1e6, DRY_TOL, VF_REL);
+    /* the dossier's figures: another surface (its own generator, an unstated correlation length)
+     * on 96 x 96 cells; the fast variant's 48 x 48 patch is a different realisation again (19 %
+     * and 30 % off, against 2.5 % and 9.6 % on 96 x 96): no tolerance follows, so shown only */
+    vf_info(ctx, "V0_dossier", "V(0) / A_nom, um (dry contact)",
+            "dossier 96 x 96 patch (its own surface): 0.204 um", 0.204, v0 / pt->a_nom * 1e6);
+    vf_info(ctx, "V95_dossier", "V(0.95 p_nom) / A_nom, um",
+            "dossier 96 x 96 patch (its own surface): 0.636 um", 0.636, v95 / pt->a_nom * 1e6);
     /* the limits */
     mc_volume_result vr;
     if (equilibrium(pt, pt->cg, 5e-6, &vr, &err) != MC_OK) {
@@ -380,13 +419,22 @@ int vf_suite_volume_equilibrium(vf_ctx *ctx, int fast)
             "§5.2. Contact solves: cg to %.0e (method pk for the independent "
             "root), the root to |V - V*| <= %.0e V* (docs/theory.md §11.2).\n\n"
             "Checks: V(p_lub) strictly increasing; the load split F_solid + p_lub A_free = F_N "
-            "(to %.0e: the solver's load balance); the limits (full film: p_lub = p_nom, no solid "
+            "(to %.0e: the solver's load balance); V(0) and V(0.95 p_nom) against dry solves of "
+            "the other solver (Polonsky-Keer) at F_N and 0.05 F_N: on a periodic patch a uniform "
+            "lubricant pressure is a rigid shift, so V(p_lub) = V_dry(F_N - p_lub A_nom) "
+            "(to 1e-9 relative: both solves stop at 1e-12); the limits (full film: p_lub = p_nom, no solid "
             "contact, V = V*; dry: p_lub = 0, psi_load = 1); Brent's root against a bisection of "
             "this suite over the Polonsky-Keer solver (the two may differ by 3e-6 V* over the "
             "local slope dV/dp); the mean pocket height h_EHD / (1 - psi_A); the paper's "
             "active-set solver against cg (24 x 24, the dossier's check). The dossier's "
             "reference figures come from a surface of its own (another generator and an unstated "
-            "correlation length): they are shown as information beside ours.\n\n",
+            "correlation length): they are shown as information beside ours. Why V0 and V95 differ "
+            "from the dossier's 0.204 and 0.636 um: a different surface. The 96 x 96 patch "
+            "(correlation length chosen to match V0) is 2.5 %% and 9.6 %% off; the fast variant's "
+            "48 x 48 patch, another realisation with fewer long wavelengths, 19 %% and 30 %%. "
+            "V95 is set by the few highest summits of one realisation, so no tolerance against "
+            "another surface follows; the independent route above checks our numbers "
+            "instead.\n\n",
             N, N, DX * 1e6, SQ * 1e6, CORR * 1e6, P_NOM * 1e-9, CONTACT_TOL, ROOT_TOL, SPLIT_TOL);
     mc_error err = {0};
     patch pt;

@@ -155,7 +155,7 @@ static void crowned(vf_ctx *ctx)
                        "[load]\nforce = 3 N\nlubricant_pressure = auto\n"
                        "[lubrication]\nfilm = given\nfilm_thickness = 0.1 nm\ntolerance = 1e-3\n";
     if (run_pipeline(ctx, "crowned_run", text, &r) == 0) {
-        const mc_lube_summary *l = &r.lube;
+        const mc_stage_lube_summary *l = &r.lube;
         double pmax = 0;
         for (size_t i = 0; i < mc_grid_cells(&r.grid); i++)
             pmax = vf_worst(pmax, r.pressure[i]);
@@ -178,7 +178,7 @@ static void crowned(vf_ctx *ctx)
  * plastic window) over the peak inside it: the patch's edge artefact. */
 static double ring_ratio(const mc_results *r, int ring, int free_y)
 {
-    const mc_plastic_summary *ps = &r->plastic;
+    const mc_stage_plastic_summary *ps = &r->plastic;
     double outer = 0, inner = 0;
     for (int k = 0; k < ps->nz; k++)
         for (int j = 0; j < ps->wny; j++)

@@ -211,8 +211,8 @@ static void sphere_topography(const geo_t *gm, const pat_t *pt, int n, double *h
 static void base_scene(const geo_t *gm, int n, mc_scene *sc, double load)
 {
     vu_scene(sc, n, n, gm->dx, gm->dx);
-    sc->body1 = (mc_material){E1, NU, 0};
-    sc->body2 = (mc_material){E1, NU, 1}; /* rigid flat */
+    sc->body1 = (mc_scene_material){E1, NU, 0};
+    sc->body2 = (mc_scene_material){E1, NU, 1}; /* rigid flat */
     sc->load.kind = MC_LOAD_FORCE;
     sc->load.value = load;
     sc->solver.tolerance = SOLVER_TOL;

@@ -150,8 +150,8 @@ static int run_point(double ratio, int N, onset_t *o, double yscale, mc_error *e
     vu_scene(&sc, n, n, dx, dx);
     sc.geometry.shape = MC_SHAPE_SPHERE;
     sc.geometry.radius = R_SPHERE;
-    sc.body1 = (mc_material){E1, NU, 0};
-    sc.body2 = (mc_material){E1, NU, 1};
+    sc.body1 = (mc_scene_material){E1, NU, 0};
+    sc.body2 = (mc_scene_material){E1, NU, 1};
     sc.load.kind = MC_LOAD_FORCE;
     sc.load.value = P;
     plastic_keys(&sc, hz.a, 0.9, 0.02, 0.25);
@@ -186,8 +186,8 @@ static int run_line(double ratio, int N, onset_t *o, double yscale, mc_error *er
     sc.grid.periodic_y = 1;
     sc.geometry.shape = MC_SHAPE_CYLINDER;
     sc.geometry.radius = R_CYL;
-    sc.body1 = (mc_material){E1, NU, 0};
-    sc.body2 = (mc_material){E1, NU, 1};
+    sc.body1 = (mc_scene_material){E1, NU, 0};
+    sc.body2 = (mc_scene_material){E1, NU, 1};
     sc.load.kind = MC_LOAD_FORCE_PER_LENGTH;
     sc.load.value = w;
     plastic_keys(&sc, hz.b, LINE_DEPTH, LINE_DZ_DX / N, 0.25);

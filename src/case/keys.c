@@ -28,13 +28,13 @@ _Static_assert(sizeof(mc_backend) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_contact_method) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_spacing) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_stress_kernel) == sizeof(int), "enum size");
-_Static_assert(sizeof(mc_stress_window_mode) == sizeof(int), "enum size");
-_Static_assert(sizeof(mc_film_source) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_scene_stress_window) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_scene_film_source) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_film_formula) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_psi_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_yield_criterion) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_hardening_kind) == sizeof(int), "enum size");
-_Static_assert(sizeof(mc_table_unit) == sizeof(int), "enum size");
+_Static_assert(sizeof(mc_scene_table_unit) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_nominal_deflection) == sizeof(int), "enum size");
 _Static_assert(sizeof(mc_plan_rigor) == sizeof(int), "enum size");
 _Static_assert(MC_PLANS_MEASURE == 1 && MC_PLANS_WISDOM == 2,
@@ -702,7 +702,7 @@ void mc_key_show(const char *v, char *buf, size_t len)
     for (; v[n] && n < sizeof flat - 1; n++)
         flat[n] = v[n] == '\n' ? ' ' : v[n];
     flat[n] = '\0';
-    mc_text_quote(flat, buf, len);
+    mc_case_quote(flat, buf, len);
 }
 
 void mc_key_fmt_bound(double v, mc_unit_kind unit, char *buf, size_t len)
@@ -901,7 +901,7 @@ static int convert_list_items(const case_key *k, const char *v, mc_scene *sc, ch
         int bare = end && end != item && !*end;
         mc_key_fmt(text, sizeof text, "%s%s%s", item, bare && unit[0] ? " " : "",
                    bare ? unit : "");
-        mc_text_quote(text, shown, sizeof shown);
+        mc_case_quote(text, shown, sizeof shown);
         if (mc_parse_quantity(text, k->unit, &x[n], uwhy, sizeof uwhy)) {
             mc_key_fmt(why, wl, "item %d (%s): %s", n + 1, shown, uwhy);
             return 1;
@@ -954,7 +954,7 @@ static int convert_region(const case_key *k, const char *v, mc_scene *sc, char *
         size_t al = strlen(a);
         while (al > 0 && isspace((unsigned char)a[al - 1]))
             a[--al] = '\0';
-        mc_text_quote(a, shown, sizeof shown);
+        mc_case_quote(a, shown, sizeof shown);
         if (mc_parse_quantity(a, k->unit, &r[n], uwhy, sizeof uwhy)) {
             mc_key_fmt(why, wl, "%s (%s): %s", what[n], shown, uwhy);
             return 1;
@@ -1003,7 +1003,7 @@ static int convert_lengths(const case_key *k, const char *v, mc_scene *sc, char 
                 il = sizeof item - 1;
             memcpy(item, a, il);
             item[il] = '\0';
-            mc_text_quote(item, shown, sizeof shown);
+            mc_case_quote(item, shown, sizeof shown);
             char uwhy[200];
             if (mc_parse_quantity(item, k->unit, &z[n], uwhy, sizeof uwhy)) {
                 mc_key_fmt(why, wl, "item %d (%s): %s", n + 1, shown, uwhy);

@@ -252,7 +252,7 @@ static void prefix(const ctx *c, const entry *e, int line, char *buf, size_t len
 {
     char q[96];
     if (e && e->ovr) {
-        mc_text_quote(e->ovr, q, sizeof q);
+        mc_case_quote(e->ovr, q, sizeof q);
         mc_key_fmt(buf, len, "--set %s: ", q);
     } else if (line > 0)
         mc_key_fmt(buf, len, "%s:%d: ", c->name, line);
@@ -279,7 +279,7 @@ static void where(const ctx *c, const entry *from, const entry *other, char *buf
 {
     char q[96];
     if (other->ovr) {
-        mc_text_quote(other->ovr, q, sizeof q);
+        mc_case_quote(other->ovr, q, sizeof q);
         mc_key_fmt(buf, len, "given by --set %s", q);
     } else if (from && from->ovr)
         mc_key_fmt(buf, len, "on line %d of %s", other->line, c->name);
@@ -376,7 +376,7 @@ static int check_structure(ctx *c)
     char list[512], q[96], qv[96];
     for (int i = 0; i < c->n; i++) {
         entry *e = &c->e[i];
-        mc_text_quote(e->section, q, sizeof q);
+        mc_case_quote(e->section, q, sizeof q);
         if (!e->name) {
             if (!mc_key_section(e->section)) {
                 known_sections(list, sizeof list);
@@ -385,7 +385,7 @@ static int check_structure(ctx *c)
             continue;
         }
         char qn[96];
-        mc_text_quote(e->name, qn, sizeof qn);
+        mc_case_quote(e->name, qn, sizeof qn);
         if (!e->section[0]) {
             known_sections(list, sizeof list);
             mc_key_show(e->value, qv, sizeof qv);
@@ -568,7 +568,7 @@ static int mesh_from_file(ctx *c)
 static int parse_override(ctx *c, const char *ovr)
 {
     char q[96];
-    mc_text_quote(ovr, q, sizeof q);
+    mc_case_quote(ovr, q, sizeof q);
     const char *eq = strchr(ovr, '=');
     const char *dot = eq ? memchr(ovr, '.', (size_t)(eq - ovr)) : NULL;
     if (!eq || !dot)
@@ -647,7 +647,7 @@ static void line_text(const ctx *c, int n, char *buf, size_t len)
     char raw[128];
     size_t k = strcspn(p, "\r\n");
     mc_key_fmt(raw, sizeof raw, "%.*s", (int)(k < sizeof raw ? k : sizeof raw - 1), p);
-    mc_text_quote(raw, buf, len);
+    mc_case_quote(raw, buf, len);
 }
 
 static int parse_and_check(ctx *c, int noverrides, const char *const *overrides)
@@ -764,7 +764,7 @@ int mc_case_load(const char *path, int noverrides, const char *const *overrides,
 {
     unsigned char *buf = NULL;
     size_t n = 0;
-    int rc = mc_file_read_limited(path, (size_t)MAX_FILE_BYTES, "a case file", &buf, &n, err);
+    int rc = mc_io_read_limited(path, (size_t)MAX_FILE_BYTES, "a case file", &buf, &n, err);
     char *text = (char *)buf;
     if (rc == MC_OK) {
         const char *nul = memchr(text, '\0', n);

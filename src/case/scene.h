@@ -36,17 +36,17 @@ typedef enum {
 
 typedef enum { MC_SPACING_LINEAR, MC_SPACING_GEOMETRIC, MC_SPACING_LIST } mc_spacing;
 /* [stress] window: auto = only the loaded region plus a depth-dependent margin (stress.h) */
-typedef enum { MC_STRESS_WINDOW_AUTO, MC_STRESS_WINDOW_FULL } mc_stress_window_mode;
+typedef enum { MC_STRESS_WINDOW_AUTO, MC_STRESS_WINDOW_FULL } mc_scene_stress_window;
 
 /* [load] lubricant_pressure = auto: from the lubricant volume equilibrium ([lubrication]) */
 #define MC_LUBRICANT_AUTO (-1.0)
 
-typedef enum { MC_FILM_EHL, MC_FILM_GIVEN } mc_film_source;
+typedef enum { MC_FILM_EHL, MC_FILM_GIVEN } mc_scene_film_source;
 typedef enum { MC_CRITERION_VON_MISES, MC_CRITERION_PRESSURE_CAP } mc_yield_criterion;
-typedef enum { MC_TABLE_UNIT_PA, MC_TABLE_UNIT_MPA, MC_TABLE_UNIT_GPA } mc_table_unit;
+typedef enum { MC_TABLE_UNIT_PA, MC_TABLE_UNIT_MPA, MC_TABLE_UNIT_GPA } mc_scene_table_unit;
 /* [lubrication] lubricant_profile: the lubricant pressure over the Hertz band of the whole
  * contact (theory.md §11.4): one p_lub on the band (the paper's), or a Hertz-shaped profile */
-typedef enum { MC_PROFILE_UNIFORM, MC_PROFILE_HERTZ } mc_lube_profile_kind;
+typedef enum { MC_PROFILE_UNIFORM, MC_PROFILE_HERTZ } mc_scene_lube_profile;
 /* [runin] nominal_deflection: the patch's own bowl under its nominal pressure (pipeline/runin.h) */
 typedef enum { MC_DEFLECTION_REMOVE, MC_DEFLECTION_KEEP } mc_nominal_deflection;
 
@@ -61,7 +61,7 @@ typedef struct {
     double E;  /* Young's modulus, Pa */
     double nu; /* Poisson's ratio */
     int rigid; /* 1: rigid (only body 2) */
-} mc_material;
+} mc_scene_material;
 
 typedef struct {
     char path[MC_PATH_MAX]; /* case file the scene came from ("" if built in code) */
@@ -74,7 +74,7 @@ typedef struct {
                                      body 1's surface when roughness2 is given */
     mc_roughness_spec roughness2; /* [roughness2]: body 2's surface (type none: not given) */
 
-    mc_material body1, body2; /* [body1], [body2] */
+    mc_scene_material body1, body2; /* [body1], [body2] */
 
     struct { /* [load] */
         mc_load_kind kind;
@@ -104,12 +104,12 @@ typedef struct {
         double depths[MC_MAX_DEPTHS];
         mc_stress_kernel kernel;     /* default patch */
         double friction;             /* q_x = friction * p (sliding in +x), default 0 */
-        mc_stress_window_mode window; /* default auto */
+        mc_scene_stress_window window; /* default auto */
     } stress;
 
     struct { /* [lubrication]: the lubricant volume equilibrium (runs when enabled) */
         int enabled;                 /* case files: 1 when [lubrication] is present */
-        mc_film_source film;         /* ehl (formula) or given (film_thickness) */
+        mc_scene_film_source film;         /* ehl (formula) or given (film_thickness) */
         double film_thickness;       /* given: h_EHD, m */
         mc_film_formula formula;     /* ehl */
         double viscosity;            /* eta0, Pa s */
@@ -122,7 +122,7 @@ typedef struct {
         double mu_solid, mu_fluid;   /* friction coefficients of solid and fluid contact */
         mc_psi_kind psi;             /* load- or area-based solid contact ratio */
         double tolerance;            /* relative tolerance of the volume root */
-        mc_lube_profile_kind profile; /* the whole contact ([geometry] shape = cylinder) */
+        mc_scene_lube_profile profile; /* the whole contact ([geometry] shape = cylinder) */
     } lubrication;
 
     struct { /* [plasticity]: the elastic-plastic stage (runs when enabled) */
@@ -134,7 +134,7 @@ typedef struct {
         double tangent_modulus;       /* linear: E_t, Pa */
         double swift_B, swift_C, swift_n; /* swift: sigma_y = B (C + 1e6 p)^n */
         char table[MC_PATH_MAX];      /* table: CSV of (eps_p, sigma_y) */
-        mc_table_unit table_unit;     /* unit of sigma_y in the table */
+        mc_scene_table_unit table_unit;     /* unit of sigma_y in the table */
         int both;                     /* bodies = both: body 2 is the same material */
         int load_steps;
         double relaxation;            /* omega of the outer iteration */
@@ -202,7 +202,7 @@ double mc_scene_estar(const mc_scene *s);
  * z_k = depth_min + k (depth_max - depth_min)/(layers - 1) (layers = 1: depth_min alone);
  * geometric z_k = depth_min (depth_max/depth_min)^(k/(layers - 1)); list: as given. The ends are
  * exact. MC_ERR_INPUT (as mc_scene_check) if the stress settings are invalid, or if depth_max is
- * auto (which only the stress stage resolves, from the contact patches: mc_stress_stage). */
+ * auto (which only the stress stage resolves, from the contact patches: mc_stage_stress). */
 int mc_scene_depths(const mc_scene *s, double *depths, int *ndepths, mc_error *err);
 
 /* Effective self-affine cut-off wavelengths, m: the scene's values, or for 0 the defaults

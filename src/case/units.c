@@ -139,7 +139,7 @@ int mc_utf8_check(const char *s, size_t n, size_t *bad_at)
     return 1;
 }
 
-void mc_text_quote(const char *text, char *buf, size_t len)
+void mc_case_quote(const char *text, char *buf, size_t len)
 {
     enum { SHOWN = 60 };
     const unsigned char *u = (const unsigned char *)text;
@@ -235,7 +235,7 @@ int mc_parse_quantity(const char *text, mc_unit_kind kind, double *si, char *why
         if (*start == '\0')
             say(why, whylen, "a value is required; %s", need);
         else {
-            mc_text_quote(start, shown, sizeof shown);
+            mc_case_quote(start, shown, sizeof shown);
             say(why, whylen, "'%s' is not a number; %s", shown, need);
         }
         return 1;
@@ -279,7 +279,7 @@ int mc_parse_quantity(const char *text, mc_unit_kind kind, double *si, char *why
         slen = sizeof suffix - 1; /* longer than any unit: unknown either way */
     memcpy(suffix, p, slen);
     suffix[slen] = '\0';
-    mc_text_quote(suffix, shown, sizeof shown);
+    mc_case_quote(suffix, shown, sizeof shown);
     for (size_t k = 0; k < sizeof units / sizeof units[0]; k++) {
         if (strcmp(units[k].suffix, suffix) != 0)
             continue;

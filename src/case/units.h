@@ -38,6 +38,6 @@ int mc_utf8_check(const char *s, size_t n, size_t *bad_at);
 /* Copy text into buf (size len >= 8) for an error message: control bytes and bytes that are not
  * well-formed UTF-8 become \xNN, and text longer than 60 bytes is cut (at a character boundary)
  * with "...". Never fails; buf is always NUL-terminated. */
-void mc_text_quote(const char *text, char *buf, size_t len);
+void mc_case_quote(const char *text, char *buf, size_t len);
 
 #endif

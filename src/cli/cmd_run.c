@@ -125,7 +125,7 @@ static void print_solve(const mc_results *r)
            c->load, c->solid_load, c->p_max * 1e-6, c->area * 1e6, 100 * c->contact_ratio,
            c->approach * 1e6);
     if (r->nlayers > 0) {
-        const mc_stress_summary *s = &r->stress_summary;
+        const mc_stage_stress_summary *s = &r->stress_summary;
         printf("  stress: %d layers, max von Mises %.6g MPa at z = %.4g um, max shear %.6g MPa\n",
                r->nlayers, s->vm_max * 1e-6, s->vm_max_at[2] * 1e6, s->tresca_max * 1e-6);
     }
@@ -135,7 +135,7 @@ static void print_solve(const mc_results *r)
                r->lube.h_ehd * 1e6, r->lube.p_lub * 1e-6, r->lube.regime, r->lube.psi_load,
                r->lube.psi_area, r->lube.mu);
     if (r->plastic.enabled) {
-        const mc_plastic_summary *q = &r->plastic;
+        const mc_stage_plastic_summary *q = &r->plastic;
         if (q->elastic_shortcut)
             printf("  plasticity: nothing yields (max von Mises %.6g MPa < yield %.6g MPa)\n",
                    q->vm_elastic_max * 1e-6, q->yield_initial * 1e-6);

@@ -10,7 +10,7 @@ static int is_7_smooth(int m)
     return m == 1;
 }
 
-int mc_fft_good_size(int n)
+int mc_fftsize_good(int n)
 {
     int m = n < 1 ? 1 : n;
     while (!is_7_smooth(m))

@@ -3,6 +3,6 @@
 #define MC_FFTSIZE_H
 
 /* Smallest m >= n (n >= 1) whose prime factors are all in {2, 3, 5, 7}. */
-int mc_fft_good_size(int n);
+int mc_fftsize_good(int n);
 
 #endif

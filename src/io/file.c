@@ -10,7 +10,7 @@
 #include "core/alloc.h"
 #include "core/fileguard.h"
 
-int mc_file_read_limited(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
+int mc_io_read_limited(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
                          size_t *len, mc_error *err)
 {
     *buf = NULL;
@@ -73,16 +73,16 @@ int mc_file_read_limited(const char *path, size_t max_bytes, const char *what, u
     return MC_OK;
 }
 
-int mc_file_read_data(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
+int mc_io_read_data(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
                       size_t *len, mc_error *err)
 {
     *buf = NULL;
     *len = 0;
     int st = mc_file_guard(path, max_bytes, what, err);
-    return st != MC_OK ? st : mc_file_read_limited(path, max_bytes, what, buf, len, err);
+    return st != MC_OK ? st : mc_io_read_limited(path, max_bytes, what, buf, len, err);
 }
 
-int mc_file_read(const char *path, unsigned char **buf, size_t *len, mc_error *err)
+int mc_io_read_file(const char *path, unsigned char **buf, size_t *len, mc_error *err)
 {
-    return mc_file_read_data(path, MC_FILE_MAX_SURFACE, "a data file", buf, len, err);
+    return mc_io_read_data(path, MC_FILE_MAX_SURFACE, "a data file", buf, len, err);
 }

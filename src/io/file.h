@@ -11,15 +11,15 @@
  * not counted in *len. MC_ERR_IO naming path and strerror, or MC_ERR_NOMEM; MC_ERR_INPUT for a
  * device, FIFO or socket, or a file beyond MC_FILE_MAX_SURFACE (core/fileguard.h): nothing reads
  * forever. */
-int mc_file_read(const char *path, unsigned char **buf, size_t *len, mc_error *err);
+int mc_io_read_file(const char *path, unsigned char **buf, size_t *len, mc_error *err);
 
 /* The same, naming what the file should be ("a surface file") and with its own limit. */
-int mc_file_read_data(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
+int mc_io_read_data(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
                       size_t *len, mc_error *err);
 
 /* Any file, a stream too (the case file may come through a pipe), with a size limit (0 = none): a larger file, or a device that never ends, is
  * MC_ERR_INPUT "PATH: larger than N MiB; not WHAT" (what, e.g. "a case file"). */
-int mc_file_read_limited(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
+int mc_io_read_limited(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
                          size_t *len, mc_error *err);
 
 #endif

@@ -235,7 +235,7 @@ int mc_heightmap_read(const char *path, int ny, int nx, double **data, mc_error 
     unsigned char *buf;
     size_t len;
     *data = NULL;
-    int st = mc_file_read(path, &buf, &len, err);
+    int st = mc_io_read_file(path, &buf, &len, err);
     if (st != MC_OK)
         return st;
     double *d = NULL;

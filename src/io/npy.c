@@ -238,7 +238,7 @@ int mc_npy_read(const char *path, double **data, int *rows, int *cols, mc_error 
     unsigned char *buf;
     size_t len;
     *data = NULL;
-    int st = mc_file_read(path, &buf, &len, err);
+    int st = mc_io_read_file(path, &buf, &len, err);
     if (st != MC_OK)
         return st;
     st = mc_npy_parse(buf, len, path, data, rows, cols, err);

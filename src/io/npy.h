@@ -14,7 +14,7 @@
 #include <stddef.h>
 
 #include "core/error.h"
-#include "io/file.h" /* mc_file_read, which used to live here */
+#include "io/file.h" /* mc_io_read_file, which used to live here */
 
 /* Read a 2-D little-endian float64 C-order array ("<f8", fortran_order False). Fills *rows (ny),
  * *cols (nx) and *data (mc_malloc'ed; caller frees with mc_free). 1-D arrays are read as 1 x n.

@@ -349,7 +349,7 @@ int mc_surface_file_read(const char *path, const mc_surface_read_options *opt,
     }
     unsigned char *buf;
     size_t len;
-    int st = mc_file_read_data(path, MC_FILE_MAX_SURFACE, "a surface file", &buf, &len, err);
+    int st = mc_io_read_data(path, MC_FILE_MAX_SURFACE, "a surface file", &buf, &len, err);
     if (st != MC_OK)
         return st;
     st = mc_surface_parse_buffer(format, buf, len, path, opt, out, err);

@@ -3,7 +3,7 @@
 
 #include <math.h>
 
-const char *mc_stress_name(int c)
+const char *mc_component_name(int c)
 {
     static const char *names[MC_NSTRESS] = {"xx", "yy", "zz", "xy", "yz", "xz"};
     return c >= 0 && c < MC_NSTRESS ? names[c] : "?";

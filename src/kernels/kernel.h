@@ -12,7 +12,7 @@
 enum { MC_SXX = 0, MC_SYY, MC_SZZ, MC_SXY, MC_SYZ, MC_SXZ, MC_NSTRESS };
 
 /* Short names "xx", "yy", "zz", "xy", "yz", "xz" for component c. */
-const char *mc_stress_name(int c);
+const char *mc_component_name(int c);
 
 /* ---- elastic constants ------------------------------------------------------------------ */
 

@@ -273,8 +273,8 @@ static int create(const mc_grid *g, mc_backend b, int distribute, mc_conv **out,
     c->g = *g;
     c->ops = ops;
     c->distribute = distribute && b == MC_BACKEND_FFT && mc_dist_active();
-    c->tx = g->periodic_x ? g->nx : mc_fft_good_size(2 * g->nx - 1);
-    c->ty = g->periodic_y ? g->ny : mc_fft_good_size(2 * g->ny - 1);
+    c->tx = g->periodic_x ? g->nx : mc_fftsize_good(2 * g->nx - 1);
+    c->ty = g->periodic_y ? g->ny : mc_fftsize_good(2 * g->ny - 1);
     if ((rc = ops->create(c, err))) {
         ops->destroy(c);
         mc_free(c);

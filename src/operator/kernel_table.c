@@ -231,13 +231,13 @@ static double tail_two_axes(double x, double y, const mc_grid *g, int images)
 
 static double love_value(double ox, double oy, const void *ctx)
 {
-    const mc_love_ctx *c = ctx;
+    const mc_kernel_love_ctx *c = ctx;
     return mc_love_uz(ox, oy, c->a, c->b) / c->Estar;
 }
 
 static double love_tail(double ox, double oy, const mc_grid *g, int images, const void *ctx)
 {
-    const mc_love_ctx *c = ctx;
+    const mc_kernel_love_ctx *c = ctx;
     if (g->periodic_x && g->periodic_y)
         return tail_two_axes(ox, oy, g, images) / c->Estar;
     if (g->periodic_y)
@@ -247,7 +247,7 @@ static double love_tail(double ox, double oy, const mc_grid *g, int images, cons
     return 0.0;
 }
 
-void mc_kernel_fn_love(const mc_grid *g, double Estar, mc_love_ctx *ctx, mc_kernel_fn *fn)
+void mc_kernel_fn_love(const mc_grid *g, double Estar, mc_kernel_love_ctx *ctx, mc_kernel_fn *fn)
 {
     ctx->a = 0.5 * g->dx;
     ctx->b = 0.5 * g->dy;

@@ -108,7 +108,7 @@ int mc_kernel_table_love(const mc_grid *g, int tx, int ty, double Estar, mc_kern
 /* Context of mc_kernel_fn_love: rectangle half-sides a = dx/2, b = dy/2 (m) and E* (Pa). */
 typedef struct {
     double a, b, Estar;
-} mc_love_ctx;
+} mc_kernel_love_ctx;
 
 /* The Love kernel as a generic mc_kernel_fn for grid g (fills *ctx, and *fn pointing to it):
  * value = mc_love_uz(ox, oy, a, b) / E*, and the tail of the image sum beyond M periods, from
@@ -126,7 +126,7 @@ typedef struct {
  *      half-sides), bx = (1 - nx^2) dx^2/24, by likewise; error ~ M^-5; the table is not
  *      mean-free (mc_kernel_table_love's Ewald table is, and is this sum's M -> inf limit).
  * The slow, plain reference of mc_kernel_table_love (mc_kernel_table_build with it). */
-void mc_kernel_fn_love(const mc_grid *g, double Estar, mc_love_ctx *ctx, mc_kernel_fn *fn);
+void mc_kernel_fn_love(const mc_grid *g, double Estar, mc_kernel_love_ctx *ctx, mc_kernel_fn *fn);
 
 /* ---- the transform engine ---------------------------------------------------------------- */
 

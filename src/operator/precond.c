@@ -30,7 +30,7 @@ struct mc_precond {
     fftw_complex *spec;   /* max fy * (max fx/2+1) */
 };
 
-static int axis_fft_max(int n, int periodic) { return periodic ? n : mc_fft_good_size(n); }
+static int axis_fft_max(int n, int periodic) { return periodic ? n : mc_fftsize_good(n); }
 
 int mc_precond_create(const mc_grid *g, mc_precond **out, mc_error *err)
 {
@@ -141,7 +141,7 @@ static int box_fft_len(int len, int n, int periodic)
 {
     if (periodic)
         return n;
-    const int f = mc_fft_good_size(len), fmax_ = mc_fft_good_size(n);
+    const int f = mc_fftsize_good(len), fmax_ = mc_fftsize_good(n);
     return f > fmax_ ? fmax_ : f;
 }
 

@@ -11,7 +11,7 @@
 #include "core/fftsize.h"
 
 /* Cells of the transform of one axis (padded when free, as conv.c). */
-static double axis_len(int n, int periodic) { return periodic ? n : mc_fft_good_size(2 * n - 1); }
+static double axis_len(int n, int periodic) { return periodic ? n : mc_fftsize_good(2 * n - 1); }
 
 /* Bytes of one operator on grid (nx, ny): fft - kernel spectrum, real and complex work buffers,
  * and the kernel table while it is built; direct - the table. Over P MPI processes
@@ -28,7 +28,7 @@ static double operator_bytes(int nx, int ny, int px, int py, mc_backend b)
     return 16 * half * 2 + 8 * tx * ty + 8 * tx * ty;
 }
 
-double mc_scene_memory_estimate(const mc_scene *s)
+double mc_memory_estimate(const mc_scene *s)
 {
     const mc_grid *g = &s->grid;
     double cells = (double)g->nx * (double)g->ny;
@@ -88,7 +88,7 @@ double mc_memory_available(void)
 
 int mc_memory_check(const mc_scene *s, mc_error *err)
 {
-    double need = mc_scene_memory_estimate(s), have = mc_memory_available();
+    double need = mc_memory_estimate(s), have = mc_memory_available();
     /* over MPI processes: rank 0's figure for all, so that they all go on or all stop */
     mc_dist_bcast(&have, 1, 0);
     if (need <= have)

@@ -11,7 +11,7 @@
  * (reports/bench: memory): it errs on the high side by design. Per process: over MPI processes
  * (core/dist.h) the operators' spectra and transform buffers count 1/P, every replicated array
  * in full. */
-double mc_scene_memory_estimate(const mc_scene *s);
+double mc_memory_estimate(const mc_scene *s);
 
 /* Memory the system can still give, bytes (MemAvailable of /proc/meminfo; physical memory if
  * that is unreadable); MC_MEMORY_LIMIT in the environment (bytes, for tests) overrides it. */

@@ -419,7 +419,7 @@ static int write_surface_fields(out_ctx *c, mc_error *err)
 static int write_plastic(out_ctx *c, mc_error *err)
 {
     const mc_results *r = c->res;
-    const mc_plastic_summary *ps = &r->plastic;
+    const mc_stage_plastic_summary *ps = &r->plastic;
     size_t shape[2] = {(size_t)r->grid.ny, (size_t)r->grid.nx};
     size_t vshape[3] = {(size_t)(ps->nz > 0 ? ps->nz : 1), shape[0], shape[1]};
     int st = write_npy(c, "residual_displacement.npy", r->residual_displacement, 2, shape, err);

@@ -119,7 +119,7 @@ int mc_output_prepare(const char *dir, mc_error *err);
  * rigid, estar), load (kind, value or pressure_file, lubricant_pressure, pressure_cap), roughness
  * (type; seed = res->roughness_seed, a string if above INT64_MAX; the type's parameters),
  * contact (the mc_contact_summary, plus the solver tolerance and max_iterations of the scene),
- * stress (the mc_stress_summary, when stress was run), timing (total_s, setup_s, contact_s,
+ * stress (the mc_stage_stress_summary, when stress was run), timing (total_s, setup_s, contact_s,
  * stress_s), with a running-in runin (forces, speeds, hysteresis per force, steps, roots),
  * roughness.final where the results hold a final surface (running-in, elastic-plastic), with
  * [roughness2] roughness.body1 and roughness.body2 (section, inputs, initial and final ISO

@@ -156,9 +156,9 @@ static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_e
         return rc;
     t0 = mc_clock();
     if (sc->plasticity.enabled)
-        rc = mc_plastic_stage(sc, K, solver, res, err);
+        rc = mc_stage_plastic(sc, K, solver, res, err);
     else if (sc->load.lubricant_pressure == MC_LUBRICANT_AUTO)
-        rc = mc_lube_stage(sc, K, solver, NULL, NULL, res, err);
+        rc = mc_stage_lube(sc, K, solver, NULL, NULL, res, err);
     else
         rc = mc_contact_solve(solver, &prob, res->pressure, res->displacement, res->gap,
                               &res->contact, err);
@@ -326,7 +326,7 @@ static int run_stages(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_resul
         if (stage)
             stage(ctx, "stress");
         t0 = mc_clock();
-        int src = mc_stress_stage(sc, res, &serr);
+        int src = mc_stage_stress(sc, res, &serr);
         res->timing.stress_s = mc_clock() - t0;
         if (src == MC_ERR_INPUT || src == MC_ERR_LIMIT) /* the [stress] settings */
             blame_key(sc, "stress",

@@ -19,7 +19,7 @@ typedef struct {
     double depth_min, depth_max;         /* m */
     const char *kernel;                  /* "patch" | "point" */
     double friction;
-} mc_stress_summary;
+} mc_stage_stress_summary;
 
 /* How the stress stage computed its layers (the skips of stress.h), so that a user can see them. */
 #define MC_STRESS_MAX_WINDOWS 16
@@ -28,17 +28,17 @@ typedef struct {
     int i0, i1, j0, j1; /* cells computed, i0..i1 x j0..j1 (inclusive); all others hold 0 */
     int sparse;         /* 1: the sparse sum over the loaded cells; 0: the convolution over the
                          * whole window (DC-FFT, or the direct backend's O(N^2) sum) */
-} mc_stress_window;
+} mc_stage_stress_window;
 
 typedef struct {
     int windowed;          /* 1: [stress] window = auto restricted some layer to a window */
     int nwindows;          /* groups of layers, each computed on one window */
-    mc_stress_window window[MC_STRESS_MAX_WINDOWS];
+    mc_stage_stress_window window[MC_STRESS_MAX_WINDOWS];
     long loaded_cells;     /* cells with a non-zero load */
     int depth_auto;        /* 1: depth_max = auto, derived from the contact */
     int patches;           /* connected contact patches (depth_auto) */
     double patch_radius;   /* m: radius of the largest patch (depth_auto) */
-} mc_stress_layout;
+} mc_stage_stress_layout;
 
 /* The lubricant volume equilibrium ([lubrication], lubricant_pressure = auto). */
 typedef struct {
@@ -70,7 +70,7 @@ typedef struct {
                               is the Hertz ellipse |x/b|^2 + |y/a|^2 <= 1 */
     double hertz_half_length; /* crowned: the ellipse's semi-axis a along y, m (0 otherwise) */
     double nominal_area;   /* the volume equilibrium's nominal area, m^2 */
-} mc_lube_summary;
+} mc_stage_lube_summary;
 
 /* The elastic-plastic stage ([plasticity]). */
 typedef struct {
@@ -97,7 +97,7 @@ typedef struct {
     double stop_load;          /* load of the increment it stopped in, N */
     const char *stop_reason;   /* mc_plastic_stop_text (static) */
     int stop_runin_step;       /* running-in step, from 1 (0: not a running-in) */
-} mc_plastic_summary;
+} mc_stage_plastic_summary;
 
 /* One step of the running-in ([runin], pipeline/runin.h): a row of runin.csv. */
 typedef struct {
@@ -162,15 +162,15 @@ typedef struct {
     double *depths;              /* nlayers, m */
     double *stress[6];           /* xx, yy, zz, xy, yz, xz; Pa */
     double *von_mises, *hydrostatic, *tresca;
-    mc_stress_summary stress_summary;
-    mc_stress_layout stress_layout;
+    mc_stage_stress_summary stress_summary;
+    mc_stage_stress_layout stress_layout;
 
-    mc_lube_summary lube;
+    mc_stage_lube_summary lube;
     double *lube_profile; /* ny*nx: the whole contact's lubricant pressure profile w (lube/
-                             volume.h), NULL for a patch (stage_lube.h mc_lube_profile) */
+                             volume.h), NULL for a patch (stage_lube.h mc_stage_lube_profile) */
 
     /* elastic-plastic stage (NULL / 0 when not run) */
-    mc_plastic_summary plastic;
+    mc_stage_plastic_summary plastic;
     double *residual_displacement; /* ny*nx, m, positive into the body */
     double *topography_final;      /* ny*nx, m: the unloaded gap the next load sees */
     double *plastic_strain;        /* nz*ny*nx accumulated equivalent plastic strain */

@@ -157,9 +157,9 @@ static int step_macro(runin_ctx *c, double F, double speed, mc_error *err)
     c->step->lubrication.rpm = speed;
     if (c->sc->lubrication.rpm2 > 0) /* rolling-sliding: the slide-to-roll ratio stays */
         c->step->lubrication.rpm2 = c->sc->lubrication.rpm2 * speed / c->sc->lubrication.rpm;
-    int rc = mc_lube_macro(c->step, &c->g, &c->res->lube, err);
+    int rc = mc_stage_lube_macro(c->step, &c->g, &c->res->lube, err);
     if (rc == MC_OK)
-        rc = mc_lube_profile(c->step, c->res, err);
+        rc = mc_stage_lube_profile(c->step, c->res, err);
     if (rc != MC_OK)
         return rc;
     const double pnom = c->res->lube.nominal_pressure;
@@ -216,7 +216,7 @@ static int yields(runin_ctx *c, const double *p, double p_lub, double f, int *an
 
 /* The elastic-plastic loop of a run-down step from the carried state, with the traction
  * coefficient f (signed; 0: none); the state is updated. */
-static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_lube_contact *lc,
+static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_stage_lube_contact *lc,
                         int *conv, mc_error *err)
 {
     const mc_scene *sc = c->sc;
@@ -227,7 +227,7 @@ static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_lube
         if (rc != MC_OK)
             return rc;
     }
-    *lc = (mc_lube_contact){.solver = c->solver,
+    *lc = (mc_stage_lube_contact){.solver = c->solver,
                             .K = c->K,
                             .h_target = r->lube.h_ehd,
                             .weight = r->lube_profile,
@@ -251,7 +251,7 @@ static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_lube
                              .anderson = MC_RUNIN_ANDERSON,
                              .eps_p0 = c->eps_p,
                              .peq0 = c->peq,
-                             .contact = mc_lube_contact_step,
+                             .contact = mc_stage_lube_contact_step,
                              .contact_ctx = lc,
                              .ops = &c->ops,
                              .stop = stop_poll,
@@ -300,13 +300,13 @@ static int run_step(runin_ctx *c, int s, mc_runin_row *row, mc_plastic_step *rec
     row->solves = vr.solves;
     row->roots = 1;
     const mc_volume_result *last = &vr;
-    mc_lube_contact lc;
+    mc_stage_lube_contact lc;
     if (!up && c->plastic && rc == MC_OK) {
         /* the traction of the yield check: [plasticity] friction, or (friction_in_yield) the mu
          * of this step's equilibrium before it yields, along the sliding (theory.md §19.7) */
         double fr = c->sc->plasticity.friction;
         if (c->slide != 0) {
-            rc = mc_lube_outcome(c->step, &vr, r, err);
+            rc = mc_stage_lube_outcome(c->step, &vr, r, err);
             if (rc != MC_OK)
                 return rc;
             fr = c->slide * r->lube.mu;
@@ -329,10 +329,10 @@ static int run_step(runin_ctx *c, int s, mc_runin_row *row, mc_plastic_step *rec
                 last = &lc.last;
         }
     }
-    int src = mc_lube_outcome(c->step, last, r, err);
+    int src = mc_stage_lube_outcome(c->step, last, r, err);
     if (src != MC_OK)
         return src;
-    const mc_lube_summary *l = &r->lube;
+    const mc_stage_lube_summary *l = &r->lube;
     row->entrainment = l->entrainment;
     row->h_ehd = l->h_ehd;
     row->p_lub = l->p_lub;
@@ -398,7 +398,7 @@ static int plan_volume(runin_ctx *c, mc_error *err)
         for (int k = 0; k < NPROBE; k++)
             z[k] = (k + 0.5) * dz;
         if (rc == MC_OK)
-            rc = mc_plastic_stage_layer_maxima(sc, &c->g, c->res->pressure, 0.0, z, NPROBE, vm,
+            rc = mc_stage_plastic_layer_maxima(sc, &c->g, c->res->pressure, 0.0, z, NPROBE, vm,
                                                err);
         if (rc != MC_OK)
             return rc;
@@ -448,9 +448,9 @@ static int setup(runin_ctx *c, mc_error *err)
         double fmax_ = 0;
         for (int f = 0; f < c->nf; f++)
             fmax_ = fmax(fmax_, c->forces[f]);
-        mc_lube_summary widest;
+        mc_stage_lube_summary widest;
         c->step->load.value = fmax_; /* the largest band must fit the grid: say so up front */
-        rc = mc_lube_macro(c->step, &c->g, &widest, err);
+        rc = mc_stage_lube_macro(c->step, &c->g, &widest, err);
         if (rc != MC_OK)
             return rc;
         if (!(c->shape = mc_zeros(c->n)) || !(c->rmask = mc_malloc(c->n)))
@@ -459,7 +459,7 @@ static int setup(runin_ctx *c, mc_error *err)
         for (int j = 0; j < c->g.ny; j++)
             for (int i = 0; i < c->g.nx; i++)
                 c->rmask[(size_t)j * c->g.nx + i] =
-                    mc_lube_nominal_shape(&widest, mc_grid_x(&c->g, i), mc_grid_y(&c->g, j), 0) > 0;
+                    mc_stage_lube_nominal_shape(&widest, mc_grid_x(&c->g, i), mc_grid_y(&c->g, j), 0) > 0;
     }
     /* a simulated window is much shorter than the ISO 4288 cut-off (0.8 mm for ground
      * surfaces): without a [roughness] cutoff the rows are only levelled (their mean removed),
@@ -501,7 +501,7 @@ static int setup(runin_ctx *c, mc_error *err)
         mc_free(one);
     }
     if (rc == MC_OK && c->plastic) {
-        rc = mc_plastic_stage_law(sc, &c->law, err);
+        rc = mc_stage_plastic_law(sc, &c->law, err);
         if (rc != MC_OK)
             mc_error_prefix(err, "[plasticity] ");
         c->G = sc->body1.E / (2.0 * (1.0 + sc->body1.nu));
@@ -620,7 +620,7 @@ static int plastic_results(runin_ctx *c, const mc_plastic_step *records, int nre
 {
     const mc_scene *sc = c->sc;
     mc_results *r = c->res;
-    mc_plastic_summary *ps = &r->plastic;
+    mc_stage_plastic_summary *ps = &r->plastic;
     const size_t n = c->n, nv = (size_t)c->nvol;
     memset(ps, 0, sizeof *ps);
     ps->enabled = 1;

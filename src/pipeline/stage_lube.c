@@ -12,7 +12,7 @@
 
 static const double RAD_S_PER_RPM = 6.283185307179586476925286766559 / 60.0;
 
-int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, mc_error *err)
+int mc_stage_lube_macro(const mc_scene *sc, const mc_grid *g, mc_stage_lube_summary *lube, mc_error *err)
 {
     const double estar = mc_scene_estar(sc);
     const double a_nom = mc_grid_cell_area(g) * (double)mc_grid_cells(g);
@@ -71,7 +71,7 @@ int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, m
         size_t nband = 0;
         for (int j = 0; j < g->ny; j++)
             for (int i = 0; i < g->nx; i++)
-                nband += mc_lube_nominal_shape(lube, mc_grid_x(g, i), mc_grid_y(g, j), 0) > 0;
+                nband += mc_stage_lube_nominal_shape(lube, mc_grid_x(g, i), mc_grid_y(g, j), 0) > 0;
         lube->nominal_area = (double)nband * mc_grid_cell_area(g);
         /* the strip carries w' per length; the crowned contact the whole F_N */
         lube->patch_load = lube->crowned ? sc->load.value : lube->load_per_length * g->ny * g->dy;
@@ -123,7 +123,7 @@ int mc_lube_macro(const mc_scene *sc, const mc_grid *g, mc_lube_summary *lube, m
     return rc;
 }
 
-double mc_lube_nominal_shape(const mc_lube_summary *lube, double x, double y, int hertz)
+double mc_stage_lube_nominal_shape(const mc_stage_lube_summary *lube, double x, double y, int hertz)
 {
     const double tx = x / lube->hertz_half_width;
     const double ty = lube->crowned ? y / lube->hertz_half_length : 0.0;
@@ -133,7 +133,7 @@ double mc_lube_nominal_shape(const mc_lube_summary *lube, double x, double y, in
     return hertz ? sqrt(1.0 - r2) : 1.0;
 }
 
-int mc_lube_profile(const mc_scene *sc, mc_results *res, mc_error *err)
+int mc_stage_lube_profile(const mc_scene *sc, mc_results *res, mc_error *err)
 {
     if (!res->lube.whole)
         return MC_OK;
@@ -148,7 +148,7 @@ int mc_lube_profile(const mc_scene *sc, mc_results *res, mc_error *err)
     for (int j = 0; j < g->ny; j++)
         for (int i = 0; i < g->nx; i++) {
             double *wi = &w[(size_t)j * g->nx + i];
-            *wi = mc_lube_nominal_shape(&res->lube, mc_grid_x(g, i), mc_grid_y(g, j), hertz);
+            *wi = mc_stage_lube_nominal_shape(&res->lube, mc_grid_x(g, i), mc_grid_y(g, j), hertz);
             sum += *wi;
             nband += *wi > 0;
         }
@@ -162,13 +162,13 @@ int mc_lube_profile(const mc_scene *sc, mc_results *res, mc_error *err)
     return MC_OK;
 }
 
-int mc_lube_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, const double *h_extra,
+int mc_stage_lube(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, const double *h_extra,
                   const double *p_start, mc_results *res, mc_error *err)
 {
-    mc_lube_summary *lube = &res->lube;
-    int rc = mc_lube_macro(sc, &res->grid, lube, err);
+    mc_stage_lube_summary *lube = &res->lube;
+    int rc = mc_stage_lube_macro(sc, &res->grid, lube, err);
     if (rc == MC_OK)
-        rc = mc_lube_profile(sc, res, err);
+        rc = mc_stage_lube_profile(sc, res, err);
     if (rc != MC_OK)
         return rc;
     mc_volume_problem prob = {.weight = res->lube_profile,
@@ -183,7 +183,7 @@ int mc_lube_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, cons
     if (rc != MC_OK && rc != MC_NOT_CONVERGED)
         return rc;
     mc_error oerr = {0};
-    int orc = mc_lube_outcome(sc, &vr, res, &oerr);
+    int orc = mc_stage_lube_outcome(sc, &vr, res, &oerr);
     if (orc != MC_OK) {
         *err = oerr;
         return orc;
@@ -191,10 +191,10 @@ int mc_lube_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, cons
     return rc;
 }
 
-int mc_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_results *res,
+int mc_stage_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_results *res,
                     mc_error *err)
 {
-    mc_lube_summary *lube = &res->lube;
+    mc_stage_lube_summary *lube = &res->lube;
     res->contact = vr->contact;
     lube->p_lub = vr->p_lub;
     lube->regime = mc_lube_regime_name(vr->regime);
@@ -229,10 +229,10 @@ int mc_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_results *
     return MC_OK;
 }
 
-int mc_lube_contact_step(void *ctx, const mc_contact_problem *cp, double *p, double *u,
+int mc_stage_lube_contact_step(void *ctx, const mc_contact_problem *cp, double *p, double *u,
                          double *gap, mc_contact_summary *sum, double *p_lub, mc_error *err)
 {
-    mc_lube_contact *lc = ctx;
+    mc_stage_lube_contact *lc = ctx;
     mc_volume_problem prob = {.h = cp->h,
                               .h_extra = cp->h_extra,
                               .load = cp->load,

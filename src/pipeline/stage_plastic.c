@@ -21,7 +21,7 @@ static double stage_load(const mc_scene *sc, const mc_grid *g)
                                                      : sc->load.value;
 }
 
-int mc_plastic_stage_law(const mc_scene *sc, mc_hardening *law, mc_error *err)
+int mc_stage_plastic_law(const mc_scene *sc, mc_hardening *law, mc_error *err)
 {
     const double unit[] = {1.0, 1e6, 1e9};
     const mc_hardening_params par = {.E = sc->body1.E,
@@ -35,7 +35,7 @@ int mc_plastic_stage_law(const mc_scene *sc, mc_hardening *law, mc_error *err)
     return mc_hardening_build(sc->plasticity.hardening, &par, law, err);
 }
 
-int mc_plastic_stage_layer_maxima(const mc_scene *sc, const mc_grid *g, const double *p,
+int mc_stage_plastic_layer_maxima(const mc_scene *sc, const mc_grid *g, const double *p,
                                   double p_lub, const double *z, int nz, double *vm_layer,
                                   mc_error *err)
 {
@@ -85,7 +85,7 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, doubl
                        mc_eigen_volume *v, mc_error *err)
 {
     const mc_grid *g = &res->grid;
-    mc_plastic_summary *ps = &res->plastic;
+    mc_stage_plastic_summary *ps = &res->plastic;
     /* default min(dx, dy) / 2 (dx / 2 on a line grid, whose dy is no cell size): below the band
      * 0.6 < dz/dx < 1.6 where the residual stress operator's x-z (and y-z) checkerboard mode
      * releases energy and a perfectly plastic run locks into it (theory §8.5) */
@@ -121,7 +121,7 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, doubl
         for (int k = 0; rc == MC_OK && k < nprobe; k++)
             z[k] = (k + 0.5) * step;
         if (rc == MC_OK)
-            rc = mc_plastic_stage_layer_maxima(sc, g, res->pressure, p_lub, z, nprobe, vm, err);
+            rc = mc_stage_plastic_layer_maxima(sc, g, res->pressure, p_lub, z, nprobe, vm, err);
         double deepest = 0;
         for (int k = 0; rc == MC_OK && k < nprobe; k++) {
             ps->vm_elastic_max = fmax(ps->vm_elastic_max, vm[k]);
@@ -185,7 +185,7 @@ static int alloc_fields(mc_results *res, int nz, mc_error *err)
  * surface has penetrated the counter body, and that penetration is the permanent deformation. */
 static int run_cap(const mc_scene *sc, mc_contact_solver *solver, mc_results *res, mc_error *err)
 {
-    mc_plastic_summary *ps = &res->plastic;
+    mc_stage_plastic_summary *ps = &res->plastic;
     ps->criterion = "pressure_cap";
     ps->hardening = "";
     mc_contact_problem prob = {.h = res->topography,
@@ -215,10 +215,10 @@ static int run_cap(const mc_scene *sc, mc_contact_solver *solver, mc_results *re
     return rc;
 }
 
-int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solver,
+int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solver,
                      mc_results *res, mc_error *err)
 {
-    mc_plastic_summary *ps = &res->plastic;
+    mc_stage_plastic_summary *ps = &res->plastic;
     memset(ps, 0, sizeof *ps);
     ps->enabled = 1;
     if (sc->plasticity.criterion == MC_CRITERION_PRESSURE_CAP)
@@ -229,7 +229,7 @@ int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
     ps->load_steps = sc->plasticity.load_steps;
     mc_hardening law;
     memset(&law, 0, sizeof law);
-    int rc = mc_plastic_stage_law(sc, &law, err);
+    int rc = mc_stage_plastic_law(sc, &law, err);
     if (rc != MC_OK) {
         mc_error_prefix(err, "[plasticity] ");
         return rc;
@@ -240,7 +240,7 @@ int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
     const int lubricated = sc->load.lubricant_pressure == MC_LUBRICANT_AUTO;
     double p_lub = fmax(sc->load.lubricant_pressure, 0.0);
     if (lubricated) {
-        rc = mc_lube_stage(sc, K, solver, NULL, NULL, res, err);
+        rc = mc_stage_lube(sc, K, solver, NULL, NULL, res, err);
         p_lub = res->lube.p_lub;
     } else {
         mc_contact_problem prob = {.h = res->topography,
@@ -268,14 +268,14 @@ int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
         mc_hardening_free(&law);
         return MC_OK;
     }
-    mc_lube_contact lc = {.solver = solver,
+    mc_stage_lube_contact lc = {.solver = solver,
                           .K = K,
                           .h_target = res->lube.h_ehd,
                           .weight = res->lube_profile,
                           .tolerance = sc->lubrication.tolerance};
     mc_plastic_problem pb = {.h = res->topography,
                              .load = lubricated ? res->lube.patch_load : stage_load(sc, &res->grid),
-                             .contact = lubricated ? mc_lube_contact_step : NULL,
+                             .contact = lubricated ? mc_stage_lube_contact_step : NULL,
                              .contact_ctx = &lc,
                              /* p_lub moves with every outer iteration: Anderson mixing keeps
                               * the two-cycles of a flipping contact set from stalling it */
@@ -328,7 +328,7 @@ int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
             ps->residual_max = fmax(ps->residual_max, pr.u_r[i]);
         if (lubricated && lc.calls > 0) { /* the figures of the last equilibrium */
             mc_error lerr = {0};
-            int lrc = mc_lube_outcome(sc, &lc.last, res, &lerr);
+            int lrc = mc_stage_lube_outcome(sc, &lc.last, res, &lerr);
             if (lrc != MC_OK) {
                 *err = lerr;
                 rc = lrc;

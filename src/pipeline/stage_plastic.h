@@ -20,16 +20,16 @@
  * plastic cells; the volume ends where the elastic von Mises stress falls below half the yield
  * stress (depth = auto); nothing yields at the full load -> no plastic loop at all.
  * MC_OK, MC_NOT_CONVERGED (results still filled, res->plastic.converged = 0) or an error. */
-int mc_plastic_stage(const mc_scene *sc, mc_operator *K, mc_contact_solver *solver,
+int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solver,
                      mc_results *res, mc_error *err);
 
 /* The hardening law of the scene's [plasticity] (free with mc_hardening_free). MC_OK or the law's
  * errors (MC_ERR_INPUT, MC_ERR_IO for a table file). */
-int mc_plastic_stage_law(const mc_scene *sc, mc_hardening *law, mc_error *err);
+int mc_stage_plastic_law(const mc_scene *sc, mc_hardening *law, mc_error *err);
 
 /* Largest von Mises stress of body 1 in each of the nz layers at depths z (m) under pressure p
  * (Pa, with the friction traction of [plasticity] where p > p_lub): vm_layer[k], Pa. */
-int mc_plastic_stage_layer_maxima(const mc_scene *sc, const mc_grid *g, const double *p,
+int mc_stage_plastic_layer_maxima(const mc_scene *sc, const mc_grid *g, const double *p,
                                   double p_lub, const double *z, int nz, double *vm_layer,
                                   mc_error *err);
 

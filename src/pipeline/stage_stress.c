@@ -47,8 +47,8 @@ static int neighbour(const mc_grid *g, int i, int j, int d, int *ni, int *nj, in
     return 1;
 }
 
-int mc_stress_find_patches(const mc_grid *g, const double *p, double threshold,
-                           mc_stress_patches *out, mc_error *err)
+int mc_stage_stress_find_patches(const mc_grid *g, const double *p, double threshold,
+                           mc_stage_stress_patches *out, mc_error *err)
 {
     const size_t n = mc_grid_cells(g);
     memset(out, 0, sizeof *out);
@@ -119,16 +119,16 @@ int mc_stress_find_patches(const mc_grid *g, const double *p, double threshold,
 
 /* The depths of the stage: as the scene gives them, or from the contact (depth_max = auto). */
 static int stage_depths(const mc_scene *sc, const mc_results *res, double *depths, int *nd,
-                        mc_stress_layout *lay, mc_error *err)
+                        mc_stage_stress_layout *lay, mc_error *err)
 {
     if (sc->stress.spacing == MC_SPACING_LIST || sc->stress.depth_max != MC_STRESS_DEPTH_AUTO)
         return mc_scene_depths(sc, depths, nd, err);
     const mc_grid *g = &res->grid;
     const double solid = res->contact.solved ? sc->load.lubricant_pressure : 0.0;
-    mc_stress_patches pt;
-    int rc = mc_stress_find_patches(g, res->pressure, solid, &pt, err);
+    mc_stage_stress_patches pt;
+    int rc = mc_stage_stress_find_patches(g, res->pressure, solid, &pt, err);
     if (rc == MC_OK && pt.patches == 0 && solid > 0.0) /* no solid contact: the loaded cells */
-        rc = mc_stress_find_patches(g, res->pressure, 0.0, &pt, err);
+        rc = mc_stage_stress_find_patches(g, res->pressure, 0.0, &pt, err);
     if (rc)
         return rc;
     lay->depth_auto = 1;
@@ -161,14 +161,14 @@ static mc_box window_of(const mc_grid *g, const mc_box *lb, double z)
 }
 
 /* Layers k0..k1 on box w, as the layout lists them (inclusive cell ranges). */
-static mc_stress_window window_entry(int k0, int k1, const mc_box *w)
+static mc_stage_stress_window window_entry(int k0, int k1, const mc_box *w)
 {
-    return (mc_stress_window){k0, k1, w->i0, w->i0 + w->nx - 1, w->j0, w->j0 + w->ny - 1, 0};
+    return (mc_stage_stress_window){k0, k1, w->i0, w->i0 + w->nx - 1, w->j0, w->j0 + w->ny - 1, 0};
 }
 
 /* Groups of consecutive layers and their windows into lay (windowed = 0: one group, the grid). */
 static void plan_windows(const mc_grid *g, const double *p, const double *depths, int nd,
-                         int windowed, mc_stress_layout *lay)
+                         int windowed, mc_stage_stress_layout *lay)
 {
     const mc_box full = {0, 0, g->nx, g->ny};
     mc_box lb;
@@ -256,7 +256,7 @@ static int stage_summary(const mc_scene *sc, mc_results *vol, mc_error *err)
     const mc_grid *g = &vol->grid;
     const int nd = vol->nlayers;
     const size_t nv = mc_grid_cells(g) * (size_t)nd;
-    mc_stress_summary *ss = &vol->stress_summary;
+    mc_stage_stress_summary *ss = &vol->stress_summary;
     int finite = 1;
     double hmax;
     memset(ss, 0, sizeof *ss);
@@ -284,7 +284,7 @@ static int stage_summary(const mc_scene *sc, mc_results *vol, mc_error *err)
 /* One group of layers on its window w: the loads cropped to it, a stress plan for its sub-grid,
  * each layer computed and put in place in the volumes (zeros outside the window). */
 static int stage_group(const mc_scene *sc, const mc_results *res, const mc_stress_tuning *tune,
-                       const double *depths, mc_stress_window *w, stage_work *wk,
+                       const double *depths, mc_stage_stress_window *w, stage_work *wk,
                        mc_results *vol, mc_error *err)
 {
     const mc_grid *g = &res->grid;
@@ -354,7 +354,7 @@ static int stage_group(const mc_scene *sc, const mc_results *res, const mc_stres
 /* The invariants of one group: over the whole layers, or only inside the window (the rest of
  * the layers holds zero stress, whose invariants are 0), point by point with the scalar
  * functions, which mc_invariants_volume equals bit for bit. */
-static int group_invariants(mc_results *vol, const mc_stress_window *w, mc_error *err)
+static int group_invariants(mc_results *vol, const mc_stage_stress_window *w, mc_error *err)
 {
     const mc_grid *g = &vol->grid;
     const size_t n = mc_grid_cells(g), at = (size_t)w->k0 * n;
@@ -392,7 +392,7 @@ static int stage_compute(const mc_scene *sc, const mc_results *res, const mc_str
     const mc_grid *g = &res->grid;
     const size_t n = mc_grid_cells(g);
     const double mu = sc->stress.friction;
-    mc_stress_layout *lay = &vol->stress_layout;
+    mc_stage_stress_layout *lay = &vol->stress_layout;
     size_t nv;
     if (!mc_size_mul(n, (size_t)nd, &nv))
         return mc_fail(err, MC_ERR_NOMEM, "stress stage: %d layers of %d x %d cells overflow",
@@ -440,7 +440,7 @@ static int stage_compute(const mc_scene *sc, const mc_results *res, const mc_str
     return rc;
 }
 
-int mc_stress_stage_tuned(const mc_scene *sc, mc_results *res, const mc_stress_tuning *tune,
+int mc_stage_stress_tuned(const mc_scene *sc, mc_results *res, const mc_stress_tuning *tune,
                           mc_error *err)
 {
     const mc_stress_tuning automatic = {MC_STRESS_AUTO, MC_STRESS_AUTO, MC_STRESS_AUTO};
@@ -464,7 +464,7 @@ int mc_stress_stage_tuned(const mc_scene *sc, mc_results *res, const mc_stress_t
     return rc;
 }
 
-int mc_stress_stage(const mc_scene *sc, mc_results *res, mc_error *err)
+int mc_stage_stress(const mc_scene *sc, mc_results *res, mc_error *err)
 {
-    return mc_stress_stage_tuned(sc, res, NULL, err);
+    return mc_stage_stress_tuned(sc, res, NULL, err);
 }

@@ -49,13 +49,13 @@ typedef struct {
     int patches;   /* connected patches */
     double radius; /* R of the largest (largest R), m; 0 if there is no patch */
     long cells;    /* cells above the threshold */
-} mc_stress_patches;
+} mc_stage_stress_patches;
 
 /* Label the patches of p (ny*nx) above threshold on grid g (see MC_STRESS_DEPTH_RADII). Allocates
  * its work arrays (4 ints per cell) for the call. MC_OK, MC_ERR_LIMIT (more than INT_MAX cells) or
  * MC_ERR_NOMEM. */
-int mc_stress_find_patches(const mc_grid *g, const double *p, double threshold,
-                           mc_stress_patches *out, mc_error *err);
+int mc_stage_stress_find_patches(const mc_grid *g, const double *p, double threshold,
+                           mc_stage_stress_patches *out, mc_error *err);
 
 /* Stresses of the scene's [stress] section under the contact result: depths from mc_scene_depths,
  * or from the contact when depth_max is auto (MC_STRESS_DEPTH_RADII; MC_ERR_INPUT if that depth
@@ -73,11 +73,11 @@ int mc_stress_find_patches(const mc_grid *g, const double *p, double threshold,
  * members are unchanged. Does not set res->timing.stress_s (the caller times the stage). MC_OK,
  * MC_ERR_INPUT (bad stress settings, no pressure field), MC_ERR_NOMEM, or what mc_stress_create
  * returns. */
-int mc_stress_stage(const mc_scene *sc, mc_results *res, mc_error *err);
+int mc_stage_stress(const mc_scene *sc, mc_results *res, mc_error *err);
 
-/* mc_stress_stage with the speed-ups of tune (NULL: all automatic; tune->window overrides the
+/* mc_stage_stress with the speed-ups of tune (NULL: all automatic; tune->window overrides the
  * scene's window key unless AUTO), for benchmarks and comparisons. */
-int mc_stress_stage_tuned(const mc_scene *sc, mc_results *res, const mc_stress_tuning *tune,
+int mc_stage_stress_tuned(const mc_scene *sc, mc_results *res, const mc_stress_tuning *tune,
                           mc_error *err);
 
 /* Relative tie tolerance of the summary's maxima: far above the round-off of a layer (~1e-15 of

@@ -332,11 +332,11 @@ static void summary_runin(jbuild *b, json_t *root, const mc_scene *s, const mc_r
               "the counter body; the fields (pressure.npy, ...) are those of the last step"));
 }
 
-/* How the stress stage computed (mc_stress_layout): the depth rule and the windows, each with its
+/* How the stress stage computed (mc_stage_stress_layout): the depth rule and the windows, each with its
  * layers, its cells and their extent (cell edges, m), outside which the fields hold 0. */
 static void stress_layout(jbuild *b, json_t *o, const mc_scene *s, const mc_results *r)
 {
-    const mc_stress_layout *l = &r->stress_layout;
+    const mc_stage_stress_layout *l = &r->stress_layout;
     const mc_grid *g = &r->grid;
     jset(b, o, "depth_rule", jstr(l->depth_auto ? "auto" : "given"));
     if (l->depth_auto) {
@@ -348,7 +348,7 @@ static void stress_layout(jbuild *b, json_t *o, const mc_scene *s, const mc_resu
     jset(b, o, "windowed", json_boolean(l->windowed));
     json_t *arr = jchild(b, o, "windows", json_array());
     for (int k = 0; arr && k < l->nwindows; k++) {
-        const mc_stress_window *w = &l->window[k];
+        const mc_stage_stress_window *w = &l->window[k];
         json_t *e = json_object();
         const double x0 = mc_grid_x(g, w->i0) - 0.5 * g->dx, x1 = mc_grid_x(g, w->i1) + 0.5 * g->dx;
         const double y0 = mc_grid_y(g, w->j0) - 0.5 * g->dy, y1 = mc_grid_y(g, w->j1) + 0.5 * g->dy;
@@ -390,7 +390,7 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
     }
 
     if (r->nlayers > 0) {
-        const mc_stress_summary *ss = &r->stress_summary;
+        const mc_stage_stress_summary *ss = &r->stress_summary;
         o = jchild(b, root, "stress", json_object());
         jset(b, o, "vm_max", jnum(ss->vm_max));
         jset(b, o, "vm_max_at", jxyz(ss->vm_max_at));
@@ -406,7 +406,7 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
     }
 
     if (r->plastic.enabled) {
-        const mc_plastic_summary *q = &r->plastic;
+        const mc_stage_plastic_summary *q = &r->plastic;
         o = jchild(b, root, "plastic", json_object());
         jset(b, o, "converged", json_boolean(q->converged));
         jset(b, o, "criterion", jstr(q->criterion));
@@ -446,7 +446,7 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
     }
 
     if (r->lube.enabled) {
-        const mc_lube_summary *l = &r->lube;
+        const mc_stage_lube_summary *l = &r->lube;
         o = jchild(b, root, "lubrication", json_object());
         jset(b, o, "film", jstr(l->film));
         jset(b, o, "formula", l->formula[0] ? jstr(l->formula) : json_null());

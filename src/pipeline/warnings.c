@@ -78,7 +78,7 @@ static int zigzag(const double *peq, size_t v, int i, int n, size_t st, double s
            (i <= n - 3 && extremum(peq, v + st, st, step));
 }
 
-double mc_plastic_checkered_fraction(const mc_grid *g, int nz, const double *peq)
+double mc_stage_plastic_checkered_fraction(const mc_grid *g, int nz, const double *peq)
 {
     const int nx = g->nx, ny = g->ny;
     const size_t n = (size_t)nz * (size_t)nx * (size_t)ny;
@@ -168,7 +168,7 @@ void mc_results_warnings(const mc_scene *sc, mc_results *r)
     /* theory.md §8.5: the residual stress operator's checkerboard modes; whatever dz, a plastic
      * strain field that zigzags from cell to cell is the discretisation's, not the material's */
     if (r->plastic_strain && r->plastic.nz > 0) {
-        const double f = mc_plastic_checkered_fraction(g, r->plastic.nz, r->plastic_strain);
+        const double f = mc_stage_plastic_checkered_fraction(g, r->plastic.nz, r->plastic_strain);
         if (f > MC_WARN_CHECKERED)
             mc_results_warn(r, "plastic_checkered",
                             "%.0f %% of the cells with significant plastic strain zigzag from cell "

@@ -60,7 +60,7 @@ void mc_results_warn(mc_results *r, const char *code, const char *fmt, ...)
 /* Fraction of the cells of the nz x ny x nx plastic strain field peq (grid g) with more than
  * MC_CHECKER_SIGNIFICANT of its largest value that zigzag along x or y (see plastic_checkered);
  * 0 for a field without plastic strain. */
-double mc_plastic_checkered_fraction(const mc_grid *g, int nz, const double *peq);
+double mc_stage_plastic_checkered_fraction(const mc_grid *g, int nz, const double *peq);
 
 /* The warnings of a finished solve of scene sc (the fields and summaries of r filled). */
 void mc_results_warnings(const mc_scene *sc, mc_results *r);

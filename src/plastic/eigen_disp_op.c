@@ -147,8 +147,8 @@ static int fft_create(mc_eigen_disp *op, mc_error *err)
      * both fit in the cyclic length 2m */
     const int px = mc_eig_per_x(&op->g), py = mc_eig_per_y(&op->g);
     /* a periodic axis is transformed over its period, unpadded (theory.md §8.6) */
-    const int mx = px ? op->g.nx / 2 : mc_fft_good_size(op->ux < 2 ? 2 : op->ux);
-    const int my = py ? op->g.ny / 2 : mc_fft_good_size(op->uy < 2 ? 2 : op->uy);
+    const int mx = px ? op->g.nx / 2 : mc_fftsize_good(op->ux < 2 ? 2 : op->ux);
+    const int my = py ? op->g.ny / 2 : mc_fftsize_good(op->uy < 2 ? 2 : op->uy);
     op->qx = mx + 1;
     op->qy = my + 1;
     int rc = mc_eig_fft_create(&op->fft, px ? op->g.nx : 2 * mx, py ? op->g.ny : 2 * my,

@@ -65,11 +65,11 @@ typedef struct {
  * (mc_eig_per_x / _y) transformed over its period n, unpadded, m = n / 2. */
 static int half_x(const mc_eigen_stress *op)
 {
-    return mc_eig_per_x(&op->g) ? op->g.nx / 2 : mc_fft_good_size(op->v.nx < 2 ? 2 : op->v.nx);
+    return mc_eig_per_x(&op->g) ? op->g.nx / 2 : mc_fftsize_good(op->v.nx < 2 ? 2 : op->v.nx);
 }
 static int half_y(const mc_eigen_stress *op)
 {
-    return mc_eig_per_y(&op->g) ? op->g.ny / 2 : mc_fft_good_size(op->v.ny < 2 ? 2 : op->v.ny);
+    return mc_eig_per_y(&op->g) ? op->g.ny / 2 : mc_fftsize_good(op->v.ny < 2 ? 2 : op->v.ny);
 }
 static int size_x(const mc_eigen_stress *op)
 {
@@ -213,7 +213,7 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     op->fft = f;
     const int nz = op->v.nz, wy = op->v.ny;
     /* depth half period: offsets up to 2 nz - 1 must not meet their images (file comment) */
-    f->Nz = mc_fft_good_size(2 * nz);
+    f->Nz = mc_fftsize_good(2 * nz);
     f->L = 2 * f->Nz;
     int rc = mc_eig_fft_create(&f->fft, size_x(op), size_y(op), 0, wy, wy, err);
     if (rc)

@@ -621,7 +621,7 @@ void mc_hertz_line_sliding(double x, double z, double nu, double mu, double s[6]
 
 /* ---- plane-strain line loads ----------------------------------------------------------------- */
 
-void mc_strip_uniform(double x, double z, double a, double nu, double s[6])
+void mc_flamant_strip_uniform(double x, double z, double a, double nu, double s[6])
 {
     /* Integrating Flamant over the strip with x - xi = z tan(theta) turns the kernels into
      * cos^2, sin^2 and sin cos of theta, hence these angle forms. */

@@ -153,7 +153,7 @@ void mc_hertz_line_sliding(double x, double z, double nu, double mu, double s[6]
  *   sxz = (1/(2 pi)) (cos 2t+ - cos 2t-),   syy = nu (sxx + szz).
  * On the surface inside the strip sxx = szz = -1; exactly at an edge (z = 0, |x| = a) the mean of
  * the two one-sided values is returned. */
-void mc_strip_uniform(double x, double z, double a, double nu, double s[6]);
+void mc_flamant_strip_uniform(double x, double z, double a, double nu, double s[6]);
 
 /* Flamant: concentrated line loads at the surface point x = 0, per unit load per unit length
  * (stress * length / (N/m), i.e. 1/m in SI; any consistent unit), at (x, z) with x^2 + z^2 > 0.

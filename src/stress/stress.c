@@ -387,7 +387,7 @@ static int check_outputs(double *const s[6], mc_error *err)
     for (int c = 0; c < MC_NSTRESS; c++)
         if (!s || !s[c])
             return mc_fail(err, MC_ERR_INPUT, "stress: output array for component %s is NULL",
-                           mc_stress_name(c));
+                           mc_component_name(c));
     return MC_OK;
 }
 

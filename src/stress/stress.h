@@ -118,7 +118,7 @@ typedef struct mc_stress_plan mc_stress_plan;
 typedef enum { MC_STRESS_AUTO = 0, MC_STRESS_OFF = 1, MC_STRESS_ON = 2 } mc_stress_switch;
 
 /* The speed-ups of the operator and the stage; all results agree with the plain computation to
- * round-off (tests/test_stress.c), except the window's zeros outside it (see mc_stress_stage).
+ * round-off (tests/test_stress.c), except the window's zeros outside it (see mc_stage_stress).
  * A zeroed struct (or NULL) is "everything automatic".
  *   symmetric - fft backend, both axes free: kernel tables of one quadrant
  *               (mc_stress_tables_quadrant) and their spectra by real-to-real transforms of a
@@ -129,7 +129,7 @@ typedef enum { MC_STRESS_AUTO = 0, MC_STRESS_OFF = 1, MC_STRESS_ON = 2 } mc_stre
  *               layer from the real-space tables (no kernel transforms). AUTO: the cost model of
  *               mc_stress_cost picks it when it is cheaper than the transforms; ON: always (any
  *               backend); OFF: never.
- *   window    - the stage only (mc_stress_stage_tuned): AUTO follows the scene's [stress] window
+ *   window    - the stage only (mc_stage_stress_tuned): AUTO follows the scene's [stress] window
  *               key; OFF computes every layer on the whole grid; ON windows regardless. */
 typedef struct {
     mc_stress_switch symmetric;

@@ -44,7 +44,7 @@ void mc_stress_sym_destroy(mc_stress_sym **sp)
 
 /* m >= 2 keeps the odd axes' DST-I (length m - 1) non-empty; 7-smooth m: FFTW computes the
  * DCT-I / DST-I through a real DFT of length m (and the padded transform has length 2m). */
-static int half_period(int n) { return mc_fft_good_size(n < 2 ? 2 : n); }
+static int half_period(int n) { return mc_fftsize_good(n < 2 ? 2 : n); }
 
 int mc_stress_sym_create(const mc_grid *g, mc_stress_sym **out, mc_error *err)
 {

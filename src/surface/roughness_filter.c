@@ -63,7 +63,7 @@ static int line_filter_make(line_filter *f, int n, double d, double lc, int peri
     if (K > n - 1)
         K = n - 1;
     f->n = n;
-    f->N = periodic ? n : mc_fft_good_size(n + K);
+    f->N = periodic ? n : mc_fftsize_good(n + K);
     int half = f->N / 2 + 1;
     f->H = mc_malloc(sizeof(double) * (size_t)half);
     f->buf = mc_malloc(sizeof(double) * (size_t)f->N);

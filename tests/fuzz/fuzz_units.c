@@ -1,5 +1,5 @@
 /* fuzz_units.c - libFuzzer target: mc_parse_quantity for every unit kind, and the two text
- * helpers of units.h (mc_utf8_check, mc_text_quote) that quote untrusted bytes into messages.
+ * helpers of units.h (mc_utf8_check, mc_case_quote) that quote untrusted bytes into messages.
  *
  * Input: arbitrary bytes, cut at the first NUL (the parser takes a C string). Contracts beyond
  * "no sanitizer error":
@@ -8,7 +8,7 @@
  *    NULL or short, and a short why is cut but NUL-terminated within its length;
  *  - a text accepted as a bare number (MC_UNIT_NONE) is accepted by every kind with the same
  *    value (a bare number is SI);
- *  - mc_text_quote always gives a NUL-terminated printable UTF-8 string within its buffer, and
+ *  - mc_case_quote always gives a NUL-terminated printable UTF-8 string within its buffer, and
  *    reproduces a short well-formed text without control bytes exactly.
  */
 #include <math.h>
@@ -79,17 +79,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (size_t i = 0; i < sizeof lens / sizeof lens[0]; i++) {
         char q[128];
         memset(q, 'x', sizeof q);
-        mc_text_quote(text, q, lens[i]);
-        check_printable(q, lens[i], "mc_text_quote");
-        FUZZ_CHECK(q[lens[i]] == 'x', "mc_text_quote wrote past %zu bytes", lens[i]);
+        mc_case_quote(text, q, lens[i]);
+        check_printable(q, lens[i], "mc_case_quote");
+        FUZZ_CHECK(q[lens[i]] == 'x', "mc_case_quote wrote past %zu bytes", lens[i]);
     }
     int clean = mc_utf8_check(text, len, NULL);
     for (size_t i = 0; clean && i < len; i++)
         clean = (unsigned char)text[i] >= 0x20 && text[i] != 0x7f;
     if (clean && len <= 60) {
         char q[128];
-        mc_text_quote(text, q, sizeof q);
-        FUZZ_CHECK(strcmp(q, text) == 0, "mc_text_quote changed a clean text");
+        mc_case_quote(text, q, sizeof q);
+        FUZZ_CHECK(strcmp(q, text) == 0, "mc_case_quote changed a clean text");
     }
     return 0;
 }
