@@ -415,10 +415,11 @@ const char *mc_plastic_stop_text(mc_plastic_stop why)
 
 /* One load increment to `load` (dload above the committed load) from the committed state
  * (res->eps_p, res->peq, res->u_r), started warm from the last converged increment unless
- * pb->cold_start (theory §9.6): the outer iteration of dossier §2.1. Returns MC_OK with *conv set (committed), *diverged set (the
- * plastic fixed point or u_r blew up: nothing committed, the caller splits), or *why set (a stop
- * of theory §9.5: the last iterate committed, the caller ends the run); or an error. st
- * accumulates the iteration counts. */
+ * pb->cold_start (theory §9.6): the outer iteration of dossier §2.1. Returns MC_OK with *conv
+ * set (committed), *diverged set (the plastic fixed point or u_r blew up: nothing committed, the
+ * caller splits; the warm start forgets the last increment), or *why set (a stop of theory §9.5:
+ * the last iterate committed, the caller ends the run); or an error. st accumulates the
+ * iteration counts. */
 static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double dload,
                      int warm, double *p, double *u, double *gap, mc_contact_summary *sum,
                      mc_plastic_result *res, mc_plastic_step *st, int *conv, int *diverged,
