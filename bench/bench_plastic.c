@@ -520,7 +520,7 @@ static void section_ke64(vf_ctx *ctx, int quick)
                  "Wall: the whole pipeline run; CPU: the process's CPU time, all threads (the "
                  "measure that does not depend on what else the machine runs). KE fit at 8 P_c: "
                  "w/w_c = %.4f, A/A_c = %.2f.\n\n"
-                 "| grid | volume | w/w_c | error | A/A_c | error | wall (s) | CPU (s) | outer | "
+                 "| grid | volume | w/w_c | error | A/A_c (cells in contact) | error | wall (s) | CPU (s) | outer | "
                  "sweeps | stress applies | converged |\n|---|---|---|---|---|---|---|---|---|---|"
                  "---|---|\n",
             mc_threads_count(), ke_w(8), ke_a(ke_w(8)));
