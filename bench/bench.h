@@ -38,6 +38,20 @@ int mc_bench_default_case(char *path, size_t len);
  * one speed (e.g. "350 rpm") on an nx x ny grid of its 0.8 um cells, extra one more --set
  * override or NULL; *plastic (may be NULL) = the step ran the plastic loop. NAN on failure. */
 double mc_bench_runin_step(int nx, int ny, const char *speed, const char *extra, int *plastic);
+/* The same step with its counts (issue 20 item 3): wall time of the step, process CPU time from
+ * the start of the run to the end of the step (all threads; set-up and the operators' creation
+ * included), and the elastic-plastic loop's outer iterations, sweeps, residual stress
+ * applications, volume equilibria (one per outer iteration) and contact solves of the step.
+ * threads > 0: the run's thread count ([solver] threads), else the default. 0, or -1 on
+ * failure. */
+typedef struct {
+    double wall_s, cpu_s;
+    int plastic, outer, sweeps, applies, equilibria, solves;
+} mc_bench_step;
+int mc_bench_runin_step_counts(int nx, int ny, const char *speed, const char *extra, int threads,
+                               mc_bench_step *out);
+/* Process CPU time (all threads), s. */
+double mc_bench_cpu(void);
 
 /* The Hertz point case of issue 13 (steel on steel, R = 10 mm, F = 100 N, a square of side 3a on
  * N x N cells, no [solver] section: a new user's defaults) written to path: 0, or 1. */

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "bench.h"
@@ -175,31 +176,73 @@ static double t_ep(int n)
     return rc == MC_OK || rc == MC_NOT_CONVERGED ? t : NAN;
 }
 
-double mc_bench_runin_step(int nx, int ny, const char *speed, const char *extra, int *plastic)
+double mc_bench_cpu(void)
 {
-    char ox[32], oy[32], sp[64], rpm[64];
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The progress callback of the step: the CPU time at the end of the first step. */
+static void first_step_cpu(void *ctx, const mc_runin_progress *p)
+{
+    double *at = ctx;
+    if (p->step == 1)
+        *at = mc_bench_cpu();
+}
+
+int mc_bench_runin_step_counts(int nx, int ny, const char *speed, const char *extra, int threads,
+                               mc_bench_step *out)
+{
+    char ox[32], oy[32], sp[64], rpm[64], th[32];
     snprintf(ox, sizeof ox, "mesh.nx=%d", nx);
     snprintf(oy, sizeof oy, "mesh.ny=%d", ny);
     snprintf(sp, sizeof sp, "runin.speeds=%s", speed);
     snprintf(rpm, sizeof rpm, "lubrication.rpm=%s", speed); /* the first speed of the run */
-    const char *ov[] = {ox, oy, "runin.forces=1086 N", sp, rpm, extra};
+    snprintf(th, sizeof th, "solver.threads=%d", threads > 0 ? threads : 0);
+    const char *ov[] = {ox, oy, "runin.forces=1086 N", sp, rpm, th, extra};
     mc_scene sc;
     mc_results res;
     mc_error err = {0};
     memset(&res, 0, sizeof res);
-    double t = NAN;
+    memset(out, 0, sizeof *out);
+    out->wall_s = out->cpu_s = NAN;
+    int ok = -1;
     char path[1100];
     if (mc_bench_default_case(path, sizeof path) == 0 &&
-        mc_case_load(path, extra ? 6 : 5, ov, &sc, &err) == MC_OK) {
-        const int rc = mc_runin_run(&sc, NULL, &res, &err);
+        mc_case_load(path, extra ? 7 : 6, ov, &sc, &err) == MC_OK) {
+        double at = NAN;
+        const mc_runin_options opt = {.progress = first_step_cpu, .progress_ctx = &at};
+        const double c0 = mc_bench_cpu();
+        const int rc = mc_runin_run(&sc, &opt, &res, &err);
         if ((rc == MC_OK || rc == MC_NOT_CONVERGED) && res.runin.done > 0) {
-            t = res.runin.rows[0].seconds;
-            if (plastic)
-                *plastic = res.runin.rows[0].plastic;
+            const mc_runin_row *w = &res.runin.rows[0];
+            out->wall_s = w->seconds;
+            out->cpu_s = at - c0;
+            out->plastic = w->plastic;
+            out->equilibria = w->roots;
+            out->solves = w->solves;
+            if (w->plastic && res.plastic.steps_done > 0 && res.plastic.steps) {
+                const mc_plastic_step *st = &res.plastic.steps[0];
+                out->outer = st->outer_iterations;
+                out->sweeps = st->plastic_iterations;
+                out->applies = st->stress_applies;
+            }
+            ok = 0;
         }
     }
     mc_results_free(&res);
-    return t;
+    return ok;
+}
+
+double mc_bench_runin_step(int nx, int ny, const char *speed, const char *extra, int *plastic)
+{
+    mc_bench_step st;
+    if (mc_bench_runin_step_counts(nx, ny, speed, extra, 0, &st) != 0)
+        return NAN;
+    if (plastic)
+        *plastic = st.plastic;
+    return st.wall_s;
 }
 
 int mc_bench_default_case(char *path, size_t len)

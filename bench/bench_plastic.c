@@ -69,11 +69,16 @@ static double ke_w(double p)
 }
 static double ke_a(double w) { return w <= 6 ? 0.93 * pow(w, 1.136) : 0.94 * pow(w, 1.146); }
 
+#define KE_MAX_STEPS 32 /* per-step counts kept of a run */
+
 typedef struct {
     /* in: 0 = the default */
     double margin, depth, yield; /* [plasticity] margin, depth (m), yield_stress (Pa) */
     double side;                 /* domain side, m (0: 24 a_c / 2.7) */
+    int load_steps;              /* [plasticity] load_steps (0: the default) */
     /* out */
+    double cpu;                  /* process CPU time of the run (all threads), s */
+    int st_outer[KE_MAX_STEPS], st_sweeps[KE_MAX_STEPS], st_applies[KE_MAX_STEPS];
     int ok, converged, shortcut, steps, outer, sweeps, nz, wnx, wny;
     long volume_cells;
     double w, a, err_w, err_a, t, dz, vm_max;
@@ -102,11 +107,14 @@ static void ke_solve(int n, double p_pc, ke_run *r)
         sc.plasticity.margin = r->margin;
     if (r->depth > 0)
         sc.plasticity.depth = r->depth;
+    if (r->load_steps > 0)
+        sc.plasticity.load_steps = r->load_steps;
     mc_results res;
     mc_error err = {0};
-    const double t0 = mc_clock();
+    const double t0 = mc_clock(), c0 = mc_bench_cpu();
     const int rc = mc_pipeline_run(&sc, &res, &err);
     r->t = mc_clock() - t0;
+    r->cpu = mc_bench_cpu() - c0;
     r->ok = rc == MC_OK || rc == MC_NOT_CONVERGED;
     if (r->ok) {
         const mc_stage_plastic_summary *pl = &res.plastic;
@@ -118,8 +126,14 @@ static void ke_solve(int n, double p_pc, ke_run *r)
         r->steps = pl->steps_done;
         r->outer = pl->outer_iterations;
         r->sweeps = 0;
-        for (int s = 0; s < pl->steps_done && pl->steps; s++)
+        for (int s = 0; s < pl->steps_done && pl->steps; s++) {
             r->sweeps += pl->steps[s].plastic_iterations;
+            if (s < KE_MAX_STEPS) {
+                r->st_outer[s] = pl->steps[s].outer_iterations;
+                r->st_sweeps[s] = pl->steps[s].plastic_iterations;
+                r->st_applies[s] = pl->steps[s].stress_applies;
+            }
+        }
         r->nz = pl->nz;
         r->wnx = pl->wnx;
         r->wny = pl->wny;
@@ -489,6 +503,87 @@ static void section_ke(vf_ctx *ctx, int quick)
     }
 }
 
+/* ---- the KE sphere at 8 P_c on 64^2 (issue 20 item 3) ---------------------------------------- */
+
+/* The scene of issue 20: 8 P_c in 16 load steps on the bench's square (24 a_c / 2.7, so a_c is
+ * about 7 cells of 64^2 and the contact radius at 8 P_c about 15), every other setting the
+ * default; its time against the target, its error against the KE fit, and the per-step counts on
+ * two grids (where the work of a step grows with N). */
+static void section_ke64(vf_ctx *ctx, int quick)
+{
+    static const int kn[] = {32, 64};
+    const int k0 = 0, nk = quick ? 1 : 2; /* --quick: 32^2 alone */
+    ke_run r[2];
+    memset(r, 0, sizeof r);
+    for (int k = k0; k < nk; k++) {
+        r[k].load_steps = 16;
+        ke_solve(kn[k], 8.0, &r[k]);
+    }
+    vf_text(ctx, "### Kogut-Etsion sphere at 8 P_c in 16 load steps (issue 20)\n\n"
+                 "The scene of issue 20 item 3: the square above, 8 P_c in 16 load steps, every "
+                 "other setting the default (%d threads; dz = dx / 2, depth and window auto). "
+                 "Wall: the whole pipeline run; CPU: the process's CPU time, all threads (the "
+                 "measure that does not depend on what else the machine runs). KE fit at 8 P_c: "
+                 "w/w_c = %.4f, A/A_c = %.2f.\n\n"
+                 "| grid | volume | w/w_c | error | A/A_c (cells in contact) | error | wall (s) | CPU (s) | outer | "
+                 "sweeps | stress applies | converged |\n|---|---|---|---|---|---|---|---|---|---|"
+                 "---|---|\n",
+            mc_threads_count(), ke_w(8), ke_a(ke_w(8)));
+    for (int k = k0; k < nk; k++) {
+        if (!r[k].ok) {
+            vf_text(ctx, "| %d² | the run failed |\n", kn[k]);
+            continue;
+        }
+        int applies = 0;
+        for (int s = 0; s < r[k].steps && s < KE_MAX_STEPS; s++)
+            applies += r[k].st_applies[s];
+        vf_text(ctx, "| %d² | %d x %d x %d | %.4f | %+.2f %% | %.2f | %+.1f %% | %.1f | %.1f | %d "
+                     "| %d | %d | %s |\n",
+                kn[k], r[k].wnx, r[k].wny, r[k].nz, r[k].w, 100 * r[k].err_w, r[k].a,
+                100 * r[k].err_a, r[k].t, r[k].cpu, r[k].outer, r[k].sweeps, applies,
+                r[k].converged ? "yes" : "NO");
+    }
+    vf_text(ctx, "\nPer load step (outer iterations / sweeps; one contact solve and one elastic "
+                 "stress field per outer iteration):\n\n| step |");
+    for (int k = k0; k < nk; k++)
+        vf_text(ctx, " %d² |", kn[k]);
+    vf_text(ctx, "\n|---|");
+    for (int k = k0; k < nk; k++)
+        vf_text(ctx, "---|");
+    vf_text(ctx, "\n");
+    for (int s = 0; s < 16; s++) {
+        vf_text(ctx, "| %d |", s + 1);
+        for (int k = k0; k < nk; k++)
+            vf_text(ctx, " %d / %d |", r[k].st_outer[s], r[k].st_sweeps[s]);
+        vf_text(ctx, "\n");
+    }
+    vf_text(ctx, "\n");
+    FILE *f = vf_open(ctx, "ke8_steps.csv");
+    if (f) {
+        fprintf(f, "n,step,outer,sweeps,stress_applies\n");
+        for (int k = k0; k < nk; k++)
+            for (int s = 0; s < r[k].steps && s < KE_MAX_STEPS; s++)
+                fprintf(f, "%d,%d,%d,%d,%d\n", kn[k], s + 1, r[k].st_outer[s], r[k].st_sweeps[s],
+                        r[k].st_applies[s]);
+        vf_close(ctx, f);
+    }
+    const ke_run *big = &r[nk - 1];
+    char q[200];
+    snprintf(q, sizeof q, "KE sphere at 8 P_c, 16 load steps, %d²: |w/w_c error| against the KE "
+             "fit", kn[nk - 1]);
+    vf_check(ctx, "plastic_ke8_error", q, "within 3 % (issue 20 item 3)", KE_TOL_W,
+             big->ok && big->converged ? fabs(big->err_w) : NAN, KE_TOL_W, VF_MAX);
+    vf_regress(ctx, "plastic_ke8_error", VF_TIER_NONE);
+    snprintf(q, sizeof q, "KE sphere at 8 P_c, 16 load steps, %d²: wall time of the run, s "
+             "(%d threads)", kn[nk - 1], mc_threads_count());
+    vf_check(ctx, "plastic_ke8_time", q, "target <= 60 s (issue 20 item 3)", KE_TIME_MAX,
+             big->ok ? big->t : NAN, KE_TIME_MAX, VF_MAX);
+    vf_regress(ctx, "plastic_ke8_time", VF_TIER_NONE);
+    vf_info(ctx, "plastic_ke8_cpu", "KE sphere at 8 P_c, 16 load steps: process CPU time, s", "",
+            NAN, big->ok ? big->cpu : NAN);
+    vf_regress(ctx, "plastic_ke8_cpu", VF_TIER_NONE);
+}
+
 /* ---- the skips ------------------------------------------------------------------------------- */
 
 static void section_skips(vf_ctx *ctx, int quick)
@@ -643,6 +738,7 @@ int mc_bench_plastic(vf_ctx *ctx, int quick)
              BYTES_MAX, VF_MAX);
     section_whole_peak(ctx, quick);
     section_ke(ctx, quick);
+    section_ke64(ctx, quick);
     section_skips(ctx, quick);
     return 0;
 }

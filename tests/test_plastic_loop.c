@@ -153,6 +153,71 @@ START_TEST(inexact_matches_tight)
 }
 END_TEST
 
+/* The warm start of theory §9.6 against the cold one (every increment from a zero increment),
+ * with the adaptive under-relaxation and with Anderson mixing, on the sphere in 4 load steps of
+ * 1 P_c: both converged, the same state within the outer tolerance (the argument of
+ * STATE_TOL_FACTOR: two states that each meet the stopping rule), and fewer sweeps warm. The
+ * per-step counts add up: one contact solve per outer iteration (dry), at most one residual
+ * stress application per sweep, and the steps' contact solves are the run's. */
+START_TEST(warm_matches_cold)
+{
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    sphere t;
+    sphere_init(&t);
+    const size_t n = mc_grid_cells(&t.g);
+    double *p_cold = mc_zeros(n);
+    ck_assert(p_cold);
+    for (int aa = 0; aa <= 4; aa += 4) {
+        mc_plastic_problem pb = t.pb;
+        pb.anderson = aa;
+        pb.load_steps = 4;
+        mc_plastic_result cold, warm;
+        mc_contact_summary cs;
+        mc_error err = {0};
+        pb.cold_start = 1;
+        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &cold, &err) ==
+                          MC_OK, "%s", err.msg);
+        memcpy(p_cold, t.p, n * sizeof *p_cold);
+        pb.cold_start = 0;
+        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &warm, &err) ==
+                          MC_OK, "%s", err.msg);
+        ck_assert(cold.converged && warm.converged);
+        const size_t nv = (size_t)cold.nvol;
+        ck_assert(maxabs(cold.peq, nv) > 0);
+        const double tol = STATE_TOL_FACTOR * pb.tol_outer;
+        const double du = rel_diff(warm.u_r, cold.u_r, n);
+        const double dpeq = rel_diff(warm.peq, cold.peq, nv);
+        const double deps = rel_diff(warm.eps_p, cold.eps_p, 6 * nv);
+        const double dp = rel_diff(t.p, p_cold, n);
+        ck_assert_msg(du <= tol && dpeq <= tol && deps <= tol && dp <= tol,
+                      "anderson %d: u_r %g, peq %g, eps_p %g, p %g apart (tolerance %g)", aa, du,
+                      dpeq, deps, dp, tol);
+        const int sc = sweeps(&cold), sw = sweeps(&warm);
+        ck_assert_msg(sw < sc, "anderson %d: %d sweeps warm, %d cold", aa, sw, sc);
+        const mc_plastic_result *rs[2] = {&cold, &warm};
+        for (int m = 0; m < 2; m++) {
+            int solves = 0;
+            for (int k = 0; k < rs[m]->steps_done; k++) {
+                const mc_plastic_step *st = &rs[m]->steps[k];
+                ck_assert_int_eq(st->contact_solves, st->outer_iterations);
+                ck_assert(st->stress_applies <= st->plastic_iterations);
+                solves += st->contact_solves;
+            }
+            ck_assert_int_eq(solves, rs[m]->contact_solves);
+        }
+        if (getenv("MC_TEST_VERBOSE"))
+            fprintf(stderr, "warm start, anderson %d: %d -> %d sweeps, u_r %.2e, peq %.2e apart\n",
+                    aa, sc, sw, du, dpeq);
+        mc_plastic_result_free(&cold);
+        mc_plastic_result_free(&warm);
+    }
+    mc_free(p_cold);
+    sphere_free(&t);
+    mc_threads_end(&scope);
+}
+END_TEST
+
 /* The contract under a loose outer tolerance and a very tight plastic one: the outer change
  * meets tol_outer long before the inexact fixed points reach tol_plastic, yet the step is
  * accepted only on a fixed point within tol_plastic. */
@@ -418,6 +483,7 @@ Suite *suite_plastic_loop(void)
     tcase_set_timeout(t, 120);
     tcase_add_test(t, inexact_matches_tight);
     tcase_add_test(t, accepts_only_tight);
+    tcase_add_test(t, warm_matches_cold);
     tcase_add_test(t, shared_operators);
     tcase_add_test(t, stops_at_caps);
     tcase_add_test(t, stops_on_contact);

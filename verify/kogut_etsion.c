@@ -159,6 +159,84 @@ static int run_load(double P, double Pc, double yscale, ke_out *o, mc_error *err
     return rc;
 }
 
+/* The scene of issue 20 item 3 (full suite only): 8 P_c in 16 load steps on a 64^2 grid of the
+ * bench's square (side 24 a_c / 2.7, a_c = sqrt(R w_c): a_c over 7.2 cells, the contact radius
+ * at 8 P_c over about 15), every other setting the default (dz = dx / 2, depth auto, tolerance
+ * 1e-3, max_outer 30): what a new user gets on a grid four times finer than the rows above. */
+#define BIG_N 64
+#define BIG_LOAD 8.0
+#define BIG_STEPS 16
+
+static int run_big(double Pc, double yscale, ke_out *o, mc_error *err)
+{
+    double wc, pc, Ac;
+    ke_critical(YIELD, &wc, &pc, &Ac);
+    const double side = 24 * sqrt(R_SPHERE * wc) / 2.7, dx = side / BIG_N;
+    mc_scene sc;
+    vu_scene(&sc, BIG_N, BIG_N, dx, dx);
+    sc.geometry.shape = MC_SHAPE_SPHERE;
+    sc.geometry.radius = R_SPHERE;
+    sc.body1 = (mc_scene_material){E1, NU, 0};
+    sc.body2 = (mc_scene_material){E1, NU, 1};
+    sc.load.kind = MC_LOAD_FORCE;
+    sc.load.value = BIG_LOAD * Pc;
+    sc.plasticity.enabled = 1;
+    sc.plasticity.criterion = MC_CRITERION_VON_MISES;
+    sc.plasticity.hardening = MC_HARDENING_PERFECT;
+    sc.plasticity.yield_stress = YIELD * yscale;
+    sc.plasticity.load_steps = BIG_STEPS;
+    mc_results r;
+    int rc = mc_pipeline_run(&sc, &r, err);
+    if (rc == MC_OK || rc == MC_NOT_CONVERGED) {
+        o->w = r.contact.approach;
+        o->a_count = r.contact.area;
+        const double re = edge_radius(&r);
+        o->a_edge = M_PI * re * re;
+        o->time = r.timing.total_s;
+        o->pmax = r.contact.p_max;
+        o->converged = r.plastic.converged;
+        o->outer = r.plastic.outer_iterations;
+        o->n = BIG_N;
+        o->nz = r.plastic.nz;
+        o->dz = r.plastic.dz;
+        o->depth = r.plastic.depth;
+        o->steps = BIG_STEPS;
+        o->dx = dx;
+        rc = MC_OK;
+    }
+    mc_results_free(&r);
+    return rc;
+}
+
+/* The rows of run_big. */
+static void check_big(vf_ctx *ctx, double Pc, double yscale)
+{
+    double wc, pc, Ac;
+    ke_critical(YIELD, &wc, &pc, &Ac);
+    ke_out o;
+    mc_error err = {0};
+    if (run_big(Pc, yscale, &o, &err) != MC_OK) {
+        vf_fail(ctx, "run_64sq", "%s", err.msg);
+        return;
+    }
+    const double w = ke_w(BIG_LOAD);
+    vf_check(ctx, "converged_64sq", "64^2, 8 P_c in 16 steps: every load step converged (1 = yes)",
+             "loop contract", 1, o.converged, 0, VF_ABS);
+    vf_check(ctx, "w_64sq", "64^2, 8 P_c in 16 steps: interference w/w_c",
+             "Kogut & Etsion 2002 fit (docs/theory.md §9.3)", w, o.w / wc, W_TOL, VF_REL);
+    vf_check(ctx, "A_64sq", "64^2, 8 P_c in 16 steps: contact area A/A_c (edge-extrapolated "
+             "radius)", "Kogut & Etsion 2002 fit (docs/theory.md §9.3)", ke_a(w), o.a_edge / Ac,
+             A_TOL, VF_REL);
+    vf_info(ctx, "time_64sq_s", "64^2, 8 P_c in 16 steps: run time, s", "", NAN, o.time);
+    vf_regress(ctx, "time_64sq_s", VF_TIER_NONE);
+    vf_text(ctx, "Issue 20's scene: P/P_c = %g on %d x %d cells of dx = %.1f um (%.1f cells per "
+                 "a_c; the square of side 24 a_c / 2.7 of the bench), %d layers of dz = %.1f um to "
+                 "%.0f um (auto), %d load steps, the default tolerances: %d outer iterations, "
+                 "%.1f s.\n\n",
+            BIG_LOAD, o.n, o.n, o.dx * 1e6, sqrt(Ac / M_PI) / o.dx, o.nz, o.dz * 1e6,
+            o.depth * 1e6, o.steps, o.outer, o.time);
+}
+
 int vf_suite_kogut_etsion(vf_ctx *ctx, int fast)
 {
     double yscale = 1;
@@ -232,6 +310,8 @@ int vf_suite_kogut_etsion(vf_ctx *ctx, int fast)
     }
     if (f)
         vf_close(ctx, f);
+    if (!fast)
+        check_big(ctx, Pc, yscale);
     vf_info(ctx, "time_s", "run time, s", "", NAN, ttot);
     vf_regress(ctx, "time_s", VF_TIER_NONE);
     vf_text(ctx,

@@ -38,6 +38,12 @@ typedef struct {
     int solves;                  /* contact solves (step a) */
     mc_anderson *aa;             /* acceleration of the plastic fixed point (NULL: none) */
     mc_anderson *aa_outer;       /* and of the outer iteration on u_r */
+    /* the last converged increment, the warm start of the next (theory §9.6): its plastic
+     * strain increment, equivalent plastic strain increment, change of u_r and load, N */
+    double *w_eps, *w_dp, *w_ur;
+    double w_load;
+    int w_have;                  /* 1: the w_ arrays hold a converged increment */
+    long stress_applies;         /* residual stress applications (sweeps that were not skipped) */
 } loop_ctx;
 
 static void ctx_free(loop_ctx *c)
@@ -46,7 +52,8 @@ static void ctx_free(loop_ctx *c)
     mc_anderson_destroy(&c->aa);
     mc_anderson_destroy(&c->aa_outer);
     double *arrays[] = {c->depths, c->s_layer, c->qx,     c->sig_e, c->sig_r, c->d_eps,
-                        c->tot,    c->dp,      c->dp_new, c->u_r,   c->u_new, c->h_extra};
+                        c->tot,    c->dp,      c->dp_new, c->u_r,   c->u_new, c->h_extra,
+                        c->w_eps,  c->w_dp,    c->w_ur};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         mc_free(arrays[k]);
 }
@@ -138,7 +145,8 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
              (c->dp = mc_zeros((size_t)c->nvol)) &&
              (c->dp_new = mc_zeros((size_t)c->nvol)) &&
              (c->u_r = mc_zeros(c->ncell)) && (c->u_new = mc_zeros(c->ncell)) &&
-             (c->h_extra = mc_zeros(c->ncell));
+             (c->h_extra = mc_zeros(c->ncell)) && (c->w_eps = mc_zeros(nv6)) &&
+             (c->w_dp = mc_zeros((size_t)c->nvol)) && (c->w_ur = mc_zeros(c->ncell));
     c->d_new = c->tot;
     if (!ok)
         return mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for %ld volume cells",
@@ -296,9 +304,10 @@ static int plastic_fixed_point(loop_ctx *c, const double *eps_p, const double *p
             c->tot[i] = eps_p[i] + c->d_eps[i];
             any |= c->tot[i] != 0.0;
         }
-        if (any)
+        if (any) {
             residual_stress(c, c->tot);
-        else
+            c->stress_applies++;
+        } else
             memset(c->sig_r, 0, nv6 * sizeof *c->sig_r);
         int bad = 0, plastic = 0;
 #pragma omp parallel for schedule(static) reduction(| : plastic, bad) if (c->nvol > 4096)
@@ -420,15 +429,17 @@ const char *mc_plastic_stop_text(mc_plastic_stop why)
     return "unknown";
 }
 
-/* One load increment to `load` from the committed state (res->eps_p, res->peq, res->u_r): the
- * outer iteration of dossier §2.1. Returns MC_OK with *conv set (committed), *diverged set (the
- * plastic fixed point or u_r blew up: nothing committed, the caller splits), or *why set (a stop
- * of theory §9.5: the last iterate committed, the caller ends the run); or an error. st
- * accumulates the iteration counts. */
-static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int warm, double *p,
-                     double *u, double *gap, mc_contact_summary *sum, mc_plastic_result *res,
-                     mc_plastic_step *st, int *conv, int *diverged, mc_plastic_stop *why,
-                     mc_error *err)
+/* One load increment to `load` (dload above the committed load) from the committed state
+ * (res->eps_p, res->peq, res->u_r), started warm from the last converged increment unless
+ * pb->cold_start (theory §9.6): the outer iteration of dossier §2.1. Returns MC_OK with *conv
+ * set (committed), *diverged set (the plastic fixed point or u_r blew up: nothing committed, the
+ * caller splits; the warm start forgets the last increment), or *why set (a stop of theory §9.5:
+ * the last iterate committed, the caller ends the run); or an error. st accumulates the
+ * iteration counts. */
+static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double dload,
+                     int warm, double *p, double *u, double *gap, mc_contact_summary *sum,
+                     mc_plastic_result *res, mc_plastic_step *st, int *conv, int *diverged,
+                     mc_plastic_stop *why, mc_error *err)
 {
     const mc_plastic_problem *pb = c->pb;
     const size_t nv6 = 6 * (size_t)c->nvol;
@@ -443,6 +454,17 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
     memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
     memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
     memcpy(c->u_r, res->u_r, c->ncell * sizeof *c->u_r);
+    if (!pb->cold_start && c->w_have && c->w_load > 0) {
+        /* the warm start (theory §9.6): the last converged increment, scaled to this one's load
+         * (at most 1: a step after split increments starts from the smaller increment) */
+        const double s = fmin(1.0, dload / c->w_load);
+        for (size_t i = 0; i < nv6; i++)
+            c->d_eps[i] = s * c->w_eps[i];
+        for (long v = 0; v < c->nvol; v++)
+            c->dp[v] = s * c->w_dp[v];
+        for (size_t i = 0; i < c->ncell; i++)
+            c->u_r[i] += s * c->w_ur[i];
+    }
     int rc = MC_OK;
     double outer_rel = 1.0; /* relative change of u_r in the last outer iteration */
     double rel_hist[2] = {INFINITY, INFINITY}; /* in the two before it, older first */
@@ -465,6 +487,7 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
                                  .load = load,
                                  .p_start = warm || k > 1 ? p : NULL};
         c->solves++;
+        st->contact_solves++;
         if (pb->contact)
             rc = pb->contact(pb->contact_ctx, &cp, p, u, gap, sum, &c->p_lub, err);
         else
@@ -488,6 +511,8 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
         st->plastic_iterations += sweeps;
         if (!fp_ok)
             forcing = 0.0; /* the safeguard: a fixed point that hit its cap */
+        if (*diverged)
+            c->w_have = 0;
         if (rc != MC_OK || *diverged)
             return rc;
         capped = tol_k <= pb->tol_plastic && !fp_ok ? capped + 1 : 0;
@@ -513,12 +538,19 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, int wa
             finite &= isfinite(c->u_new[i]) != 0; /* (fmax drops a NaN) */
         }
         if (!finite) { /* as a fixed point that blew up: the caller splits the step */
+            c->w_have = 0;
             *diverged = 1;
             return MC_OK;
         }
         /* accepted only on a tight inner solve: never on a loose one */
         if (tight && change <= pb->tol_outer * size) {
             memcpy(c->u_r, c->u_new, c->ncell * sizeof *c->u_r);
+            memcpy(c->w_eps, c->d_eps, nv6 * sizeof *c->d_eps);
+            memcpy(c->w_dp, c->dp, (size_t)c->nvol * sizeof *c->dp);
+            for (size_t i = 0; i < c->ncell; i++)
+                c->w_ur[i] = c->u_r[i] - res->u_r[i];
+            c->w_have = 1;
+            c->w_load = dload;
             res->inner_change = fmax(res->inner_change, fp_change);
             *conv = 1;
             break;
@@ -604,6 +636,7 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
         mc_plastic_step *st = &res->steps[n - 1];
         const double l0 = pb->load * (n - 1) / pb->load_steps;
         st->load = pb->load * n / pb->load_steps;
+        const long applies0 = c.stress_applies;
         int all_conv = 0, diverged = 1;
         mc_plastic_stop why = MC_PLASTIC_RUN_CONVERGED;
         double at = st->load; /* the load of the increment in progress */
@@ -637,8 +670,8 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
             for (int q = 1; rc == MC_OK && !diverged && !why && q <= parts; q++) {
                 int conv;
                 at = l0 + (st->load - l0) * q / parts;
-                rc = increment(&c, solver, at, n > 1 || q > 1, p, u, gap, sum, res, st, &conv,
-                               &diverged, &why, err);
+                rc = increment(&c, solver, at, (st->load - l0) / parts, n > 1 || q > 1, p, u,
+                               gap, sum, res, st, &conv, &diverged, &why, err);
                 all_conv &= conv;
             }
         }
@@ -647,6 +680,7 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
         if (diverged) /* the state is that of the last increment that did not blow up */
             why = MC_PLASTIC_STOP_SPLIT_LIMIT;
         st->converged = all_conv && !why;
+        st->stress_applies = (int)(c.stress_applies - applies0);
         res->converged &= st->converged;
         step_record(&c, sum, res->peq, res->u_r, st);
         res->steps_done = n;

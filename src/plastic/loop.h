@@ -89,6 +89,11 @@ typedef struct {
                                   either way
                                   an outer iteration is accepted only on a fixed point that met
                                   tol_plastic (docs/theory.md §9.4) */
+    int cold_start;            /* 1: every increment starts from a zero plastic strain
+                                  increment and the committed u_r (the reference of the unit
+                                  tests); 0 (default): from the last converged increment of the
+                                  run scaled to this one's load (warm start, docs/theory.md
+                                  §9.6) */
     int anderson;              /* > 0: Anderson acceleration with this history depth
                                   (plastic/anderson.h, <= MC_ANDERSON_MAX_DEPTH) of the plastic
                                   fixed point and of the outer iteration (on the relaxed map
@@ -141,6 +146,9 @@ typedef struct {
     double residual_max;        /* largest residual displacement (into the body), m */
     int outer_iterations;
     int plastic_iterations;     /* fixed-point sweeps, summed over the outer iterations */
+    int contact_solves;         /* calls of step (a) (with a lubricant: volume equilibria) */
+    int stress_applies;         /* residual stress applications (the sweeps' costly operator;
+                                   a sweep with no plastic strain anywhere skips it) */
     int splits;                 /* the step diverged and was done in 2^splits increments */
     int converged;
 } mc_plastic_step;
