@@ -20,6 +20,7 @@
 
 #include "case/case.h"
 #include "harness.h"
+#include "runin_checks.h"
 #include "pipeline/runin.h"
 #include "suites.h"
 #include "vutil.h"
@@ -200,10 +201,9 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
     for (int f = 0; f < nf; f++) {
         const mc_runin_row *first = &ri->rows[2 * m * f], *last = &ri->rows[2 * m * f + m - 1];
         double ra_before = f == 0 ? r.roughness_initial.Ra : ri->rows[2 * m * f - 1].ra;
-        int rises = 0, quiet = 0;
-        double prev = ra_before, up_dev = 0;
+        int quiet = 0;
+        double prev = ra_before;
         for (int k = 0; k < m; k++) {
-            rises += !(first[k].ra <= prev); /* a NaN Ra counts as a rise */
             /* a step with solid contact whose Ra did not fall (by more than the 1e-6 relative
              * the roughness parameters resolve) */
             quiet += first[k].psi_load > 0 && !(first[k].ra < prev * (1 - 1e-6));
@@ -220,20 +220,7 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
                      "not fall", first->force);
             vf_info(ctx, id, q, "shakedown: see the text", NAN, quiet);
         }
-        for (int k = m; k < 2 * m; k++)
-            up_dev = vf_worst(up_dev, fabs(first[k].ra - last->ra));
-        snprintf(id, sizeof id, "ra_never_rises_F%d", f + 1);
-        snprintf(q, sizeof q, "F_N = %.0f N: run-down steps where Ra rose", first->force);
-        vf_check(ctx, id, q, "plastic smoothing only lowers the surface", 0, rises, 0, VF_MAX);
-        snprintf(id, sizeof id, "ra_falls_F%d", f + 1);
-        snprintf(q, sizeof q, "F_N = %.0f N: Ra after the run-down / Ra before it", first->force);
-        /* strictly below: by more than the 1e-6 the roughness parameters can resolve */
-        vf_check(ctx, id, q, "paper Fig. 4-1: Ra falls during the run-down", 1.0,
-                 last->ra / ra_before, 1 - 1e-6, VF_MAX);
-        snprintf(id, sizeof id, "ra_up_unchanged_F%d", f + 1);
-        snprintf(q, sizeof q, "F_N = %.0f N: max |Ra - Ra(end of run-down)| over the run-up, m",
-                 first->force);
-        vf_check(ctx, id, q, "the run-up is elastic", 0, up_dev, 0, VF_MAX);
+        vf_runin_ra_checks(ctx, ri, f, ra_before);
         /* what shows running-in: the peaks (information; the row before the run-down is the
          * surface it starts from, the initial one for the first force) */
         const mc_runin_row *before = f == 0 ? NULL : &ri->rows[2 * m * f - 1];

@@ -13,6 +13,7 @@
 
 #include "case/case.h"
 #include "harness.h"
+#include "runin_checks.h"
 #include "kernels/invariants.h"
 #include "pipeline/pipeline.h"
 #include "pipeline/runin.h"
@@ -323,25 +324,7 @@ static void runin(vf_ctx *ctx, int fast)
     for (int f = 0; f < nf; f++) {
         const mc_runin_row *first = &ri->rows[2 * m * f], *last = &ri->rows[2 * m * f + m - 1];
         const double ra_before = f == 0 ? r.roughness_initial.Ra : ri->rows[2 * m * f - 1].ra;
-        int rises = 0;
-        double prev = ra_before, up_dev = 0;
-        for (int k = 0; k < m; k++) {
-            rises += !(first[k].ra <= prev); /* a NaN Ra counts as a rise */
-            prev = first[k].ra;
-        }
-        for (int k = m; k < 2 * m; k++)
-            up_dev = vf_worst(up_dev, fabs(first[k].ra - last->ra));
-        snprintf(id, sizeof id, "ra_never_rises_F%d", f + 1);
-        snprintf(q, sizeof q, "F_N = %.0f N: run-down steps where Ra rose", first->force);
-        vf_check(ctx, id, q, "plastic smoothing only lowers the surface", 0, rises, 0, VF_MAX);
-        snprintf(id, sizeof id, "ra_falls_F%d", f + 1);
-        snprintf(q, sizeof q, "F_N = %.0f N: Ra after the run-down / before it", first->force);
-        vf_check(ctx, id, q, "paper Fig. 4-1: Ra falls during the run-down", 1.0,
-                 last->ra / ra_before, 1 - 1e-6, VF_MAX);
-        snprintf(id, sizeof id, "ra_up_unchanged_F%d", f + 1);
-        snprintf(q, sizeof q, "F_N = %.0f N: max |Ra - Ra(end of run-down)| over the run-up, m",
-                 first->force);
-        vf_check(ctx, id, q, "the run-up is elastic", 0, up_dev, 0, VF_MAX);
+        vf_runin_ra_checks(ctx, ri, f, ra_before);
         snprintf(id, sizeof id, "hysteresis_F%d", f + 1);
         snprintf(q, sizeof q, "F_N = %.0f N: hysteresis H (mu x decades of speed)", first->force);
         vf_info(ctx, id, q, "paper Fig. 4-3 (shape only)", NAN, ri->hysteresis[f]);
