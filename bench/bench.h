@@ -59,6 +59,9 @@ int mc_bench_hertz_case(const char *path, int N);
 /* Run argv (argv[0] a path) as a child, stdout and stderr to /dev/null: wall time fork to exit,
  * s; NAN when it did not exit with 0. */
 double mc_bench_run_child(const char *const argv[]);
+/* The same with the child's stdout into the file out (NULL: /dev/null, as above); argv[0] is
+ * searched in PATH when it has no slash (mpirun). */
+double mc_bench_run_child_to(const char *const argv[], const char *out);
 /* A number "key": value of a run's summary.json (the first occurrence); NAN if absent. */
 double mc_bench_json_number(const char *path, const char *key);
 /* rm -rf dir (a temporary directory of the bench). */

@@ -18,32 +18,6 @@
 
 #define TARGET_SPEEDUP 1.6 /* issue 22 item 4: 1 -> 2 ranks */
 
-/* Run argv (argv[0] searched in PATH) with stdout into file out and stderr to /dev/null: wall
- * time, s, or NAN when it did not exit with 0. */
-static double run_logged(const char *const argv[], const char *out)
-{
-    fflush(NULL);
-    const double t0 = mc_clock();
-    const pid_t pid = fork();
-    if (pid < 0)
-        return NAN;
-    if (pid == 0) {
-        const int fo = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644),
-                  fe = open("/dev/null", O_WRONLY);
-        if (fo >= 0)
-            dup2(fo, 1);
-        if (fe >= 0)
-            dup2(fe, 2);
-        execvp(argv[0], (char *const *)argv);
-        _exit(127);
-    }
-    int status = 0;
-    if (waitpid(pid, &status, 0) != pid)
-        return NAN;
-    const double t = mc_clock() - t0;
-    return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? t : NAN;
-}
-
 /* The number after key in the text file path (first occurrence), NAN if absent. */
 static double number_after(const char *path, const char *key)
 {
@@ -108,7 +82,7 @@ int mc_bench_mpi(vf_ctx *ctx, int quick)
             const char *par[] = {"mpirun", "--allow-run-as-root", "--oversubscribe", "-np", np,
                                  mpi, "run", ini, "--out", out, "--quiet",
                                  "--set", "solver.threads=1", NULL};
-            const double t = run_logged(r->ranks ? par : serial, log);
+            const double t = mc_bench_run_child_to(r->ranks ? par : serial, log);
             snprintf(js, sizeof js, "%s/summary.json", out);
             if (!(t > 0)) {
                 vf_fail(ctx, "mpi_run", "%s: the run of %s failed", r->name, ini);

@@ -32,7 +32,7 @@ static const int sizes[NSIZES] = {256, 512, 1024};
  * machine, as quoted in issue 13 (NOT measured by this bench). */
 static const double contact_s[NSIZES] = {0.39, 2.14, 15.95};
 
-double mc_bench_run_child(const char *const argv[])
+double mc_bench_run_child_to(const char *const argv[], const char *out)
 {
     fflush(NULL);
     const double t0 = mc_clock();
@@ -40,12 +40,13 @@ double mc_bench_run_child(const char *const argv[])
     if (pid < 0)
         return NAN;
     if (pid == 0) {
-        const int fd = open("/dev/null", O_WRONLY);
-        if (fd >= 0) {
-            dup2(fd, 1);
-            dup2(fd, 2);
-        }
-        execv(argv[0], (char *const *)argv);
+        const int fn = open("/dev/null", O_WRONLY);
+        const int fo = out ? open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644) : fn;
+        if (fo >= 0)
+            dup2(fo, 1);
+        if (fn >= 0)
+            dup2(fn, 2);
+        execvp(argv[0], (char *const *)argv);
         _exit(127);
     }
     int status = 0;
@@ -54,6 +55,8 @@ double mc_bench_run_child(const char *const argv[])
     const double t = mc_clock() - t0;
     return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? t : NAN;
 }
+
+double mc_bench_run_child(const char *const argv[]) { return mc_bench_run_child_to(argv, NULL); }
 
 int mc_bench_hertz_case(const char *path, int N)
 {
