@@ -16,6 +16,7 @@
 #include "operator/operator.h"
 #include "case/scene.h"
 #include "stress/stress.h"
+#include "stress/traction.h"
 #include "pipeline/stage_stress.h"
 #include "test_util.h"
 
@@ -923,6 +924,29 @@ START_TEST(test_create_nomem)
 }
 END_TEST
 
+/* The friction traction of solid contact (stress/traction.h, theory.md §19.7): the excess over
+ * the cell's own lubricant pressure. A shape of ones is the uniform p_lub to the bit; where the
+ * whole contact's profile is 0 (outside the band) every cell with p > 0 carries f p, and inside
+ * the band the excess over p_lub w. Exact arithmetic on these values: tolerance 0. */
+START_TEST(test_traction_shape)
+{
+    const double p[5] = {0.0, 50.0, 150.0, 250.0, 400.0};
+    const double ones[5] = {1, 1, 1, 1, 1}, band[5] = {0, 0, 2.0, 2.0, 1.0};
+    const double f = -0.25, p_lub = 100.0;
+    double q0[5], q1[5], q2[5];
+    mc_traction_friction(p, p_lub, NULL, f, 5, q0);
+    mc_traction_friction(p, p_lub, ones, f, 5, q1);
+    mc_traction_friction(p, p_lub, band, f, 5, q2);
+    const double want0[5] = {0, 0, f * 50.0, f * 150.0, f * 300.0};
+    const double want2[5] = {0, f * 50.0, 0, f * 50.0, f * 300.0};
+    for (int i = 0; i < 5; i++) {
+        ck_assert_double_eq(q0[i], want0[i]);
+        ck_assert_double_eq(q1[i], q0[i]);
+        ck_assert_double_eq(q2[i], want2[i]);
+    }
+}
+END_TEST
+
 /* ---- the pipeline stage ------------------------------------------------------------------- */
 
 static void stage_scene(mc_scene *sc, int r, double mu)
@@ -1698,6 +1722,7 @@ Suite *suite_stress(void)
     tcase_add_test(tc, test_uniform_patch);
     tcase_add_test(tc, test_bad_input);
     tcase_add_loop_test(tc, test_create_nomem, 0, 2);
+    tcase_add_test(tc, test_traction_shape);
     suite_add_tcase(s, tc);
 
     tc = tcase_create("speed-ups");

@@ -22,6 +22,7 @@
 #include "plastic/loop.h"
 #include "plastic/return_map.h"
 #include "stress/stress.h"
+#include "stress/traction.h"
 #include "surface/roughness.h"
 #include "surface/surface.h"
 
@@ -185,14 +186,14 @@ static int equilibrium(runin_ctx *c, mc_volume_result *vr, mc_error *err)
                                  err);
 }
 
-/* Does anything yield under pressure p (lubricant pressure p_lub) and the traction
- * q_x = f (p - p_lub) in solid contact (f signed, 0: none) with the residual stress and hardening
+/* Does anything yield under pressure p (lubricant pressure p_lub, shaped by the whole
+ * contact's profile) and the traction q_x = f (p - p_l) in solid contact (f signed, 0: none;
+ * stress/traction.h) with the residual stress and hardening
  * of the state? The loop's first sweep (plastic/loop.c) from a zero increment. */
 static int yields(runin_ctx *c, const double *p, double p_lub, double f, int *any, mc_error *err)
 {
     if (f != 0)
-        for (size_t i = 0; i < c->n; i++)
-            c->qx[i] = p[i] > p_lub ? f * (p[i] - p_lub) : 0.0;
+        mc_traction_friction(p, p_lub, c->res->lube_profile, f, c->n, c->qx);
     int rc = mc_stress_field(c->splan, p, f != 0 ? c->qx : NULL, NULL, c->s_full, err);
     if (rc != MC_OK)
         return rc;
@@ -235,6 +236,7 @@ static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_stag
     mc_plastic_problem pb = {.h = c->h_base,
                              .load = r->lube.patch_load,
                              .p_lub = r->lube.p_lub,
+                             .lube_shape = r->lube_profile,
                              .friction = f,
                              .load_steps = sc->plasticity.load_steps,
                              .E = sc->body1.E,
@@ -398,8 +400,8 @@ static int plan_volume(runin_ctx *c, mc_error *err)
         for (int k = 0; k < NPROBE; k++)
             z[k] = (k + 0.5) * dz;
         if (rc == MC_OK)
-            rc = mc_stage_plastic_layer_maxima(sc, &c->g, c->res->pressure, 0.0, z, NPROBE, vm,
-                                               err);
+            rc = mc_stage_plastic_layer_maxima(sc, &c->g, c->res->pressure, 0.0, NULL, z,
+                                               NPROBE, vm, err);
         if (rc != MC_OK)
             return rc;
         double deepest = 0, y0 = mc_hardening_initial(&c->law);

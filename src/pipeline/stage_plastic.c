@@ -9,6 +9,7 @@
 #include "pipeline/stage_lube.h"
 #include "plastic/loop.h"
 #include "stress/stress.h"
+#include "stress/traction.h"
 
 /* History depth of the Anderson acceleration of the loop (loop.h), dry or lubricated. Dry runs
  * mixed by the adaptive under-relaxation alone until issue 20; the Kogut-Etsion sphere at 8 P_c
@@ -39,8 +40,8 @@ int mc_stage_plastic_law(const mc_scene *sc, mc_hardening *law, mc_error *err)
 }
 
 int mc_stage_plastic_layer_maxima(const mc_scene *sc, const mc_grid *g, const double *p,
-                                  double p_lub, const double *z, int nz, double *vm_layer,
-                                  mc_error *err)
+                                  double p_lub, const double *shape, const double *z, int nz,
+                                  double *vm_layer, mc_error *err)
 {
     const size_t n = mc_grid_cells(g);
     const double f = sc->plasticity.friction;
@@ -61,8 +62,7 @@ int mc_stage_plastic_layer_maxima(const mc_scene *sc, const mc_grid *g, const do
     if (rc == MC_OK && f > 0 && !qx)
         rc = mc_fail(err, MC_ERR_NOMEM, "plastic stage: out of memory for the traction");
     if (rc == MC_OK && qx)
-        for (size_t i = 0; i < n; i++)
-            qx[i] = p[i] > p_lub ? f * (p[i] - p_lub) : 0.0;
+        mc_traction_friction(p, p_lub, shape, f, n, qx);
     for (int k = 0; rc == MC_OK && k < nz; k++) {
         if ((rc = mc_stress_layer(plan, k, p, qx, NULL, s, err)) != MC_OK)
             break;
@@ -100,7 +100,8 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, doubl
     int i0 = g->nx, i1 = -1, j0 = g->ny, j1 = -1;
     for (int j = 0; j < g->ny; j++)
         for (int i = 0; i < g->nx; i++)
-            if (res->pressure[(size_t)j * g->nx + i] > p_lub) {
+            if (res->pressure[(size_t)j * g->nx + i] >
+                mc_traction_lubricant(p_lub, res->lube_profile, (size_t)j * g->nx + i)) {
                 i0 = i < i0 ? i : i0;
                 i1 = i > i1 ? i : i1;
                 j0 = j < j0 ? j : j0;
@@ -124,7 +125,8 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, doubl
         for (int k = 0; rc == MC_OK && k < nprobe; k++)
             z[k] = (k + 0.5) * step;
         if (rc == MC_OK)
-            rc = mc_stage_plastic_layer_maxima(sc, g, res->pressure, p_lub, z, nprobe, vm, err);
+            rc = mc_stage_plastic_layer_maxima(sc, g, res->pressure, p_lub, res->lube_profile, z,
+                                               nprobe, vm, err);
         double deepest = 0;
         for (int k = 0; rc == MC_OK && k < nprobe; k++) {
             ps->vm_elastic_max = fmax(ps->vm_elastic_max, vm[k]);
@@ -280,6 +282,7 @@ int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
                              .load = lubricated ? res->lube.patch_load : stage_load(sc, &res->grid),
                              .contact = lubricated ? mc_stage_lube_contact_step : NULL,
                              .contact_ctx = &lc,
+                             .lube_shape = lubricated ? res->lube_profile : NULL,
                              /* lubricated, p_lub moves with every outer iteration: Anderson
                               * mixing keeps the two-cycles of a flipping contact set from
                               * stalling it; dry, it cuts the sweeps 4-5 fold (theory §9.6) */

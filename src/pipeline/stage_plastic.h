@@ -28,9 +28,10 @@ int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
 int mc_stage_plastic_law(const mc_scene *sc, mc_hardening *law, mc_error *err);
 
 /* Largest von Mises stress of body 1 in each of the nz layers at depths z (m) under pressure p
- * (Pa, with the friction traction of [plasticity] where p > p_lub): vm_layer[k], Pa. */
+ * (Pa, with the friction traction of [plasticity] where p exceeds the lubricant pressure p_lub
+ * shape[i], shape NULL: uniform; stress/traction.h): vm_layer[k], Pa. */
 int mc_stage_plastic_layer_maxima(const mc_scene *sc, const mc_grid *g, const double *p,
-                                  double p_lub, const double *z, int nz, double *vm_layer,
-                                  mc_error *err);
+                                  double p_lub, const double *shape, const double *z, int nz,
+                                  double *vm_layer, mc_error *err);
 
 #endif

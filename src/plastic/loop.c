@@ -10,6 +10,7 @@
 #include "plastic/anderson.h"
 #include "plastic/return_map.h"
 #include "stress/stress.h"
+#include "stress/traction.h"
 
 /* Everything one run needs, freed in one place. */
 typedef struct {
@@ -212,8 +213,7 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
     const mc_plastic_problem *pb = c->pb;
     const double *qx = NULL;
     if (pb->friction != 0) { /* signed: the sign is the sliding direction (loop.h) */
-        for (size_t i = 0; i < c->ncell; i++)
-            c->qx[i] = p[i] > c->p_lub ? pb->friction * (p[i] - c->p_lub) : 0.0;
+        mc_traction_friction(p, c->p_lub, pb->lube_shape, pb->friction, c->ncell, c->qx);
         qx = c->qx;
     }
     if (c->whole) { /* the volume layout is the stress plan's: straight into sig_e */

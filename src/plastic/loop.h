@@ -106,9 +106,12 @@ typedef struct {
     const double *eps_p0;      /* 6 * nvol plastic strain, component-major */
     const double *peq0;        /* nvol accumulated equivalent plastic strain (hardening) */
     /* step (a) by the caller (NULL: mc_contact_solve with the uniform p_lub above); the friction
-     * traction then acts where p exceeds the p_lub the caller returned */
+     * traction then acts where p exceeds the lubricant pressure p_lub lube_shape[i] of the cell,
+     * p_lub the one the caller returned (stress/traction.h) */
     mc_plastic_contact_fn contact;
     void *contact_ctx;
+    const double *lube_shape;  /* ny*nx, the lubricant pressure's shape over the grid (the whole
+                                  contact's profile); NULL = uniform */
     /* the operators, made by mc_plastic_ops_create for this grid, volume, nu, backend and
      * friction (!= 0 or not), borrowed for the run (NULL: the run builds its own and frees them;
      * the results are the same bits either way; operators with friction serve a problem with
