@@ -312,8 +312,9 @@ static const vf_gallery_row manifest[] = {
              "rpm. The fast variant (make check) runs scaled 4 mm discs.",
      .differ = "Ra (of the heights on the widest band) falls over every run-down, by 0.68 %, "
                "1.07 % and 1.21 %, and stays on the run-up; the smoothing grows with force, "
-               "degressively. At the first force it falls at every step with solid contact; at "
-               "the higher forces the fast steps do not yield (shakedown: the first force's "
+               "degressively. At the first force it falls at every step whose solid share "
+               "rises (checked; the 100 rpm step repeats the dry load of 200 rpm); at the "
+               "higher forces the fast steps do not yield (shakedown: the first force's "
                "dry step already pressed the asperities harder), where the paper's curves fall "
                "throughout. The magnitudes depend on the synthetic surface (Sq 0.3 um) and are "
                "not the paper's measured discs."},
