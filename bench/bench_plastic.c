@@ -267,7 +267,7 @@ static int op_measure(int n, int nz, int per, int reps, op_cost *c)
 static void op_agree(double *dev_s, double *dev_d)
 {
     mc_grid g = {13, 10, 1.0e-6, 1.3e-6, 0, 0};
-    const mc_eigen_volume v = {2, 1, 9, 8, 5, 0.8e-6, MC_EIG_CELL_AVERAGE};
+    const mc_eigen_volume v = {2, 1, 9, 8, 5, 0.8e-6, MC_EIG_CELL_AVERAGE, NULL};
     const size_t nv = (size_t)v.nx * v.ny * v.nz, ns = (size_t)g.nx * g.ny;
     double *blk = mc_zeros(18 * nv + 2 * ns);
     *dev_s = *dev_d = NAN;
