@@ -77,8 +77,11 @@ int mc_eigen_volume_equal(const mc_eigen_volume *a, const mc_eigen_volume *b)
 
 int mc_eigen_grade(double dz, double depth, double fine_depth, double ratio, int *group, int max)
 {
+    /* the fine layers a uniform volume would have: the last layer is cut to end within one dz
+     * of them (the depth step's cost follows the fine layers) */
+    const int need = (int)ceil(depth / dz - 1e-9);
     int nz = 0, fine = 0, prev = 1;
-    while (fine * dz < depth * (1 - 1e-9) || nz == 0) {
+    while (fine < need || nz == 0) {
         if (nz >= max)
             return 0;
         int c = 1;
@@ -88,6 +91,8 @@ int mc_eigen_grade(double dz, double depth, double fine_depth, double ratio, int
             c = r >= 1.0 ? (int)floor(r) : 1;
             c = c % 2 ? c : c - 1;
             c = c < prev ? prev : c;
+            if (fine + c > need) /* the last layer: the odd count that reaches need */
+                c = (need - fine) % 2 ? need - fine : need - fine + 1;
         }
         group[nz++] = c;
         fine += c;

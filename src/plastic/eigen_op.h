@@ -145,7 +145,8 @@ int mc_eigen_volume_equal(const mc_eigen_volume *a, const mc_eigen_volume *b);
 /* Graded layering (theory.md §8.8): fine layers of dz down to the depth fine_depth (m, >= 0),
  * below it each layer as thick as the largest odd number of fine layers not above
  * ratio x (the depth of its top), at least 1, and never thinner than the layer above; layers
- * until the volume reaches depth (m). Writes the counts into group (room for max entries) and
+ * until the volume reaches depth (m), the last one cut to end within one dz of
+ * ceil(depth / dz) dz (the fine layers of the uniform volume: the depth step costs by them). Writes the counts into group (room for max entries) and
  * returns the number of layers nz; 0 when max is too small. ratio in (0, 1]. */
 int mc_eigen_grade(double dz, double depth, double fine_depth, double ratio, int *group, int max);
 
