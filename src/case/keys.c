@@ -41,6 +41,7 @@ _Static_assert(MC_PLANS_MEASURE == 1 && MC_PLANS_WISDOM == 2,
                "[solver] plans choices follow the enum");
 _Static_assert(MC_PROFILE_HERTZ == 1, "[lubrication] lubricant_profile choices follow the enum");
 _Static_assert(MC_DEFLECTION_KEEP == 1, "[runin] nominal_deflection choices follow the enum");
+_Static_assert(MC_LAYERING_GRADED == 2, "[plasticity] layering choices follow the enum");
 _Static_assert(MC_SHAPE_ELLIPSOID == 3 && MC_ROUGH_FILE == 3 && MC_BACKEND_DIRECT == 1 &&
                    MC_METHOD_ACTIVE_SET == 2 && MC_SPACING_GEOMETRIC == 1 && MC_STRESS_POINT == 1 &&
                    MC_STRESS_WINDOW_FULL == 1 && MC_FILM_GIVEN == 1 &&
@@ -484,6 +485,25 @@ const case_key mc_keys[] = {
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.depth),
      .doc = "Depth of the plastic volume; auto: where the elastic von Mises stress at the full "
             "load falls below half the initial yield stress, plus 25 %."},
+    {.section = "plasticity", .name = "layering", .kind = K_ENUM,
+     .choices = "auto uniform graded", .def = "auto", .use = USE_WHEN, .use_key = "criterion",
+     .use_values = "von_mises", .off = AT(plasticity.layering),
+     .doc = "Layer thickness in depth: uniform, every layer dz; graded, layers of dz down to "
+            "fine_depth, below it each layer an odd number of dz at most grading x its depth "
+            "(fine where the asperity fields are, coarse where only the macro field is; "
+            "docs/theory.md §8.8); auto: graded when depth = auto, else uniform."},
+    {.section = "plasticity", .name = "fine_depth", .kind = K_REAL, .unit = MC_UNIT_LENGTH,
+     .lo = 0, .lo_open = 1, .hi = 1, .def = "auto", .word = "auto", .word_value = 0,
+     .use = USE_WHEN, .use_key = "layering", .use_values = "auto graded",
+     .off = AT(plasticity.fine_depth),
+     .doc = "Graded layering: depth down to which the layers keep the thickness dz; auto: "
+            "8 min(dx, dy) (8 dx on a line grid)."},
+    {.section = "plasticity", .name = "grading", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
+     .lo_open = 1, .hi = 1, .def = "0.25", .use = USE_WHEN, .use_key = "layering",
+     .use_values = "auto graded", .off = AT(plasticity.grading),
+     .doc = "Graded layering: a layer below fine_depth is at most this fraction of the depth "
+            "of its top thick (rounded down to an odd number of dz, never thinner than the "
+            "layer above)."},
     {.section = "plasticity", .name = "margin", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "auto", .word = "auto", .word_value = 0, .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.margin),

@@ -52,6 +52,9 @@ typedef enum { MC_DEFLECTION_REMOVE, MC_DEFLECTION_KEEP } mc_nominal_deflection;
 
 #define MC_RUNIN_MAX 32 /* entries of [runin] forces and speeds */
 
+/* [plasticity] layering (the key's choices follow the enum) */
+typedef enum { MC_LAYERING_AUTO = 0, MC_LAYERING_UNIFORM = 1, MC_LAYERING_GRADED = 2 } mc_layering;
+
 /* [stress] depth_max = auto: derived from the contact by the stress stage (stress.h) */
 #define MC_STRESS_DEPTH_AUTO 0.0
 
@@ -147,6 +150,9 @@ typedef struct {
         double depth;                 /* m; 0: auto */
         double margin;                /* columns around the contact's box, m; 0: auto */
         double friction;              /* q_x = friction (p - p_lub) in solid contact */
+        mc_layering layering;         /* auto (graded when depth = auto), uniform, graded */
+        double fine_depth;            /* graded: fine layers down to here, m; 0: auto */
+        double grading;               /* graded: largest layer thickness / its top's depth */
     } plasticity;
 
     struct { /* [runin]: the running-in driver, speed run-down and run-up per force */

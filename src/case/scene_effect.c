@@ -181,6 +181,13 @@ static int plastic_runin_rules(const mc_scene *s, mc_error *err, const char **se
               "[plasticity] depth = %g m is below dz = %g m: the plastic volume holds no layer; "
               "accepted: depth >= dz (or depth = auto)",
               s->plasticity.depth, s->plasticity.dz);
+    /* layering = auto is uniform with a given depth: the grading keys would do nothing */
+    if (vm && s->plasticity.layering == MC_LAYERING_AUTO && s->plasticity.depth > 0 &&
+        (s->plasticity.fine_depth > 0 || s->plasticity.grading != 0.25))
+        BLAME("plasticity", s->plasticity.fine_depth > 0 ? "fine_depth" : "grading",
+              "[plasticity] %s has no effect with layering = auto and a given depth (the layers "
+              "are then uniform): add layering = graded, or set depth = auto",
+              s->plasticity.fine_depth > 0 ? "fine_depth" : "grading");
     if (vm && s->plasticity.margin > 0 && s->grid.periodic_x && s->grid.periodic_y &&
         !s->runin.enabled)
         BLAME("plasticity", "margin",

@@ -107,7 +107,7 @@ static const struct {
     {"topography_final.npy", OUT_PLASTIC,
      "the unloaded gap the next load sees (initial gap + residual displacement), ny x nx, m"},
     {"plastic_strain.npy", OUT_PLASTIC,
-     "accumulated equivalent plastic strain of body 1, nz x ny x nx, depth into the body (zero outside the columns under the contact); with bodies = both body 2's too, the same field (one material deforming alike: summary.json roughness.body2.plastic_strain names this file)"},
+     "accumulated equivalent plastic strain of body 1, nz x ny x nx, depth into the body (zero outside the columns under the contact; layer k at depth (k + 1/2) dz, or with graded layers at summary.json plastic.layer_depths[k], plastic.layer_thickness[k] thick); with bodies = both body 2's too, the same field (one material deforming alike: summary.json roughness.body2.plastic_strain names this file)"},
     {"residual_von_mises.npy", OUT_PLASTIC,
      "von Mises stress of the residual stresses after unloading, nz x ny x nx, Pa"},
     {"plastic.csv", OUT_PLASTIC,

@@ -61,6 +61,7 @@ void mc_results_free(mc_results *r)
     mc_free(r->plastic_strain);
     mc_free(r->residual_von_mises);
     mc_free(r->plastic.steps);
+    mc_free(r->plastic.group);
     mc_free(r->runin.rows);
     mc_free(r->runin.hysteresis);
     mc_free(r->surface_initial);

@@ -88,6 +88,9 @@ typedef struct {
     double residual_max;       /* largest residual displacement (into the body), m */
     double depth, dz;          /* plastic volume's depth and layer thickness, m */
     int nz, depth_auto;
+    const char *layering;      /* "uniform" | "graded" (NULL for a cap) */
+    int *group;                /* graded: nz counts of dz per layer (owned; eigen_op.h); NULL:
+                                  uniform */
     int i0, j0, wnx, wny;      /* columns carrying plastic cells (window of the surface grid) */
     long volume_cells;         /* nz wnx wny */
     mc_plastic_step *steps;    /* steps_done records (owned) */

@@ -102,6 +102,7 @@ typedef struct {
     mc_hardening law;
     double G;
     mc_eigen_volume vol;
+    int *group;               /* graded layers: vol.group (theory.md §8.8); NULL: uniform */
     long nvol;
     double *eps_p, *peq, *sig_r, *u_r;
     mc_stress_plan *splan;    /* elastic stresses at the cuboid centres (the yield check) */
@@ -127,6 +128,7 @@ static void ctx_free(runin_ctx *c)
     double *a[] = {c->bowl, c->h_base, c->h_extra, c->z,   c->eps_p,
                    c->peq,  c->sig_r,  c->u_r,     c->qx, c->shape};
     mc_free(c->rmask);
+    mc_free(c->group);
     for (size_t k = 0; k < sizeof a / sizeof a[0]; k++)
         mc_free(a[k]);
     for (int k = 0; k < 6; k++)
@@ -411,8 +413,19 @@ static int plan_volume(runin_ctx *c, mc_error *err)
         depth = fmax(1.25 * deepest, 2 * dz);
     }
     int nz = (int)ceil(depth / dz - 1e-9);
-    c->vol = mc_eigen_volume_full(&c->g, nz < 1 ? 1 : nz, dz);
+    nz = nz < 1 ? 1 : nz;
+    /* graded layers (theory.md §8.8): by default with depth = auto, as the stage */
+    if (sc->plasticity.layering == MC_LAYERING_GRADED ||
+        (sc->plasticity.layering == MC_LAYERING_AUTO && !(sc->plasticity.depth > 0))) {
+        const double fine = sc->plasticity.fine_depth > 0 ? sc->plasticity.fine_depth
+                                                          : 8 * fmin(c->g.dx, c->g.dy);
+        if (!(c->group = mc_malloc((size_t)nz * sizeof *c->group)))
+            return mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory for the layering");
+        nz = mc_eigen_grade(dz, depth, fine, sc->plasticity.grading, c->group, nz);
+    }
+    c->vol = mc_eigen_volume_full(&c->g, nz, dz);
     c->vol.stress_points = sc->plasticity.stress_points;
+    c->vol.group = c->group;
     c->nvol = (long)c->vol.nz * c->g.nx * c->g.ny;
     return MC_OK;
 }
@@ -533,7 +546,7 @@ static int setup(runin_ctx *c, mc_error *err)
         if (rc == MC_OK && !depths)
             rc = mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory");
         for (int k = 0; rc == MC_OK && k < c->vol.nz; k++)
-            depths[k] = (k + 0.5) * c->vol.dz;
+            depths[k] = mc_eigen_layer_depth(&c->vol, k);
         mc_stress_options so = {.kernel = MC_STRESS_PATCH,
                                 .nu = sc->body1.nu,
                                 .nlayers = c->vol.nz,
@@ -624,6 +637,7 @@ static int plastic_results(runin_ctx *c, const mc_plastic_step *records, int nre
     mc_results *r = c->res;
     mc_stage_plastic_summary *ps = &r->plastic;
     const size_t n = c->n, nv = (size_t)c->nvol;
+    mc_free(ps->group);
     memset(ps, 0, sizeof *ps);
     ps->enabled = 1;
     ps->criterion = "von_mises";
@@ -656,7 +670,8 @@ static int plastic_results(runin_ctx *c, const mc_plastic_step *records, int nre
         r->residual_von_mises[v] = mc_von_mises(s6);
         r->plastic_strain[v] = c->peq[v];
         if (c->peq[v] > 0)
-            ps->plastic_volume += c->g.dx * c->g.dy * c->vol.dz;
+            ps->plastic_volume += c->g.dx * c->g.dy *
+                                  mc_eigen_layer_thickness(&c->vol, (int)(v / c->n));
         if (c->peq[v] > ps->peq_max) {
             ps->peq_max = c->peq[v];
             at = (long)v;
@@ -666,9 +681,15 @@ static int plastic_results(runin_ctx *c, const mc_plastic_step *records, int nre
         long i = at % c->g.nx, j = (at / c->g.nx) % c->g.ny, k = at / ((long)c->g.nx * c->g.ny);
         ps->peq_max_at[0] = mc_grid_x(&c->g, (int)i);
         ps->peq_max_at[1] = mc_grid_y(&c->g, (int)j);
-        ps->peq_max_at[2] = (k + 0.5) * c->vol.dz;
+        ps->peq_max_at[2] = mc_eigen_layer_depth(&c->vol, (int)k);
     }
-    ps->depth = c->vol.nz * c->vol.dz;
+    ps->depth = mc_eigen_volume_depth(&c->vol);
+    ps->layering = c->group ? "graded" : "uniform";
+    if (c->group) {
+        if (!(ps->group = mc_malloc((size_t)c->vol.nz * sizeof *ps->group)))
+            return mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory for the outputs");
+        memcpy(ps->group, c->group, (size_t)c->vol.nz * sizeof *ps->group);
+    }
     ps->dz = c->vol.dz;
     ps->nz = c->vol.nz;
     ps->depth_auto = !(sc->plasticity.depth > 0);

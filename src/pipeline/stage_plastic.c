@@ -142,7 +142,22 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, doubl
     }
     int nz = (int)ceil(depth / dz - 1e-9);
     nz = nz < 1 ? 1 : nz;
-    double margin = sc->plasticity.margin > 0 ? sc->plasticity.margin : nz * dz;
+    /* graded layers (theory.md §8.8): by default with depth = auto */
+    const int graded = sc->plasticity.layering == MC_LAYERING_GRADED ||
+                       (sc->plasticity.layering == MC_LAYERING_AUTO && ps->depth_auto);
+    ps->layering = graded ? "graded" : "uniform";
+    if (graded) {
+        const double fine = sc->plasticity.fine_depth > 0 ? sc->plasticity.fine_depth
+                            : line                        ? 8 * g->dx
+                                                          : 8 * fmin(g->dx, g->dy);
+        if (!(ps->group = mc_malloc((size_t)nz * sizeof *ps->group)))
+            return mc_fail(err, MC_ERR_NOMEM, "plastic stage: out of memory for the layering");
+        /* at most nz layers: every layer holds at least one dz */
+        nz = mc_eigen_grade(dz, depth, fine, sc->plasticity.grading, ps->group, nz);
+    }
+    const mc_eigen_volume lay = {0, 0, 1, 1, nz, dz, MC_EIG_CELL_AVERAGE, ps->group};
+    const double vdepth = mc_eigen_volume_depth(&lay);
+    double margin = sc->plasticity.margin > 0 ? sc->plasticity.margin : vdepth;
     int mx = (int)ceil(margin / g->dx - 1e-9), my = (int)ceil(margin / g->dy - 1e-9);
     i0 = i0 - mx < 0 ? 0 : i0 - mx;
     j0 = j0 - my < 0 ? 0 : j0 - my;
@@ -153,8 +168,9 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, doubl
         i0 = 0, i1 = g->nx - 1;
     if (g->periodic_y)
         j0 = 0, j1 = g->ny - 1;
-    *v = (mc_eigen_volume){i0, j0, i1 - i0 + 1, j1 - j0 + 1, nz, dz, sc->plasticity.stress_points};
-    ps->depth = nz * dz;
+    *v = (mc_eigen_volume){i0,  j0, i1 - i0 + 1, j1 - j0 + 1, nz, dz, sc->plasticity.stress_points,
+                           ps->group};
+    ps->depth = vdepth;
     ps->dz = dz;
     ps->nz = nz;
     ps->i0 = i0;
@@ -224,6 +240,7 @@ int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
                      mc_results *res, mc_error *err)
 {
     mc_stage_plastic_summary *ps = &res->plastic;
+    mc_free(ps->group);
     memset(ps, 0, sizeof *ps);
     ps->enabled = 1;
     if (sc->plasticity.criterion == MC_CRITERION_PRESSURE_CAP)

@@ -428,6 +428,16 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
         jset(b, o, "depth_auto", json_boolean(q->depth_auto));
         jset(b, o, "dz", jnum(q->dz));
         jset(b, o, "nz", json_integer(q->nz));
+        if (q->layering)
+            jset(b, o, "layering", jstr(q->layering));
+        if (q->group) { /* graded layers: each layer's centre depth and thickness */
+            json_t *zc = jchild(b, o, "layer_depths", json_array());
+            json_t *th = jchild(b, o, "layer_thickness", json_array());
+            for (int k = 0, f = 0; zc && th && k < q->nz; f += q->group[k], k++) {
+                json_array_append_new(zc, jnum((f + (q->group[k] - 1) / 2 + 0.5) * q->dz));
+                json_array_append_new(th, jnum(q->group[k] * q->dz));
+            }
+        }
         json_t *w = jchild(b, o, "columns", json_object());
         jset(b, w, "i0", json_integer(q->i0));
         jset(b, w, "j0", json_integer(q->j0));

@@ -37,6 +37,19 @@ int mc_eig_check(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backe
     if (v->nz < 1 || !(v->dz > 0.0) || !isfinite(v->dz))
         return mc_fail(err, MC_ERR_INPUT, "%s: need nz >= 1 layers of finite dz > 0 (got %d, %g)",
                        who, v->nz, v->dz);
+    if (v->group) {
+        long fine = 0;
+        for (int k = 0; k < v->nz; k++) {
+            if (v->group[k] < 1 || v->group[k] % 2 == 0 || v->group[k] > (1 << 20))
+                return mc_fail(err, MC_ERR_INPUT,
+                               "%s: layer %d groups %d fine layers (accepted: an odd count >= 1)",
+                               who, k, v->group[k]);
+            fine += v->group[k];
+        }
+        if (fine > (1 << 20))
+            return mc_fail(err, MC_ERR_LIMIT, "%s: %ld fine layers exceed the supported sizes",
+                           who, fine);
+    }
     if (!(nu > -1.0 && nu < 0.5))
         return mc_fail(err, MC_ERR_INPUT, "%s: Poisson's ratio %g is not in (-1, 0.5)", who, nu);
     if (b != MC_BACKEND_FFT && b != MC_BACKEND_DIRECT)
@@ -49,6 +62,43 @@ int mc_eig_check(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backe
         return mc_fail(err, MC_ERR_LIMIT, "%s: %d x %d x %d cells exceed the supported sizes", who,
                        v->nx, v->ny, v->nz);
     return MC_OK;
+}
+
+int mc_eigen_volume_equal(const mc_eigen_volume *a, const mc_eigen_volume *b)
+{
+    if (a->i0 != b->i0 || a->j0 != b->j0 || a->nx != b->nx || a->ny != b->ny || a->nz != b->nz ||
+        a->dz != b->dz || a->stress_points != b->stress_points)
+        return 0;
+    for (int k = 0; k < a->nz; k++)
+        if (mc_eigen_layer_count(a, k) != mc_eigen_layer_count(b, k))
+            return 0;
+    return 1;
+}
+
+int mc_eigen_grade(double dz, double depth, double fine_depth, double ratio, int *group, int max)
+{
+    /* the fine layers a uniform volume would have: the last layer is cut to end within one dz
+     * of them (the depth step's cost follows the fine layers) */
+    const int need = (int)ceil(depth / dz - 1e-9);
+    int nz = 0, fine = 0, prev = 1;
+    while (fine < need || nz == 0) {
+        if (nz >= max)
+            return 0;
+        int c = 1;
+        if (fine * dz >= fine_depth * (1 - 1e-9)) {
+            /* the largest odd count not above ratio x the depth of the top */
+            const double r = ratio * fine;
+            c = r >= 1.0 ? (int)floor(r) : 1;
+            c = c % 2 ? c : c - 1;
+            c = c < prev ? prev : c;
+            if (fine + c > need) /* the last layer: the odd count that reaches need */
+                c = (need - fine) % 2 ? need - fine : need - fine + 1;
+        }
+        group[nz++] = c;
+        fine += c;
+        prev = c;
+    }
+    return nz;
 }
 
 int mc_eig_threads(size_t work)

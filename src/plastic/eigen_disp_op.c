@@ -31,6 +31,7 @@ struct mc_eigen_disp {
     int nthr;        /* workspaces */
     double *rows;    /* nthr x (ny * tx) */
     fftw_complex *spec; /* nthr x 2 spectra: the transformed layer and the thread's sum */
+    int *group;      /* the object's copy of v.group (NULL: uniform) */
     size_t bytes;
 };
 
@@ -44,8 +45,7 @@ struct disp_ops {
 /* ---- kernel tables --------------------------------------------------------------------------- */
 
 typedef struct {
-    double dx, dy, dz, nu;
-    int k;
+    double dx, dy, z1, z2, nu; /* the source layer spans depths z1 .. z2 (any thickness) */
     int line;  /* bars along y (mc_eig_line); only dj = 0 is used */
     int layer; /* periodic grids: the image sum's limit is the layer (x periodic), else the bar */
 } disp_ctx;
@@ -55,12 +55,11 @@ static void disp_kernel(int di, int dj, const void *ctx, double *out)
     const disp_ctx *c = ctx;
     const double cx = -di * c->dx, cy = -dj * c->dy; /* cuboid centre relative to the field */
     if (c->line) {
-        mc_eigen_surface_uz_bar(cx - 0.5 * c->dx, cx + 0.5 * c->dx, c->k * c->dz,
-                                (c->k + 1) * c->dz, c->nu, out);
+        mc_eigen_surface_uz_bar(cx - 0.5 * c->dx, cx + 0.5 * c->dx, c->z1, c->z2, c->nu, out);
         return;
     }
     mc_eigen_surface_uz(cx - 0.5 * c->dx, cx + 0.5 * c->dx, cy - 0.5 * c->dy, cy + 0.5 * c->dy,
-                        c->k * c->dz, (c->k + 1) * c->dz, c->nu, out);
+                        c->z1, c->z2, c->nu, out);
 }
 
 /* the limit of the image sums on periodic grids (mc_eig_fill_images; theory.md §8.6) */
@@ -69,12 +68,11 @@ static void disp_limit(int di, int dj, const void *ctx, double *out)
     (void)dj;
     const disp_ctx *c = ctx;
     if (c->layer) {
-        mc_eigen_surface_uz_layer(c->k * c->dz, (c->k + 1) * c->dz, c->nu, out);
+        mc_eigen_surface_uz_layer(c->z1, c->z2, c->nu, out);
         return;
     }
     const double cx = -di * c->dx;
-    mc_eigen_surface_uz_bar(cx - 0.5 * c->dx, cx + 0.5 * c->dx, c->k * c->dz, (c->k + 1) * c->dz,
-                            c->nu, out);
+    mc_eigen_surface_uz_bar(cx - 0.5 * c->dx, cx + 0.5 * c->dx, c->z1, c->z2, c->nu, out);
 }
 
 static void build_tables(mc_eigen_disp *op)
@@ -86,8 +84,12 @@ static void build_tables(mc_eigen_disp *op)
     int par[6];
     for (int c = 0; c < 6; c++)
         par[c] = mc_eig_par(c);
-    for (int k = 0; k < op->v.nz; k++) {
-        const disp_ctx ctx = {g->dx, g->dy, op->v.dz, op->nu, k, mc_eig_line(g), px};
+    /* a graded layer is one cuboid of its whole thickness (the kernels take any z1 < z2; the
+     * same as the sum of its fine sub-cuboids, theory.md §8.8) */
+    for (int k = 0, f = 0; k < op->v.nz; f += mc_eigen_layer_count(&op->v, k), k++) {
+        const disp_ctx ctx = {g->dx, g->dy, f * op->v.dz,
+                              (f + mc_eigen_layer_count(&op->v, k)) * op->v.dz, op->nu,
+                              mc_eig_line(g), px};
         double *q[6];
         for (int c = 0; c < 6; c++)
             q[c] = op->tab + (size_t)(k * 6 + c) * op->qlen;
@@ -260,6 +262,7 @@ void mc_eigen_disp_destroy(mc_eigen_disp **op)
     mc_free((*op)->tab);
     mc_free((*op)->rows);
     mc_free((*op)->spec);
+    mc_free((*op)->group);
     mc_free(*op);
     *op = NULL;
 }
@@ -277,6 +280,14 @@ int mc_eigen_disp_create(const mc_grid *g, const mc_eigen_volume *v, double nu, 
     op->g = *g;
     op->v = *v;
     op->nu = nu;
+    if (v->group) {
+        if (!(op->group = mc_malloc((size_t)v->nz * sizeof *op->group))) {
+            mc_eigen_disp_destroy(&op);
+            return mc_fail(err, MC_ERR_NOMEM, "eigen displacement: out of memory");
+        }
+        memcpy(op->group, v->group, (size_t)v->nz * sizeof *op->group);
+        op->v.group = op->group;
+    }
     for (size_t r = 0; r < sizeof backends / sizeof backends[0]; r++)
         if (backends[r].id == b)
             op->ops = &backends[r];

@@ -197,13 +197,17 @@ struct mc_eigen_stress {
     mc_grid g;
     mc_eigen_volume v;
     double nu;
+    int nzf;           /* fine layers (= v.nz when uniform; eigen_op.h, graded layers) */
+    int *group;        /* the object's copy of v.group (NULL: uniform) */
+    int *first;        /* nz + 1: first fine layer of each layer, nzf at nz */
+    int *centre;       /* nz (inside first's block): the fine layer of each layer's centre */
     const struct mc_eig_stress_ops *ops; /* the backend's row (eigen_stress_op.c) */
     int qx, qy;        /* quadrant of the tables (direct: the window; fft: half periods + 1) */
     size_t qlen;       /* doubles per quadrant (rounded up to a cache line) */
-    double *love;      /* nz x 6 quadrants [k * 6 + i]: Love's stresses at depth (k + 1/2) dz per
+    double *love;      /* nz x 6 quadrants [k * 6 + i]: Love's stresses at layer k's centre per
                         * unit pressure on one cell (mc_rect_stress_p), or their spectra (fft) */
-    double *s1;        /* direct: 2 nz x 21 quadrants [m * 21 + sym(i, c)], the infinite-space
-                        * kernel at depth offset m dz */
+    double *s1;        /* direct: 2 nzf x 21 quadrants [m * 21 + sym(i, c)], the infinite-space
+                        * kernel at depth offset m dz (fine lattice) */
     double *p3k;       /* direct: nz x 6 quadrants [k * 6 + c], sigma_zz^(1+2)(z = 0) / 2G of
                         * source layer k (mc_eigen_surface_szz12) */
     double *p3;        /* window: p3 of the last apply, Pa */

@@ -76,21 +76,79 @@ static inline const char *mc_eig_stress_points_name(mc_eig_stress_points s)
 /* Cells (of the larger lateral size) from the source within which MC_EIG_CELL_AVERAGE averages. */
 #define MC_EIG_AVERAGE_REACH 3
 
-/* The volume grid under a window of the surface grid. */
+/* The volume grid under a window of the surface grid.
+ *
+ * Graded layers (theory.md §8.8). With group != NULL, layer k is group[k] (odd, >= 1)
+ * consecutive FINE layers of thickness dz: it spans depths [f_k dz, (f_k + group[k]) dz],
+ * f_k = group[0] + .. + group[k - 1], carries one eigenstrain, and its stress is evaluated at its
+ * centre, the centre of its middle fine layer, z = (f_k + (group[k] - 1) / 2 + 1/2) dz. The
+ * operators work on the fine lattice by superposition (a thick cuboid is the sum of its fine
+ * sub-cuboids; the source repeats over them, the output is read at the middle one), so their
+ * kernel tables and depth step are those of the uniform fine volume of sum(group) layers while
+ * the lateral transforms, the fields and the return map scale with nz. group == NULL (or every
+ * entry 1) is the uniform volume, with the same bits. */
 typedef struct {
     int i0, j0; /* first column of the window along x and y (surface grid indices, >= 0) */
     int nx, ny; /* columns of the window along x and y (>= 1, i0 + nx <= grid nx, ...) */
     int nz;     /* layers (>= 1) */
-    double dz;  /* layer thickness, m (finite, > 0) */
+    double dz;  /* (fine) layer thickness, m (finite, > 0) */
     mc_eig_stress_points stress_points; /* the residual stress operator's evaluation (default 0) */
+    const int *group; /* NULL: uniform; else nz odd counts >= 1 of fine layers per layer (graded).
+                       * Borrowed: the operators copy it; whoever holds a volume keeps it alive */
 } mc_eigen_volume;
 
 /* The volume of nz layers of thickness dz under the whole surface grid g. */
 static inline mc_eigen_volume mc_eigen_volume_full(const mc_grid *g, int nz, double dz)
 {
-    mc_eigen_volume v = {0, 0, g->nx, g->ny, nz, dz, MC_EIG_CELL_AVERAGE};
+    mc_eigen_volume v = {0, 0, g->nx, g->ny, nz, dz, MC_EIG_CELL_AVERAGE, NULL};
     return v;
 }
+
+/* Fine layers of layer k, and the first fine layer of layer k (0 <= k <= nz: k = nz gives the
+ * fine layers of the whole volume). */
+static inline int mc_eigen_layer_count(const mc_eigen_volume *v, int k)
+{
+    return v->group ? v->group[k] : 1;
+}
+static inline int mc_eigen_layer_first(const mc_eigen_volume *v, int k)
+{
+    if (!v->group)
+        return k;
+    int f = 0;
+    for (int q = 0; q < k; q++)
+        f += v->group[q];
+    return f;
+}
+/* The fine layer at the centre of layer k (its evaluation point). */
+static inline int mc_eigen_layer_centre(const mc_eigen_volume *v, int k)
+{
+    return mc_eigen_layer_first(v, k) + (mc_eigen_layer_count(v, k) - 1) / 2;
+}
+/* Depth of the centre of layer k and its thickness, m ((k + 1/2) dz and dz when uniform). */
+static inline double mc_eigen_layer_depth(const mc_eigen_volume *v, int k)
+{
+    return (mc_eigen_layer_centre(v, k) + 0.5) * v->dz;
+}
+static inline double mc_eigen_layer_thickness(const mc_eigen_volume *v, int k)
+{
+    return mc_eigen_layer_count(v, k) * v->dz;
+}
+/* Depth of the bottom of the volume, m. */
+static inline double mc_eigen_volume_depth(const mc_eigen_volume *v)
+{
+    return mc_eigen_layer_first(v, v->nz) * v->dz;
+}
+
+/* 1 when a and b are the same volume (fields, and the layering by value). */
+int mc_eigen_volume_equal(const mc_eigen_volume *a, const mc_eigen_volume *b);
+
+/* Graded layering (theory.md §8.8): fine layers of dz down to the depth fine_depth (m, >= 0),
+ * below it each layer as thick as the largest odd number of fine layers not above
+ * ratio x (the depth of its top), at least 1, and never thinner than the layer above; layers
+ * until the volume reaches depth (m), the last one cut to end within one dz of
+ * ceil(depth / dz) dz (the fine layers of the uniform volume: the depth step costs by them). Writes the counts into group (room for max entries) and
+ * returns the number of layers nz; 0 when max is too small. ratio in (0, 1]. */
+int mc_eigen_grade(double dz, double depth, double fine_depth, double ratio, int *group, int max);
 
 /* ---- eigenstrain -> surface normal residual displacement (theory.md §8.1) --------------------- */
 

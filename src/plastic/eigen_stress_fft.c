@@ -119,7 +119,7 @@ static void scatter_blocks(const mc_eigen_stress *op, const sfft *f, double *con
  * signs; Love's tables are transformed in place. */
 static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
 {
-    const int nz = op->v.nz, Nz = f->Nz, ch = f->ch, np = (Nz + 1) * MC_EIG_NSYM;
+    const int nz = op->v.nz, nzf = op->nzf, Nz = f->Nz, ch = f->ch, np = (Nz + 1) * MC_EIG_NSYM;
     const size_t ql = op->qlen, nblk = (size_t)op->qy * f->nch;
     mc_eig_quad quad;
     int rc = mc_eig_periodic(&op->g)
@@ -147,8 +147,8 @@ static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
             /* times w_min(i,c): the stored matrix is then symmetric, S_ic = V_ic / w_i */
             sign[n] = xysign(i, c) * zsign(i, c) * mc_eig_weight(i);
         }
-    /* planes m >= 2 nz stay zero (calloc) */
-    for (int m = 0; m < 2 * nz; m++) {
+    /* the fine lattice's offsets; planes m >= 2 nzf stay zero (calloc) */
+    for (int m = 0; m < 2 * nzf; m++) {
         mc_eig_s1_fill(op, m, q);
 #pragma omp parallel for schedule(dynamic, 1)
         for (int n = 0; n < MC_EIG_NSYM; n++)
@@ -212,8 +212,9 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory");
     op->fft = f;
     const int nz = op->v.nz, wy = op->v.ny;
-    /* depth half period: offsets up to 2 nz - 1 must not meet their images (file comment) */
-    f->Nz = mc_fftsize_good(2 * nz);
+    /* depth half period: offsets up to 2 nzf - 1 of the fine lattice must not meet their images
+     * (file comment) */
+    f->Nz = mc_fftsize_good(2 * op->nzf);
     f->L = 2 * f->Nz;
     int rc = mc_eig_fft_create(&f->fft, size_x(op), size_y(op), 0, wy, wy, err);
     if (rc)
@@ -291,7 +292,7 @@ void mc_eig_stress_fft_free(mc_eigen_stress *op)
 DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, int ky, int chunk,
                        fftw_complex *zb)
 {
-    const int nz = op->v.nz, Nz = f->Nz, L = f->L, ch = f->ch, cs = f->cs;
+    const int nz = op->v.nz, nzf = op->nzf, Nz = f->Nz, L = f->L, ch = f->ch, cs = f->cs;
     const int hx = f->fft.hx, ty = f->fft.ty, my = op->qy - 1, mirror = ky > my, kx0 = chunk * ch;
     const int len = hx - kx0 < ch ? hx - kx0 : ch;
     const size_t sl = f->fft.speclen, at = (size_t)ky * hx + kx0; /* spectrum index */
@@ -307,16 +308,19 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
         rot[c] = mc_eig_odd_x(c) + mc_eig_odd_y(c);
         sy[c] = (mirror && mc_eig_odd_y(c)) ? -1.0 : 1.0;
     }
-    /* gather: layers q < nz and their mirrors at L - 1 - q (r_c = -1 for yz, xz); p3 / 2G */
+    /* gather: the fine layers q < nzf and their mirrors at L - 1 - q (r_c = -1 for yz, xz),
+     * each layer's spectrum repeated over its fine layers (graded layers, eigen_op.h); p3 / 2G
+     * once per layer (its table is the whole layer's) */
     double pr[CHUNK_TARGET] = {0.0}, pi[CHUNK_TARGET] = {0.0};
     for (int c = 0; c < 6; c++) {
         fftw_complex *a = A + c * cstride;
         const double r = mc_eig_odd_z(c) ? -1.0 : 1.0;
-        memset(a + (size_t)nz * cs, 0, (size_t)(L - 2 * nz) * cs * sizeof *a);
-        for (int q = 0; q < nz; q++) {
-            fftw_complex *g = a + (size_t)q * cs, *gm = a + (size_t)(L - 1 - q) * cs;
-            const fftw_complex *e = f->E + (size_t)(c * nz + q) * sl + at;
-            const double *P = Pb + (size_t)(q * 6 + c) * ch;
+        memset(a + (size_t)nzf * cs, 0, (size_t)(L - 2 * nzf) * cs * sizeof *a);
+        for (int k = 0; k < nz; k++) {
+            const int q0 = op->first[k], q1 = op->first[k + 1];
+            fftw_complex *g = a + (size_t)q0 * cs, *gm = a + (size_t)(L - 1 - q0) * cs;
+            const fftw_complex *e = f->E + (size_t)(c * nz + k) * sl + at;
+            const double *P = Pb + (size_t)(k * 6 + c) * ch;
             for (int x = 0; x < len; x++) {
                 double re = sy[c] * e[x][0], im = sy[c] * e[x][1];
                 mc_eig_rot(&re, &im, rot[c]);
@@ -329,6 +333,10 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
             }
             for (int x = len; x < cs; x++)
                 g[x][0] = g[x][1] = gm[x][0] = gm[x][1] = 0.0;
+            for (int q = q0 + 1; q < q1; q++) { /* the rest of a graded layer */
+                memcpy(a + (size_t)q * cs, g, (size_t)cs * sizeof *a);
+                memcpy(a + (size_t)(L - 1 - q) * cs, gm, (size_t)cs * sizeof *a);
+            }
         }
         fftw_execute_dft(f->zf, a, a);
     }
@@ -402,9 +410,9 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
         fftw_complex *g = B + i * cstride;
         const double scale = 1.0 / (L * mc_eig_weight(i)); /* the DFT pair; V's weight */
         fftw_execute_dft(f->zi, g, g);
-        for (int k = 0; k < nz; k++) {
+        for (int k = 0; k < nz; k++) { /* read at each layer's centre */
             fftw_complex *e = f->E + (size_t)(i * nz + k) * sl + at;
-            const fftw_complex *y = g + (size_t)k * cs;
+            const fftw_complex *y = g + (size_t)op->centre[k] * cs;
             for (int x = 0; x < len; x++) {
                 double re = scale * sy[i] * y[x][0], im = scale * sy[i] * y[x][1];
                 mc_eig_rot(&re, &im, rot[i]);

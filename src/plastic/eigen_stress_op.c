@@ -25,7 +25,9 @@
 
 typedef struct {
     double dx, dy, dz, nu;
-    int k;     /* depth offset m (S1) or layer (P, L) */
+    int k;     /* depth offset m (S1), fine layer of the observation (L) or first fine layer of
+                * the source (P) */
+    int k2;    /* P: the fine layer below the source's last (k + 1 when uniform) */
     int line;  /* bars along y (mc_eig_line): the bar kernels, only dj = 0 is used */
     int layer; /* periodic grids: the limit of the image sum is the layer (x periodic), else the
                 * bar (y alone periodic; theory.md §8.6) */
@@ -88,12 +90,12 @@ static void p3_kernel(int di, int dj, const void *ctx, double *out)
 {
     const table_ctx *t = ctx;
     if (t->line) {
-        mc_eigen_surface_szz12_bar(di * t->dx, 0.5 * t->dx, t->k * t->dz, (t->k + 1) * t->dz,
+        mc_eigen_surface_szz12_bar(di * t->dx, 0.5 * t->dx, t->k * t->dz, t->k2 * t->dz,
                                    t->nu, out);
         return;
     }
     mc_eigen_surface_szz12(di * t->dx, dj * t->dy, 0.5 * t->dx, 0.5 * t->dy, t->k * t->dz,
-                           (t->k + 1) * t->dz, t->nu, out);
+                           t->k2 * t->dz, t->nu, out);
 }
 
 /* the limits of the image sums on periodic grids (mc_eig_fill_images) */
@@ -122,16 +124,15 @@ static void p3_limit(int di, int dj, const void *ctx, double *out)
         memset(out, 0, 6 * sizeof *out);
         return;
     }
-    mc_eigen_surface_szz12_bar(di * t->dx, 0.5 * t->dx, t->k * t->dz, (t->k + 1) * t->dz, t->nu,
-                               out);
+    mc_eigen_surface_szz12_bar(di * t->dx, 0.5 * t->dx, t->k * t->dz, t->k2 * t->dz, t->nu, out);
 }
 
 /* the image sums of a periodic grid, or the plain table */
-static void fill_table(const mc_eigen_stress *op, int k, int ncomp, const int *par, mc_eig_kfn fn,
-                       mc_eig_kfn limit, double *const *q)
+static void fill_table(const mc_eigen_stress *op, int k, int k2, int ncomp, const int *par,
+                       mc_eig_kfn fn, mc_eig_kfn limit, double *const *q)
 {
     const mc_grid *g = &op->g;
-    const table_ctx ctx = {g->dx, g->dy, op->v.dz, op->nu, k, mc_eig_line(g), mc_eig_per_x(g),
+    const table_ctx ctx = {g->dx, g->dy, op->v.dz, op->nu, k, k2, mc_eig_line(g), mc_eig_per_x(g),
                            op->v.stress_points == MC_EIG_CELL_AVERAGE};
     if (!mc_eig_periodic(g)) {
         mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, ncomp, par, fn, &ctx, q);
@@ -189,7 +190,7 @@ void mc_eig_s1_fill(const mc_eigen_stress *op, int m, double *const q[MC_EIG_NSY
     for (int i = 0; i < 6; i++)
         for (int c = i; c < 6; c++)
             par[mc_eig_sym(i, c)] = mc_eig_pair_par(i, c);
-    fill_table(op, m, MC_EIG_NSYM, par, s1_kernel, s1_limit, q);
+    fill_table(op, m, m + 1, MC_EIG_NSYM, par, s1_kernel, s1_limit, q);
     /* pairs odd in z vanish at depth offset 0 (the fft backend's DST-I ignores that plane) */
     for (int i = 0; m == 0 && i < 6; i++)
         for (int c = i; c < 6; c++)
@@ -202,7 +203,8 @@ void mc_eig_p3_fill(const mc_eigen_stress *op, int k, double *const q[6])
     int par[6];
     for (int c = 0; c < 6; c++)
         par[c] = mc_eig_par(c);
-    fill_table(op, k, 6, par, p3_kernel, p3_limit, q);
+    /* a graded layer: one cuboid of its whole thickness (theory.md §8.8) */
+    fill_table(op, op->first[k], op->first[k + 1], 6, par, p3_kernel, p3_limit, q);
 }
 
 void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6])
@@ -210,8 +212,9 @@ void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6])
     int par[6];
     for (int c = 0; c < 6; c++)
         par[c] = mc_eig_par(c);
-    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, k, mc_eig_line(&op->g), 0,
-                           op->v.stress_points == MC_EIG_CELL_AVERAGE};
+    /* at the centre of layer k: the centre of its middle fine layer */
+    const table_ctx ctx = {op->g.dx, op->g.dy, op->v.dz, op->nu, op->centre[k], op->centre[k] + 1,
+                           mc_eig_line(&op->g), 0, op->v.stress_points == MC_EIG_CELL_AVERAGE};
     mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, 6, par, love_kernel, &ctx, q);
 }
 
@@ -222,11 +225,12 @@ void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6])
 static void love_average_periodic(mc_eigen_stress *op, int k, int ux, int uy)
 {
     const mc_grid *g = &op->g;
-    const table_ctx avg = {g->dx, g->dy, op->v.dz, op->nu, k, mc_eig_line(g), 0, 1};
+    const int kf = op->centre[k]; /* the fine layer of the evaluation */
+    const table_ctx avg = {g->dx, g->dy, op->v.dz, op->nu, kf, kf + 1, mc_eig_line(g), 0, 1};
     table_ctx ctr = avg;
     ctr.average = 0;
     const double reach = MC_EIG_AVERAGE_REACH * fmax(g->dx, mc_eig_line(g) ? g->dx : g->dy);
-    if (k * op->v.dz > reach)
+    if (kf * op->v.dz > reach)
         return;
     const int rx = (int)(reach / g->dx) + 1, ry = mc_eig_line(g) ? 0 : (int)(reach / g->dy) + 1;
     const int px = mc_eig_per_x(g), py = mc_eig_per_y(g);
@@ -276,7 +280,7 @@ static int love_fill_periodic(mc_eigen_stress *op, mc_error *err)
         double *t6[6];
         for (int c = 0; c < 6; c++)
             t6[c] = tab + (size_t)c * tx * ty;
-        rc = mc_stress_tables_build(tb, MC_TRACTION_P, (k + 0.5) * op->v.dz, t6, err);
+        rc = mc_stress_tables_build(tb, MC_TRACTION_P, (op->centre[k] + 0.5) * op->v.dz, t6, err);
         for (int c = 0; rc == MC_OK && c < 6; c++) {
             double *q = op->love + (size_t)(k * 6 + c) * op->qlen;
             /* exact zeros where the kernel is odd: offset 0, and n/2 of an even period (the
@@ -347,8 +351,9 @@ static void direct_apply(mc_eigen_stress *op, const double *const eps[6], double
         const int k = row / wy, j = row % wy;
         for (int i = 0; i < wx; i++) {
             double acc[6] = {0.0};
+            const int kf = op->centre[k]; /* the observation's fine layer */
             for (int kp = 0; kp < nz; kp++) {
-                const int m1 = k >= kp ? k - kp : kp - k, m2 = k + kp + 1;
+                const int f0 = op->first[kp], f1 = op->first[kp + 1]; /* the source's fine layers */
                 for (int js = 0; js < wy; js++)
                     for (int is = 0; is < wx; is++) {
                         const int di = mc_eig_wrap(i - is, wx, px);
@@ -362,13 +367,21 @@ static void direct_apply(mc_eigen_stress *op, const double *const eps[6], double
                             for (int o = 0; o < 6; o++) {
                                 const int n = mc_eig_sym(o, c);
                                 const int par = mc_eig_pair_par(o, c);
-                                /* S1 below the source (k < k') by the parity in z */
-                                const double z1 = (k < kp && (mc_eig_odd_z(o) ^ mc_eig_odd_z(c)))
-                                                      ? -1.0 : 1.0;
-                                const double t1 = op->s1[(size_t)(m1 * MC_EIG_NSYM + n) * ql + at];
-                                const double t2 = op->s1[(size_t)(m2 * MC_EIG_NSYM + n) * ql + at];
-                                acc[o] += mc_eig_sym_factor(o, c) * par_sign(par, di, dj) *
-                                          (z1 * t1 + rc * t2) * e;
+                                /* a graded source: the sum of its fine sub-cuboids */
+                                double t = 0.0;
+                                for (int q = f0; q < f1; q++) {
+                                    const int m1 = kf >= q ? kf - q : q - kf, m2 = kf + q + 1;
+                                    /* S1 below the source (k < k') by the parity in z */
+                                    const double z1 =
+                                        (kf < q && (mc_eig_odd_z(o) ^ mc_eig_odd_z(c))) ? -1.0
+                                                                                        : 1.0;
+                                    const double t1 =
+                                        op->s1[(size_t)(m1 * MC_EIG_NSYM + n) * ql + at];
+                                    const double t2 =
+                                        op->s1[(size_t)(m2 * MC_EIG_NSYM + n) * ql + at];
+                                    t += z1 * t1 + rc * t2;
+                                }
+                                acc[o] += mc_eig_sym_factor(o, c) * par_sign(par, di, dj) * t * e;
                             }
                         }
                     }
@@ -411,16 +424,17 @@ static void direct_size(mc_eigen_stress *op)
     op->qy = mc_eig_per_y(&op->g) ? op->g.ny / 2 + 1 : op->v.ny;
 }
 
-/* the tables in space: S1 at depth offsets 0 .. 2 nz - 1 and p3 per source layer */
+/* the tables in space: S1 at depth offsets 0 .. 2 nzf - 1 of the fine lattice and p3 per source
+ * layer */
 static int direct_prepare(mc_eigen_stress *op, mc_error *err)
 {
-    const int nz = op->v.nz;
-    const size_t ql = op->qlen, n1 = 2 * (size_t)nz * MC_EIG_NSYM * ql, n2 = 6 * (size_t)nz * ql;
+    const int nz = op->v.nz, nzf = op->nzf;
+    const size_t ql = op->qlen, n1 = 2 * (size_t)nzf * MC_EIG_NSYM * ql, n2 = 6 * (size_t)nz * ql;
     if (!(op->s1 = mc_malloc(n1 * sizeof *op->s1)) || !(op->p3k = mc_malloc(n2 * sizeof *op->p3k)))
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for %zu tables",
                        (n1 + n2) / ql);
     op->bytes += (n1 + n2) * sizeof(double);
-    for (int m = 0; m < 2 * nz; m++) {
+    for (int m = 0; m < 2 * nzf; m++) {
         double *q[MC_EIG_NSYM];
         for (int n = 0; n < MC_EIG_NSYM; n++)
             q[n] = op->s1 + (size_t)(m * MC_EIG_NSYM + n) * ql;
@@ -457,6 +471,8 @@ void mc_eigen_stress_destroy(mc_eigen_stress **op)
     mc_free((*op)->love);
     mc_free((*op)->p3);
     mc_free((*op)->work);
+    mc_free((*op)->group);
+    mc_free((*op)->first);
     mc_free(*op);
     *op = NULL;
 }
@@ -474,6 +490,23 @@ int mc_eigen_stress_create(const mc_grid *g, const mc_eigen_volume *v, double nu
     op->g = *g;
     op->v = *v;
     op->nu = nu;
+    /* the layering: the object's copy of the groups, the first fine layer of each layer (and
+     * the count at nz) and the fine layer of each layer's centre */
+    op->first = mc_malloc((2 * (size_t)v->nz + 1) * sizeof *op->first);
+    if (!op->first || (v->group && !(op->group = mc_malloc((size_t)v->nz * sizeof *op->group)))) {
+        mc_eigen_stress_destroy(&op);
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory");
+    }
+    if (v->group) {
+        memcpy(op->group, v->group, (size_t)v->nz * sizeof *op->group);
+        op->v.group = op->group;
+    }
+    op->centre = op->first + v->nz + 1;
+    for (int k = 0; k <= v->nz; k++)
+        op->first[k] = k == 0 ? 0 : op->first[k - 1] + mc_eigen_layer_count(v, k - 1);
+    for (int k = 0; k < v->nz; k++)
+        op->centre[k] = mc_eigen_layer_centre(v, k);
+    op->nzf = op->first[v->nz];
     for (size_t r = 0; r < sizeof backends / sizeof backends[0]; r++)
         if (backends[r].id == b)
             op->ops = &backends[r];

@@ -69,7 +69,7 @@ int mc_plastic_ops_create(const mc_grid *g, const mc_eigen_volume *v, double nu,
     if (!depths)
         return mc_fail(err, MC_ERR_NOMEM, "plastic operators: out of memory");
     for (int k = 0; k < v->nz; k++)
-        depths[k] = (k + 0.5) * v->dz;
+        depths[k] = mc_eigen_layer_depth(v, k);
     mc_stress_options so = {.kernel = MC_STRESS_PATCH,
                             .nu = nu,
                             .nlayers = v->nz,
@@ -88,6 +88,14 @@ int mc_plastic_ops_create(const mc_grid *g, const mc_eigen_volume *v, double nu,
     }
     ops->g = *g;
     ops->volume = *v;
+    if (v->group) {
+        if (!(ops->group = mc_malloc((size_t)v->nz * sizeof *ops->group))) {
+            mc_plastic_ops_destroy(ops);
+            return mc_fail(err, MC_ERR_NOMEM, "plastic operators: out of memory");
+        }
+        memcpy(ops->group, v->group, (size_t)v->nz * sizeof *ops->group);
+        ops->volume.group = ops->group;
+    }
     ops->nu = nu;
     ops->backend = b;
     ops->friction = friction != 0;
@@ -99,6 +107,8 @@ void mc_plastic_ops_destroy(mc_plastic_ops *ops)
     mc_stress_destroy(&ops->elastic);
     mc_eigen_disp_destroy(&ops->disp);
     mc_eigen_stress_destroy(&ops->resid);
+    mc_free(ops->group);
+    ops->group = NULL;
     memset(ops, 0, sizeof *ops);
 }
 
@@ -153,14 +163,14 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
         return mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for %ld volume cells",
                        c->nvol);
     for (int k = 0; k < pb->volume.nz; k++)
-        c->depths[k] = (k + 0.5) * pb->volume.dz;
+        c->depths[k] = mc_eigen_layer_depth(&pb->volume, k);
     const mc_plastic_ops *ops = pb->ops;
     int rc = MC_OK;
     if (ops) {
         if (!ops->elastic || !ops->disp || !ops->resid || !(ops->g.nx == g->nx) ||
             !(ops->g.ny == g->ny) || !(ops->g.dx == g->dx) || !(ops->g.dy == g->dy) ||
             ops->g.periodic_x != g->periodic_x || ops->g.periodic_y != g->periodic_y ||
-            memcmp(&ops->volume, &pb->volume, sizeof ops->volume) != 0 ||
+            !mc_eigen_volume_equal(&ops->volume, &pb->volume) ||
             !(ops->nu == pb->nu) || ops->backend != pb->backend ||
             (pb->friction != 0 && !ops->friction))
             return mc_fail(err, MC_ERR_INPUT,
@@ -385,7 +395,8 @@ static void step_record(const loop_ctx *c, const mc_contact_summary *cs, const d
     long at = -1;
     for (long v = 0; v < c->nvol; v++) {
         if (peq[v] > 0)
-            st->plastic_volume += g->dx * g->dy * pb->volume.dz;
+            st->plastic_volume +=
+                g->dx * g->dy * mc_eigen_layer_thickness(&pb->volume, (int)(v / (c->nwx * c->nwy)));
         if (peq[v] > st->peq_max) {
             st->peq_max = peq[v];
             at = v;
@@ -396,7 +407,7 @@ static void step_record(const loop_ctx *c, const mc_contact_summary *cs, const d
         long i = at % c->nwx, j = (at / c->nwx) % c->nwy, k = at / (c->nwx * c->nwy);
         st->peq_at[0] = mc_grid_x(g, (int)(i + pb->volume.i0));
         st->peq_at[1] = mc_grid_y(g, (int)(j + pb->volume.j0));
-        st->peq_at[2] = (k + 0.5) * pb->volume.dz;
+        st->peq_at[2] = mc_eigen_layer_depth(&pb->volume, (int)k);
     }
     st->residual_max = 0;
     for (size_t i = 0; i < c->ncell; i++)

@@ -36,7 +36,8 @@ typedef struct {
     mc_eigen_disp *disp;
     mc_eigen_stress *resid;
     mc_grid g;
-    mc_eigen_volume volume;
+    mc_eigen_volume volume;    /* its group points to the copy below */
+    int *group;                /* the layering's copy (NULL: uniform) */
     double nu;
     mc_backend backend;
     int friction;              /* 1: the elastic plan takes the friction traction q_x too */

@@ -443,6 +443,11 @@ row lube_radii_macro     o 1 "lube_ok.ini:19:" \
 row margin_doubly_periodic o 1 "--set plasticity.margin" \
     "[plasticity] margin has no effect on a grid periodic along x and y" \
     -- plastic_line.ini --out o --set mesh.periodic_x=yes --set mesh.ny=2 --set plasticity.margin=40um
+row fine_depth_uniform   o 1 "--set plasticity.fine_depth" \
+    "[plasticity] fine_depth has no effect with layering = auto and a given depth" \
+    -- plastic_line.ini --out o --set plasticity.depth=10um --set plasticity.fine_depth=4um
+row grading_even         o 1 "--set plasticity.grading" "[plasticity] grading" \
+    -- plastic_line.ini --out o --set plasticity.layering=graded --set plasticity.grading=1.5
 # messages name what the user wrote: heights that would overflow the solve name the data file
 printf '1 2 3\n4 5 6\n7 8 1e300\n' > huge_heights.txt
 row huge_heights o 1 "[roughness] file: huge_heights.txt: the height 1e+300 m at row 2, column 2" \
