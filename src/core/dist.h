@@ -54,4 +54,24 @@ double mc_dist_clock(void);
 /* The maximum over the ranks of each of v[0..n) (unchanged without a communicator). Collective. */
 void mc_dist_max(double *v, int n);
 
+/* ---- fields split by rows (the slabs of operator/dfft.h) ----------------------------------
+ * A field of ny rows of nx values whose rows r0 .. r0 + nr - 1 this rank computes (the ranks'
+ * row ranges ascending with the rank, together 0 .. ny - 1, as FFTW-MPI hands them out). */
+
+/* Sums over such a field that give the same bits on any number of ranks and threads: the caller
+ * sums each of its rows in index order, m quantities per row, into part[r * m + k] (its row
+ * r0 + r); the row sums of all ranks are gathered into all (room for ny * m doubles) and added in
+ * row order: out[k] = sum over the ny rows. Without a communicator part holds all the rows and
+ * all is not used. Collective. */
+int mc_dist_row_totals(const double *part, int nr, int ny, int m, double *all, double *out);
+
+/* Every rank's rows of v (ny * nx values) to every rank: v whole on each. Collective. */
+int mc_dist_gather_rows(double *v, int r0, int nr, int nx);
+int mc_dist_gather_rows_u8(unsigned char *v, int r0, int nr, int nx);
+
+/* The row-split calls return 1, or 0 (the totals NaN, nothing gathered) when the run has more
+ * than MC_DIST_MAX_RANKS ranks or a count exceeds MPI's int counts (the front end refuses such
+ * runs first). */
+#define MC_DIST_MAX_RANKS 4096
+
 #endif
