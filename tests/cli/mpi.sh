@@ -2,11 +2,14 @@
 # The MPI build (bin/microcontact-mpi, README "Running on a cluster") under mpirun:
 #  1. the distributed elastic operator against the direct sum and the serial fft operator, with
 #     1, 2, 3 and 4 processes, and the same bits (hashes) for every process count;
-#  2. whole runs with 2 and 3 processes (3: an uneven split) against the serial program: the
-#     same files, pressure, gap, displacement and the stresses to <= 1e-12 relative (in fact
-#     the same bits: the one-line transforms of operator/dfft.c give the serial ones here), the
-#     contact numbers of summary.json (load, approach, area, p_max, iterations) alike; P = 2 and
-#     P = 3 the same bits;
+#  2. whole runs with 1, 2 and 3 processes (3: an uneven split) against the serial program: the
+#     same files, pressure, gap, displacement and the stresses to <= 1e-12 relative (the one-line
+#     transforms of operator/dfft.c differ from the serial program's plans by round-off only), the
+#     contact numbers of summary.json (load, approach, area, p_max, iterations) alike; and P = 1,
+#     2 and 3 the same bits: the contact solvers keep to their rank's rows and add their sums row
+#     by row in row order over the ranks (contact_internal.h, core/dist.h). On the solver paths
+#     cg and pk, free and periodic grids, with a pressure cap (cg's nested solve) and with a
+#     lubricant (the volume equilibrium's repeated solves);
 #  3. what is not distributed yet is refused with P > 1 (exit 2, the key named, no directory).
 #   tests/cli/mpi.sh PROGRAM MPI_PROGRAM MPI_OPERATOR_TEST NPY_COMPARE
 set -u
@@ -52,7 +55,7 @@ runcase() { # NAME CASE SET...: serial, then 2 and 3 processes
     name=$1 case=$2; shift 2
     "$PROG" run "$case" --out "$T/$name-s" --quiet "$@" > "$T/$name-s.log" 2>&1 ||
         { bad "$name: the serial run failed"; cat "$T/$name-s.log"; return; }
-    for np in 2 3; do
+    for np in 1 2 3; do
         out="$T/$name-$np"
         if ! $MPIRUN -np $np "$MPROG" run "$case" --out "$out" --quiet "$@" > "$out.log" 2>&1; then
             bad "$name, $np processes: the run failed"; cat "$out.log"; continue
@@ -93,12 +96,14 @@ runcase() { # NAME CASE SET...: serial, then 2 and 3 processes
             fi
         done
     done
-    for f in pressure gap; do
-        if cmp -s "$T/$name-2/$f.npy" "$T/$name-3/$f.npy"; then
-            ok "$name: $f.npy the same bits with 2 and 3 processes"
-        else
-            bad "$name: $f.npy differs between 2 and 3 processes"
-        fi
+    for f in pressure gap displacement; do
+        for np in 2 3; do
+            if cmp -s "$T/$name-1/$f.npy" "$T/$name-$np/$f.npy"; then
+                ok "$name: $f.npy the same bits with 1 and $np processes"
+            else
+                bad "$name: $f.npy differs between 1 and $np processes: $("$CMP" "$T/$name-1/$f.npy" "$T/$name-$np/$f.npy" 1)"
+            fi
+        done
     done
 }
 # the Hertz point (free grid, odd size) with a few stress layers; a rough sphere at 128^2 with
@@ -107,6 +112,11 @@ runcase hertz cases/hertz_point.ini --set stress.layers=4
 runcase rough cases/rough_sphere.ini --set mesh.nx=128 --set mesh.ny=128 --set stress.layers=3 \
     --set stress.depth_max=20um
 runcase lube cases/lubricated_equilibrium.ini
+# the other solver paths: plain Polonsky-Keer on a free grid and on a periodic lubricated one
+# (its approach-free load balance, the lower bound); cg with a pressure cap (the nested solve)
+runcase pk cases/hertz_point.ini --set solver.method=pk
+runcase pk-periodic cases/lubricated_equilibrium.ini --set solver.method=pk
+runcase cap cases/pressure_cap.ini
 
 # ---- 3. refused with more than one process ----------------------------------------------------
 refused() { # NAME WANT CASE SET...: exit ${CODE:-2}, the message naming WANT, no output directory
