@@ -3,9 +3,10 @@
  * A build with -DMC_MPI (bin/microcontact-mpi, README "Running on a cluster") runs as P
  * processes under mpirun. The front end (cli/) initialises MPI and hands the run's communicator
  * over with mc_dist_set; the numerics ask for it here, never for the scene: today the elastic
- * operator's fft backend (operator/dfft.h) splits its transforms over the ranks, every other
- * stage computes the same replicated arrays on every rank. Without MC_MPI, and before
- * mc_dist_set, there is one rank and nothing is distributed.
+ * operator's fft backend (operator/dfft.h) splits its transforms over the ranks, the contact
+ * solvers' iterations keep to the operator's rows (contact_internal.h, the row-split calls
+ * below), every other stage computes the same replicated arrays on every rank. Without MC_MPI,
+ * and before mc_dist_set, there is one rank and nothing is distributed.
  *
  * Process-wide like the thread count (threads.h): set once by the front end, read by the plans;
  * every rank must make the same calls in the same order (the transforms are collective).
