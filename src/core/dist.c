@@ -2,11 +2,32 @@
 #include "core/dist.h"
 
 #include <math.h>
+#include <time.h>
 
-static double comm_seconds;
+static double comm_seconds, comm_cpu;
 
 double mc_dist_comm_seconds(void) { return comm_seconds; }
+double mc_dist_comm_cpu_seconds(void) { return comm_cpu; }
 void mc_dist_comm_add(double s) { comm_seconds += s; }
+
+double mc_dist_cpu_seconds(void)
+{
+    struct timespec t;
+    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) != 0)
+        return 0;
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+mc_dist_mark mc_dist_comm_begin(void)
+{
+    return (mc_dist_mark){mc_dist_clock(), mc_dist_cpu_seconds()};
+}
+
+void mc_dist_comm_end(mc_dist_mark m)
+{
+    comm_seconds += mc_dist_clock() - m.wall;
+    comm_cpu += mc_dist_cpu_seconds() - m.cpu;
+}
 
 #ifdef MC_MPI
 double mc_dist_clock(void) { return MPI_Wtime(); }
@@ -51,11 +72,11 @@ void mc_dist_bcast(double *v, size_t n, int root)
 {
     if (run_comm == MPI_COMM_NULL)
         return;
-    const double t0 = MPI_Wtime();
+    const mc_dist_mark t0 = mc_dist_comm_begin();
     const size_t chunk = (size_t)1 << 30; /* MPI counts are int */
     for (size_t at = 0; at < n; at += chunk)
         MPI_Bcast(v + at, (int)(n - at < chunk ? n - at : chunk), MPI_DOUBLE, root, run_comm);
-    comm_seconds += MPI_Wtime() - t0;
+    mc_dist_comm_end(t0);
 }
 
 void mc_dist_max(double *v, int n)
@@ -89,11 +110,11 @@ static int gather_rows(void *v, MPI_Datatype t, int r0, int nr, int nx)
 {
     if (run_comm == MPI_COMM_NULL)
         return 1;
-    const double t0 = MPI_Wtime();
+    const mc_dist_mark t0 = mc_dist_comm_begin();
     const int ok = row_layout(r0, nr, nx);
     if (ok)
         MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, v, counts, displs, t, run_comm);
-    comm_seconds += MPI_Wtime() - t0;
+    mc_dist_comm_end(t0);
     return ok;
 }
 
@@ -112,7 +133,7 @@ int mc_dist_row_totals(const double *part, int nr, int ny, int m, double *all, d
     const double *rows = part;
     int ok = 1;
     if (run_comm != MPI_COMM_NULL) {
-        const double t0 = MPI_Wtime();
+        const mc_dist_mark t0 = mc_dist_comm_begin();
         int r0 = 0; /* the ranks' rows ascend with the rank: the rows of the ranks before */
         MPI_Exscan(&nr, &r0, 1, MPI_INT, MPI_SUM, run_comm);
         if (mc_dist_rank() == 0)
@@ -120,7 +141,7 @@ int mc_dist_row_totals(const double *part, int nr, int ny, int m, double *all, d
         ok = row_layout(r0, nr, m);
         if (ok)
             MPI_Allgatherv(part, nr * m, MPI_DOUBLE, all, counts, displs, MPI_DOUBLE, run_comm);
-        comm_seconds += MPI_Wtime() - t0;
+        mc_dist_comm_end(t0);
         rows = all;
         nr = ny;
     }

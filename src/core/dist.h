@@ -49,6 +49,21 @@ void mc_dist_bcast(double *v, size_t n, int root);
 double mc_dist_comm_seconds(void);
 void mc_dist_comm_add(double s);
 
+/* CPU seconds of this process (all its threads) so far, and those spent in the communication
+ * steps timed by mc_dist_comm_begin / _end (the MPI library's polling while it waits included):
+ * the CPU outside communication is the process's work, a figure the machine's load does not
+ * inflate as it does the wall time. */
+double mc_dist_cpu_seconds(void);
+double mc_dist_comm_cpu_seconds(void);
+
+/* A communication step: mc_dist_comm_end(mc_dist_comm_begin() before it) adds its wall time to
+ * mc_dist_comm_seconds and its CPU time to mc_dist_comm_cpu_seconds. */
+typedef struct {
+    double wall, cpu;
+} mc_dist_mark;
+mc_dist_mark mc_dist_comm_begin(void);
+void mc_dist_comm_end(mc_dist_mark m);
+
 /* Wall clock of MPI (MPI_Wtime; 0 without MPI), for mc_dist_comm_add. */
 double mc_dist_clock(void);
 
