@@ -191,8 +191,12 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         if (nchanged > 0) {
             mc_contact_share_mask(s, S); /* the preconditioner's box spans the ranks */
             rc = mc_precond_set_mask(s->pc, S, err);
-            if (rc != MC_OK)
-                return rc;
+            /* a plan that failed on one rank fails the solve on all (they must stay in step) */
+            if (mc_contact_max(s, rc != MC_OK) > 0)
+                return rc != MC_OK ? rc
+                                   : mc_fail(err, MC_ERR_NOMEM,
+                                             "contact cg: another process could not plan the "
+                                             "preconditioner");
             memcpy(S_prev, S, n);
             if (nchanged > RESTART_FRAC * m)
                 restart = 1;
