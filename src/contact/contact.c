@@ -55,9 +55,9 @@ void mc_contact_totals(mc_contact_solver *s, int m, double *out)
         mc_dist_row_totals(s->rpart, s->nr, s->g.ny, m, s->rall, out);
         return;
     }
-    for (int k = 0; k < m; k++) { /* the same order without ranks */
+    for (int k = 0; k < m; k++) { /* without ranks: the blocks in order, as core/psum.h */
         double v = 0;
-        for (int r = 0; r < s->nr; r++)
+        for (long r = 0; r < s->ps.nb; r++)
             v += s->rpart[(size_t)r * m + k];
         out[k] = v;
     }
@@ -215,6 +215,7 @@ int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_
     s->dist = mc_operator_rows(K, &s->r0, &s->nr);
     s->lo = (size_t)s->r0 * (size_t)g->nx;
     s->hi = s->lo + (size_t)s->nr * (size_t)g->nx;
+    s->ps = mc_psum_blocks(n);
     /* plow, capq and ulow (K p_lower) are allocated by the first solve that needs them */
     double **arrays[] = {&s->htil, &s->q, &s->u, &s->gap, &s->z, &s->dir, &s->kdir};
     int ok = 1;
@@ -222,7 +223,8 @@ int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_
         ok &= (*arrays[k] = mc_zeros(n)) != NULL;
     ok &= (s->free_set = mc_calloc(n, 1)) != NULL;
     ok &= (s->free_prev = mc_calloc(n, 1)) != NULL;
-    ok &= (s->rpart = mc_zeros((size_t)g->ny * MC_CONTACT_SUMS)) != NULL;
+    const size_t npieces = (size_t)(g->ny > MC_PSUM_MAX_BLOCKS ? g->ny : MC_PSUM_MAX_BLOCKS);
+    ok &= (s->rpart = mc_zeros(npieces * MC_CONTACT_SUMS)) != NULL;
     ok &= (s->rall = mc_zeros((size_t)g->ny * MC_CONTACT_SUMS)) != NULL;
     if (!ok) {
         mc_contact_destroy(&s);
@@ -292,15 +294,13 @@ double mc_contact_residual(mc_contact_solver *s, const mc_qproblem *qp, const do
                            const double *u, double delta)
 {
     double sg = mc_contact_gap_scale(s, qp, delta);
-    /* per row of this rank: the worst violation and sum(q); the sums added in row order over
-     * all ranks (mc_contact_totals), the worst the largest */
-    const size_t nx = (size_t)s->g.nx;
+    /* per piece (contact_internal.h): the worst violation and sum(q); the sums added in piece
+     * order (mc_contact_totals), the worst the largest */
     double worst = 0;
 #pragma omp parallel for schedule(static) reduction(max : worst) if (s->hi - s->lo > PAR_MIN)
-    for (int r = 0; r < s->nr; r++) {
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
         double sum = 0;
-        const size_t i0 = (size_t)(s->r0 + r) * nx;
-        for (size_t i = i0; i < i0 + nx; i++) {
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++) {
             double g = qp->h[i] + u[i] - delta, v;
             double c = qp->cap ? qp->cap[i] : INFINITY;
             if (q[i] <= 0)

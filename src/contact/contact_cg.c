@@ -24,21 +24,19 @@
 #define RESTART_FRAC 0.1
 
 /* The per-cell loops run over this rank's rows (cells s->lo .. s->hi - 1, contact_internal.h),
- * on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums go row by row through
- * mc_contact_totals, so the iterates are the same bits on any thread and rank count. */
+ * on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums go piece by piece through
+ * mc_contact_totals, so the iterates are the same bits on any thread count, and on any rank
+ * count in the MPI executable. */
 #define PAR(s) ((s)->hi - (s)->lo > MC_THREADS_MIN_CELLS)
 
-/* The first cell of this rank's r-th row. */
-static size_t row0(const mc_contact_solver *s, int r) { return (size_t)(s->r0 + r) * s->g.nx; }
 
 /* Mean of v over the cells with mask != 0. */
 static double mean_on(mc_contact_solver *s, const double *v, const unsigned char *mask)
 {
-    const size_t nx = (size_t)s->g.nx;
 #pragma omp parallel for schedule(static) if (PAR(s))
-    for (int r = 0; r < s->nr; r++) {
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
         double sum = 0, m = 0;
-        for (size_t i = row0(s, r); i < row0(s, r) + nx; i++)
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++)
             if (mask[i]) {
                 sum += v[i];
                 m++;
@@ -54,11 +52,10 @@ static double mean_on(mc_contact_solver *s, const double *v, const unsigned char
 /* sum a[i] b[i] */
 static double dot(mc_contact_solver *s, const double *a, const double *b)
 {
-    const size_t nx = (size_t)s->g.nx;
 #pragma omp parallel for schedule(static) if (PAR(s))
-    for (int r = 0; r < s->nr; r++) {
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
         double sum = 0;
-        for (size_t i = row0(s, r); i < row0(s, r) + nx; i++)
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++)
             sum += a[i] * b[i];
         s->rpart[r] = sum;
     }
@@ -72,11 +69,10 @@ static double dot(mc_contact_solver *s, const double *a, const double *b)
 static double loaded_gap_sum(mc_contact_solver *s, const mc_qproblem *qp, const double *q,
                              int at_cap, double *m)
 {
-    const size_t nx = (size_t)s->g.nx;
 #pragma omp parallel for schedule(static) if (PAR(s))
-    for (int r = 0; r < s->nr; r++) {
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
         double sum = 0, cnt = 0;
-        for (size_t i = row0(s, r); i < row0(s, r) + nx; i++)
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++)
             if (q[i] > 0 && (at_cap || !qp->cap || q[i] < qp->cap[i])) {
                 sum += qp->h[i] + s->u[i];
                 cnt++;
@@ -107,12 +103,11 @@ static void take_step(mc_contact_solver *s, const unsigned char *S, const double
 {
     const double *d = s->dir, *Kd = s->kdir;
     double *u = s->u;
-    const size_t nx = (size_t)s->g.nx;
     int clip = 0;
 #pragma omp parallel for schedule(static) reduction(| : clip) if (PAR(s))
-    for (int r = 0; r < s->nr; r++) {
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
         double sum = 0;
-        for (size_t i = row0(s, r); i < row0(s, r) + nx; i++) {
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++) {
             u[i] -= alpha * Kd[i];
             if (!S[i]) {
                 sum += q[i];
@@ -138,7 +133,7 @@ static void take_step(mc_contact_solver *s, const unsigned char *S, const double
 
 int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err)
 {
-    const size_t n = s->n, lo = s->lo, hi = s->hi, nx = (size_t)s->g.nx;
+    const size_t n = s->n, lo = s->lo, hi = s->hi;
     const int force = qp->control == MC_CONTROL_FORCE;
     const double *cap = qp->cap;
     double *u = s->u, *g = s->gap, *z = s->z, *d = s->dir, *Kd = s->kdir;
@@ -171,9 +166,9 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         it++;
 
 #pragma omp parallel for schedule(static) if (PAR(s))
-        for (int r = 0; r < s->nr; r++) {
+        for (long r = 0; r < mc_contact_pieces(s); r++) {
             double m = 0, nchanged = 0;
-            for (size_t i = row0(s, r); i < row0(s, r) + nx; i++) {
+            for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++) {
                 double c = cap ? cap[i] : INFINITY;
                 unsigned char free_ = mc_contact_free(q[i], c, g[i]);
                 S[i] = free_;
@@ -295,15 +290,20 @@ static int solve_at(mc_contact_solver *s, const mc_qproblem *qp, double delta, d
     *iters += r.iterations;
     if (rc != MC_OK && rc != MC_NOT_CONVERGED)
         return rc;
-    const size_t nx = (size_t)s->g.nx;
-    for (int k = 0; k < s->nr; k++) {
-        double sum = 0;
-        for (size_t i = row0(s, k); i < row0(s, k) + nx; i++)
+    double sum = 0;
+    if (s->dist) { /* row by row over the ranks */
+        for (int k = 0; k < s->nr; k++) {
+            double v = 0;
+            for (size_t i = (size_t)(s->r0 + k) * s->g.nx; i < (size_t)(s->r0 + k + 1) * s->g.nx;
+                 i++)
+                v += q[i];
+            s->rpart[k] = v;
+        }
+        mc_contact_totals(s, 1, &sum);
+    } else { /* the serial program's plain sum */
+        for (size_t i = 0; i < s->n; i++)
             sum += q[i];
-        s->rpart[k] = sum;
     }
-    double sum;
-    mc_contact_totals(s, 1, &sum);
     *load = s->A * sum;
     return MC_OK;
 }

@@ -10,6 +10,7 @@
 #include <stddef.h>
 
 #include "contact/contact.h"
+#include "core/psum.h"
 #include "operator/precond.h"
 
 typedef struct {
@@ -36,13 +37,14 @@ struct mc_contact_solver {
     size_t n;
     /* Rows of the iterations (the distributed operator's slab, operator/dfft.h; all rows
      * serially): the methods' per-cell loops run over cells lo .. hi - 1 = rows r0 .. r0 + nr - 1
-     * only, K is applied to those rows (mc_contact_apply_rows), and sums go through
-     * mc_contact_totals (row sums added in row order: the same bits on any number of ranks and
-     * threads). The other rows of the workspaces are stale until mc_contact_share. dist: the rows
-     * are split over the run's ranks. */
+     * only, K is applied to those rows (mc_contact_apply_rows), and sums go piece by piece
+     * through mc_contact_totals: the same bits on any number of threads, and of ranks. The
+     * other rows of the workspaces are stale until mc_contact_share. dist: the rows are split
+     * over the run's ranks. */
     int r0, nr, dist;
     size_t lo, hi;
-    double *rpart, *rall; /* row sums: this rank's (nr * MC_CONTACT_SUMS), all (ny * ...) */
+    mc_psum ps;           /* the pieces of the sums without ranks (mc_contact_pieces) */
+    double *rpart, *rall; /* piece sums: this rank's (MC_CONTACT_SUMS per piece), all rows' */
     double A; /* cell area, m^2 */
     mc_contact_options opt;
     /* workspaces, n each, allocated once; every method (cg, pk, active set) names them alike:
@@ -83,15 +85,35 @@ static inline int mc_contact_free(double q, double cap, double g)
     return (q > 0 && q < cap) || (q <= 0 && g < 0) || (q >= cap && g > 0);
 }
 
+/* The pieces the methods' sums are cut into, summed each in index order and then added in piece
+ * order (mc_contact_totals): distributed, the rows of this rank (r0 + k), added over all ranks in
+ * row order (rows never straddle two ranks, so the bits do not depend on P); without ranks, the
+ * thread-count-free blocks of core/psum.h over all cells (the serial program's sums, unchanged). */
+static inline long mc_contact_pieces(const mc_contact_solver *s)
+{
+    return s->dist ? (long)s->nr : s->ps.nb;
+}
+
+static inline size_t mc_contact_piece_lo(const mc_contact_solver *s, long k)
+{
+    return s->dist ? (size_t)(s->r0 + k) * (size_t)s->g.nx : mc_psum_lo(&s->ps, k);
+}
+
+static inline size_t mc_contact_piece_hi(const mc_contact_solver *s, long k)
+{
+    return s->dist ? (size_t)(s->r0 + k + 1) * (size_t)s->g.nx : mc_psum_hi(&s->ps, k);
+}
+
 /* u = K in, counted: every row, on every rank. */
 void mc_contact_apply(mc_contact_solver *s, const double *in, double *out);
 
 /* u = K in on this rank's rows only (in read there, out written there), counted. */
 void mc_contact_apply_rows(mc_contact_solver *s, const double *in, double *out);
 
-/* The m (<= MC_CONTACT_SUMS) sums whose per-row parts the caller put in s->rpart[r * m + k]
- * (r: the r-th of this rank's rows, each summed in index order) into out[0..m): the row sums of
- * all ranks added in row order (core/dist.h), identical on every rank. Collective. */
+/* The m (<= MC_CONTACT_SUMS) sums whose per-piece parts the caller put in s->rpart[r * m + k]
+ * (r: the r-th piece, mc_contact_pieces, summed in index order) into out[0..m): the piece sums
+ * added in piece order, over all ranks in row order when distributed (core/dist.h), identical on
+ * every rank. Collective. */
 void mc_contact_totals(mc_contact_solver *s, int m, double *out);
 
 /* The largest v (flags, maxima) over the ranks of a distributed solver. Collective. */

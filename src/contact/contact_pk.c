@@ -12,21 +12,19 @@
 #include "contact/contact_internal.h"
 
 /* The per-cell loops run over this rank's rows (cells s->lo .. s->hi - 1, contact_internal.h),
- * on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums go row by row through
- * mc_contact_totals (the same bits on any thread and rank count). */
+ * on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums go piece by piece through
+ * mc_contact_totals (the same bits on any thread count, and on any rank count). */
 #define PAR(s) ((s)->hi - (s)->lo > MC_THREADS_MIN_CELLS)
 
-static size_t row0(const mc_contact_solver *s, int r) { return (size_t)(s->r0 + r) * s->g.nx; }
 
 /* sum of a[i] b[i] over the cells of S (b == NULL: of a[i]), and their number in *count */
 static double masked_dot(mc_contact_solver *s, const double *a, const double *b,
                          const unsigned char *S, double *count)
 {
-    const size_t nx = (size_t)s->g.nx;
 #pragma omp parallel for schedule(static) if (PAR(s))
-    for (int r = 0; r < s->nr; r++) {
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
         double sum = 0, m = 0;
-        for (size_t i = row0(s, r); i < row0(s, r) + nx; i++)
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++)
             if (S[i]) {
                 sum += b ? a[i] * b[i] : a[i];
                 m++;
@@ -45,11 +43,10 @@ static double masked_dot(mc_contact_solver *s, const double *a, const double *b,
 static void split_sums(mc_contact_solver *s, const double *q, const double *cap, double *free_,
                        double *capped)
 {
-    const size_t nx = (size_t)s->g.nx;
 #pragma omp parallel for schedule(static) if (PAR(s))
-    for (int r = 0; r < s->nr; r++) {
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
         double sf = 0, sc = 0;
-        for (size_t i = row0(s, r); i < row0(s, r) + nx; i++) {
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++) {
             if (cap && q[i] >= cap[i])
                 sc += q[i];
             else
