@@ -126,6 +126,10 @@ runcase pk cases/hertz_point.ini --set solver.method=pk
 unset STOL
 runcase pk-periodic cases/lubricated_equilibrium.ini --set solver.method=pk
 runcase cap cases/pressure_cap.ini
+# a contact of 8.6 % of a 255 x 200 grid: cg restricted to the contact's box (contact_box.c),
+# whose box-sized operator and solver are distributed over their own rows
+runcase box cases/hertz_point.ini --set mesh.nx=255 --set mesh.ny=200 --set mesh.dx=5um \
+    --set stress.layers=2
 
 # ---- 3. refused with more than one process ----------------------------------------------------
 refused() { # NAME WANT CASE SET...: exit ${CODE:-2}, the message naming WANT, no output directory
