@@ -150,8 +150,12 @@ static void print_solve(const mc_results *r)
            r->timing.total_s, r->timing.setup_s, r->timing.contact_s, r->timing.stress_s,
            peak_memory_mib());
     if (mc_dist_active()) /* bin/microcontact-mpi: rank 0's share (README "Running on a cluster") */
-        printf("  MPI: %d process%s; rank 0 spent %.3f s communicating (its peak memory above)\n",
-               mc_dist_size(), mc_dist_size() > 1 ? "es" : "", r->timing.comm_s);
+        printf("  MPI: %d process%s; rank 0 spent %.3f s communicating (its peak memory "
+               "above); its CPU %.3f s, %.3f s of it in communication; contact stage CPU "
+               "%.3f s, %.3f s of it in communication\n",
+               mc_dist_size(), mc_dist_size() > 1 ? "es" : "", r->timing.comm_s,
+               mc_dist_cpu_seconds(), mc_dist_comm_cpu_seconds(), r->timing.contact_cpu_s,
+               r->timing.contact_comm_cpu_s);
 }
 
 /* ---- running-in -------------------------------------------------------------------------- */

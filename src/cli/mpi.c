@@ -29,6 +29,15 @@ int mc_cli_mpi_start(int *argc, char ***argv)
         return 3;
     }
     fftw_mpi_init();
+    int size;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    if (size > MC_DIST_MAX_RANKS) { /* the row-split sums' static tables (core/dist.h) */
+        fprintf(stderr, "microcontact: error: %d MPI processes: at most %d are supported\n", size,
+                MC_DIST_MAX_RANKS);
+        fftw_mpi_cleanup();
+        MPI_Finalize();
+        return 3;
+    }
     mc_dist_set(MPI_COMM_WORLD);
     if (mc_dist_rank() != 0) {
         if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr))

@@ -7,7 +7,10 @@
 
 #include "core/alloc.h"
 #include "contact/contact_internal.h"
-#include "core/psum.h"
+#include "core/dist.h"
+
+/* Loops over a rank's rows run on the run's threads from this many cells on. */
+#define PAR_MIN MC_THREADS_MIN_CELLS
 
 typedef int (*method_fn)(mc_contact_solver *, mc_qproblem *, double *, mc_qresult *, mc_error *);
 
@@ -38,6 +41,45 @@ void mc_contact_apply(mc_contact_solver *s, const double *in, double *out)
 {
     mc_operator_apply(s->K, in, out);
     s->applies++;
+}
+
+void mc_contact_apply_rows(mc_contact_solver *s, const double *in, double *out)
+{
+    mc_operator_apply_rows(s->K, in, out);
+    s->applies++;
+}
+
+void mc_contact_totals(mc_contact_solver *s, int m, double *out)
+{
+    if (s->dist) {
+        mc_dist_row_totals(s->rpart, s->nr, s->g.ny, m, s->rall, out);
+        return;
+    }
+    for (int k = 0; k < m; k++) { /* without ranks: the blocks in order, as core/psum.h */
+        double v = 0;
+        for (long r = 0; r < s->ps.nb; r++)
+            v += s->rpart[(size_t)r * m + k];
+        out[k] = v;
+    }
+}
+
+double mc_contact_max(const mc_contact_solver *s, double v)
+{
+    if (s->dist)
+        mc_dist_max(&v, 1);
+    return v;
+}
+
+void mc_contact_share(const mc_contact_solver *s, double *v)
+{
+    if (s->dist)
+        mc_dist_gather_rows(v, s->r0, s->nr, s->g.nx);
+}
+
+void mc_contact_share_mask(const mc_contact_solver *s, unsigned char *v)
+{
+    if (s->dist)
+        mc_dist_gather_rows_u8(v, s->r0, s->nr, s->g.nx);
 }
 
 long mc_contact_last_applies(const mc_contact_solver *s) { return s->applies; }
@@ -170,6 +212,10 @@ int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_
     s->n = n;
     s->A = mc_grid_cell_area(g);
     s->opt = *opt;
+    s->dist = mc_operator_rows(K, &s->r0, &s->nr);
+    s->lo = (size_t)s->r0 * (size_t)g->nx;
+    s->hi = s->lo + (size_t)s->nr * (size_t)g->nx;
+    s->ps = mc_psum_blocks(n);
     /* plow, capq and ulow (K p_lower) are allocated by the first solve that needs them */
     double **arrays[] = {&s->htil, &s->q, &s->u, &s->gap, &s->z, &s->dir, &s->kdir};
     int ok = 1;
@@ -177,6 +223,9 @@ int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_
         ok &= (*arrays[k] = mc_zeros(n)) != NULL;
     ok &= (s->free_set = mc_calloc(n, 1)) != NULL;
     ok &= (s->free_prev = mc_calloc(n, 1)) != NULL;
+    const size_t npieces = (size_t)(g->ny > MC_PSUM_MAX_BLOCKS ? g->ny : MC_PSUM_MAX_BLOCKS);
+    ok &= (s->rpart = mc_zeros(npieces * MC_CONTACT_SUMS)) != NULL;
+    ok &= (s->rall = mc_zeros((size_t)g->ny * MC_CONTACT_SUMS)) != NULL;
     if (!ok) {
         mc_contact_destroy(&s);
         return mc_fail(err, MC_ERR_NOMEM, "contact solver: out of memory for %zu cells", n);
@@ -202,7 +251,8 @@ void mc_contact_destroy(mc_contact_solver **sp)
         return;
     mc_contact_solver *s = *sp;
     double *arrays[] = {s->htil, s->plow, s->capq, s->q,    s->u,     s->gap,
-                        s->z,    s->dir,  s->kdir, s->ulow, s->dense, s->factor};
+                        s->z,    s->dir,  s->kdir, s->ulow, s->dense, s->factor,
+                        s->rpart, s->rall};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         mc_free(arrays[k]);
     mc_free(s->free_set);
@@ -240,17 +290,17 @@ double mc_contact_gap_scale(const mc_contact_solver *s, const mc_qproblem *qp, d
     return scale > 1e-300 ? scale : 1e-300;
 }
 
-double mc_contact_residual(const mc_contact_solver *s, const mc_qproblem *qp, const double *q,
+double mc_contact_residual(mc_contact_solver *s, const mc_qproblem *qp, const double *q,
                            const double *u, double delta)
 {
     double sg = mc_contact_gap_scale(s, qp, delta);
-    /* per block: the worst violation and sum(q), combined in block order (core/psum.h) */
-    const mc_psum ps = mc_psum_blocks(s->n);
-    double part[MC_PSUM_MAX_BLOCKS], pworst[MC_PSUM_MAX_BLOCKS];
-#pragma omp parallel for schedule(static) if (ps.nb > 1)
-    for (long b = 0; b < ps.nb; b++) {
-        double worst = 0, sum = 0;
-        for (size_t i = mc_psum_lo(&ps, b); i < mc_psum_hi(&ps, b); i++) {
+    /* per piece (contact_internal.h): the worst violation and sum(q); the sums added in piece
+     * order (mc_contact_totals), the worst the largest */
+    double worst = 0;
+#pragma omp parallel for schedule(static) reduction(max : worst) if (s->hi - s->lo > PAR_MIN)
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
+        double sum = 0;
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++) {
             double g = qp->h[i] + u[i] - delta, v;
             double c = qp->cap ? qp->cap[i] : INFINITY;
             if (q[i] <= 0)
@@ -263,14 +313,11 @@ double mc_contact_residual(const mc_contact_solver *s, const mc_qproblem *qp, co
                 worst = v;
             sum += q[i];
         }
-        part[b] = sum;
-        pworst[b] = worst;
+        s->rpart[r] = sum;
     }
-    double worst = 0;
-    for (long b = 0; b < ps.nb; b++)
-        if (pworst[b] > worst)
-            worst = pworst[b];
-    const double sum = mc_psum_total(part, ps.nb);
+    worst = mc_contact_max(s, worst);
+    double sum;
+    mc_contact_totals(s, 1, &sum);
     double res = worst / sg;
     if (qp->control == MC_CONTROL_FORCE && qp->W > 0) {
         double lr = fabs(s->A * sum - qp->W) / qp->W;
@@ -459,6 +506,8 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
                                                             : methods[method].force;
             rc = fn(s, &qp, q, &res, err);
             res.iterations += box_iterations;
+            mc_contact_share(s, q); /* the methods kept to this rank's rows */
+            mc_contact_share(s, s->u);
             if (rc != MC_OK && rc != MC_NOT_CONVERGED)
                 return rc;
         }

@@ -12,8 +12,9 @@
  * The lubricant pressure acts outside solid contact and deforms the surface too (theory.md §4.2):
  * the solvers work on the excess q = p - p_lower with h~ = h + h_extra + K p_lower.
  *
- * Methods (a row each in a table; all use the operator through mc_operator_apply only, so they
- * run on either backend):
+ * Methods (a row each in a table; all use the operator through mc_operator_apply and
+ * mc_operator_apply_rows only, so they run on either backend, and cg and pk over the ranks of a
+ * distributed operator, each on its rows: contact_internal.h):
  *   cg         - constrained conjugate gradients with an FFT-based preconditioner (the inverse
  *                of the continuum Love symbol on the contact's bounding box, restricted to the
  *                free cells; after Vollebregt, J. Comput. Phys. 257 (2014) 333-351) and a load

@@ -15,7 +15,6 @@
 #include <string.h>
 
 #include "contact/contact_internal.h"
-#include "core/psum.h"
 
 /* Restart the conjugate recurrence only when more than this fraction of the free set changed.
  * Restarting on every change (or clipping) made rough contacts converge like steepest descent
@@ -24,63 +23,91 @@
  * a descent direction is replaced by the preconditioned residual. */
 #define RESTART_FRAC 0.1
 
-/* Loops over the n cells run on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums
- * go through core/psum.h, so the iterates are the same bits on any thread count. */
-#define PAR(n) ((n) > MC_THREADS_MIN_CELLS)
+/* The per-cell loops run over this rank's rows (cells s->lo .. s->hi - 1, contact_internal.h),
+ * on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums go piece by piece through
+ * mc_contact_totals, so the iterates are the same bits on any thread count, and on any rank
+ * count in the MPI executable. */
+#define PAR(s) ((s)->hi - (s)->lo > MC_THREADS_MIN_CELLS)
 
-static double mean_on(const double *v, const unsigned char *mask, size_t n)
+
+/* Mean of v over the cells with mask != 0. */
+static double mean_on(mc_contact_solver *s, const double *v, const unsigned char *mask)
 {
-    size_t m;
-    const double s = mc_psum_masked(v, mask, n, &m);
-    return m ? s / (double)m : 0.0;
+#pragma omp parallel for schedule(static) if (PAR(s))
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
+        double sum = 0, m = 0;
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++)
+            if (mask[i]) {
+                sum += v[i];
+                m++;
+            }
+        s->rpart[2 * r] = sum;
+        s->rpart[2 * r + 1] = m;
+    }
+    double t[2];
+    mc_contact_totals(s, 2, t);
+    return t[1] > 0 ? t[0] / t[1] : 0.0;
+}
+
+/* sum a[i] b[i] */
+static double dot(mc_contact_solver *s, const double *a, const double *b)
+{
+#pragma omp parallel for schedule(static) if (PAR(s))
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
+        double sum = 0;
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++)
+            sum += a[i] * b[i];
+        s->rpart[r] = sum;
+    }
+    double t;
+    mc_contact_totals(s, 1, &t);
+    return t;
 }
 
 /* Sum of the gaps h~ + u over the loaded cells (q > 0; below the cap unless at_cap), and their
  * number in *m. */
-static double loaded_gap_sum(const mc_contact_solver *s, const mc_qproblem *qp, const double *q,
-                             int at_cap, size_t *m)
+static double loaded_gap_sum(mc_contact_solver *s, const mc_qproblem *qp, const double *q,
+                             int at_cap, double *m)
 {
-    const mc_psum ps = mc_psum_blocks(s->n);
-    double part[MC_PSUM_MAX_BLOCKS];
-    size_t cnt = 0;
-#pragma omp parallel for schedule(static) reduction(+ : cnt) if (ps.nb > 1)
-    for (long b = 0; b < ps.nb; b++) {
-        double sum = 0;
-        for (size_t i = mc_psum_lo(&ps, b); i < mc_psum_hi(&ps, b); i++)
+#pragma omp parallel for schedule(static) if (PAR(s))
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
+        double sum = 0, cnt = 0;
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++)
             if (q[i] > 0 && (at_cap || !qp->cap || q[i] < qp->cap[i])) {
                 sum += qp->h[i] + s->u[i];
                 cnt++;
             }
-        part[b] = sum;
+        s->rpart[2 * r] = sum;
+        s->rpart[2 * r + 1] = cnt;
     }
-    *m = cnt;
-    return mc_psum_total(part, ps.nb);
+    double t[2];
+    mc_contact_totals(s, 2, t);
+    *m = t[1];
+    return t[0];
 }
 
 /* Lagrange multiplier of the load constraint: the mean gap over the loaded cells. */
-static double force_delta(const mc_contact_solver *s, const mc_qproblem *qp, const double *q)
+static double force_delta(mc_contact_solver *s, const mc_qproblem *qp, const double *q)
 {
-    size_t m;
+    double m;
     double sum = loaded_gap_sum(s, qp, q, 0, &m);
     if (m == 0) /* every loaded cell sits at the cap: take the loaded cells */
         sum = loaded_gap_sum(s, qp, q, 1, &m);
-    return m ? sum / (double)m : 0.0;
+    return m > 0 ? sum / m : 0.0;
 }
 
 /* The projected step q - alpha d onto 0 <= q <= cap on the free set, u - alpha Kd everywhere;
- * *qsum receives sum(q) after the step, *clipped whether a bound was hit. */
-static void take_step(const mc_contact_solver *s, const unsigned char *S, const double *cap,
+ * *qsum receives sum(q) after the step, *clipped whether a bound was hit (on any rank). */
+static void take_step(mc_contact_solver *s, const unsigned char *S, const double *cap,
                       double alpha, double *q, double *qsum, int *clipped)
 {
     const double *d = s->dir, *Kd = s->kdir;
     double *u = s->u;
-    const mc_psum ps = mc_psum_blocks(s->n);
-    double part[MC_PSUM_MAX_BLOCKS];
     int clip = 0;
-#pragma omp parallel for schedule(static) reduction(| : clip) if (ps.nb > 1)
-    for (long b = 0; b < ps.nb; b++) {
+#pragma omp parallel for schedule(static) reduction(| : clip) if (PAR(s))
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
         double sum = 0;
-        for (size_t i = mc_psum_lo(&ps, b); i < mc_psum_hi(&ps, b); i++) {
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++) {
             u[i] -= alpha * Kd[i];
             if (!S[i]) {
                 sum += q[i];
@@ -98,15 +125,15 @@ static void take_step(const mc_contact_solver *s, const unsigned char *S, const 
             q[i] = v;
             sum += v;
         }
-        part[b] = sum;
+        s->rpart[r] = sum;
     }
-    *qsum = mc_psum_total(part, ps.nb);
-    *clipped = clip;
+    mc_contact_totals(s, 1, qsum);
+    *clipped = mc_contact_max(s, clip) > 0;
 }
 
 int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err)
 {
-    const size_t n = s->n;
+    const size_t n = s->n, lo = s->lo, hi = s->hi;
     const int force = qp->control == MC_CONTROL_FORCE;
     const double *cap = qp->cap;
     double *u = s->u, *g = s->gap, *z = s->z, *d = s->dir, *Kd = s->kdir;
@@ -114,15 +141,15 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
     double gz_old = 1, delta = qp->delta;
     int restart = 1, fresh = 0, it = 0, rc = MC_OK;
 
-    mc_contact_apply(s, q, u);
+    mc_contact_apply_rows(s, q, u);
     fresh = 1;
     memset(S_prev, 0, n);
     res->converged = 0;
     for (;;) {
         if (force)
             delta = force_delta(s, qp, q);
-#pragma omp parallel for schedule(static) if (PAR(n))
-        for (size_t i = 0; i < n; i++)
+#pragma omp parallel for schedule(static) if (PAR(s))
+        for (size_t i = lo; i < hi; i++)
             g[i] = qp->h[i] + u[i] - delta;
         res->residual = mc_contact_residual(s, qp, q, u, delta);
         if (res->residual <= s->opt.tolerance) {
@@ -130,7 +157,7 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
                 res->converged = 1;
                 break;
             }
-            mc_contact_apply(s, q, u); /* confirm on an exact K q, free of update drift */
+            mc_contact_apply_rows(s, q, u); /* confirm on an exact K q, free of update drift */
             fresh = 1;
             continue;
         }
@@ -138,71 +165,85 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
             break;
         it++;
 
-        size_t m = 0, nchanged = 0;
-#pragma omp parallel for schedule(static) reduction(+ : m, nchanged) if (PAR(n))
-        for (size_t i = 0; i < n; i++) {
-            double c = cap ? cap[i] : INFINITY;
-            unsigned char free_ = mc_contact_free(q[i], c, g[i]);
-            S[i] = free_;
-            nchanged += free_ != S_prev[i];
-            m += free_;
+#pragma omp parallel for schedule(static) if (PAR(s))
+        for (long r = 0; r < mc_contact_pieces(s); r++) {
+            double m = 0, nchanged = 0;
+            for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++) {
+                double c = cap ? cap[i] : INFINITY;
+                unsigned char free_ = mc_contact_free(q[i], c, g[i]);
+                S[i] = free_;
+                nchanged += free_ != S_prev[i];
+                m += free_;
+            }
+            s->rpart[2 * r] = m;
+            s->rpart[2 * r + 1] = nchanged;
         }
-        int changed = nchanged > 0;
+        double counts[2]; /* free cells, changed cells: exact in doubles */
+        mc_contact_totals(s, 2, counts);
+        const double m = counts[0], nchanged = counts[1];
         if (m == 0) /* nothing can move although the residual is above tolerance */
             break;
-        if (changed) {
+        if (nchanged > 0) {
+            mc_contact_share_mask(s, S); /* the preconditioner's box spans the ranks */
             rc = mc_precond_set_mask(s->pc, S, err);
-            if (rc != MC_OK)
-                return rc;
+            /* a plan that failed on one rank fails the solve on all (they must stay in step) */
+            if (mc_contact_max(s, rc != MC_OK) > 0)
+                return rc != MC_OK ? rc
+                                   : mc_fail(err, MC_ERR_NOMEM,
+                                             "contact cg: another process could not plan the "
+                                             "preconditioner");
             memcpy(S_prev, S, n);
-            if ((double)nchanged > RESTART_FRAC * (double)m)
+            if (nchanged > RESTART_FRAC * m)
                 restart = 1;
         }
         if (force) { /* P g: directions must keep sum(q) */
-            double mg = mean_on(g, S, n);
-#pragma omp parallel for schedule(static) if (PAR(n))
-            for (size_t i = 0; i < n; i++)
+            double mg = mean_on(s, g, S);
+#pragma omp parallel for schedule(static) if (PAR(s))
+            for (size_t i = lo; i < hi; i++)
                 g[i] = S[i] ? g[i] - mg : 0.0;
         } else {
-#pragma omp parallel for schedule(static) if (PAR(n))
-            for (size_t i = 0; i < n; i++)
+#pragma omp parallel for schedule(static) if (PAR(s))
+            for (size_t i = lo; i < hi; i++)
                 if (!S[i])
                     g[i] = 0.0;
         }
+        /* the preconditioner's FFT runs on the whole box on every rank (precond.h): it reads g
+         * on all rows */
+        mc_contact_share(s, g);
         mc_precond_apply(s->pc, S, g, z);
         if (force) {
-            double mz = mean_on(z, S, n);
-#pragma omp parallel for schedule(static) if (PAR(n))
-            for (size_t i = 0; i < n; i++)
+            double mz = mean_on(s, z, S);
+#pragma omp parallel for schedule(static) if (PAR(s))
+            for (size_t i = lo; i < hi; i++)
                 if (S[i])
                     z[i] -= mz;
         }
-        double gz = mc_psum_dot(g, z, n);
+        double gz = dot(s, g, z);
         if (!(gz > 0)) { /* M lost definiteness on this set (round-off): steepest descent */
-            memcpy(z, g, n * sizeof *z);
-            gz = mc_psum_dot(g, g, n);
+            memcpy(z + lo, g + lo, (hi - lo) * sizeof *z);
+            gz = dot(s, g, g);
             restart = 1;
             if (!(gz > 0))
                 break;
         }
         double beta = restart ? 0.0 : gz / gz_old;
-#pragma omp parallel for schedule(static) if (PAR(n))
-        for (size_t i = 0; i < n; i++)
+#pragma omp parallel for schedule(static) if (PAR(s))
+        for (size_t i = lo; i < hi; i++)
             d[i] = S[i] ? z[i] + beta * d[i] : 0.0;
         if (force && beta != 0.0) { /* the old direction lost cells that left S: keep the load */
-            double md = mean_on(d, S, n);
-#pragma omp parallel for schedule(static) if (PAR(n))
-            for (size_t i = 0; i < n; i++)
+            double md = mean_on(s, d, S);
+#pragma omp parallel for schedule(static) if (PAR(s))
+            for (size_t i = lo; i < hi; i++)
                 if (S[i])
                     d[i] -= md;
         }
-        double gd = mc_psum_dot(g, d, n);
+        double gd = dot(s, g, d);
         if (!(gd > 0)) { /* the set changed under the recurrence: not a descent direction */
-            memcpy(d, z, n * sizeof *d);
+            memcpy(d + lo, z + lo, (hi - lo) * sizeof *d);
             gd = gz;
         }
-        mc_contact_apply(s, d, Kd);
-        double dkd = mc_psum_dot(d, Kd, n);
+        mc_contact_apply_rows(s, d, Kd);
+        double dkd = dot(s, d, Kd);
         if (!(dkd > 0)) {
             rc = mc_fail(err, MC_ERR_NUMERIC, "contact cg: non-positive curvature d'Kd = %g", dkd);
             break;
@@ -214,11 +255,11 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         if (clipped) {
             if (force && !cap && qsum > 0) { /* clipping added load: restore the balance */
                 double f = qp->W / (s->A * qsum);
-#pragma omp parallel for schedule(static) if (PAR(n))
-                for (size_t i = 0; i < n; i++)
+#pragma omp parallel for schedule(static) if (PAR(s))
+                for (size_t i = lo; i < hi; i++)
                     q[i] *= f;
             }
-            mc_contact_apply(s, q, u);
+            mc_contact_apply_rows(s, q, u);
             fresh = 1;
         }
         restart = 0;
@@ -250,8 +291,19 @@ static int solve_at(mc_contact_solver *s, const mc_qproblem *qp, double delta, d
     if (rc != MC_OK && rc != MC_NOT_CONVERGED)
         return rc;
     double sum = 0;
-    for (size_t i = 0; i < s->n; i++)
-        sum += q[i];
+    if (s->dist) { /* row by row over the ranks */
+        for (int k = 0; k < s->nr; k++) {
+            double v = 0;
+            for (size_t i = (size_t)(s->r0 + k) * s->g.nx; i < (size_t)(s->r0 + k + 1) * s->g.nx;
+                 i++)
+                v += q[i];
+            s->rpart[k] = v;
+        }
+        mc_contact_totals(s, 1, &sum);
+    } else { /* the serial program's plain sum */
+        for (size_t i = 0; i < s->n; i++)
+            sum += q[i];
+    }
     *load = s->A * sum;
     return MC_OK;
 }
@@ -259,7 +311,6 @@ static int solve_at(mc_contact_solver *s, const mc_qproblem *qp, double delta, d
 int mc_contact_nested(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
                       mc_error *err)
 {
-    const size_t n = s->n;
     int iters = 0, rc;
     res->converged = 0;
     /* the uncapped solution gives a lower bracket: capping lowers the load at equal delta */
@@ -270,7 +321,7 @@ int mc_contact_nested(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresu
     iters += r0.iterations;
     if (rc != MC_OK && rc != MC_NOT_CONVERGED)
         return rc;
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = s->lo; i < s->hi; i++) /* this rank's rows: cg keeps to them */
         if (q[i] > qp->cap[i])
             q[i] = qp->cap[i];
     const double hmin = qp->hmin;

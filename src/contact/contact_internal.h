@@ -10,6 +10,7 @@
 #include <stddef.h>
 
 #include "contact/contact.h"
+#include "core/psum.h"
 #include "operator/precond.h"
 
 typedef struct {
@@ -27,10 +28,23 @@ typedef struct {
     int converged;
 } mc_qresult;
 
+/* Sums per row: at most this many quantities per distributed reduction (mc_contact_totals). */
+#define MC_CONTACT_SUMS 3
+
 struct mc_contact_solver {
     mc_operator *K;
     mc_grid g;
     size_t n;
+    /* Rows of the iterations (the distributed operator's slab, operator/dfft.h; all rows
+     * serially): the methods' per-cell loops run over cells lo .. hi - 1 = rows r0 .. r0 + nr - 1
+     * only, K is applied to those rows (mc_contact_apply_rows), and sums go piece by piece
+     * through mc_contact_totals: the same bits on any number of threads, and of ranks. The
+     * other rows of the workspaces are stale until mc_contact_share. dist: the rows are split
+     * over the run's ranks. */
+    int r0, nr, dist;
+    size_t lo, hi;
+    mc_psum ps;           /* the pieces of the sums without ranks (mc_contact_pieces) */
+    double *rpart, *rall; /* piece sums: this rank's (MC_CONTACT_SUMS per piece), all rows' */
     double A; /* cell area, m^2 */
     mc_contact_options opt;
     /* workspaces, n each, allocated once; every method (cg, pk, active set) names them alike:
@@ -71,19 +85,56 @@ static inline int mc_contact_free(double q, double cap, double g)
     return (q > 0 && q < cap) || (q <= 0 && g < 0) || (q >= cap && g > 0);
 }
 
-/* u = K in, counted. */
+/* The pieces the methods' sums are cut into, summed each in index order and then added in piece
+ * order (mc_contact_totals): distributed, the rows of this rank (r0 + k), added over all ranks in
+ * row order (rows never straddle two ranks, so the bits do not depend on P); without ranks, the
+ * thread-count-free blocks of core/psum.h over all cells (the serial program's sums, unchanged). */
+static inline long mc_contact_pieces(const mc_contact_solver *s)
+{
+    return s->dist ? (long)s->nr : s->ps.nb;
+}
+
+static inline size_t mc_contact_piece_lo(const mc_contact_solver *s, long k)
+{
+    return s->dist ? (size_t)(s->r0 + k) * (size_t)s->g.nx : mc_psum_lo(&s->ps, k);
+}
+
+static inline size_t mc_contact_piece_hi(const mc_contact_solver *s, long k)
+{
+    return s->dist ? (size_t)(s->r0 + k + 1) * (size_t)s->g.nx : mc_psum_hi(&s->ps, k);
+}
+
+/* u = K in, counted: every row, on every rank. */
 void mc_contact_apply(mc_contact_solver *s, const double *in, double *out);
+
+/* u = K in on this rank's rows only (in read there, out written there), counted. */
+void mc_contact_apply_rows(mc_contact_solver *s, const double *in, double *out);
+
+/* The m (<= MC_CONTACT_SUMS) sums whose per-piece parts the caller put in s->rpart[r * m + k]
+ * (r: the r-th piece, mc_contact_pieces, summed in index order) into out[0..m): the piece sums
+ * added in piece order, over all ranks in row order when distributed (core/dist.h), identical on
+ * every rank. Collective. */
+void mc_contact_totals(mc_contact_solver *s, int m, double *out);
+
+/* The largest v (flags, maxima) over the ranks of a distributed solver. Collective. */
+double mc_contact_max(const mc_contact_solver *s, double v);
+
+/* Every rank's rows of v (a per-cell array) to every rank, so that v is whole. Collective. */
+void mc_contact_share(const mc_contact_solver *s, double *v);
+void mc_contact_share_mask(const mc_contact_solver *s, unsigned char *v);
 
 /* Gap scale of the stopping rule: delta - min(h~), floored so it is never zero. */
 double mc_contact_gap_scale(const mc_contact_solver *s, const mc_qproblem *qp, double delta);
 
-/* The scale-free KKT residual of contact.h for q, u = K q and delta. */
-double mc_contact_residual(const mc_contact_solver *s, const mc_qproblem *qp, const double *q,
+/* The scale-free KKT residual of contact.h for q, u = K q and delta (read on this rank's rows);
+ * collective. */
+double mc_contact_residual(mc_contact_solver *s, const mc_qproblem *qp, const double *q,
                            const double *u, double delta);
 
 /* Methods: q holds the start on entry (feasible: 0 <= q <= cap) and the solution on exit; s->u
  * holds K q on exit; qp->delta is set for force control. MC_NOT_CONVERGED leaves the last iterate.
- * The other workspaces are theirs. */
+ * The other workspaces are theirs. cg and pk read and write this rank's rows of q and s->u only
+ * (the caller shares them); all ranks call them together. */
 int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err);
 int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err);
 int mc_contact_nested(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,

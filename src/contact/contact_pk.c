@@ -10,53 +10,60 @@
 #include <string.h>
 
 #include "contact/contact_internal.h"
-#include "core/psum.h"
 
-/* Loops over the n cells run on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums
- * go through core/psum.h (the same bits on any thread count). */
-#define PAR(n) ((n) > MC_THREADS_MIN_CELLS)
+/* The per-cell loops run over this rank's rows (cells s->lo .. s->hi - 1, contact_internal.h),
+ * on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums go piece by piece through
+ * mc_contact_totals (the same bits on any thread count, and on any rank count). */
+#define PAR(s) ((s)->hi - (s)->lo > MC_THREADS_MIN_CELLS)
 
-/* sum of a[i] b[i] over the cells of S */
-static double masked_dot(const double *a, const double *b, const unsigned char *S, size_t n)
+
+/* sum of a[i] b[i] over the cells of S (b == NULL: of a[i]), and their number in *count */
+static double masked_dot(mc_contact_solver *s, const double *a, const double *b,
+                         const unsigned char *S, double *count)
 {
-    const mc_psum ps = mc_psum_blocks(n);
-    double part[MC_PSUM_MAX_BLOCKS];
-#pragma omp parallel for schedule(static) if (ps.nb > 1)
-    for (long k = 0; k < ps.nb; k++) {
-        double sum = 0;
-        for (size_t i = mc_psum_lo(&ps, k); i < mc_psum_hi(&ps, k); i++)
-            if (S[i])
-                sum += a[i] * b[i];
-        part[k] = sum;
+#pragma omp parallel for schedule(static) if (PAR(s))
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
+        double sum = 0, m = 0;
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++)
+            if (S[i]) {
+                sum += b ? a[i] * b[i] : a[i];
+                m++;
+            }
+        s->rpart[2 * r] = sum;
+        s->rpart[2 * r + 1] = m;
     }
-    return mc_psum_total(part, ps.nb);
+    double t[2];
+    mc_contact_totals(s, 2, t);
+    if (count)
+        *count = t[1];
+    return t[0];
 }
 
 /* sum(q) over the cells below their cap (*free_) and at it (*capped) */
-static void split_sums(const double *q, const double *cap, size_t n, double *free_,
+static void split_sums(mc_contact_solver *s, const double *q, const double *cap, double *free_,
                        double *capped)
 {
-    const mc_psum ps = mc_psum_blocks(n);
-    double pf[MC_PSUM_MAX_BLOCKS], pc[MC_PSUM_MAX_BLOCKS];
-#pragma omp parallel for schedule(static) if (ps.nb > 1)
-    for (long k = 0; k < ps.nb; k++) {
+#pragma omp parallel for schedule(static) if (PAR(s))
+    for (long r = 0; r < mc_contact_pieces(s); r++) {
         double sf = 0, sc = 0;
-        for (size_t i = mc_psum_lo(&ps, k); i < mc_psum_hi(&ps, k); i++) {
+        for (size_t i = mc_contact_piece_lo(s, r); i < mc_contact_piece_hi(s, r); i++) {
             if (cap && q[i] >= cap[i])
                 sc += q[i];
             else
                 sf += q[i];
         }
-        pf[k] = sf;
-        pc[k] = sc;
+        s->rpart[2 * r] = sf;
+        s->rpart[2 * r + 1] = sc;
     }
-    *free_ = mc_psum_total(pf, ps.nb);
-    *capped = mc_psum_total(pc, ps.nb);
+    double t[2];
+    mc_contact_totals(s, 2, t);
+    *free_ = t[0];
+    *capped = t[1];
 }
 
 int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err)
 {
-    const size_t n = s->n;
+    const size_t n = s->n, lo = s->lo, hi = s->hi;
     const int force = qp->control == MC_CONTROL_FORCE;
     const double *cap = qp->cap;
     double *u = s->u, *g = s->gap, *d = s->dir, *Kd = s->kdir;
@@ -73,7 +80,7 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         it += r0.iterations;
         if (rc != MC_OK && rc != MC_NOT_CONVERGED)
             return rc;
-        for (size_t i = 0; i < n; i++)
+        for (size_t i = lo; i < hi; i++)
             if (q[i] > cap[i])
                 q[i] = cap[i];
     }
@@ -81,14 +88,14 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
     memset(S_prev, 0, n);
     res->converged = 0;
     for (;;) {
-        mc_contact_apply(s, q, u);
-#pragma omp parallel for schedule(static) if (PAR(n))
-        for (size_t i = 0; i < n; i++) {
+        mc_contact_apply_rows(s, q, u);
+#pragma omp parallel for schedule(static) if (PAR(s))
+        for (size_t i = lo; i < hi; i++) {
             g[i] = qp->h[i] + u[i];
             S[i] = q[i] > 0 && (!cap || q[i] < cap[i]);
         }
-        size_t m;
-        const double gsum = mc_psum_masked(g, S, n, &m);
+        double m;
+        const double gsum = masked_dot(s, g, NULL, S, &m);
         if (force) {
             if (m == 0) {
                 if (cap) { /* the free set emptied: P&K's cap variant breaks down here */
@@ -102,25 +109,23 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
                 }
                 break;
             }
-            delta = gsum / (double)m;
+            delta = gsum / m;
         }
-#pragma omp parallel for schedule(static) if (PAR(n))
-        for (size_t i = 0; i < n; i++)
+#pragma omp parallel for schedule(static) if (PAR(s))
+        for (size_t i = lo; i < hi; i++)
             g[i] -= delta;
         if (!force) {
             /* approach control has no load to rescale with: bound cells whose gradient points
              * inwards join the free set directly (projected gradient), restarting the conjugate
              * recurrence on change */
             int changed = 0;
-            m = 0;
-            for (size_t i = 0; i < n; i++) {
+            for (size_t i = lo; i < hi; i++) {
                 double c = cap ? cap[i] : INFINITY;
                 unsigned char f = mc_contact_free(q[i], c, g[i]);
                 changed |= f != S_prev[i];
                 S[i] = S_prev[i] = f;
-                m += f;
             }
-            if (changed)
+            if (mc_contact_max(s, changed) > 0)
                 restart = 1;
         }
         res->residual = mc_contact_residual(s, qp, q, u, delta);
@@ -131,25 +136,24 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         if (it >= s->opt.max_iterations)
             break;
         it++;
-        const double G = masked_dot(g, g, S, n);
+        const double G = masked_dot(s, g, g, S, NULL);
         double beta = !restart && G_old > 0 ? G / G_old : 0.0;
-#pragma omp parallel for schedule(static) if (PAR(n))
-        for (size_t i = 0; i < n; i++)
+#pragma omp parallel for schedule(static) if (PAR(s))
+        for (size_t i = lo; i < hi; i++)
             d[i] = S[i] ? g[i] + beta * d[i] : 0.0;
         G_old = G;
-        mc_contact_apply(s, d, Kd);
+        mc_contact_apply_rows(s, d, Kd);
         if (force) {
-            size_t mk;
-            const double mKd = mc_psum_masked(Kd, S, n, &mk) / (double)m;
-#pragma omp parallel for schedule(static) if (PAR(n))
-            for (size_t i = 0; i < n; i++)
+            const double mKd = masked_dot(s, Kd, NULL, S, NULL) / m;
+#pragma omp parallel for schedule(static) if (PAR(s))
+            for (size_t i = lo; i < hi; i++)
                 Kd[i] -= mKd;
         }
-        const double num = masked_dot(g, d, S, n), den = masked_dot(Kd, d, S, n);
+        const double num = masked_dot(s, g, d, S, NULL), den = masked_dot(s, Kd, d, S, NULL);
         double alpha = den != 0 ? num / den : 0.0;
         int overlap = 0;
-#pragma omp parallel for schedule(static) reduction(| : overlap) if (PAR(n))
-        for (size_t i = 0; i < n; i++) {
+#pragma omp parallel for schedule(static) reduction(| : overlap) if (PAR(s))
+        for (size_t i = lo; i < hi; i++) {
             double c = cap ? cap[i] : INFINITY;
             if (S[i]) {
                 double v = q[i] - alpha * d[i];
@@ -162,15 +166,15 @@ int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
                 overlap = 1;
             }
         }
-        restart = overlap;
+        restart = mc_contact_max(s, overlap) > 0;
         if (force) { /* load balance: scale the excess of the uncapped cells */
             double sum_free, sum_cap;
-            split_sums(q, cap, n, &sum_free, &sum_cap);
+            split_sums(s, q, cap, &sum_free, &sum_cap);
             double target = qp->W / s->A - sum_cap;
             if (sum_free > 0 && target > 0) {
                 double f = target / sum_free;
-#pragma omp parallel for schedule(static) if (PAR(n))
-                for (size_t i = 0; i < n; i++)
+#pragma omp parallel for schedule(static) if (PAR(s))
+                for (size_t i = lo; i < hi; i++)
                     if (!(cap && q[i] >= cap[i]))
                         q[i] = cap ? fmin(q[i] * f, cap[i]) : q[i] * f;
             }

@@ -1,10 +1,33 @@
 /* dist.c - the run's communicator (dist.h). */
 #include "core/dist.h"
 
-static double comm_seconds;
+#include <math.h>
+#include <time.h>
+
+static double comm_seconds, comm_cpu;
 
 double mc_dist_comm_seconds(void) { return comm_seconds; }
+double mc_dist_comm_cpu_seconds(void) { return comm_cpu; }
 void mc_dist_comm_add(double s) { comm_seconds += s; }
+
+double mc_dist_cpu_seconds(void)
+{
+    struct timespec t;
+    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) != 0)
+        return 0;
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+mc_dist_mark mc_dist_comm_begin(void)
+{
+    return (mc_dist_mark){mc_dist_clock(), mc_dist_cpu_seconds()};
+}
+
+void mc_dist_comm_end(mc_dist_mark m)
+{
+    comm_seconds += mc_dist_clock() - m.wall;
+    comm_cpu += mc_dist_cpu_seconds() - m.cpu;
+}
 
 #ifdef MC_MPI
 double mc_dist_clock(void) { return MPI_Wtime(); }
@@ -49,17 +72,86 @@ void mc_dist_bcast(double *v, size_t n, int root)
 {
     if (run_comm == MPI_COMM_NULL)
         return;
-    const double t0 = MPI_Wtime();
+    const mc_dist_mark t0 = mc_dist_comm_begin();
     const size_t chunk = (size_t)1 << 30; /* MPI counts are int */
     for (size_t at = 0; at < n; at += chunk)
         MPI_Bcast(v + at, (int)(n - at < chunk ? n - at : chunk), MPI_DOUBLE, root, run_comm);
-    comm_seconds += MPI_Wtime() - t0;
+    mc_dist_comm_end(t0);
 }
 
 void mc_dist_max(double *v, int n)
 {
     if (run_comm != MPI_COMM_NULL && n > 0)
         MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_MAX, run_comm);
+}
+/* The ranks' element counts and offsets of a row-split field of w values per row (static
+ * tables: the row-split calls never allocate; cli/ refuses more than MC_DIST_MAX_RANKS ranks);
+ * 0 if an MPI count would overflow. */
+static int layout_in[2 * MC_DIST_MAX_RANKS], counts[MC_DIST_MAX_RANKS], displs[MC_DIST_MAX_RANKS];
+
+static int row_layout(int r0, int nr, int w)
+{
+    int mine[2] = {r0, nr}, size;
+    MPI_Comm_size(run_comm, &size);
+    if (size > MC_DIST_MAX_RANKS)
+        return 0;
+    MPI_Allgather(mine, 2, MPI_INT, layout_in, 2, MPI_INT, run_comm);
+    int ok = 1;
+    for (int p = 0; p < size; p++) {
+        ok &= ((double)layout_in[2 * p] + layout_in[2 * p + 1]) * w < 2147483647.0;
+        counts[p] = layout_in[2 * p + 1] * w;
+        displs[p] = layout_in[2 * p] * w;
+    }
+    return ok;
+}
+
+/* Every rank's rows to every rank; 0 (nothing moved) if the layout overflows MPI's counts. */
+static int gather_rows(void *v, MPI_Datatype t, int r0, int nr, int nx)
+{
+    if (run_comm == MPI_COMM_NULL)
+        return 1;
+    const mc_dist_mark t0 = mc_dist_comm_begin();
+    const int ok = row_layout(r0, nr, nx);
+    if (ok)
+        MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, v, counts, displs, t, run_comm);
+    mc_dist_comm_end(t0);
+    return ok;
+}
+
+int mc_dist_gather_rows(double *v, int r0, int nr, int nx)
+{
+    return gather_rows(v, MPI_DOUBLE, r0, nr, nx);
+}
+
+int mc_dist_gather_rows_u8(unsigned char *v, int r0, int nr, int nx)
+{
+    return gather_rows(v, MPI_UNSIGNED_CHAR, r0, nr, nx);
+}
+
+int mc_dist_row_totals(const double *part, int nr, int ny, int m, double *all, double *out)
+{
+    const double *rows = part;
+    int ok = 1;
+    if (run_comm != MPI_COMM_NULL) {
+        const mc_dist_mark t0 = mc_dist_comm_begin();
+        int r0 = 0; /* the ranks' rows ascend with the rank: the rows of the ranks before */
+        MPI_Exscan(&nr, &r0, 1, MPI_INT, MPI_SUM, run_comm);
+        if (mc_dist_rank() == 0)
+            r0 = 0; /* MPI_Exscan leaves rank 0's result undefined */
+        ok = row_layout(r0, nr, m);
+        if (ok)
+            MPI_Allgatherv(part, nr * m, MPI_DOUBLE, all, counts, displs, MPI_DOUBLE, run_comm);
+        mc_dist_comm_end(t0);
+        rows = all;
+        nr = ny;
+    }
+    for (int k = 0; k < m; k++) {
+        double s = 0;
+        for (int r = 0; ok && r < nr; r++)
+            s += rows[(size_t)r * m + k];
+        out[k] = ok ? s : NAN;
+    }
+    return ok;
 }
 #else
 double mc_dist_clock(void) { return 0; }
@@ -78,5 +170,36 @@ void mc_dist_max(double *v, int n)
 {
     (void)v;
     (void)n;
+}
+
+int mc_dist_row_totals(const double *part, int nr, int ny, int m, double *all, double *out)
+{
+    (void)ny;
+    (void)all;
+    for (int k = 0; k < m; k++) {
+        double s = 0;
+        for (int r = 0; r < nr; r++)
+            s += part[(size_t)r * m + k];
+        out[k] = s;
+    }
+    return 1;
+}
+
+int mc_dist_gather_rows(double *v, int r0, int nr, int nx)
+{
+    (void)v;
+    (void)r0;
+    (void)nr;
+    (void)nx;
+    return 1;
+}
+
+int mc_dist_gather_rows_u8(unsigned char *v, int r0, int nr, int nx)
+{
+    (void)v;
+    (void)r0;
+    (void)nr;
+    (void)nx;
+    return 1;
 }
 #endif

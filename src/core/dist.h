@@ -3,9 +3,10 @@
  * A build with -DMC_MPI (bin/microcontact-mpi, README "Running on a cluster") runs as P
  * processes under mpirun. The front end (cli/) initialises MPI and hands the run's communicator
  * over with mc_dist_set; the numerics ask for it here, never for the scene: today the elastic
- * operator's fft backend (operator/dfft.h) splits its transforms over the ranks, every other
- * stage computes the same replicated arrays on every rank. Without MC_MPI, and before
- * mc_dist_set, there is one rank and nothing is distributed.
+ * operator's fft backend (operator/dfft.h) splits its transforms over the ranks, the contact
+ * solvers' iterations keep to the operator's rows (contact_internal.h, the row-split calls
+ * below), every other stage computes the same replicated arrays on every rank. Without MC_MPI,
+ * and before mc_dist_set, there is one rank and nothing is distributed.
  *
  * Process-wide like the thread count (threads.h): set once by the front end, read by the plans;
  * every rank must make the same calls in the same order (the transforms are collective).
@@ -48,10 +49,45 @@ void mc_dist_bcast(double *v, size_t n, int root);
 double mc_dist_comm_seconds(void);
 void mc_dist_comm_add(double s);
 
+/* CPU seconds of this process (all its threads) so far, and those spent in the communication
+ * steps timed by mc_dist_comm_begin / _end (the MPI library's polling while it waits included):
+ * the CPU outside communication is the process's work, a figure the machine's load does not
+ * inflate as it does the wall time. */
+double mc_dist_cpu_seconds(void);
+double mc_dist_comm_cpu_seconds(void);
+
+/* A communication step: mc_dist_comm_end(mc_dist_comm_begin() before it) adds its wall time to
+ * mc_dist_comm_seconds and its CPU time to mc_dist_comm_cpu_seconds. */
+typedef struct {
+    double wall, cpu;
+} mc_dist_mark;
+mc_dist_mark mc_dist_comm_begin(void);
+void mc_dist_comm_end(mc_dist_mark m);
+
 /* Wall clock of MPI (MPI_Wtime; 0 without MPI), for mc_dist_comm_add. */
 double mc_dist_clock(void);
 
 /* The maximum over the ranks of each of v[0..n) (unchanged without a communicator). Collective. */
 void mc_dist_max(double *v, int n);
+
+/* ---- fields split by rows (the slabs of operator/dfft.h) ----------------------------------
+ * A field of ny rows of nx values whose rows r0 .. r0 + nr - 1 this rank computes (the ranks'
+ * row ranges ascending with the rank, together 0 .. ny - 1, as FFTW-MPI hands them out). */
+
+/* Sums over such a field that give the same bits on any number of ranks and threads: the caller
+ * sums each of its rows in index order, m quantities per row, into part[r * m + k] (its row
+ * r0 + r); the row sums of all ranks are gathered into all (room for ny * m doubles) and added in
+ * row order: out[k] = sum over the ny rows. Without a communicator part holds all the rows and
+ * all is not used. Collective. */
+int mc_dist_row_totals(const double *part, int nr, int ny, int m, double *all, double *out);
+
+/* Every rank's rows of v (ny * nx values) to every rank: v whole on each. Collective. */
+int mc_dist_gather_rows(double *v, int r0, int nr, int nx);
+int mc_dist_gather_rows_u8(unsigned char *v, int r0, int nr, int nx);
+
+/* The row-split calls return 1, or 0 (the totals NaN, nothing gathered) when the run has more
+ * than MC_DIST_MAX_RANKS ranks or a count exceeds MPI's int counts (the front end refuses such
+ * runs first). */
+#define MC_DIST_MAX_RANKS 4096
 
 #endif

@@ -23,6 +23,7 @@ struct mc_conv {
     mc_padfft fft;  /* fft: the padded transforms (2-D pair for tables, pruned for fields) */
     int distribute; /* fft: asked to distribute its transforms over the run's ranks */
     mc_dfft *dfft;  /* fft over the ranks (dfft.h) instead of fft; NULL serially */
+    int rows_only;  /* dfft: the inverse fills this rank's rows only (mc_conv_convolve_rows) */
 };
 
 struct conv_ops {
@@ -61,7 +62,7 @@ static void forward(mc_conv *c, const double *field)
 static void inverse(mc_conv *c, double *out)
 {
     if (c->dfft)
-        mc_dfft_inverse(c->dfft, out);
+        mc_dfft_inverse(c->dfft, out, !c->rows_only);
     else
         mc_padfft_inverse(&c->fft, out);
 }
@@ -383,6 +384,26 @@ int mc_conv_kernel_real(mc_conv *c, const mc_kernel_table *t, double *kre)
 void mc_conv_convolve_real(mc_conv *c, const double *kre, const double *field, double *out)
 {
     fft_convolve_one(c, NULL, kre, field, out);
+}
+
+void mc_conv_convolve_rows(mc_conv *c, const double *kspec, const double *kre,
+                           const double *field, double *out, double *work)
+{
+    c->rows_only = 1;
+    if (kre)
+        fft_convolve_one(c, NULL, kre, field, out);
+    else
+        c->ops->convolve(c, kspec, field, out, work);
+    c->rows_only = 0;
+}
+
+int mc_conv_rows(const mc_conv *c, int *r0, int *nr)
+{
+    *r0 = 0;
+    *nr = c->g.ny;
+    if (c->dfft)
+        mc_dfft_rows(c->dfft, r0, nr);
+    return c->dfft != NULL;
 }
 
 mc_backend mc_conv_backend(const mc_conv *c) { return c->ops->id; }

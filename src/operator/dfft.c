@@ -150,14 +150,14 @@ void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec)
     fftw_complex *rows = (fftw_complex *)d->rows, *cols = (fftw_complex *)d->cols;
     for (ptrdiff_t r = 0; r < d->nr; r++)
         row_forward(d, field + (size_t)(d->r0 + r) * d->nx, d->nx, rows + (size_t)r * d->hx);
-    const double t0 = MPI_Wtime();
+    const mc_dist_mark t0 = mc_dist_comm_begin();
     fftw_execute(d->tr_fwd); /* ny x hx by rows -> hx x ny by columns */
-    mc_dist_comm_add(MPI_Wtime() - t0);
+    mc_dist_comm_end(t0);
     for (ptrdiff_t k = 0; k < d->nk; k++)
         col_forward(d, cols + (size_t)k * d->ny, d->ny, spec + (size_t)k * d->ty);
 }
 
-void mc_dfft_inverse(mc_dfft *d, double *out)
+void mc_dfft_inverse(mc_dfft *d, double *out, int gather)
 {
     fftw_complex *rows = (fftw_complex *)d->rows, *cols = (fftw_complex *)d->cols;
     for (ptrdiff_t k = 0; k < d->nk; k++) { /* only the ny data rows are kept */
@@ -165,18 +165,26 @@ void mc_dfft_inverse(mc_dfft *d, double *out)
         fftw_execute_dft(d->bwd, d->cline, d->cline);
         memcpy(cols + (size_t)k * d->ny, d->cline, (size_t)d->ny * sizeof *cols);
     }
-    double t0 = MPI_Wtime();
+    mc_dist_mark t0 = mc_dist_comm_begin();
     fftw_execute(d->tr_bwd); /* hx x ny by columns -> ny x hx by rows */
-    mc_dist_comm_add(MPI_Wtime() - t0);
+    mc_dist_comm_end(t0);
     for (ptrdiff_t r = 0; r < d->nr; r++) {
         memcpy(d->cline, rows + (size_t)r * d->hx, (size_t)d->hx * sizeof *d->cline);
         fftw_execute_dft_c2r(d->c2r, d->cline, d->line);
         memcpy(out + (size_t)(d->r0 + r) * d->nx, d->line, (size_t)d->nx * sizeof *out);
     }
-    t0 = MPI_Wtime();
+    if (!gather)
+        return;
+    t0 = mc_dist_comm_begin();
     MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, out, d->counts, d->displs, MPI_DOUBLE,
                    d->comm);
-    mc_dist_comm_add(MPI_Wtime() - t0);
+    mc_dist_comm_end(t0);
+}
+
+void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)
+{
+    *r0 = (int)d->r0;
+    *nr = (int)d->nr;
 }
 
 void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)
@@ -229,10 +237,17 @@ void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec)
     (void)spec;
 }
 
-void mc_dfft_inverse(mc_dfft *d, double *out)
+void mc_dfft_inverse(mc_dfft *d, double *out, int gather)
 {
     (void)d;
     (void)out;
+    (void)gather;
+}
+
+void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)
+{
+    (void)d;
+    *r0 = *nr = 0;
 }
 
 void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)

@@ -51,8 +51,13 @@ fftw_complex *mc_dfft_spectrum(mc_dfft *d);
 void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec);
 
 /* The engine's spectrum backward (unnormalised: the caller scales), cropped to nx x ny, into out
- * on every rank. Destroys the spectrum. Collective. */
-void mc_dfft_inverse(mc_dfft *d, double *out);
+ * on every rank (gather = 1), or into this rank's data rows of out only (gather = 0: the other
+ * rows untouched, no gather; a solver that keeps to its rows saves the 8 nx ny bytes). Destroys
+ * the spectrum. Collective. */
+void mc_dfft_inverse(mc_dfft *d, double *out, int gather);
+
+/* This rank's data rows r0 .. r0 + nr - 1 (of ny): the rows mc_dfft_forward reads. */
+void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr);
 
 /* This rank's part of the spectrum of a whole ty x tx table (wrap-around layout, on every rank)
  * into spec, by the same line transforms; local (no communication): each rank transforms all ty

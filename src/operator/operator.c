@@ -89,6 +89,17 @@ void mc_operator_apply(mc_operator *op, const double *in, double *out)
         mc_conv_convolve(op->conv, op->kspec, in, out, op->lspec);
 }
 
+void mc_operator_apply_rows(mc_operator *op, const double *in, double *out)
+{
+    mc_conv_convolve_rows(op->conv, op->kspec, op->real_kernel ? op->kspec : NULL, in, out,
+                          op->lspec);
+}
+
+int mc_operator_rows(const mc_operator *op, int *r0, int *nr)
+{
+    return mc_conv_rows(op->conv, r0, nr);
+}
+
 void mc_operator_destroy(mc_operator **op)
 {
     if (!op || !*op)

@@ -187,6 +187,17 @@ void mc_conv_convolve_real(mc_conv *c, const double *kre, const double *field, d
 mc_backend mc_conv_backend(const mc_conv *c);
 const mc_grid *mc_conv_grid(const mc_conv *c);
 
+/* The rows of the field this process computes: r0 .. r0 + nr - 1 (of ny). All rows serially,
+ * on the direct backend and on a serial engine; this rank's slab when the fft backend is
+ * distributed (dfft.h; nr may be 0 on a rank left without rows). */
+int mc_conv_rows(const mc_conv *c, int *r0, int *nr); /* 1: split over the ranks */
+
+/* mc_conv_convolve (kre == NULL) or mc_conv_convolve_real (kre given), but a distributed engine
+ * reads only this process's rows of field (mc_conv_rows) and writes only its rows of out (no
+ * gather); serially the same as the full call. Collective. */
+void mc_conv_convolve_rows(mc_conv *c, const double *kspec, const double *kre,
+                           const double *field, double *out, double *work);
+
 /* ---- planner rigor and stored wisdom ----------------------------------------------------- */
 
 /* How the repeated transforms are planned ([solver] plans): the transform engine's field
@@ -255,6 +266,16 @@ void mc_operator_apply(mc_operator *op, const double *in, double *out);
 void mc_operator_destroy(mc_operator **op); /* frees and sets *op = NULL; NULL-safe */
 
 const mc_grid *mc_operator_grid(const mc_operator *op);
+
+/* The rows of a field this process owns under mc_operator_apply_rows: r0 .. r0 + nr - 1 (of ny;
+ * all of them unless the operator is distributed). Returns 1 when the operator is distributed
+ * (its rows split over the run's ranks), else 0. */
+int mc_operator_rows(const mc_operator *op, int *r0, int *nr);
+
+/* out = K in on this process's rows only: in is read on them, out written on them (a distributed
+ * operator skips the gather of the result; serially mc_operator_apply). For a solver that keeps
+ * its per-cell work on its own rows (contact/). Collective. */
+void mc_operator_apply_rows(mc_operator *op, const double *in, double *out);
 mc_backend mc_operator_backend(const mc_operator *op);
 
 #endif

@@ -17,18 +17,19 @@ static double axis_len(int n, int periodic) { return periodic ? n : mc_fftsize_g
  * and the kernel table while it is built; direct - the table. Over P MPI processes
  * (operator/dfft.h) the spectrum, the work spectrum and the two transpose buffers are a slab each,
  * 1/P; the whole kernel table is still built on every process. */
-static double operator_bytes(int nx, int ny, int px, int py, mc_backend b)
+static double operator_bytes(int nx, int ny, int px, int py, mc_backend b, int ranks)
 {
     double tx = axis_len(nx, px), ty = axis_len(ny, py), half = ty * (tx / 2 + 1);
     if (b == MC_BACKEND_DIRECT)
         return 8 * tx * ty;
-    const int ranks = mc_dist_size();
     if (ranks > 1)
         return (16 * half * 2 + 2 * 16 * (double)ny * (tx / 2 + 1)) / ranks + 8 * tx * ty;
     return 16 * half * 2 + 8 * tx * ty + 8 * tx * ty;
 }
 
-double mc_memory_estimate(const mc_scene *s)
+double mc_memory_estimate(const mc_scene *s) { return mc_memory_estimate_ranks(s, mc_dist_size()); }
+
+double mc_memory_estimate_ranks(const mc_scene *s, int ranks)
 {
     const mc_grid *g = &s->grid;
     double cells = (double)g->nx * (double)g->ny;
@@ -37,7 +38,7 @@ double mc_memory_estimate(const mc_scene *s)
         bytes += 4 * 8 * cells; /* each body's surface before and after (pipeline/bodies.h) */
     if (s->load.kind == MC_LOAD_PRESSURE_FILE)
         bytes += 8 * cells; /* the map as read */
-    bytes += operator_bytes(g->nx, g->ny, g->periodic_x, g->periodic_y, s->solver.backend);
+    bytes += operator_bytes(g->nx, g->ny, g->periodic_x, g->periodic_y, s->solver.backend, ranks);
     if (s->load.kind != MC_LOAD_PRESSURE_FILE) {
         /* ten work arrays, two masks, the preconditioner's box buffers */
         double solver = (10 * 8 + 2 + 16) * cells;
@@ -46,7 +47,7 @@ double mc_memory_estimate(const mc_scene *s)
         /* nested start: each coarse level a quarter of the one above (operator and solver) */
         if (s->solver.method == MC_METHOD_CG && g->nx >= MC_COARSEN_MIN)
             solver += (solver + operator_bytes(g->nx, g->ny, g->periodic_x, g->periodic_y,
-                                               s->solver.backend)) / 3.0;
+                                               s->solver.backend, ranks)) / 3.0;
         bytes += solver;
     }
     if (s->stress.enabled) {

@@ -13,6 +13,10 @@
  * in full. */
 double mc_memory_estimate(const mc_scene *s);
 
+/* The same for a run over `ranks` MPI processes (mc_memory_estimate: the run's own count), e.g.
+ * to predict a cluster run from one process (bench mpi). */
+double mc_memory_estimate_ranks(const mc_scene *s, int ranks);
+
 /* Memory the system can still give, bytes (MemAvailable of /proc/meminfo; physical memory if
  * that is unreadable); MC_MEMORY_LIMIT in the environment (bytes, for tests) overrides it. */
 double mc_memory_available(void);

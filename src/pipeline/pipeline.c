@@ -155,6 +155,7 @@ static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_e
     if (rc != MC_OK)
         return rc;
     t0 = mc_clock();
+    const double cpu0 = mc_dist_cpu_seconds(), ccpu0 = mc_dist_comm_cpu_seconds();
     if (sc->plasticity.enabled)
         rc = mc_stage_plastic(sc, K, solver, res, err);
     else if (sc->load.lubricant_pressure == MC_LUBRICANT_AUTO)
@@ -163,6 +164,8 @@ static int run_contact(const mc_scene *sc, mc_operator *K, mc_results *res, mc_e
         rc = mc_contact_solve(solver, &prob, res->pressure, res->displacement, res->gap,
                               &res->contact, err);
     res->timing.contact_s = mc_clock() - t0;
+    res->timing.contact_cpu_s = mc_dist_cpu_seconds() - cpu0;
+    res->timing.contact_comm_cpu_s = mc_dist_comm_cpu_seconds() - ccpu0;
     mc_contact_destroy(&solver);
     if (rc == MC_ERR_INPUT || rc == MC_ERR_LIMIT) /* a load the contact cannot take */
         return blame_key(sc, "load",

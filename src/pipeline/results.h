@@ -142,6 +142,10 @@ typedef struct {
     /* of these, seconds in MPI communication on this process (core/dist.h; 0 serially): printed
      * by the MPI executable, not written to summary.json (the same file as a serial run's) */
     double comm_s;
+    /* the contact stage's CPU seconds on this process, and those in MPI communication (the
+     * work a rank did, which the machine's load does not inflate); printed by the MPI
+     * executable only */
+    double contact_cpu_s, contact_comm_cpu_s;
 } mc_timing;
 
 /* A warning a user can act on (pipeline/warnings.h): a stable code and one line of text. */
