@@ -472,8 +472,8 @@ const case_key mc_keys[] = {
             "strain increment between two applications of the residual stress operator with "
             "its near field (this many columns around each cell, and layers as deep), on the "
             "cells at or near yield; the same fixed point and stopping test with fewer "
-            "applications (a 256 x 128 x 16 running-in step: 19 instead of 62). 0: one "
-            "application per sweep."},
+            "applications (a 256 x 128 x 16 running-in step: 19 instead of 62; 512 x 256 x 16: "
+            "71). 0: one application per sweep."},
     {.section = "plasticity", .name = "dz", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "min(dx, dy) / 2", .def_rule = 1, .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.dz),

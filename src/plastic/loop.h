@@ -163,7 +163,8 @@ typedef struct {
     int stress_applies;         /* residual stress applications (the sweeps' costly operator;
                                    a sweep with no plastic strain anywhere skips it) */
     int local_sweeps;           /* near-field sweeps between them (near_reach > 0) */
-    long local_cells;           /* cells those sweeps visited, summed (their cost) */
+    long local_cells;           /* near-field spreads of those sweeps (cells whose change was
+                                   spread to their neighbours: their cost) */
     int splits;                 /* the step diverged and was done in 2^splits increments */
     int converged;
 } mc_plastic_step;
