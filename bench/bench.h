@@ -47,6 +47,7 @@ double mc_bench_runin_step(int nx, int ny, const char *speed, const char *extra,
 typedef struct {
     double wall_s, cpu_s;
     int plastic, outer, sweeps, applies, equilibria, solves;
+    int local_sweeps;  /* near-field sweeps between the applications (theory §9.7) */
 } mc_bench_step;
 int mc_bench_runin_step_counts(int nx, int ny, const char *speed, const char *extra, int threads,
                                mc_bench_step *out);

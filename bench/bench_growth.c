@@ -227,6 +227,7 @@ int mc_bench_runin_step_counts(int nx, int ny, const char *speed, const char *ex
                 out->outer = st->outer_iterations;
                 out->sweeps = st->plastic_iterations;
                 out->applies = st->stress_applies;
+                out->local_sweeps = st->local_sweeps;
             }
             ok = 0;
         }

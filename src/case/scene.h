@@ -145,6 +145,8 @@ typedef struct {
         int max_outer;
         double plastic_tolerance;     /* fixed point of the plastic strain increment */
         int max_plastic;
+        int near_field;          /* > 0: local-global fixed point with this lateral reach (cells,
+                                    docs/theory.md §9.7); 0: one global application per sweep */
         double dz;                    /* layer thickness, m; 0: min(dx, dy) / 2 (line: dx / 2) */
         mc_eig_stress_points stress_points; /* cell_average (default) or centre */
         double depth;                 /* m; 0: auto */

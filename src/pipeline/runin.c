@@ -252,6 +252,7 @@ static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_stag
                              .max_outer = sc->plasticity.max_outer,
                              .tol_plastic = sc->plasticity.plastic_tolerance,
                              .max_plastic = sc->plasticity.max_plastic,
+                             .near_reach = sc->plasticity.near_field,
                              .anderson = MC_RUNIN_ANDERSON,
                              .eps_p0 = c->eps_p,
                              .peq0 = c->peq,

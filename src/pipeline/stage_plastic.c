@@ -317,7 +317,8 @@ int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
                              .tol_outer = sc->plasticity.tolerance,
                              .max_outer = sc->plasticity.max_outer,
                              .tol_plastic = sc->plasticity.plastic_tolerance,
-                             .max_plastic = sc->plasticity.max_plastic};
+                             .max_plastic = sc->plasticity.max_plastic,
+                             .near_reach = sc->plasticity.near_field};
     mc_plastic_result pr;
     (void)K;
     rc = mc_plastic_run(&res->grid, K, solver, &pb, res->pressure, res->displacement, res->gap,

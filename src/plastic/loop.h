@@ -21,6 +21,7 @@
 #include "operator/operator.h"
 #include "plastic/eigen_op.h"
 #include "plastic/hardening.h"
+#include "plastic/local_op.h"
 #include "stress/stress.h"
 
 /* The operators of the loop - the elastic stresses of the surface tractions at the cuboid
@@ -41,6 +42,9 @@ typedef struct {
     double nu;
     mc_backend backend;
     int friction;              /* 1: the elastic plan takes the friction traction q_x too */
+    mc_plastic_local *near;    /* the near field of resid (local_op.h), made by the first run
+                                  that asks for it (mc_plastic_problem.near_reach), NULL before */
+    int near_reach;            /* the lateral reach it was made with */
 } mc_plastic_ops;
 
 /* Build the operators for grid g, volume v, Poisson ratio nu, backend b, with the friction
@@ -59,6 +63,9 @@ void mc_plastic_ops_destroy(mc_plastic_ops *ops);
 typedef int (*mc_plastic_contact_fn)(void *ctx, const mc_contact_problem *cp, double *p,
                                      double *u, double *gap, mc_contact_summary *sum,
                                      double *p_lub, mc_error *err);
+
+/* The largest near_reach of mc_plastic_problem (the near field's blocks grow as its square). */
+#define MC_PLASTIC_NEAR_REACH_MAX 8
 
 typedef struct {
     /* the contact (force control, the load rises linearly over the steps) */
@@ -95,6 +102,12 @@ typedef struct {
                                   tests); 0 (default): from the last converged increment of the
                                   run scaled to this one's load (warm start, docs/theory.md
                                   §9.6) */
+    int near_reach;            /* > 0: local-global fixed point (docs/theory.md §9.7): between
+                                  two applications of the residual stress operator the plastic
+                                  increment is iterated on the cells at or near yield with the
+                                  operator's near field (local_op.h) within near_reach columns;
+                                  the same fixed point and stopping test as 0, far fewer
+                                  applications; 0: one application per sweep (the reference) */
     int anderson;              /* > 0: Anderson acceleration with this history depth
                                   (plastic/anderson.h, <= MC_ANDERSON_MAX_DEPTH) of the plastic
                                   fixed point and of the outer iteration (on the relaxed map
@@ -153,6 +166,9 @@ typedef struct {
     int contact_solves;         /* calls of step (a) (with a lubricant: volume equilibria) */
     int stress_applies;         /* residual stress applications (the sweeps' costly operator;
                                    a sweep with no plastic strain anywhere skips it) */
+    int local_sweeps;           /* near-field sweeps between them (near_reach > 0) */
+    long local_cells;           /* near-field spreads of those sweeps (cells whose change was
+                                   spread to their neighbours: their cost) */
     int splits;                 /* the step diverged and was done in 2^splits increments */
     int converged;
 } mc_plastic_step;
