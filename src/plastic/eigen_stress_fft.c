@@ -552,12 +552,13 @@ DEPTH_CLONES static void depth_step_coarse(const mc_eigen_stress *op, const sfft
             const int fj = op->first[j], md = c0 - fj + 1;
             /* Q(md) = so (A - B): A = S(md), B = S(0) = 0 for md >= 0; else A = S(1),
              * B = S(1 - md) and so = the pair's parity in z (-1 for the pairs odd in z) */
-            const double *A = Sb + (size_t)(md >= 0 ? md : 1) * pl;
-            const double *B = Sb + (size_t)(md >= 0 ? 0 : 1 - md) * pl;
-            const double *I = Sb + (size_t)(c0 + fj + 1) * pl; /* the mirror's S */
+            const double *restrict A = Sb + (size_t)(md >= 0 ? md : 1) * pl;
+            const double *restrict B = Sb + (size_t)(md >= 0 ? 0 : 1 - md) * pl;
+            const double *restrict I = Sb + (size_t)(c0 + fj + 1) * pl; /* the mirror's S */
             const double so = md >= 0 ? 1.0 : -1.0;
-            const double *d = D + (size_t)j * bs, *dr = Dr + (size_t)j * bs;
-#define QD(n) (A[(size_t)(n) * ch + x] - B[(size_t)(n) * ch + x])
+            const double *restrict d = D + (size_t)j * bs, *restrict dr = Dr + (size_t)j * bs;
+            double *restrict Yr = Y;
+#define QD(n) (md >= 0 ? A[(size_t)(n) * ch + x] : A[(size_t)(n) * ch + x] - B[(size_t)(n) * ch + x])
 #define SI(n) I[(size_t)(n) * ch + x]
 #define DC(c) d[(size_t)(c) * cs + x]
 #define DR(c) dr[(size_t)(c) * cs + x]
@@ -568,24 +569,35 @@ DEPTH_CLONES static void depth_step_coarse(const mc_eigen_stress *op, const sfft
         const double q3 = so##p3 * QD(n3), q4 = so##p4 * QD(n4), q5 = so##p5 * QD(n5);            \
         const double s0 = SI(n0), s1 = SI(n1), s2 = SI(n2), s3 = SI(n3), s4 = SI(n4);             \
         const double s5 = SI(n5);                                                                 \
-        Y[(size_t)(2 * (i)) * cs + x] += q0 * DC(0) + q1 * DC(2) + q2 * DC(4) + q3 * DC(6) +      \
+        Yr[(size_t)(2 * (i)) * cs + x] += q0 * DC(0) + q1 * DC(2) + q2 * DC(4) + q3 * DC(6) +      \
                                          q4 * DC(8) + q5 * DC(10) - s0 * DR(0) - s1 * DR(2) -     \
                                          s2 * DR(4) - s3 * DR(6) - s4 * DR(8) - s5 * DR(10);      \
-        Y[(size_t)(2 * (i) + 1) * cs + x] += q0 * DC(1) + q1 * DC(3) + q2 * DC(5) + q3 * DC(7) +  \
+        Yr[(size_t)(2 * (i) + 1) * cs + x] += q0 * DC(1) + q1 * DC(3) + q2 * DC(5) + q3 * DC(7) +  \
                                              q4 * DC(9) + q5 * DC(11) - s0 * DR(1) - s1 * DR(3) - \
                                              s2 * DR(5) - s3 * DR(7) - s4 * DR(9) - s5 * DR(11);  \
     } while (0)
             /* the parity factor of a pair: 1 where even in z, so where odd */
             const double soE = 1.0, soO = so;
+#define ROWS                                                                                      \
+    do {                                                                                          \
+        ROWX(0, 0, 1, 2, 3, 4, 5, E, E, E, E, O, O);                                              \
+        ROWX(1, 1, 6, 7, 8, 9, 10, E, E, E, E, O, O);                                             \
+        ROWX(2, 2, 7, 11, 12, 13, 14, E, E, E, E, O, O);                                          \
+        ROWX(3, 3, 8, 12, 15, 16, 17, E, E, E, E, O, O);                                          \
+        ROWX(4, 4, 9, 13, 16, 18, 19, O, O, O, O, E, E);                                          \
+        ROWX(5, 5, 10, 14, 17, 19, 20, O, O, O, O, E, E);                                         \
+    } while (0)
+            /* two loops, so that the one above the target (md >= 0) reads no B */
+            if (md >= 0) {
 #pragma omp simd
-            for (int x = 0; x < len; x++) {
-                ROWX(0, 0, 1, 2, 3, 4, 5, E, E, E, E, O, O);
-                ROWX(1, 1, 6, 7, 8, 9, 10, E, E, E, E, O, O);
-                ROWX(2, 2, 7, 11, 12, 13, 14, E, E, E, E, O, O);
-                ROWX(3, 3, 8, 12, 15, 16, 17, E, E, E, E, O, O);
-                ROWX(4, 4, 9, 13, 16, 18, 19, O, O, O, O, E, E);
-                ROWX(5, 5, 10, 14, 17, 19, 20, O, O, O, O, E, E);
+                for (int x = 0; x < len; x++)
+                    ROWS;
+            } else {
+#pragma omp simd
+                for (int x = 0; x < len; x++)
+                    ROWS;
             }
+#undef ROWS
 #undef ROWX
 #undef DR
 #undef DC
