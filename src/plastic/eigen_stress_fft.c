@@ -21,6 +21,11 @@
  * one contiguous run (and a spectrum row and its mirror, which share the kernel, run together).
  * S3: p3 = sum of P_k'c E_c is formed per frequency, inverted, cut to the window (p3 lives on the
  * window), transformed again and added with Love's spectra before the layers' inverse transforms.
+ * Graded volumes (eigen_op.h, theory.md §8.8): the depth step above runs on the fine lattice; the
+ * coarse step (depth_step_coarse) sums instead over the nz + 1 layer boundaries with the prefix
+ * sums of the real tables (2 nzf + 1 planes of 21 values per lateral frequency, about the count
+ * of the depth spectra), (nz + 1) nz terms per lateral frequency against 12 DFTs of length L;
+ * coarse_pays chooses by that count (uniform volumes: always the DFTs, unchanged).
  */
 #include <math.h>
 #include <omp.h>
@@ -45,7 +50,7 @@
 #define CHUNK_TARGET 64
 
 /* the cost model of coarse_pays, relative units (flops of the loops, scaled by measurement) */
-#define COARSE_PAIR 130.0
+#define COARSE_PAIR 115.0
 #define FINE_DFT 2.5
 #define FINE_PROD 200.0
 
