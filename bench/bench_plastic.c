@@ -650,9 +650,9 @@ static void section_graded(vf_ctx *ctx, int quick)
                  "roughness 0.1 um rms, 6 um correlation; linear hardening from 800 MPa; 4 load "
                  "steps; %d² cells of %.2f um, dz = dx / 2, depth and window auto): layering = "
                  "graded (dz down to 8 dx, then odd groups of at most 0.25 x depth) against "
-                 "uniform layers of dz. CPU: the process's CPU time (%d threads). The depth step "
-                 "of the stress operator runs on the fine lattice either way (docs/theory.md "
-                 "§8.8).\n\n"
+                 "uniform layers of dz. CPU: the process's CPU time (%d threads). The graded "
+                 "volume's stress operator takes the coarse depth step when it costs less than "
+                 "the fine lattice's DFTs (docs/theory.md §8.8).\n\n"
                  "| layering | layers | depth (um) | residual dent (nm) | plastic volume (um³) "
                  "| CPU (s) | converged |\n|---|---|---|---|---|---|---|\n",
             n, 1e6 * 112e-6 / n, mc_threads_count());

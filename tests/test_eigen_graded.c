@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "plastic/eigen_internal.h"
 #include "plastic/eigen_op.h"
 #include "eigen_testkit.h"
 #include "test_util.h"
@@ -26,6 +27,10 @@ static const double E_MOD = 210e9;
  * kernels/eigen.h over [z1, z2] against their sum over the sub-intervals: round-off of terms that
  * cancel, ~1e-13 measured). */
 #define TOL_SUPERPOSE 1e-10
+/* The fft backend's two depth steps on a graded volume (eigen_stress_fft.c): the same fine-lattice
+ * sums, by depth DFTs or by prefix sums over the coarse boundaries; round-off of sums of ~nzf
+ * terms of the size of the largest entry (measured <= 1e-14). */
+#define TOL_DEPTH 1e-12
 /* The laterally uniform field's closed form (as test_eigen_periodic.c TOL_MEAN). */
 #define TOL_MEAN 1e-11
 
@@ -62,32 +67,56 @@ static mc_eigen_volume vol_of(const gcase *c, const int *group)
 
 /* ---- direct vs fft ---------------------------------------------------------------------------- */
 
+/* The fft stress operator with its depth step forced (eigen_internal.h). */
+static mc_eigen_stress *stress_depth(const mc_grid *g, const mc_eigen_volume *v, int depth)
+{
+    mc_eigen_stress *op = NULL;
+    mc_error err;
+    const int rc = mc_eig_stress_create_depth(g, v, NU, MC_BACKEND_FFT, depth, &op, &err);
+    ck_assert_msg(rc == MC_OK, "%s", err.msg);
+    ck_assert_int_eq(mc_eig_stress_fft_depth(op), depth);
+    return op;
+}
+
 START_TEST(test_backends)
 {
     const gcase *gc = &cases[_i];
     const mc_grid g = grid_of(gc);
     const mc_eigen_volume v = vol_of(gc, gc->group);
     const size_t nw = (size_t)v.nx * v.ny, n = nw * v.nz, ns = mc_grid_cells(&g);
-    double *eps[6], *sd[6], *sf[6];
+    double *eps[6], *sd[6], *sf[6], *sc[6];
     double *b1 = eig_fields(n, eps), *b2 = eig_fields(n, sd), *b3 = eig_fields(n, sf);
+    double *b4 = eig_fields(n, sc);
     test_random_field(b1, 6 * n, 91 + (unsigned)_i);
     double *ud = malloc(ns * sizeof *ud), *uf = malloc(ns * sizeof *uf);
     double *pd = malloc(nw * sizeof *pd), *pf = malloc(nw * sizeof *pf);
+    double *pc = malloc(nw * sizeof *pc);
     mc_eigen_disp *dd = eig_disp_op(&g, &v, NU, MC_BACKEND_DIRECT);
     mc_eigen_disp *df = eig_disp_op(&g, &v, NU, MC_BACKEND_FFT);
     mc_eigen_stress *od = eig_stress_op(&g, &v, NU, MC_BACKEND_DIRECT);
-    mc_eigen_stress *of = eig_stress_op(&g, &v, NU, MC_BACKEND_FFT);
+    /* both depth steps of the fft backend (the fine lattice's DFTs, the coarse pair sum) */
+    mc_eigen_stress *of = stress_depth(&g, &v, MC_EIG_DEPTH_FINE);
+    mc_eigen_stress *oc = stress_depth(&g, &v, MC_EIG_DEPTH_COARSE);
     mc_eigen_disp_apply(dd, (const double *const *)eps, ud);
     mc_eigen_disp_apply(df, (const double *const *)eps, uf);
     mc_eigen_stress_apply(od, (const double *const *)eps, G_MOD, sd);
     mc_eigen_stress_apply(of, (const double *const *)eps, G_MOD, sf);
     mc_eigen_stress_p3(od, pd);
     mc_eigen_stress_p3(of, pf);
+    mc_eigen_stress_apply(oc, (const double *const *)eps, G_MOD, sc);
+    mc_eigen_stress_p3(oc, pc);
     const double eu = test_rel_maxdiff(uf, ud, ns), es = test_rel_maxdiff(b3, b2, 6 * n);
     const double ep = test_rel_maxdiff(pf, pd, nw);
+    const double ec = test_rel_maxdiff(b4, b2, 6 * n), ez = test_rel_maxdiff(b4, b3, 6 * n);
+    const double epc = test_rel_maxdiff(pc, pf, nw);
     if (getenv("MC_TEST_VERBOSE"))
-        fprintf(stderr, "graded case %d: fft vs direct u_z %.3g, stress %.3g, p3 %.3g\n", _i, eu,
-                es, ep);
+        fprintf(stderr,
+                "graded case %d: fft vs direct u_z %.3g, stress %.3g (coarse depth %.3g), p3 "
+                "%.3g; coarse vs fine depth step: stress %.3g, p3 %.3g\n",
+                _i, eu, es, ec, ep, ez, epc);
+    ck_assert_msg(ec <= TOL_BACKENDS, "case %d: stress fft (coarse) vs direct %.3g", _i, ec);
+    ck_assert_msg(ez <= TOL_DEPTH, "case %d: stress coarse vs fine depth step %.3g", _i, ez);
+    ck_assert_msg(epc <= TOL_DEPTH, "case %d: p3 coarse vs fine depth step %.3g", _i, epc);
     ck_assert_msg(eu <= TOL_BACKENDS, "case %d: u_z fft vs direct %.3g", _i, eu);
     ck_assert_msg(es <= TOL_BACKENDS, "case %d: stress fft vs direct %.3g", _i, es);
     ck_assert_msg(ep <= TOL_BACKENDS, "case %d: p3 fft vs direct %.3g", _i, ep);
@@ -96,7 +125,8 @@ START_TEST(test_backends)
     mc_eigen_disp_destroy(&df);
     mc_eigen_stress_destroy(&od);
     mc_eigen_stress_destroy(&of);
-    free(ud), free(uf), free(pd), free(pf), free(b1), free(b2), free(b3);
+    mc_eigen_stress_destroy(&oc);
+    free(ud), free(uf), free(pd), free(pf), free(pc), free(b1), free(b2), free(b3), free(b4);
 }
 END_TEST
 

@@ -201,6 +201,7 @@ struct mc_eigen_stress {
     int *group;        /* the object's copy of v.group (NULL: uniform) */
     int *first;        /* nz + 1: first fine layer of each layer, nzf at nz */
     int *centre;       /* nz (inside first's block): the fine layer of each layer's centre */
+    int depth;         /* fft depth step: MC_EIG_DEPTH_AUTO / _FINE / _COARSE (eigen_stress_fft.c) */
     const struct mc_eig_stress_ops *ops; /* the backend's row (eigen_stress_op.c) */
     int qx, qy;        /* quadrant of the tables (direct: the window; fft: half periods + 1) */
     size_t qlen;       /* doubles per quadrant (rounded up to a cache line) */
@@ -227,6 +228,18 @@ int mc_eig_pair_par(int i, int c);
 void mc_eig_s1_fill(const mc_eigen_stress *op, int m, double *const q[MC_EIG_NSYM]);
 void mc_eig_p3_fill(const mc_eigen_stress *op, int k, double *const q[6]);
 void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6]);
+
+/* The fft backend's depth step (theory.md §8.8): AUTO picks by the volume (a graded volume whose
+ * pair sum costs less than the fine lattice's DFTs takes the coarse step); FINE, the depth DFTs on
+ * the fine lattice; COARSE, the direct sum over coarse layer boundaries of prefix-summed tables. */
+enum { MC_EIG_DEPTH_AUTO = 0, MC_EIG_DEPTH_FINE = 1, MC_EIG_DEPTH_COARSE = 2 };
+
+/* mc_eigen_stress_create with the depth step forced (for checks and benchmarks; ignored by the
+ * direct backend). */
+int mc_eig_stress_create_depth(const mc_grid *g, const mc_eigen_volume *v, double nu,
+                               mc_backend b, int depth, mc_eigen_stress **out, mc_error *err);
+/* The depth step an fft operator uses (MC_EIG_DEPTH_FINE or _COARSE; 0 for the direct backend). */
+int mc_eig_stress_fft_depth(const mc_eigen_stress *op);
 
 /* fft backend (eigen_stress_fft.c): sizes (qx, qy); spectra, plans and workspaces; apply; free
  * what prepare took (NULL-safe). */

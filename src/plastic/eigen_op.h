@@ -84,9 +84,11 @@ static inline const char *mc_eig_stress_points_name(mc_eig_stress_points s)
  * centre, the centre of its middle fine layer, z = (f_k + (group[k] - 1) / 2 + 1/2) dz. The
  * operators work on the fine lattice by superposition (a thick cuboid is the sum of its fine
  * sub-cuboids; the source repeats over them, the output is read at the middle one), so their
- * kernel tables and depth step are those of the uniform fine volume of sum(group) layers while
- * the lateral transforms, the fields and the return map scale with nz. group == NULL (or every
- * entry 1) is the uniform volume, with the same bits. */
+ * kernel tables are those of the uniform fine volume of sum(group) layers while the lateral
+ * transforms, the fields and the return map scale with nz; the fft backend's depth step runs on
+ * the fine lattice or, when it costs less, sums over the coarse layers' boundaries (prefix sums
+ * of the fine tables: (nz + 1) nz terms per lateral frequency). group == NULL (or every entry 1)
+ * is the uniform volume, with the same bits. */
 typedef struct {
     int i0, j0; /* first column of the window along x and y (surface grid indices, >= 0) */
     int nx, ny; /* columns of the window along x and y (>= 1, i0 + nx <= grid nx, ...) */

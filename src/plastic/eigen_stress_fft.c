@@ -21,6 +21,11 @@
  * one contiguous run (and a spectrum row and its mirror, which share the kernel, run together).
  * S3: p3 = sum of P_k'c E_c is formed per frequency, inverted, cut to the window (p3 lives on the
  * window), transformed again and added with Love's spectra before the layers' inverse transforms.
+ * Graded volumes (eigen_op.h, theory.md §8.8): the depth step above runs on the fine lattice; the
+ * coarse step (depth_step_coarse) sums instead over the nz + 1 layer boundaries with the prefix
+ * sums of the real tables (2 nzf + 1 planes of 21 values per lateral frequency, about the count
+ * of the depth spectra), (nz + 1) nz terms per lateral frequency against 12 DFTs of length L;
+ * coarse_pays chooses by that count (uniform volumes: always the DFTs, unchanged).
  */
 #include <math.h>
 #include <omp.h>
@@ -44,18 +49,27 @@
 /* kx values per block at most */
 #define CHUNK_TARGET 64
 
+/* the cost model of coarse_pays, relative units (flops of the loops, scaled by measurement) */
+#define COARSE_PAIR 115.0
+#define FINE_DFT 2.5
+#define FINE_PROD 200.0
+
 typedef struct {
     mc_eig_fft fft;       /* 2mx x 2my; forward and inverse on the window's rows */
-    int Nz, L;            /* depth half period and period */
+    int coarse;           /* 1: the coarse depth step (graded volumes; file comment) */
+    int Nz, L;            /* depth half period and period (fine lattice step) */
+    int np;               /* depth planes per block of V: Nz + 1 (fine) or 2 nzf + 1 (coarse) */
     int ch, nch;          /* kx per block, blocks per quadrant row (nch ch >= qx) */
     int cs;               /* buffer stride: ch rounded up to whole cache lines, off powers of 2 */
     int nthr;             /* workspaces */
-    double *V;            /* S1 + S2 spectra, blocked: [(b (Nz + 1) + kz) 21 + n] ch + x */
+    double *V;            /* S1 + S2 spectra, blocked: [(b np + kz) 21 + n] ch + x; coarse: the
+                           * prefix sums of the real tables at plane m (m = 0 .. 2 nzf) */
     double *P3;           /* p3 kernel spectra, blocked: [(b nz + k) 6 + c] ch + x */
     fftw_complex *E;      /* 6 nz spectra [c * nz + k]: eps, then the stresses / 2G */
     fftw_complex *P;      /* p3 spectrum */
     double *rows;         /* nthr x (wy x tx) */
-    fftw_complex *zb;     /* nthr x zlen: source and output (6 x L x cs each), planar scratch */
+    fftw_complex *zb;     /* nthr x zlen: source and output (6 x L x cs each), planar scratch;
+                           * coarse: the boundary jumps (2 x (nz + 1) x 12 cs doubles), output */
     size_t zlen;
     fftw_complex *tw;     /* w^kz, kz = 0..Nz, w = e^(-2 pi i / L) */
     fftw_plan zf, zi;     /* depth DFTs of length L, cs sequences at a time */
@@ -119,7 +133,7 @@ static void scatter_blocks(const mc_eigen_stress *op, const sfft *f, double *con
  * signs; Love's tables are transformed in place. */
 static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
 {
-    const int nz = op->v.nz, nzf = op->nzf, Nz = f->Nz, ch = f->ch, np = (Nz + 1) * MC_EIG_NSYM;
+    const int nz = op->v.nz, nzf = op->nzf, Nz = f->Nz, ch = f->ch, np = f->np * MC_EIG_NSYM;
     const size_t ql = op->qlen, nblk = (size_t)op->qy * f->nch;
     mc_eig_quad quad;
     int rc = mc_eig_periodic(&op->g)
@@ -138,7 +152,7 @@ static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
     for (int n = 0; n < MC_EIG_NSYM; n++)
         q[n] = scr + (size_t)n * ql;
     int par[MC_EIG_NSYM], oddz[MC_EIG_NSYM];
-    double sign[MC_EIG_NSYM];
+    double sign[MC_EIG_NSYM], signc[MC_EIG_NSYM];
     for (int i = 0; i < 6; i++)
         for (int c = i; c < 6; c++) {
             const int n = mc_eig_sym(i, c);
@@ -146,6 +160,7 @@ static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
             oddz[n] = mc_eig_odd_z(i) ^ mc_eig_odd_z(c);
             /* times w_min(i,c): the stored matrix is then symmetric, S_ic = V_ic / w_i */
             sign[n] = xysign(i, c) * zsign(i, c) * mc_eig_weight(i);
+            signc[n] = xysign(i, c) * mc_eig_weight(i);
         }
     /* the fine lattice's offsets; planes m >= 2 nzf stay zero (calloc) */
     for (int m = 0; m < 2 * nzf; m++) {
@@ -167,6 +182,27 @@ static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
         mc_eig_quad_transform(&quad, mc_eig_par(t % 6), op->love + (size_t)t * ql);
     mc_eig_quad_destroy(&quad);
     mc_free(scr);
+    if (f->coarse) {
+        /* the real tables at m dz times the lateral signs and w_min(i,c) (the same factors as
+         * below, without the depth DFT's (-i) parities), summed: plane m holds
+         * S(m) = sum of K(m') for m' < m; K(0) of a pair odd in z is 0 (the DST's convention) */
+#pragma omp parallel for schedule(static)
+        for (size_t b = 0; b < nblk; b++)
+            for (int n = 0; n < MC_EIG_NSYM; n++) {
+                double *base = f->V + b * (size_t)np * ch + (size_t)n * ch;
+                const double s = signc[n];
+                for (int x = 0; x < ch; x++) {
+                    double acc = 0.0;
+                    for (int m = 0; m < f->np; m++) {
+                        double *v = base + (size_t)m * MC_EIG_NSYM * ch + x;
+                        const double k = (m == 0 && oddz[n]) ? 0.0 : s * *v;
+                        *v = acc;
+                        acc += k;
+                    }
+                }
+            }
+        return MC_OK;
+    }
 
     /* depth: within a block, planes kz of pair n are MC_EIG_NSYM ch apart */
     int n0[1] = {Nz + 1}, n1[1] = {Nz - 1};
@@ -205,6 +241,18 @@ static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
     return MC_OK;
 }
 
+/* Whether the coarse depth step costs less than the fine lattice's, per lateral frequency:
+ * COARSE_PAIR x (nz + 1) nz pair terms against FINE_DFT x 12 L log2 L (depth DFTs) + FINE_PROD x
+ * (L / 2 + 1) products. The constants are measured costs (theory.md §8.8, bench plastic). */
+static int coarse_pays(int nz, int nzf, int L)
+{
+    if (nz == nzf)
+        return 0; /* uniform: the fine step is the coarse one's lattice, same bits as before */
+    const double pair = COARSE_PAIR * (nz + 1.0) * nz;
+    const double fine = FINE_DFT * 12.0 * L * log2((double)L) + FINE_PROD * (L / 2 + 1.0);
+    return pair < fine;
+}
+
 int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
 {
     sfft *f = mc_calloc(1, sizeof *f);
@@ -216,6 +264,9 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
      * (file comment) */
     f->Nz = mc_fftsize_good(2 * op->nzf);
     f->L = 2 * f->Nz;
+    f->coarse = op->depth == MC_EIG_DEPTH_COARSE ||
+                (op->depth == MC_EIG_DEPTH_AUTO && coarse_pays(nz, op->nzf, f->L));
+    f->np = f->coarse ? 2 * op->nzf + 1 : f->Nz + 1;
     int rc = mc_eig_fft_create(&f->fft, size_x(op), size_y(op), 0, wy, wy, err);
     if (rc)
         return rc;
@@ -226,10 +277,11 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     if (f->cs % 16 == 0) /* a power-of-2 stride between depth planes thrashes the cache */
         f->cs += 4;
     f->nthr = mc_eig_threads(12 * (size_t)nz * (size_t)f->fft.tx * (size_t)f->fft.ty);
-    f->zlen = (size_t)(12 * f->L + 12) * f->cs;
+    f->zlen = f->coarse ? (size_t)(24 * (nz + 1) + 12) * f->cs / 2 + 1
+                        : (size_t)(12 * f->L + 12) * f->cs;
     const size_t sl = f->fft.speclen, rl = (size_t)wy * f->fft.tx;
     const size_t blk = (size_t)op->qy * f->nch * f->ch; /* doubles per blocked plane */
-    const size_t nv = (size_t)(f->Nz + 1) * MC_EIG_NSYM * blk, np3 = 6 * (size_t)nz * blk;
+    const size_t nv = (size_t)f->np * MC_EIG_NSYM * blk, np3 = 6 * (size_t)nz * blk;
     f->V = mc_calloc(nv, sizeof *f->V);
     f->P3 = mc_calloc(np3, sizeof *f->P3);
     f->E = mc_malloc(6 * (size_t)nz * sl * sizeof *f->E);
@@ -239,7 +291,7 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     f->tw = mc_malloc((size_t)(f->Nz + 1) * sizeof *f->tw);
     if (!f->V || !f->P3 || !f->E || !f->P || !f->rows || !f->zb || !f->tw)
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for %zu spectra",
-                       (size_t)(f->Nz + 1) * MC_EIG_NSYM + 12 * (size_t)nz);
+                       (size_t)f->np * MC_EIG_NSYM + 12 * (size_t)nz);
     op->bytes += sizeof *f + (nv + np3) * sizeof(double) +
                  ((6 * (size_t)nz + 1) * sl + (size_t)f->nthr * f->zlen + f->Nz + 1) *
                      sizeof(fftw_complex) + (size_t)f->nthr * rl * sizeof(double);
@@ -248,6 +300,8 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     memset(f->P, 0, sl * sizeof *f->P);
     if ((rc = build_spectra(op, f, err)))
         return rc;
+    if (f->coarse)
+        return MC_OK;
     for (int kz = 0; kz <= f->Nz; kz++) {
         f->tw[kz][0] = cos(2.0 * M_PI * kz / f->L);
         f->tw[kz][1] = -sin(2.0 * M_PI * kz / f->L);
@@ -262,6 +316,12 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     if (!f->zf || !f->zi)
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: FFTW could not plan depth transforms");
     return MC_OK;
+}
+
+int mc_eig_stress_fft_depth(const mc_eigen_stress *op)
+{
+    const sfft *f = op->fft;
+    return !f ? 0 : f->coarse ? MC_EIG_DEPTH_COARSE : MC_EIG_DEPTH_FINE;
 }
 
 void mc_eig_stress_fft_free(mc_eigen_stress *op)
@@ -423,6 +483,146 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
     }
 }
 
+/* The coarse depth step for spectrum row ky, block chunk (graded volumes; theory.md §8.8). With
+ * S(m) the prefix sums of the real table K (plane m of V), the fine-lattice sum over the fine
+ * layers q' = f_j .. f_(j+1) - 1 of source layer j, seen at the fine centre c of the target,
+ *   sum K(c - q') + r_c K(c + q' + 1) = Q(c - f_j + 1) - Q(c - f_(j+1) + 1)
+ *                                      + r_c (S(c + f_(j+1) + 1) - S(c + f_j + 1)),
+ * Q the prefix sum over signed offsets (Q(m) = S(m) for m >= 0, s (S(1) - S(1 - m)) below, s the
+ * pair's parity in z; Q and S are defined up to a constant, which the jumps cancel). Summed by
+ * parts over the layers, each boundary f_j (j = 0..nz) contributes once with the jump
+ * d_j = e_j - e_(j-1) of the eigenstrain (e_(-1) = e_nz = 0):
+ *   y_i(c) = sum_j sum_c' [Q(c - f_j + 1) - r_c' S(c + f_j + 1)] d_j,c'.
+ * Per target layer and boundary: two planes of 21 values and the 6 x 6 products; (nz + 1) nz
+ * terms against the fine step's 12 depth DFTs of length L. Gather and scatter as depth_step (the
+ * real-space kernel has no DFT parity factors and no 1 / L). */
+DEPTH_CLONES static void depth_step_coarse(const mc_eigen_stress *op, const sfft *f, int ky,
+                                           int chunk, fftw_complex *zb)
+{
+    const int nz = op->v.nz, ch = f->ch, cs = f->cs, np = f->np;
+    const int hx = f->fft.hx, ty = f->fft.ty, my = op->qy - 1, mirror = ky > my, kx0 = chunk * ch;
+    const int len = hx - kx0 < ch ? hx - kx0 : ch;
+    const size_t sl = f->fft.speclen, at = (size_t)ky * hx + kx0;
+    const size_t b = (size_t)(mirror ? ty - ky : ky) * f->nch + chunk;
+    const double *Sb = f->V + b * (size_t)np * MC_EIG_NSYM * ch;
+    const double *Pb = f->P3 + b * (size_t)nz * 6 * ch;
+    const size_t bs = 12 * (size_t)cs; /* doubles per boundary: 6 x (re, im) planar */
+    double *D = (double *)zb, *Dr = D + (size_t)(nz + 1) * bs, *Y = Dr + (size_t)(nz + 1) * bs;
+
+    int rot[6];
+    double sy[6];
+    for (int c = 0; c < 6; c++) {
+        rot[c] = mc_eig_odd_x(c) + mc_eig_odd_y(c);
+        sy[c] = (mirror && mc_eig_odd_y(c)) ? -1.0 : 1.0;
+    }
+    /* gather each layer's spectrum into slot k, p3 / 2G; then the jumps in place, top down */
+    double pr[CHUNK_TARGET] = {0.0}, pi[CHUNK_TARGET] = {0.0};
+    for (int c = 0; c < 6; c++) {
+        for (int k = 0; k < nz; k++) {
+            double *gr = D + (size_t)k * bs + (size_t)(2 * c) * cs, *gi = gr + cs;
+            const fftw_complex *e = f->E + (size_t)(c * nz + k) * sl + at;
+            const double *P = Pb + (size_t)(k * 6 + c) * ch;
+            for (int x = 0; x < len; x++) {
+                double re = sy[c] * e[x][0], im = sy[c] * e[x][1];
+                mc_eig_rot(&re, &im, rot[c]);
+                gr[x] = re;
+                gi[x] = im;
+                pr[x] += P[x] * re;
+                pi[x] += P[x] * im;
+            }
+            for (int x = len; x < cs; x++)
+                gr[x] = gi[x] = 0.0;
+        }
+    }
+    memset(D + (size_t)nz * bs, 0, bs * sizeof *D);
+    for (int j = nz; j > 0; j--)
+        for (size_t t = 0; t < bs; t++)
+            D[(size_t)j * bs + t] -= D[(size_t)(j - 1) * bs + t];
+    for (int j = 0; j <= nz; j++) /* r_c d_j: the mirror layers' sign */
+        for (int c = 0; c < 6; c++) {
+            const double r = mc_eig_odd_z(c) ? -1.0 : 1.0;
+            for (int t = 0; t < 2 * cs; t++)
+                Dr[(size_t)j * bs + (size_t)(2 * c) * cs + t] =
+                    r * D[(size_t)j * bs + (size_t)(2 * c) * cs + t];
+        }
+    for (int x = 0; x < len; x++) {
+        f->P[at + x][0] = pr[x];
+        f->P[at + x][1] = pi[x];
+    }
+    const size_t pl = (size_t)MC_EIG_NSYM * ch; /* doubles per plane of S */
+    for (int k = 0; k < nz; k++) {
+        const int c0 = op->centre[k];
+        memset(Y, 0, bs * sizeof *Y);
+        for (int j = 0; j <= nz; j++) {
+            const int fj = op->first[j], md = c0 - fj + 1;
+            /* Q(md) = so (A - B): A = S(md), B = S(0) = 0 for md >= 0; else A = S(1),
+             * B = S(1 - md) and so = the pair's parity in z (-1 for the pairs odd in z) */
+            const double *restrict A = Sb + (size_t)(md >= 0 ? md : 1) * pl;
+            const double *restrict B = Sb + (size_t)(md >= 0 ? 0 : 1 - md) * pl;
+            const double *restrict I = Sb + (size_t)(c0 + fj + 1) * pl; /* the mirror's S */
+            const double so = md >= 0 ? 1.0 : -1.0;
+            const double *restrict d = D + (size_t)j * bs, *restrict dr = Dr + (size_t)j * bs;
+            double *restrict Yr = Y;
+#define QD(n) (md >= 0 ? A[(size_t)(n) * ch + x] : A[(size_t)(n) * ch + x] - B[(size_t)(n) * ch + x])
+#define SI(n) I[(size_t)(n) * ch + x]
+#define DC(c) d[(size_t)(c) * cs + x]
+#define DR(c) dr[(size_t)(c) * cs + x]
+/* row i of the 6 x 6 products: pairs n0..n5 of columns 0..5, their parities in z p0..p5 */
+#define ROWX(i, n0, n1, n2, n3, n4, n5, p0, p1, p2, p3, p4, p5)                                   \
+    do {                                                                                          \
+        const double q0 = so##p0 * QD(n0), q1 = so##p1 * QD(n1), q2 = so##p2 * QD(n2);            \
+        const double q3 = so##p3 * QD(n3), q4 = so##p4 * QD(n4), q5 = so##p5 * QD(n5);            \
+        const double s0 = SI(n0), s1 = SI(n1), s2 = SI(n2), s3 = SI(n3), s4 = SI(n4);             \
+        const double s5 = SI(n5);                                                                 \
+        Yr[(size_t)(2 * (i)) * cs + x] += q0 * DC(0) + q1 * DC(2) + q2 * DC(4) + q3 * DC(6) +      \
+                                         q4 * DC(8) + q5 * DC(10) - s0 * DR(0) - s1 * DR(2) -     \
+                                         s2 * DR(4) - s3 * DR(6) - s4 * DR(8) - s5 * DR(10);      \
+        Yr[(size_t)(2 * (i) + 1) * cs + x] += q0 * DC(1) + q1 * DC(3) + q2 * DC(5) + q3 * DC(7) +  \
+                                             q4 * DC(9) + q5 * DC(11) - s0 * DR(1) - s1 * DR(3) - \
+                                             s2 * DR(5) - s3 * DR(7) - s4 * DR(9) - s5 * DR(11);  \
+    } while (0)
+            /* the parity factor of a pair: 1 where even in z, so where odd */
+            const double soE = 1.0, soO = so;
+#define ROWS                                                                                      \
+    do {                                                                                          \
+        ROWX(0, 0, 1, 2, 3, 4, 5, E, E, E, E, O, O);                                              \
+        ROWX(1, 1, 6, 7, 8, 9, 10, E, E, E, E, O, O);                                             \
+        ROWX(2, 2, 7, 11, 12, 13, 14, E, E, E, E, O, O);                                          \
+        ROWX(3, 3, 8, 12, 15, 16, 17, E, E, E, E, O, O);                                          \
+        ROWX(4, 4, 9, 13, 16, 18, 19, O, O, O, O, E, E);                                          \
+        ROWX(5, 5, 10, 14, 17, 19, 20, O, O, O, O, E, E);                                         \
+    } while (0)
+            /* two loops, so that the one above the target (md >= 0) reads no B */
+            if (md >= 0) {
+#pragma omp simd
+                for (int x = 0; x < len; x++)
+                    ROWS;
+            } else {
+#pragma omp simd
+                for (int x = 0; x < len; x++)
+                    ROWS;
+            }
+#undef ROWS
+#undef ROWX
+#undef DR
+#undef DC
+#undef SI
+#undef QD
+        }
+        for (int i = 0; i < 6; i++) { /* the row factors, V's weight */
+            fftw_complex *e = f->E + (size_t)(i * nz + k) * sl + at;
+            const double *yr = Y + (size_t)(2 * i) * cs, *yi = yr + cs;
+            const double scale = sy[i] / mc_eig_weight(i);
+            for (int x = 0; x < len; x++) {
+                double re = scale * yr[x], im = scale * yi[x];
+                mc_eig_rot(&re, &im, rot[i]);
+                e[x][0] = re;
+                e[x][1] = im;
+            }
+        }
+    }
+}
+
 void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
                              double *const sig[6])
 {
@@ -450,9 +650,11 @@ void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], do
             if (chunk * f->ch >= hx)
                 continue;
             fftw_complex *zb = f->zb + (size_t)me * f->zlen;
-            depth_step(op, f, ky, chunk, zb);
+            void (*step)(const mc_eigen_stress *, const sfft *, int, int, fftw_complex *) =
+                f->coarse ? depth_step_coarse : depth_step;
+            step(op, f, ky, chunk, zb);
             if (ky > 0 && ty - ky > my) /* its mirror row (an odd period has no Nyquist row) */
-                depth_step(op, f, ty - ky, chunk, zb);
+                step(op, f, ty - ky, chunk, zb);
         }
 #pragma omp single
         {

@@ -480,6 +480,12 @@ void mc_eigen_stress_destroy(mc_eigen_stress **op)
 int mc_eigen_stress_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
                            mc_eigen_stress **out, mc_error *err)
 {
+    return mc_eig_stress_create_depth(g, v, nu, b, MC_EIG_DEPTH_AUTO, out, err);
+}
+
+int mc_eig_stress_create_depth(const mc_grid *g, const mc_eigen_volume *v, double nu,
+                               mc_backend b, int depth, mc_eigen_stress **out, mc_error *err)
+{
     *out = NULL;
     int rc = mc_eig_check(g, v, nu, b, "eigen stress", err);
     if (rc)
@@ -490,6 +496,7 @@ int mc_eigen_stress_create(const mc_grid *g, const mc_eigen_volume *v, double nu
     op->g = *g;
     op->v = *v;
     op->nu = nu;
+    op->depth = depth;
     /* the layering: the object's copy of the groups, the first fine layer of each layer (and
      * the count at nz) and the fine layer of each layer's centre */
     op->first = mc_malloc((2 * (size_t)v->nz + 1) * sizeof *op->first);
