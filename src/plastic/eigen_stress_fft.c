@@ -100,6 +100,16 @@ void mc_eig_stress_fft_size(mc_eigen_stress *op)
     op->qy = half_y(op) + 1;
 }
 
+/* Per component c: the quarter turns rot[c] of its lateral parities and the sign sy[c] of its
+ * y-mirrored row (-1 for the components odd in y when the row is a mirror). */
+static void component_signs(int mirror, int rot[6], double sy[6])
+{
+    for (int c = 0; c < 6; c++) {
+        rot[c] = mc_eig_odd_x(c) + mc_eig_odd_y(c);
+        sy[c] = (mirror && mc_eig_odd_y(c)) ? -1.0 : 1.0;
+    }
+}
+
 /* the sign (-1)^(a b) of the parities in z of the pair (i, c) */
 static double zsign(int i, int c)
 {
@@ -364,10 +374,7 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
 
     int rot[6];
     double sy[6];
-    for (int c = 0; c < 6; c++) {
-        rot[c] = mc_eig_odd_x(c) + mc_eig_odd_y(c);
-        sy[c] = (mirror && mc_eig_odd_y(c)) ? -1.0 : 1.0;
-    }
+    component_signs(mirror, rot, sy);
     /* gather: the fine layers q < nzf and their mirrors at L - 1 - q (r_c = -1 for yz, xz),
      * each layer's spectrum repeated over its fine layers (graded layers, eigen_op.h); p3 / 2G
      * once per layer (its table is the whole layer's) */
@@ -511,10 +518,7 @@ DEPTH_CLONES static void depth_step_coarse(const mc_eigen_stress *op, const sfft
 
     int rot[6];
     double sy[6];
-    for (int c = 0; c < 6; c++) {
-        rot[c] = mc_eig_odd_x(c) + mc_eig_odd_y(c);
-        sy[c] = (mirror && mc_eig_odd_y(c)) ? -1.0 : 1.0;
-    }
+    component_signs(mirror, rot, sy);
     /* gather each layer's spectrum into slot k, p3 / 2G; then the jumps in place, top down */
     double pr[CHUNK_TARGET] = {0.0}, pi[CHUNK_TARGET] = {0.0};
     for (int c = 0; c < 6; c++) {

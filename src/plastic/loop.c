@@ -328,6 +328,20 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
 /* Plastic strain increments beyond this are taken as divergence (the step is split). */
 #define DIVERGED_STRAIN 0.5
 
+/* The largest change of a sweep's increments (d_new against d_eps) into *change, their largest magnitude into *size; 1 when the
+ * increments themselves are beyond DIVERGED_STRAIN or not finite (the sweep diverged). */
+static int sweep_change(const loop_ctx *c, size_t nv6, double *change, double *size)
+{
+    double ch = 0, sz = 0;
+    for (size_t i = 0; i < nv6; i++) {
+        ch = fmax(ch, fabs(c->d_new[i] - c->d_eps[i]));
+        sz = fmax(sz, fabs(c->d_new[i]));
+    }
+    *change = ch;
+    *size = sz;
+    return !(sz <= DIVERGED_STRAIN);
+}
+
 /* The stops of theory §9.5, in counts (never in seconds: a result must not depend on the
  * machine). An increment stops once its tight fixed point has hit max_plastic in INNER_STALL
  * successive outer iterations (the running-in at Y = 50 MPa of issue 20: 100 sweeps per outer
@@ -405,11 +419,7 @@ static int plastic_fixed_point(loop_ctx *c, const double *eps_p, const double *p
         }
         *yielded |= plastic;
         double change = 0, size = 0;
-        for (size_t i = 0; i < nv6; i++) {
-            change = fmax(change, fabs(c->d_new[i] - c->d_eps[i]));
-            size = fmax(size, fabs(c->d_new[i]));
-        }
-        if (!(size <= DIVERGED_STRAIN)) {
+        if (sweep_change(c, nv6, &change, &size)) {
             *diverged = 1;
             return MC_OK;
         }
@@ -516,11 +526,7 @@ static int plastic_fixed_point_lg(loop_ctx *c, const double *eps_p, const double
         }
         *yielded |= plastic;
         double change = 0, size = 0;
-        for (size_t i = 0; i < nv6; i++) {
-            change = fmax(change, fabs(c->d_new[i] - c->d_eps[i]));
-            size = fmax(size, fabs(c->d_new[i]));
-        }
-        if (!(size <= DIVERGED_STRAIN)) {
+        if (sweep_change(c, nv6, &change, &size)) {
             *diverged = 1;
             return MC_OK;
         }
