@@ -94,11 +94,17 @@ int mc_memory_check(const mc_scene *s, mc_error *err)
     mc_dist_bcast(&have, 1, 0);
     if (need <= have)
         return MC_OK;
-    const double GiB = 1073741824.0;
+    const double GiB = 1073741824.0, MiB = 1048576.0;
+    const int ranks = mc_dist_size();
+    /* the figure is each process's: say so, and what twice the processes would need each
+     * (bin/microcontact-mpi, README "Running on a cluster") */
+    char per[128];
+    snprintf(per, sizeof per, " per process with %d process%s (%.1f MiB each with %d)", ranks,
+             ranks > 1 ? "es" : "", mc_memory_estimate_ranks(s, 2 * ranks) / MiB, 2 * ranks);
     return mc_fail(err, MC_ERR_NOMEM,
-                   "the scene needs about %.1f GiB, %.1f GiB available (grid %d x %d%s); reduce "
-                   "the grid%s",
-                   need / GiB, have / GiB, s->grid.nx, s->grid.ny,
+                   "the scene needs about %.1f GiB (%.1f MiB)%s, %.1f GiB available (grid %d x "
+                   "%d%s); reduce the grid%s, or run with more MPI processes",
+                   need / GiB, need / MiB, per, have / GiB, s->grid.nx, s->grid.ny,
                    s->stress.enabled ? " with stress layers" : "",
                    s->stress.enabled ? " or the number of stress layers" : "");
 }
