@@ -75,7 +75,7 @@ double mc_contact_max(const mc_contact_solver *s, double v)
 
 const double *mc_contact_whole(mc_contact_solver *s, const double *v)
 {
-    if (!s->dist)
+    if (!s->stage)
         return v;
     mc_dist_gather_slab(v, s->gwhole, s->r0, s->nr, s->g.nx);
     return s->gwhole;
@@ -83,7 +83,7 @@ const double *mc_contact_whole(mc_contact_solver *s, const double *v)
 
 const unsigned char *mc_contact_whole_mask(mc_contact_solver *s, const unsigned char *v)
 {
-    if (!s->dist)
+    if (!s->stage)
         return v;
     mc_dist_gather_slab_u8(v, s->mwhole, s->r0, s->nr, s->g.nx);
     return s->mwhole;
@@ -258,7 +258,8 @@ int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_
         ok &= (*arrays[k] = mc_zeros(nl)) != NULL;
     ok &= (s->free_set = mc_calloc(nl, 1)) != NULL;
     ok &= (s->free_prev = mc_calloc(nl, 1)) != NULL;
-    if (s->dist) {
+    s->stage = s->dist && mc_dist_size() > 1; /* the same on every rank */
+    if (s->stage) {
         ok &= (s->gwhole = mc_zeros(n)) != NULL;
         ok &= (s->mwhole = mc_calloc(n, 1)) != NULL;
     }

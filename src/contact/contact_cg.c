@@ -211,7 +211,7 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         }
         /* the preconditioner's FFT runs on the whole box on every rank (precond.h): it reads g
          * on all rows (gathered), and writes this rank's rows of z */
-        mc_precond_apply_rows(s->pc, s->dist ? s->mwhole : S, mc_contact_whole(s, g), z, s->r0,
+        mc_precond_apply_rows(s->pc, s->stage ? s->mwhole : S, mc_contact_whole(s, g), z, s->r0,
                               s->nr);
         if (force) {
             double mz = mean_on(s, z, S);

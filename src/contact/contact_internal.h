@@ -47,8 +47,12 @@ struct mc_contact_solver {
      * of ranks. */
     int r0, nr, dist;
     size_t lo, hi, nl, off;
-    double *gwhole;         /* distributed: the whole gradient for the preconditioner (n) */
-    unsigned char *mwhole;  /* distributed: the whole free set (n), the box's marks */
+    /* distributed over more than one rank (stage): the whole gradient for the preconditioner
+     * and the whole free set or the box's marks, gathered (n each; with one rank the
+     * workspaces are whole already) */
+    int stage;
+    double *gwhole;
+    unsigned char *mwhole;
     mc_psum ps;           /* the pieces of the sums without ranks (mc_contact_pieces) */
     double *rpart, *rall; /* piece sums: this rank's (MC_CONTACT_SUMS per piece), all rows' */
     double A; /* cell area, m^2 */

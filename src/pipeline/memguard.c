@@ -27,6 +27,22 @@ static double operator_bytes(int nx, int ny, int px, int py, mc_backend b, int r
     return 16 * half * 2 + 8 * tx * ty + 8 * tx * ty;
 }
 
+/* Bytes of one contact solver on `cells` cells: ten work arrays and two masks, over P > 1 MPI
+ * processes a slab each (1/P, contact_internal.h: every rank holds its rows alone), plus the
+ * replicated preconditioner's box buffers (a real and a half complex array of the grid, 16 bytes
+ * a cell) and, with P > 1, the whole gradient and free set it is given (9 bytes a cell). The
+ * active set is whole on every rank. Measured per rank (Hertz 2048^2, P = 2, 3: reports/bench,
+ * mpi section): the peak divides as R + S/P with R ~ 71 and S ~ 195 bytes a cell (R: these
+ * replicated buffers, the surface fields of pipeline.h, the coarse start's whole arrays, the
+ * process); this model gives 20-35 % more (the kernel table counted beside the solver). */
+static double solver_bytes(double cells, mc_contact_method m, int ranks)
+{
+    const double work = (10 * 8 + 2) * cells, precond = 16 * cells;
+    if (ranks <= 1 || m == MC_METHOD_ACTIVE_SET)
+        return work + precond;
+    return work / ranks + precond + 9 * cells;
+}
+
 double mc_memory_estimate(const mc_scene *s) { return mc_memory_estimate_ranks(s, mc_dist_size()); }
 
 double mc_memory_estimate_ranks(const mc_scene *s, int ranks)
@@ -40,8 +56,7 @@ double mc_memory_estimate_ranks(const mc_scene *s, int ranks)
         bytes += 8 * cells; /* the map as read */
     bytes += operator_bytes(g->nx, g->ny, g->periodic_x, g->periodic_y, s->solver.backend, ranks);
     if (s->load.kind != MC_LOAD_PRESSURE_FILE) {
-        /* ten work arrays, two masks, the preconditioner's box buffers */
-        double solver = (10 * 8 + 2 + 16) * cells;
+        double solver = solver_bytes(cells, s->solver.method, ranks);
         if (s->solver.method == MC_METHOD_ACTIVE_SET)
             solver += 2 * 8 * cells * cells;
         /* nested start: each coarse level a quarter of the one above (operator and solver) */
