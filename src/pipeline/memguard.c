@@ -32,7 +32,7 @@ static double operator_bytes(int nx, int ny, int px, int py, mc_backend b, int r
  * replicated preconditioner's box buffers (a real and a half complex array of the grid, 16 bytes
  * a cell) and, with P > 1, the whole gradient and free set it is given (9 bytes a cell). The
  * active set is whole on every rank. Measured per rank (Hertz 2048^2, P = 2, 3: reports/bench,
- * mpi section): the peak divides as R + S/P with R ~ 71 and S ~ 195 bytes a cell (R: these
+ * mpi section): the peak divides as R + S/P with R ~ 75 and S ~ 195 bytes a cell (R: these
  * replicated buffers, the surface fields of pipeline.h, the coarse start's whole arrays, the
  * process); this model gives 20-35 % more (the kernel table counted beside the solver). */
 static double solver_bytes(double cells, mc_contact_method m, int ranks)
