@@ -413,11 +413,26 @@ static int check_problem(const mc_contact_solver *s, const mc_contact_problem *p
     return MC_OK;
 }
 
+/* The lower bound p_lower and the upper bound of q (p_upper - p_lower) of grid cell i from the
+ * problem's whole arrays, by the arithmetic that fills the workspaces plow and capq: sums over
+ * the whole grid taken from these are the serial program's, bit for bit, on any number of ranks
+ * (a read-only pass over the whole arrays every rank has). */
+static inline double cell_low(const mc_contact_problem *p, int any_lower, size_t i)
+{
+    return any_lower ? (p->p_lower ? p->p_lower[i] : p->p_lub) : 0.0;
+}
+
+static inline double cell_capq(const mc_contact_problem *p, int any_lower, size_t i)
+{
+    return (p->p_upper ? p->p_upper[i] : p->p_cap) - cell_low(p, any_lower, i);
+}
+
 /* Start value of q (a workspace): the warm start if given (start: whole, or the workspace s->z
  * of the coarse start when start_ws), else uniform on every cell (Polonsky & Keer) for force
- * control and zero (the penetrating cells enter at once) for approach control. */
-static void start_value(mc_contact_solver *s, const double *start, int start_ws,
-                        const mc_qproblem *qp, double *q)
+ * control and zero (the penetrating cells enter at once) for approach control. A whole warm
+ * start's sum is the serial program's (cell_low); the coarse start's goes row by row. */
+static void start_value(mc_contact_solver *s, const mc_contact_problem *p, const double *start,
+                        int start_ws, const mc_qproblem *qp, double *q)
 {
     const size_t nl = s->nl, at = start_ws ? 0 : s->off;
     double sum = 0;
@@ -430,7 +445,18 @@ static void start_value(mc_contact_solver *s, const double *start, int start_ws,
                 v = qp->cap[i];
             q[i] = v;
         }
-        sum = mc_contact_sum(s, q);
+        if (start_ws || !s->dist) {
+            sum = mc_contact_sum(s, q);
+        } else {
+            for (size_t i = 0; i < s->n; i++) {
+                double v = start[i] - cell_low(p, s->plow_on, i);
+                if (!(v > 0))
+                    v = 0;
+                if (qp->cap && v > cell_capq(p, s->plow_on, i))
+                    v = cell_capq(p, s->plow_on, i);
+                sum += v;
+            }
+        }
     }
     if (qp->control == MC_CONTROL_APPROACH) {
         if (!start)
@@ -487,7 +513,8 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
     if (any_lower) {
         for (size_t i = 0; i < nl; i++)
             s->plow[i] = p->p_lower ? p->p_lower[off + i] : p->p_lub;
-        lower_sum = mc_contact_sum(s, s->plow);
+        for (size_t i = 0; i < n; i++) /* the whole grid's, as serially (cell_low) */
+            lower_sum += cell_low(p, 1, i);
         mc_contact_apply_rows(s, s->plow, s->ulow);
     }
     for (size_t i = 0; i < nl; i++)
@@ -534,14 +561,16 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
         rc = MC_OK;
     } else {
         if (capped && p->control == MC_CONTROL_FORCE) {
-            const double capacity = mc_contact_sum(s, s->capq);
+            double capacity = 0; /* the whole grid's, as serially (cell_capq) */
+            for (size_t i = 0; i < n; i++)
+                capacity += cell_capq(p, any_lower, i);
             if (s->A * capacity <= qp.W)
                 return mc_fail(err, MC_ERR_INPUT,
                                "contact: the load %g N exceeds what the whole grid can carry at "
                                "the pressure cap (%g N)",
                                p->load, p->load - qp.W + s->A * capacity);
         }
-        start_value(s, start, start_ws, &qp, q);
+        start_value(s, p, start, start_ws, &qp, q);
         int handled = 0;
         rc = mc_contact_box_solve(s, &qp, q, &res, &handled, err);
         if (rc != MC_OK && rc != MC_NOT_CONVERGED)
