@@ -103,7 +103,9 @@ static double children_cpu(void)
  *    free set (1 byte) gathered on every rank, (N - 1)/N of it over the network; inside a
  *    machine the ranks share memory (its cost is in the measured per-cell figure);
  *  - the set-up (kernel table, replicated on every rank) scales with the padded cells;
- *  - memory: the memory guard's model (pipeline/memguard.c) for P ranks, twice per machine. */
+ *  - memory: the memory guard's model (pipeline/memguard.c) for P ranks, twice per machine: a
+ *    replicated part plus the operators' slabs and the solvers' work arrays over P (the shape
+ *    measured by memory_per_rank). */
 #define FLANK_NX 12500
 #define FLANK_NY 1250
 #define FLANK_DX 0.8e-6
@@ -149,7 +151,11 @@ static void flank_model(vf_ctx *ctx, const mpi_run *one, int N)
             "application two FFTW-MPI transposes of 16 ny (tx/2 + 1) = %.0f MB, of which each "
             "machine sends and receives (N - 1)/N²; per iteration the gradient and the free set "
             "(9 bytes a cell, %.0f MB) gathered on every rank. Memory: the memory guard's model "
-            "(pipeline/memguard.c) for P ranks, per machine.\n\n"
+            "(pipeline/memguard.c) for P ranks, per machine: per rank a replicated part (the "
+            "surface fields, the preconditioner's buffers and the gathered gradient and free set, "
+            "the kernel table while it is built) plus the operators' slabs and the contact "
+            "solvers' work arrays divided by P - the shape measured above (R + S/P), the guard's "
+            "figures erring high.\n\n"
             "| machines | ranks | compute / iteration (s) | network / iteration (s) | contact "
             "solve (s) | set-up (s) | memory / machine, elastic (GiB) | with %d stress layers "
             "(GiB) | fits |\n|---|---|---|---|---|---|---|---|---|\n",
@@ -196,6 +202,70 @@ static void flank_model(vf_ctx *ctx, const mpi_run *one, int N)
             9.0 * 8 * n * FLANK_LAYERS / GiB);
 }
 
+/* ---- memory per rank -------------------------------------------------------------------------
+ * The peak resident memory (VmHWM) of rank 0 (it holds the most rows: FFTW-MPI's blocks are
+ * ceil(ny/P)) of the Hertz case at 1024^2 and 2048^2 (512^2 and 1024^2 quick), P = 1, 2, 3, one
+ * run each, beside the serial program; and the fit peak = R + S/P through P = 2 and 3 (R: what
+ * every rank holds whole, S: what divides). */
+static void memory_per_rank(vf_ctx *ctx, const char *self, const char *mpi, int quick)
+{
+    char dir[] = "/tmp/mc_bench_mpimem_XXXXXX";
+    if (!mkdtemp(dir))
+        return;
+    vf_text(ctx,
+            "### Memory per rank\n\n"
+            "Peak resident memory (VmHWM) of rank 0 - the rank with the most rows - of the Hertz "
+            "case (one run each, one thread per process), and the fit peak = R + S / P through "
+            "P = 2 and 3: R is held whole by every rank (the surface fields of the pipeline, the "
+            "preconditioner's buffers with the gradient and free set gathered for it, the coarse "
+            "start's whole arrays, the process), S divides (the operators' spectra and transform "
+            "buffers, the kernel spectrum, the contact solvers' work arrays: each rank its slab "
+            "of rows). With one process the gradient and free set need no gathering (9 bytes a "
+            "cell less than R + S).\n\n"
+            "| grid | serial (MiB) | P = 1 | P = 2 | P = 3 | R (MiB) | S (MiB) | R + S (MiB) | "
+            "R per cell (bytes) | S per cell (bytes) |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    FILE *f = vf_open(ctx, "mpi_memory.csv");
+    if (f)
+        fprintf(f, "n,serial_mib,p1_mib,p2_mib,p3_mib,replicated_mib,sliced_mib\n");
+    for (int N = quick ? 512 : 1024; N <= (quick ? 1024 : 2048); N *= 2) {
+        char ini[200];
+        snprintf(ini, sizeof ini, "%s/hertz%d.ini", dir, N);
+        if (mc_bench_hertz_case(ini, N))
+            break;
+        double mib[4] = {NAN, NAN, NAN, NAN};
+        for (int P = 0; P <= 3; P++) {
+            char out[300], log[300], np[8];
+            snprintf(out, sizeof out, "%s/out%d_%d", dir, N, P);
+            snprintf(log, sizeof log, "%s/log%d_%d", dir, N, P);
+            snprintf(np, sizeof np, "%d", P);
+            const char *serial[] = {self, "run", ini, "--out", out, "--quiet",
+                                    "--set", "solver.threads=1", NULL};
+            const char *par[] = {"mpirun", "--allow-run-as-root", "--oversubscribe",
+                                 "--mca", "mpi_yield_when_idle", "1", "-np", np,
+                                 mpi, "run", ini, "--out", out, "--quiet",
+                                 "--set", "solver.threads=1", NULL};
+            if (mc_bench_run_child_to(P ? par : serial, log) > 0)
+                mib[P] = number_after(log, "peak memory ");
+            mc_bench_remove_tree(out);
+        }
+        const double S = 6 * (mib[2] - mib[3]), R = mib[2] - S / 2, cells = (double)N * N;
+        vf_text(ctx, "| %d² | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f |\n", N,
+                mib[0], mib[1], mib[2], mib[3], R, S, R + S, R * 1048576 / cells,
+                S * 1048576 / cells);
+        if (f)
+            fprintf(f, "%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", N, mib[0], mib[1], mib[2], mib[3], R,
+                    S);
+        char id[64];
+        snprintf(id, sizeof id, "mpi_memory_p2_over_p1_%d", N);
+        vf_info(ctx, id, "peak memory per rank, 2 processes / 1", "", NAN, mib[2] / mib[1]);
+        vf_regress(ctx, id, VF_TIER_NONE);
+    }
+    if (f)
+        vf_close(ctx, f);
+    vf_text(ctx, "\n");
+    mc_bench_remove_tree(dir);
+}
+
 int mc_bench_mpi(vf_ctx *ctx, int quick)
 {
     char self[1024], mpi[1100], dir[] = "/tmp/mc_bench_mpi_XXXXXX";
@@ -221,7 +291,8 @@ int mc_bench_mpi(vf_ctx *ctx, int quick)
     }
     mpi_run runs[] = {{"bin/microcontact, 1 thread", 0, 0, 0, 0, 0, 0, 0, NAN, NAN, 0, 0},
                       {"bin/microcontact-mpi, 1 process", 1, 0, 0, 0, 0, 0, 0, NAN, NAN, 0, 0},
-                      {"bin/microcontact-mpi, 2 processes", 2, 0, 0, 0, 0, 0, 0, NAN, NAN, 0, 0}};
+                      {"bin/microcontact-mpi, 2 processes", 2, 0, 0, 0, 0, 0, 0, NAN, NAN, 0, 0},
+                      {"bin/microcontact-mpi, 3 processes", 3, 0, 0, 0, 0, 0, 0, NAN, NAN, 0, 0}};
     const int nruns = (int)(sizeof runs / sizeof runs[0]), rounds = 2;
     for (int k = 0; k < nruns; k++) {
         mpi_run *r = &runs[k];
@@ -270,7 +341,8 @@ int mc_bench_mpi(vf_ctx *ctx, int quick)
             "The Hertz point case of the whole-run section at %d² (the defaults, one thread per "
             "process: `--set solver.threads=1`), run as a child process: the serial program, and "
             "`mpirun --allow-run-as-root --oversubscribe -np P bin/microcontact-mpi run` with "
-            "P = 1 and 2 (`--mca mpi_yield_when_idle 1`: a waiting rank gives its core away); "
+            "P = 1, 2 and 3 (3 on 2 cores: oversubscribed, for its memory; "
+            "`--mca mpi_yield_when_idle 1`: a waiting rank gives its core away); "
             "the least wall time of %d runs, fork to exit, with that run's CPU seconds (user + "
             "system of all its processes, mpirun included), summary.json timings (total, "
             "contact) and the seconds rank 0 spent in communication (transposes, gathers, the "
@@ -327,6 +399,7 @@ int mc_bench_mpi(vf_ctx *ctx, int quick)
                 runs[2].comm / runs[2].total);
         vf_regress(ctx, "mpi_comm_share", VF_TIER_NONE);
     }
+    memory_per_rank(ctx, self, mpi, quick);
     if (runs[1].ok && runs[1].iterations > 0)
         flank_model(ctx, &runs[1], N);
     return 0;

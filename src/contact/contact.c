@@ -45,7 +45,10 @@ void mc_contact_apply(mc_contact_solver *s, const double *in, double *out)
 
 void mc_contact_apply_rows(mc_contact_solver *s, const double *in, double *out)
 {
-    mc_operator_apply_rows(s->K, in, out);
+    if (s->dist)
+        mc_operator_apply_rows(s->K, in, out);
+    else /* whole workspaces (a serial operator, or the active set's replicated ones) */
+        mc_operator_apply(s->K, in, out);
     s->applies++;
 }
 
@@ -70,16 +73,38 @@ double mc_contact_max(const mc_contact_solver *s, double v)
     return v;
 }
 
-void mc_contact_share(const mc_contact_solver *s, double *v)
+const double *mc_contact_whole(mc_contact_solver *s, const double *v)
 {
-    if (s->dist)
-        mc_dist_gather_rows(v, s->r0, s->nr, s->g.nx);
+    if (!s->stage)
+        return v;
+    mc_dist_gather_slab(v, s->gwhole, s->r0, s->nr, s->g.nx);
+    return s->gwhole;
 }
 
-void mc_contact_share_mask(const mc_contact_solver *s, unsigned char *v)
+const unsigned char *mc_contact_whole_mask(mc_contact_solver *s, const unsigned char *v)
 {
-    if (s->dist)
-        mc_dist_gather_rows_u8(v, s->r0, s->nr, s->g.nx);
+    if (!s->stage)
+        return v;
+    mc_dist_gather_slab_u8(v, s->mwhole, s->r0, s->nr, s->g.nx);
+    return s->mwhole;
+}
+
+double mc_contact_sum(mc_contact_solver *s, const double *v)
+{
+    double sum = 0;
+    if (!s->dist) { /* the serial program's plain sum */
+        for (size_t i = 0; i < s->nl; i++)
+            sum += v[i];
+        return sum;
+    }
+    for (int k = 0; k < s->nr; k++) { /* row by row over the ranks */
+        double r = 0;
+        for (size_t i = mc_contact_piece_lo(s, k); i < mc_contact_piece_hi(s, k); i++)
+            r += v[i];
+        s->rpart[k] = r;
+    }
+    mc_contact_totals(s, 1, &sum);
+    return sum;
 }
 
 long mc_contact_last_applies(const mc_contact_solver *s) { return s->applies; }
@@ -121,13 +146,14 @@ static void restrict_field(const mc_contact_solver *s, const double *fine, const
         }
 }
 
+/* Into a workspace: the rows r0 .. r0 + nr - 1 (contact_internal.h). */
 static void prolong_field(const mc_contact_solver *s, const double *coarse, double *fine)
 {
     const mc_grid *g = &s->g;
     const int cnx = s->coarse->g.nx;
-    for (int j = 0; j < g->ny; j++)
+    for (int j = s->r0; j < s->r0 + s->nr; j++)
         for (int i = 0; i < g->nx; i++)
-            fine[(size_t)j * g->nx + i] = coarse[(size_t)(j / s->fy) * cnx + i / s->fx];
+            fine[(size_t)(j - s->r0) * g->nx + i] = coarse[(size_t)(j / s->fy) * cnx + i / s->fx];
 }
 
 static int create_coarse(mc_contact_solver *s, mc_operator *K, mc_error *err)
@@ -159,7 +185,8 @@ static int create_coarse(mc_contact_solver *s, mc_operator *K, mc_error *err)
     return MC_OK;
 }
 
-/* Solve the problem on the coarse grid and prolong its pressure into s->z. */
+/* Solve the problem on the coarse grid (its arrays whole, the coarse solver's own rows split
+ * over the ranks) and prolong its pressure into the workspace s->z. */
 static int coarse_start(mc_contact_solver *s, const mc_contact_problem *p, mc_error *err)
 {
     restrict_field(s, p->h, p->h_extra, 0.0, s->coarse_h);
@@ -213,16 +240,29 @@ int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_
     s->A = mc_grid_cell_area(g);
     s->opt = *opt;
     s->dist = mc_operator_rows(K, &s->r0, &s->nr);
-    s->lo = (size_t)s->r0 * (size_t)g->nx;
-    s->hi = s->lo + (size_t)s->nr * (size_t)g->nx;
+    if (opt->method == MC_METHOD_ACTIVE_SET) { /* the dense reference: whole on every rank */
+        s->dist = 0;
+        s->r0 = 0;
+        s->nr = g->ny;
+    }
+    s->nl = (size_t)s->nr * (size_t)g->nx;
+    s->off = (size_t)s->r0 * (size_t)g->nx;
+    s->lo = 0;
+    s->hi = s->nl;
     s->ps = mc_psum_blocks(n);
     /* plow, capq and ulow (K p_lower) are allocated by the first solve that needs them */
+    const size_t nl = s->nl;
     double **arrays[] = {&s->htil, &s->q, &s->u, &s->gap, &s->z, &s->dir, &s->kdir};
     int ok = 1;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
-        ok &= (*arrays[k] = mc_zeros(n)) != NULL;
-    ok &= (s->free_set = mc_calloc(n, 1)) != NULL;
-    ok &= (s->free_prev = mc_calloc(n, 1)) != NULL;
+        ok &= (*arrays[k] = mc_zeros(nl)) != NULL;
+    ok &= (s->free_set = mc_calloc(nl, 1)) != NULL;
+    ok &= (s->free_prev = mc_calloc(nl, 1)) != NULL;
+    s->stage = s->dist && mc_dist_size() > 1; /* the same on every rank */
+    if (s->stage) {
+        ok &= (s->gwhole = mc_zeros(n)) != NULL;
+        ok &= (s->mwhole = mc_calloc(n, 1)) != NULL;
+    }
     const size_t npieces = (size_t)(g->ny > MC_PSUM_MAX_BLOCKS ? g->ny : MC_PSUM_MAX_BLOCKS);
     ok &= (s->rpart = mc_zeros(npieces * MC_CONTACT_SUMS)) != NULL;
     ok &= (s->rall = mc_zeros((size_t)g->ny * MC_CONTACT_SUMS)) != NULL;
@@ -252,11 +292,12 @@ void mc_contact_destroy(mc_contact_solver **sp)
     mc_contact_solver *s = *sp;
     double *arrays[] = {s->htil, s->plow, s->capq, s->q,    s->u,     s->gap,
                         s->z,    s->dir,  s->kdir, s->ulow, s->dense, s->factor,
-                        s->rpart, s->rall};
+                        s->rpart, s->rall, s->gwhole};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         mc_free(arrays[k]);
     mc_free(s->free_set);
     mc_free(s->free_prev);
+    mc_free(s->mwhole);
     mc_free(s->map);
     mc_free(s->coarse_h);
     mc_free(s->coarse_low);
@@ -372,59 +413,89 @@ static int check_problem(const mc_contact_solver *s, const mc_contact_problem *p
     return MC_OK;
 }
 
-/* Start value of q: the warm start if given, else uniform on every cell (Polonsky & Keer) for
- * force control and zero (the penetrating cells enter at once) for approach control. */
-static void start_value(mc_contact_solver *s, const mc_contact_problem *p, const mc_qproblem *qp,
-                        double *q)
+/* The lower bound p_lower and the upper bound of q (p_upper - p_lower) of grid cell i from the
+ * problem's whole arrays, by the arithmetic that fills the workspaces plow and capq: sums over
+ * the whole grid taken from these are the serial program's, bit for bit, on any number of ranks
+ * (a read-only pass over the whole arrays every rank has). */
+static inline double cell_low(const mc_contact_problem *p, int any_lower, size_t i)
 {
-    const size_t n = s->n;
+    return any_lower ? (p->p_lower ? p->p_lower[i] : p->p_lub) : 0.0;
+}
+
+static inline double cell_capq(const mc_contact_problem *p, int any_lower, size_t i)
+{
+    return (p->p_upper ? p->p_upper[i] : p->p_cap) - cell_low(p, any_lower, i);
+}
+
+/* Start value of q (a workspace): the warm start if given (start: whole, or the workspace s->z
+ * of the coarse start when start_ws), else uniform on every cell (Polonsky & Keer) for force
+ * control and zero (the penetrating cells enter at once) for approach control. A whole warm
+ * start's sum is the serial program's (cell_low); the coarse start's goes row by row. */
+static void start_value(mc_contact_solver *s, const mc_contact_problem *p, const double *start,
+                        int start_ws, const mc_qproblem *qp, double *q)
+{
+    const size_t nl = s->nl, at = start_ws ? 0 : s->off;
     double sum = 0;
-    if (p->p_start) {
-        for (size_t i = 0; i < n; i++) {
-            double v = p->p_start[i] - (s->plow_on ? s->plow[i] : 0.0);
+    if (start) {
+        for (size_t i = 0; i < nl; i++) {
+            double v = start[at + i] - (s->plow_on ? s->plow[i] : 0.0);
             if (!(v > 0))
                 v = 0;
             if (qp->cap && v > qp->cap[i])
                 v = qp->cap[i];
             q[i] = v;
-            sum += v;
+        }
+        if (start_ws || !s->dist) {
+            sum = mc_contact_sum(s, q);
+        } else {
+            for (size_t i = 0; i < s->n; i++) {
+                double v = start[i] - cell_low(p, s->plow_on, i);
+                if (!(v > 0))
+                    v = 0;
+                if (qp->cap && v > cell_capq(p, s->plow_on, i))
+                    v = cell_capq(p, s->plow_on, i);
+                sum += v;
+            }
         }
     }
     if (qp->control == MC_CONTROL_APPROACH) {
-        if (!p->p_start)
-            memset(q, 0, n * sizeof *q);
+        if (!start)
+            memset(q, 0, nl * sizeof *q);
         return;
     }
     if (sum > 0) {
         if (!qp->cap) { /* a warm start scaled to the new load */
             double f = qp->W / (s->A * sum);
-            for (size_t i = 0; i < n; i++)
+            for (size_t i = 0; i < nl; i++)
                 q[i] *= f;
         }
         return;
     }
-    double v = qp->W / (s->A * (double)n);
-    for (size_t i = 0; i < n; i++)
+    double v = qp->W / (s->A * (double)s->n);
+    for (size_t i = 0; i < nl; i++)
         q[i] = qp->cap && v > qp->cap[i] ? qp->cap[i] : v;
 }
 
 int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, double *pout,
                      double *uout, double *gapout, mc_contact_summary *sum, mc_error *err)
 {
-    const size_t n = s->n;
+    /* the workspaces hold nl cells, grid cell off + i at i (contact_internal.h); prob's arrays
+     * and the outputs are whole */
+    const size_t n = s->n, nl = s->nl, off = s->off;
     s->applies = 0;
     memset(sum, 0, sizeof *sum);
     int rc = check_problem(s, prob, err);
     if (rc != MC_OK)
         return rc;
-    mc_contact_problem started = *prob; /* with the coarse start as its warm start */
     const mc_contact_problem *p = prob;
+    const double *start = prob->p_start;
+    int start_ws = 0;
     if (s->coarse && !prob->p_start) {
         rc = coarse_start(s, prob, err);
         if (rc != MC_OK)
             return rc;
-        started.p_start = s->z;
-        p = &started;
+        start = s->z; /* the coarse solution prolonged into the workspace */
+        start_ws = 1;
     }
 
     /* shift to the excess pressure: the lubricant pressure loads the half-space too */
@@ -432,37 +503,42 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
     for (size_t i = 0; p->p_lower && i < n && !any_lower; i++)
         any_lower = p->p_lower[i] != 0;
     int capped = p->p_upper || isfinite(p->p_cap);
-    if ((any_lower && ((!s->plow && !(s->plow = mc_zeros(n))) ||
-                       (!s->ulow && !(s->ulow = mc_zeros(n))))) ||
-        (capped && !s->capq && !(s->capq = mc_zeros(n))))
+    if ((any_lower && ((!s->plow && !(s->plow = mc_zeros(nl))) ||
+                       (!s->ulow && !(s->ulow = mc_zeros(nl))))) ||
+        (capped && !s->capq && !(s->capq = mc_zeros(nl))))
         return mc_fail(err, MC_ERR_NOMEM,
                        "contact solver: out of memory for the bounds of %zu cells", n);
     s->plow_on = any_lower;
     double lower_sum = 0;
     if (any_lower) {
-        for (size_t i = 0; i < n; i++) {
-            s->plow[i] = p->p_lower ? p->p_lower[i] : p->p_lub;
-            lower_sum += s->plow[i];
-        }
-        mc_contact_apply(s, s->plow, s->ulow);
+        for (size_t i = 0; i < nl; i++)
+            s->plow[i] = p->p_lower ? p->p_lower[off + i] : p->p_lub;
+        for (size_t i = 0; i < n; i++) /* the whole grid's, as serially (cell_low) */
+            lower_sum += cell_low(p, 1, i);
+        mc_contact_apply_rows(s, s->plow, s->ulow);
     }
-    for (size_t i = 0; i < n; i++)
-        s->htil[i] = p->h[i] + (p->h_extra ? p->h_extra[i] : 0.0) + (any_lower ? s->ulow[i] : 0.0);
+    for (size_t i = 0; i < nl; i++)
+        s->htil[i] = p->h[off + i] + (p->h_extra ? p->h_extra[off + i] : 0.0) +
+                     (any_lower ? s->ulow[i] : 0.0);
     /* work relative to the lowest point: the gap h~ + u - delta then never cancels a large
-     * offset (a 1 m datum under micrometre deformations kept the residual at 1e-7) */
+     * offset (a 1 m datum under micrometre deformations kept the residual at 1e-7); minimum and
+     * maximum over the ranks are exact */
     double hshift = INFINITY, hmax = -INFINITY;
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < nl; i++)
         hshift = fmin(hshift, s->htil[i]);
-    for (size_t i = 0; i < n; i++) {
+    hshift = -mc_contact_max(s, -hshift);
+    for (size_t i = 0; i < nl; i++) {
         s->htil[i] -= hshift;
         hmax = fmax(hmax, s->htil[i]);
     }
+    hmax = mc_contact_max(s, hmax);
     /* s->ulow keeps K p_lower until the end */
     const double *ulow = any_lower ? s->ulow : NULL;
     const double *plow = any_lower ? s->plow : NULL;
     if (capped)
-        for (size_t i = 0; i < n; i++)
-            s->capq[i] = (p->p_upper ? p->p_upper[i] : p->p_cap) - (plow ? plow[i] : 0.0);
+        for (size_t i = 0; i < nl; i++)
+            s->capq[i] =
+                (p->p_upper ? p->p_upper[off + i] : p->p_cap) - (plow ? plow[i] : 0.0);
     mc_qproblem qp = {.h = s->htil,
                       .hmin = 0.0,
                       .hmax = hmax,
@@ -478,23 +554,23 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
     double *q = s->q;
     if (p->control == MC_CONTROL_FORCE && qp.W <= 0) {
         /* the lubricant alone carries the load: no solid contact (theory.md §4.2) */
-        memset(q, 0, n * sizeof *q);
-        memset(s->u, 0, n * sizeof *s->u);
+        memset(q, 0, nl * sizeof *q);
+        memset(s->u, 0, nl * sizeof *s->u);
         qp.delta = 0; /* contact onset: the lowest point of h~ */
         res.converged = 1;
         rc = MC_OK;
     } else {
         if (capped && p->control == MC_CONTROL_FORCE) {
-            double capacity = 0;
+            double capacity = 0; /* the whole grid's, as serially (cell_capq) */
             for (size_t i = 0; i < n; i++)
-                capacity += s->capq[i];
+                capacity += cell_capq(p, any_lower, i);
             if (s->A * capacity <= qp.W)
                 return mc_fail(err, MC_ERR_INPUT,
                                "contact: the load %g N exceeds what the whole grid can carry at "
                                "the pressure cap (%g N)",
                                p->load, p->load - qp.W + s->A * capacity);
         }
-        start_value(s, p, &qp, q);
+        start_value(s, p, start, start_ws, &qp, q);
         int handled = 0;
         rc = mc_contact_box_solve(s, &qp, q, &res, &handled, err);
         if (rc != MC_OK && rc != MC_NOT_CONVERGED)
@@ -506,35 +582,60 @@ int mc_contact_solve(mc_contact_solver *s, const mc_contact_problem *prob, doubl
                                                             : methods[method].force;
             rc = fn(s, &qp, q, &res, err);
             res.iterations += box_iterations;
-            mc_contact_share(s, q); /* the methods kept to this rank's rows */
-            mc_contact_share(s, s->u);
             if (rc != MC_OK && rc != MC_NOT_CONVERGED)
                 return rc;
         }
     }
 
-    /* back to the full pressure; summary */
-    double load = 0, solid = 0, pmax = -INFINITY;
-    long ncontact = 0, ncap = 0;
+    /* back to the full pressure, the outputs (this rank's rows, then gathered whole); the
+     * summary: sums serially in index order, distributed row by row over the ranks; maxima,
+     * counts and flags exact */
+    double pmax = -INFINITY;
     int finite = 1;
-    for (size_t i = 0; i < n; i++) {
-        double pi = (plow ? plow[i] : 0.0) + q[i];
-        pout[i] = pi;
-        finite &= isfinite(pi) && isfinite(s->u[i]);
-        load += pi;
-        if (q[i] > 0) {
-            solid += q[i];
-            ncontact++;
+    const long pieces = s->dist ? s->nr : 1;
+    for (long r = 0; r < pieces; r++) {
+        const size_t a = s->dist ? mc_contact_piece_lo(s, r) : 0;
+        const size_t b = s->dist ? mc_contact_piece_hi(s, r) : nl;
+        double load = 0, solid = 0, ncontact = 0, ncap = 0;
+        for (size_t i = a; i < b; i++) {
+            double pi = (plow ? plow[i] : 0.0) + q[i];
+            pout[off + i] = pi;
+            finite &= isfinite(pi) && isfinite(s->u[i]);
+            load += pi;
+            if (q[i] > 0) {
+                solid += q[i];
+                ncontact++;
+            }
+            if (capped && q[i] >= s->capq[i])
+                ncap++;
+            if (pi > pmax)
+                pmax = pi;
+            if (uout)
+                uout[off + i] = (ulow ? ulow[i] : 0.0) + s->u[i];
+            if (gapout)
+                gapout[off + i] = s->htil[i] + s->u[i] - qp.delta;
         }
-        if (capped && q[i] >= s->capq[i])
-            ncap++;
-        if (pi > pmax)
-            pmax = pi;
-        if (uout)
-            uout[i] = (ulow ? ulow[i] : 0.0) + s->u[i];
-        if (gapout)
-            gapout[i] = s->htil[i] + s->u[i] - qp.delta;
+        double *part = s->rpart + MC_CONTACT_SUMS * r;
+        part[0] = load;
+        part[1] = solid;
+        part[2] = ncontact; /* counts: integers, exact in any order */
+        part[3] = ncap;
     }
+    double sums[MC_CONTACT_SUMS];
+    memcpy(sums, s->rpart, sizeof sums);
+    if (s->dist) {
+        mc_contact_totals(s, MC_CONTACT_SUMS, sums);
+        double ex[2] = {pmax, !finite}; /* the largest pressure, any non-finite value: exact */
+        mc_dist_max(ex, 2);
+        pmax = ex[0];
+        finite = !(ex[1] > 0);
+        mc_dist_gather_rows(pout, s->r0, s->nr, s->g.nx);
+        if (uout)
+            mc_dist_gather_rows(uout, s->r0, s->nr, s->g.nx);
+        if (gapout)
+            mc_dist_gather_rows(gapout, s->r0, s->nr, s->g.nx);
+    }
+    const double load = sums[0], solid = sums[1], ncontact = sums[2], ncap = sums[3];
     if (!finite || !isfinite(qp.delta))
         return mc_fail(err, MC_ERR_NUMERIC, "contact: the %s solver produced non-finite values",
                        methods[method].name);

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/dist.h"
 #include "contact/contact_internal.h"
 #include "operator/box.h"
 
@@ -67,17 +68,20 @@ static int ensure_box(mc_contact_solver *s, const mc_box *b, mc_error *err)
 int mc_contact_box_solve(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,
                          int *handled, mc_error *err)
 {
-    const size_t n = s->n;
-    const int nx = s->g.nx;
+    /* q, qp's arrays, s->u and the marks are workspaces: this rank's rows r0 .. r0 + nr - 1
+     * when distributed (contact_internal.h); the box's arrays are whole on every rank */
+    const size_t n = s->n, nl = s->nl;
+    const int nx = s->g.nx, r0 = s->r0, r1 = s->r0 + s->nr;
     unsigned char *mark = s->free_prev; /* scratch until the method runs */
     *handled = 0;
     s->box_cells = s->box_applies = 0;
     if (s->opt.method != MC_METHOD_CG || s->opt.no_box || !(s->opt.estar > 0))
         return MC_OK;
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < nl; i++)
         mark[i] = q[i] > 0;
     mc_box b;
-    if (!box_of(s, mark, NULL, &b) || (double)mc_box_cells(&b) > MC_BOX_FRACTION * (double)n)
+    if (!box_of(s, mc_contact_whole_mask(s, mark), NULL, &b) ||
+        (double)mc_box_cells(&b) > MC_BOX_FRACTION * (double)n)
         return MC_OK;
     int iters = 0;
     for (int round = 0; round < BOX_ROUNDS; round++) {
@@ -86,13 +90,21 @@ int mc_contact_box_solve(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qr
             free_box(s);
             return rc;
         }
-        for (int j = 0; j < b.ny; j++)
+        /* the box's rows this rank holds (grid rows j0 .. j1 - 1), then every rank's */
+        const int j0 = b.j0 > r0 ? b.j0 : r0, j1 = b.j0 + b.ny < r1 ? b.j0 + b.ny : r1;
+        for (int j = j0; j < j1; j++)
             for (int i = 0; i < b.nx; i++) {
-                size_t f = (size_t)(b.j0 + j) * nx + (b.i0 + i), k = (size_t)j * b.nx + i;
+                size_t f = (size_t)(j - r0) * nx + (b.i0 + i), k = (size_t)(j - b.j0) * b.nx + i;
                 s->box_h[k] = qp->h[f];
                 s->box_cap[k] = qp->cap ? qp->cap[f] : INFINITY;
                 s->box_q[k] = q[f];
             }
+        if (s->dist) {
+            const int br0 = j1 > j0 ? j0 - b.j0 : 0, bnr = j1 > j0 ? j1 - j0 : 0;
+            mc_dist_gather_rows(s->box_h, br0, bnr, b.nx);
+            mc_dist_gather_rows(s->box_cap, br0, bnr, b.nx);
+            mc_dist_gather_rows(s->box_q, br0, bnr, b.nx);
+        }
         mc_contact_problem bp = {.h = s->box_h,
                                  .p_cap = INFINITY,
                                  .p_upper = qp->cap ? s->box_cap : NULL,
@@ -106,21 +118,22 @@ int mc_contact_box_solve(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qr
         s->box_applies += mc_contact_last_applies(s->box);
         if (rc != MC_OK && rc != MC_NOT_CONVERGED)
             return rc;
-        memset(q, 0, n * sizeof *q);
-        for (int j = 0; j < b.ny; j++)
-            memcpy(q + (size_t)(b.j0 + j) * nx + b.i0, s->box_q + (size_t)j * b.nx,
+        memset(q, 0, nl * sizeof *q);
+        for (int j = j0; j < j1; j++)
+            memcpy(q + (size_t)(j - r0) * nx + b.i0, s->box_q + (size_t)(j - b.j0) * b.nx,
                    (size_t)b.nx * sizeof *q);
         qp->delta = sum.approach;
-        mc_contact_apply(s, q, s->u); /* the full operator: the gap outside the box */
+        mc_contact_apply_rows(s, q, s->u); /* the full operator: the gap outside the box */
         double tol = s->opt.tolerance * mc_contact_gap_scale(s, qp, qp->delta);
         int outside = 0;
-        for (int j = 0; j < s->g.ny; j++)
+        for (int j = r0; j < r1; j++)
             for (int i = 0; i < nx; i++) {
-                size_t f = (size_t)j * nx + i;
+                size_t f = (size_t)(j - r0) * nx + i;
                 int in = i >= b.i0 && i < b.i0 + b.nx && j >= b.j0 && j < b.j0 + b.ny;
                 mark[f] = !in && qp->h[f] + s->u[f] - qp->delta < -tol;
                 outside |= mark[f];
             }
+        outside = mc_contact_max(s, outside) > 0; /* on any rank */
         if (!outside) {
             s->box_cells = mc_box_cells(&b);
             res->iterations = iters;
@@ -130,7 +143,7 @@ int mc_contact_box_solve(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qr
             return res->converged ? MC_OK : MC_NOT_CONVERGED;
         }
         mc_box wider;
-        if (!box_of(s, mark, &b, &wider) ||
+        if (!box_of(s, mc_contact_whole_mask(s, mark), &b, &wider) ||
             (double)mc_box_cells(&wider) > MC_BOX_FRACTION * (double)n)
             break; /* q is now a good warm start for the full-grid solve */
         b = wider;

@@ -23,7 +23,8 @@
  * a descent direction is replaced by the preconditioned residual. */
 #define RESTART_FRAC 0.1
 
-/* The per-cell loops run over this rank's rows (cells s->lo .. s->hi - 1, contact_internal.h),
+/* The per-cell loops run over the workspaces' cells s->lo .. s->hi - 1 (this rank's rows when
+ * distributed, contact_internal.h),
  * on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums go piece by piece through
  * mc_contact_totals, so the iterates are the same bits on any thread count, and on any rank
  * count in the MPI executable. */
@@ -133,7 +134,7 @@ static void take_step(mc_contact_solver *s, const unsigned char *S, const double
 
 int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err)
 {
-    const size_t n = s->n, lo = s->lo, hi = s->hi;
+    const size_t n = s->nl, lo = s->lo, hi = s->hi;
     const int force = qp->control == MC_CONTROL_FORCE;
     const double *cap = qp->cap;
     double *u = s->u, *g = s->gap, *z = s->z, *d = s->dir, *Kd = s->kdir;
@@ -184,8 +185,9 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         if (m == 0) /* nothing can move although the residual is above tolerance */
             break;
         if (nchanged > 0) {
-            mc_contact_share_mask(s, S); /* the preconditioner's box spans the ranks */
-            rc = mc_precond_set_mask(s->pc, S, err);
+            /* the preconditioner's box spans the ranks: it sees the whole set (kept in
+             * s->mwhole while the set stays) */
+            rc = mc_precond_set_mask(s->pc, mc_contact_whole_mask(s, S), err);
             /* a plan that failed on one rank fails the solve on all (they must stay in step) */
             if (mc_contact_max(s, rc != MC_OK) > 0)
                 return rc != MC_OK ? rc
@@ -208,9 +210,9 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
                     g[i] = 0.0;
         }
         /* the preconditioner's FFT runs on the whole box on every rank (precond.h): it reads g
-         * on all rows */
-        mc_contact_share(s, g);
-        mc_precond_apply(s->pc, S, g, z);
+         * on all rows (gathered), and writes this rank's rows of z */
+        mc_precond_apply_rows(s->pc, s->stage ? s->mwhole : S, mc_contact_whole(s, g), z, s->r0,
+                              s->nr);
         if (force) {
             double mz = mean_on(s, z, S);
 #pragma omp parallel for schedule(static) if (PAR(s))
@@ -290,20 +292,7 @@ static int solve_at(mc_contact_solver *s, const mc_qproblem *qp, double delta, d
     *iters += r.iterations;
     if (rc != MC_OK && rc != MC_NOT_CONVERGED)
         return rc;
-    double sum = 0;
-    if (s->dist) { /* row by row over the ranks */
-        for (int k = 0; k < s->nr; k++) {
-            double v = 0;
-            for (size_t i = (size_t)(s->r0 + k) * s->g.nx; i < (size_t)(s->r0 + k + 1) * s->g.nx;
-                 i++)
-                v += q[i];
-            s->rpart[k] = v;
-        }
-        mc_contact_totals(s, 1, &sum);
-    } else { /* the serial program's plain sum */
-        for (size_t i = 0; i < s->n; i++)
-            sum += q[i];
-    }
+    const double sum = mc_contact_sum(s, q); /* row by row over the ranks when distributed */
     *load = s->A * sum;
     return MC_OK;
 }

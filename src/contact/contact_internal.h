@@ -28,26 +28,36 @@ typedef struct {
     int converged;
 } mc_qresult;
 
-/* Sums per row: at most this many quantities per distributed reduction (mc_contact_totals). */
-#define MC_CONTACT_SUMS 3
+/* Sums per row: at most this many quantities per distributed reduction (mc_contact_totals; the
+ * solve's summary: load, solid load, contact and capped cells). */
+#define MC_CONTACT_SUMS 4
 
 struct mc_contact_solver {
     mc_operator *K;
     mc_grid g;
     size_t n;
     /* Rows of the iterations (the distributed operator's slab, operator/dfft.h; all rows
-     * serially): the methods' per-cell loops run over cells lo .. hi - 1 = rows r0 .. r0 + nr - 1
-     * only, K is applied to those rows (mc_contact_apply_rows), and sums go piece by piece
-     * through mc_contact_totals: the same bits on any number of threads, and of ranks. The
-     * other rows of the workspaces are stale until mc_contact_share. dist: the rows are split
-     * over the run's ranks. */
+     * serially): r0 .. r0 + nr - 1. Distributed (dist), every per-cell workspace below holds
+     * those rows alone (nl = nr * nx cells, grid cell off + i at index i, off = r0 * nx: the
+     * memory of the iterations divides over the ranks), K is applied to them
+     * (mc_contact_apply_rows, no whole field), and the whole-grid arrays of the caller
+     * (mc_contact_problem, the outputs) are read and written at off + i. Serially nl = n and
+     * off = 0. The methods' per-cell loops run over lo .. hi - 1 = 0 .. nl - 1, and their sums
+     * go piece by piece through mc_contact_totals: the same bits on any number of threads, and
+     * of ranks. */
     int r0, nr, dist;
-    size_t lo, hi;
+    size_t lo, hi, nl, off;
+    /* distributed over more than one rank (stage): the whole gradient for the preconditioner
+     * and the whole free set or the box's marks, gathered (n each; with one rank the
+     * workspaces are whole already) */
+    int stage;
+    double *gwhole;
+    unsigned char *mwhole;
     mc_psum ps;           /* the pieces of the sums without ranks (mc_contact_pieces) */
     double *rpart, *rall; /* piece sums: this rank's (MC_CONTACT_SUMS per piece), all rows' */
     double A; /* cell area, m^2 */
     mc_contact_options opt;
-    /* workspaces, n each, allocated once; every method (cg, pk, active set) names them alike:
+    /* workspaces, nl each (above), allocated once; every method (cg, pk, active set) names them alike:
      *   htil  h~;  q  the excess pressure p - p_lower (the iterate);  u  K q
      *   gap   g = h~ + u - delta, the gradient of the energy (cg projects it onto the free set)
      *   z     cg: the preconditioned gradient M g; the active set and the coarse start use it
@@ -96,18 +106,19 @@ static inline long mc_contact_pieces(const mc_contact_solver *s)
 
 static inline size_t mc_contact_piece_lo(const mc_contact_solver *s, long k)
 {
-    return s->dist ? (size_t)(s->r0 + k) * (size_t)s->g.nx : mc_psum_lo(&s->ps, k);
+    return s->dist ? (size_t)k * (size_t)s->g.nx : mc_psum_lo(&s->ps, k);
 }
 
 static inline size_t mc_contact_piece_hi(const mc_contact_solver *s, long k)
 {
-    return s->dist ? (size_t)(s->r0 + k + 1) * (size_t)s->g.nx : mc_psum_hi(&s->ps, k);
+    return s->dist ? (size_t)(k + 1) * (size_t)s->g.nx : mc_psum_hi(&s->ps, k);
 }
 
-/* u = K in, counted: every row, on every rank. */
+/* u = K in, counted: whole arrays, every row, on every rank. */
 void mc_contact_apply(mc_contact_solver *s, const double *in, double *out);
 
-/* u = K in on this rank's rows only (in read there, out written there), counted. */
+/* u = K in on the workspaces' cells (nl each: this rank's rows distributed, whole serially),
+ * counted. Collective. */
 void mc_contact_apply_rows(mc_contact_solver *s, const double *in, double *out);
 
 /* The m (<= MC_CONTACT_SUMS) sums whose per-piece parts the caller put in s->rpart[r * m + k]
@@ -119,9 +130,15 @@ void mc_contact_totals(mc_contact_solver *s, int m, double *out);
 /* The largest v (flags, maxima) over the ranks of a distributed solver. Collective. */
 double mc_contact_max(const mc_contact_solver *s, double v);
 
-/* Every rank's rows of v (a per-cell array) to every rank, so that v is whole. Collective. */
-void mc_contact_share(const mc_contact_solver *s, double *v);
-void mc_contact_share_mask(const mc_contact_solver *s, unsigned char *v);
+/* v (a workspace, nl cells) whole: distributed, every rank's rows gathered into s->gwhole
+ * (s->mwhole), which is returned; serially v itself. Collective. */
+const double *mc_contact_whole(mc_contact_solver *s, const double *v);
+const unsigned char *mc_contact_whole_mask(mc_contact_solver *s, const unsigned char *v);
+
+/* The sum of v[0 .. nl) over all ranks: serially in index order (the serial program's plain
+ * sum); distributed row by row, the row sums added in row order over the ranks (the same bits
+ * on any P). Collective. */
+double mc_contact_sum(mc_contact_solver *s, const double *v);
 
 /* Gap scale of the stopping rule: delta - min(h~), floored so it is never zero. */
 double mc_contact_gap_scale(const mc_contact_solver *s, const mc_qproblem *qp, double delta);
@@ -133,8 +150,8 @@ double mc_contact_residual(mc_contact_solver *s, const mc_qproblem *qp, const do
 
 /* Methods: q holds the start on entry (feasible: 0 <= q <= cap) and the solution on exit; s->u
  * holds K q on exit; qp->delta is set for force control. MC_NOT_CONVERGED leaves the last iterate.
- * The other workspaces are theirs. cg and pk read and write this rank's rows of q and s->u only
- * (the caller shares them); all ranks call them together. */
+ * The other workspaces are theirs. q, s->u and qp's arrays are workspaces (nl cells: this rank's
+ * rows when distributed); all ranks call the methods together. */
 int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err);
 int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err);
 int mc_contact_nested(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res,

@@ -11,7 +11,8 @@
 
 #include "contact/contact_internal.h"
 
-/* The per-cell loops run over this rank's rows (cells s->lo .. s->hi - 1, contact_internal.h),
+/* The per-cell loops run over the workspaces' cells s->lo .. s->hi - 1 (this rank's rows when
+ * distributed, contact_internal.h),
  * on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums go piece by piece through
  * mc_contact_totals (the same bits on any thread count, and on any rank count). */
 #define PAR(s) ((s)->hi - (s)->lo > MC_THREADS_MIN_CELLS)
@@ -63,7 +64,7 @@ static void split_sums(mc_contact_solver *s, const double *q, const double *cap,
 
 int mc_contact_pk(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *res, mc_error *err)
 {
-    const size_t n = s->n, lo = s->lo, hi = s->hi;
+    const size_t n = s->nl, lo = s->lo, hi = s->hi;
     const int force = qp->control == MC_CONTROL_FORCE;
     const double *cap = qp->cap;
     double *u = s->u, *g = s->gap, *d = s->dir, *Kd = s->kdir;

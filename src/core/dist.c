@@ -2,6 +2,7 @@
 #include "core/dist.h"
 
 #include <math.h>
+#include <string.h>
 #include <time.h>
 
 static double comm_seconds, comm_cpu;
@@ -123,6 +124,33 @@ int mc_dist_gather_rows(double *v, int r0, int nr, int nx)
     return gather_rows(v, MPI_DOUBLE, r0, nr, nx);
 }
 
+/* Every rank's slab (its rows alone) into whole on every rank. */
+static int gather_slab(const void *mine, void *whole, size_t size, MPI_Datatype t, int r0, int nr,
+                       int nx)
+{
+    if (run_comm == MPI_COMM_NULL) {
+        if (nr > 0)
+            memcpy((char *)whole + (size_t)r0 * nx * size, mine, (size_t)nr * nx * size);
+        return 1;
+    }
+    const mc_dist_mark t0 = mc_dist_comm_begin();
+    const int ok = row_layout(r0, nr, nx);
+    if (ok)
+        MPI_Allgatherv(mine, nr * nx, t, whole, counts, displs, t, run_comm);
+    mc_dist_comm_end(t0);
+    return ok;
+}
+
+int mc_dist_gather_slab(const double *mine, double *whole, int r0, int nr, int nx)
+{
+    return gather_slab(mine, whole, sizeof *mine, MPI_DOUBLE, r0, nr, nx);
+}
+
+int mc_dist_gather_slab_u8(const unsigned char *mine, unsigned char *whole, int r0, int nr, int nx)
+{
+    return gather_slab(mine, whole, 1, MPI_UNSIGNED_CHAR, r0, nr, nx);
+}
+
 int mc_dist_gather_rows_u8(unsigned char *v, int r0, int nr, int nx)
 {
     return gather_rows(v, MPI_UNSIGNED_CHAR, r0, nr, nx);
@@ -200,6 +228,20 @@ int mc_dist_gather_rows_u8(unsigned char *v, int r0, int nr, int nx)
     (void)r0;
     (void)nr;
     (void)nx;
+    return 1;
+}
+
+int mc_dist_gather_slab(const double *mine, double *whole, int r0, int nr, int nx)
+{
+    if (nr > 0)
+        memcpy(whole + (size_t)r0 * nx, mine, (size_t)nr * nx * sizeof *mine);
+    return 1;
+}
+
+int mc_dist_gather_slab_u8(const unsigned char *mine, unsigned char *whole, int r0, int nr, int nx)
+{
+    if (nr > 0)
+        memcpy(whole + (size_t)r0 * nx, mine, (size_t)nr * nx);
     return 1;
 }
 #endif

@@ -85,6 +85,13 @@ int mc_dist_row_totals(const double *part, int nr, int ny, int m, double *all, d
 int mc_dist_gather_rows(double *v, int r0, int nr, int nx);
 int mc_dist_gather_rows_u8(unsigned char *v, int r0, int nr, int nx);
 
+/* The same from a slab: mine holds this rank's rows alone (nr * nx values, row r0 + r at r * nx);
+ * whole (ny * nx) receives every rank's rows on every rank. Without a communicator mine is
+ * copied to its rows of whole. Collective. */
+int mc_dist_gather_slab(const double *mine, double *whole, int r0, int nr, int nx);
+int mc_dist_gather_slab_u8(const unsigned char *mine, unsigned char *whole, int r0, int nr,
+                           int nx);
+
 /* The row-split calls return 1, or 0 (the totals NaN, nothing gathered) when the run has more
  * than MC_DIST_MAX_RANKS ranks or a count exceeds MPI's int counts (the front end refuses such
  * runs first). */

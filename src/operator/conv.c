@@ -23,7 +23,7 @@ struct mc_conv {
     mc_padfft fft;  /* fft: the padded transforms (2-D pair for tables, pruned for fields) */
     int distribute; /* fft: asked to distribute its transforms over the run's ranks */
     mc_dfft *dfft;  /* fft over the ranks (dfft.h) instead of fft; NULL serially */
-    int rows_only;  /* dfft: the inverse fills this rank's rows only (mc_conv_convolve_rows) */
+    int rows_only;  /* dfft: field and out are this rank's rows only (mc_conv_convolve_rows) */
 };
 
 struct conv_ops {
@@ -54,7 +54,7 @@ static fftw_complex *work_spec(mc_conv *c)
 static void forward(mc_conv *c, const double *field)
 {
     if (c->dfft)
-        mc_dfft_forward(c->dfft, field, mc_dfft_spectrum(c->dfft));
+        mc_dfft_forward(c->dfft, field, mc_dfft_spectrum(c->dfft), c->rows_only);
     else
         mc_padfft_forward(&c->fft, field, c->fft.cbuf);
 }
@@ -62,7 +62,7 @@ static void forward(mc_conv *c, const double *field)
 static void inverse(mc_conv *c, double *out)
 {
     if (c->dfft)
-        mc_dfft_inverse(c->dfft, out, !c->rows_only);
+        mc_dfft_inverse(c->dfft, out, c->rows_only);
     else
         mc_padfft_inverse(&c->fft, out);
 }

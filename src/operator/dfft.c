@@ -145,11 +145,12 @@ static void col_forward(mc_dfft *d, const fftw_complex *src, int m, fftw_complex
     memcpy(dst, d->cline, (size_t)d->ty * sizeof *dst);
 }
 
-void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec)
+void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec, int local)
 {
     fftw_complex *rows = (fftw_complex *)d->rows, *cols = (fftw_complex *)d->cols;
+    const ptrdiff_t first = local ? 0 : d->r0; /* the row of field that holds data row r0 */
     for (ptrdiff_t r = 0; r < d->nr; r++)
-        row_forward(d, field + (size_t)(d->r0 + r) * d->nx, d->nx, rows + (size_t)r * d->hx);
+        row_forward(d, field + (size_t)(first + r) * d->nx, d->nx, rows + (size_t)r * d->hx);
     const mc_dist_mark t0 = mc_dist_comm_begin();
     fftw_execute(d->tr_fwd); /* ny x hx by rows -> hx x ny by columns */
     mc_dist_comm_end(t0);
@@ -157,8 +158,9 @@ void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec)
         col_forward(d, cols + (size_t)k * d->ny, d->ny, spec + (size_t)k * d->ty);
 }
 
-void mc_dfft_inverse(mc_dfft *d, double *out, int gather)
+void mc_dfft_inverse(mc_dfft *d, double *out, int local)
 {
+    const ptrdiff_t first = local ? 0 : d->r0;
     fftw_complex *rows = (fftw_complex *)d->rows, *cols = (fftw_complex *)d->cols;
     for (ptrdiff_t k = 0; k < d->nk; k++) { /* only the ny data rows are kept */
         memcpy(d->cline, d->spec + (size_t)k * d->ty, (size_t)d->ty * sizeof *d->cline);
@@ -171,9 +173,9 @@ void mc_dfft_inverse(mc_dfft *d, double *out, int gather)
     for (ptrdiff_t r = 0; r < d->nr; r++) {
         memcpy(d->cline, rows + (size_t)r * d->hx, (size_t)d->hx * sizeof *d->cline);
         fftw_execute_dft_c2r(d->c2r, d->cline, d->line);
-        memcpy(out + (size_t)(d->r0 + r) * d->nx, d->line, (size_t)d->nx * sizeof *out);
+        memcpy(out + (size_t)(first + r) * d->nx, d->line, (size_t)d->nx * sizeof *out);
     }
-    if (!gather)
+    if (local)
         return;
     t0 = mc_dist_comm_begin();
     MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, out, d->counts, d->displs, MPI_DOUBLE,
@@ -230,18 +232,19 @@ fftw_complex *mc_dfft_spectrum(mc_dfft *d)
     return NULL;
 }
 
-void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec)
+void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec, int local)
 {
     (void)d;
     (void)field;
     (void)spec;
+    (void)local;
 }
 
-void mc_dfft_inverse(mc_dfft *d, double *out, int gather)
+void mc_dfft_inverse(mc_dfft *d, double *out, int local)
 {
     (void)d;
     (void)out;
-    (void)gather;
+    (void)local;
 }
 
 void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)

@@ -46,15 +46,18 @@ size_t mc_dfft_spectrum_len(const mc_dfft *d);
 /* The engine's own spectrum (mc_dfft_spectrum_len doubles): mc_dfft_inverse reads it. */
 fftw_complex *mc_dfft_spectrum(mc_dfft *d);
 
-/* The field (nx*ny, the same on every rank; each reads its rows), zero-padded, forward into spec
- * (this rank's part; the engine's spectrum or an array of as many doubles). Collective. */
-void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec);
+/* The field, zero-padded, forward into spec (this rank's part; the engine's spectrum or an array
+ * of as many doubles). local = 0: field is whole (nx*ny, the same on every rank; each reads its
+ * rows); local = 1: field holds this rank's rows only (nr*nx values, data row r0 + r at r*nx: a
+ * slab, mc_dfft_rows). Collective. */
+void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec, int local);
 
-/* The engine's spectrum backward (unnormalised: the caller scales), cropped to nx x ny, into out
- * on every rank (gather = 1), or into this rank's data rows of out only (gather = 0: the other
- * rows untouched, no gather; a solver that keeps to its rows saves the 8 nx ny bytes). Destroys
- * the spectrum. Collective. */
-void mc_dfft_inverse(mc_dfft *d, double *out, int gather);
+/* The engine's spectrum backward (unnormalised: the caller scales), cropped to nx x ny: into out
+ * whole on every rank (local = 0: the rows gathered), or into this rank's rows only, laid out as
+ * mc_dfft_forward's local field (local = 1: out holds nr*nx values, no gather; a solver that
+ * keeps to its rows saves the 8 nx ny bytes and the whole array). Destroys the spectrum.
+ * Collective. */
+void mc_dfft_inverse(mc_dfft *d, double *out, int local);
 
 /* This rank's data rows r0 .. r0 + nr - 1 (of ny): the rows mc_dfft_forward reads. */
 void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr);

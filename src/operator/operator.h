@@ -192,9 +192,10 @@ const mc_grid *mc_conv_grid(const mc_conv *c);
  * distributed (dfft.h; nr may be 0 on a rank left without rows). */
 int mc_conv_rows(const mc_conv *c, int *r0, int *nr); /* 1: split over the ranks */
 
-/* mc_conv_convolve (kre == NULL) or mc_conv_convolve_real (kre given), but a distributed engine
- * reads only this process's rows of field (mc_conv_rows) and writes only its rows of out (no
- * gather); serially the same as the full call. Collective. */
+/* mc_conv_convolve (kre == NULL) or mc_conv_convolve_real (kre given), but on a distributed
+ * engine field and out are this process's rows only (mc_conv_rows: nr*nx values, row r0 + r at
+ * r*nx; no gather); serially (and on the direct backend) the same as the full call on whole
+ * arrays. Collective. */
 void mc_conv_convolve_rows(mc_conv *c, const double *kspec, const double *kre,
                            const double *field, double *out, double *work);
 
@@ -272,9 +273,10 @@ const mc_grid *mc_operator_grid(const mc_operator *op);
  * (its rows split over the run's ranks), else 0. */
 int mc_operator_rows(const mc_operator *op, int *r0, int *nr);
 
-/* out = K in on this process's rows only: in is read on them, out written on them (a distributed
- * operator skips the gather of the result; serially mc_operator_apply). For a solver that keeps
- * its per-cell work on its own rows (contact/). Collective. */
+/* out = K in on this process's rows only: in and out hold those rows alone (nr*nx values, row
+ * r0 + r at r*nx, mc_operator_rows) when the operator is distributed, and no whole field is
+ * formed anywhere; serially (not distributed) they are whole and this is mc_operator_apply. For
+ * a solver that keeps its per-cell work and memory to its own rows (contact/). Collective. */
 void mc_operator_apply_rows(mc_operator *op, const double *in, double *out);
 mc_backend mc_operator_backend(const mc_operator *op);
 

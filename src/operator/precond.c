@@ -168,7 +168,13 @@ int mc_precond_set_mask(mc_precond *pc, const unsigned char *mask, mc_error *err
 
 void mc_precond_apply(mc_precond *pc, const unsigned char *mask, const double *r, double *z)
 {
-    const int nx = pc->g.nx, ny = pc->g.ny;
+    mc_precond_apply_rows(pc, mask, r, z, 0, pc->g.ny);
+}
+
+void mc_precond_apply_rows(mc_precond *pc, const unsigned char *mask, const double *r, double *z,
+                           int r0, int nr)
+{
+    const int nx = pc->g.nx;
     const box_plan *p = pc->cur;
     const int fx = p->fx, fy = p->fy, hx = fx / 2 + 1;
     const mc_box *box = &pc->box;
@@ -195,8 +201,8 @@ void mc_precond_apply(mc_precond *pc, const unsigned char *mask, const double *r
     }
     fftw_execute(p->inv);
 #pragma omp parallel for schedule(static) if (par)
-    for (int j = 0; j < ny; j++) {
-        double *zr = z + (size_t)j * nx;
+    for (int j = r0; j < r0 + nr; j++) {
+        double *zr = z + (size_t)(j - r0) * nx;
         const int jb = j - box->j0;
         if (jb < 0 || jb >= box->ny) {
             memset(zr, 0, sizeof(double) * (size_t)nx);

@@ -29,4 +29,10 @@ int mc_precond_set_mask(mc_precond *pc, const unsigned char *mask, mc_error *err
  * r and z are full-grid arrays (ny*nx) and must not alias. Never allocates. */
 void mc_precond_apply(mc_precond *pc, const unsigned char *mask, const double *r, double *z);
 
+/* The same, but z holds rows r0 .. r0 + nr - 1 only (nr*nx values, row r0 + k at k*nx): a solver
+ * whose work arrays are its slab of rows (contact/); mask and r are whole. The same values in
+ * those rows as mc_precond_apply. Never allocates. */
+void mc_precond_apply_rows(mc_precond *pc, const unsigned char *mask, const double *r, double *z,
+                           int r0, int nr);
+
 #endif

@@ -27,6 +27,22 @@ static double operator_bytes(int nx, int ny, int px, int py, mc_backend b, int r
     return 16 * half * 2 + 8 * tx * ty + 8 * tx * ty;
 }
 
+/* Bytes of one contact solver on `cells` cells: ten work arrays and two masks, over P > 1 MPI
+ * processes a slab each (1/P, contact_internal.h: every rank holds its rows alone), plus the
+ * replicated preconditioner's box buffers (a real and a half complex array of the grid, 16 bytes
+ * a cell) and, with P > 1, the whole gradient and free set it is given (9 bytes a cell). The
+ * active set is whole on every rank. Measured per rank (Hertz 2048^2, P = 2, 3: reports/bench,
+ * mpi section): the peak divides as R + S/P with R ~ 75 and S ~ 195 bytes a cell (R: these
+ * replicated buffers, the surface fields of pipeline.h, the coarse start's whole arrays, the
+ * process); this model gives 20-35 % more (the kernel table counted beside the solver). */
+static double solver_bytes(double cells, mc_contact_method m, int ranks)
+{
+    const double work = (10 * 8 + 2) * cells, precond = 16 * cells;
+    if (ranks <= 1 || m == MC_METHOD_ACTIVE_SET)
+        return work + precond;
+    return work / ranks + precond + 9 * cells;
+}
+
 double mc_memory_estimate(const mc_scene *s) { return mc_memory_estimate_ranks(s, mc_dist_size()); }
 
 double mc_memory_estimate_ranks(const mc_scene *s, int ranks)
@@ -40,8 +56,7 @@ double mc_memory_estimate_ranks(const mc_scene *s, int ranks)
         bytes += 8 * cells; /* the map as read */
     bytes += operator_bytes(g->nx, g->ny, g->periodic_x, g->periodic_y, s->solver.backend, ranks);
     if (s->load.kind != MC_LOAD_PRESSURE_FILE) {
-        /* ten work arrays, two masks, the preconditioner's box buffers */
-        double solver = (10 * 8 + 2 + 16) * cells;
+        double solver = solver_bytes(cells, s->solver.method, ranks);
         if (s->solver.method == MC_METHOD_ACTIVE_SET)
             solver += 2 * 8 * cells * cells;
         /* nested start: each coarse level a quarter of the one above (operator and solver) */
@@ -94,11 +109,17 @@ int mc_memory_check(const mc_scene *s, mc_error *err)
     mc_dist_bcast(&have, 1, 0);
     if (need <= have)
         return MC_OK;
-    const double GiB = 1073741824.0;
+    const double GiB = 1073741824.0, MiB = 1048576.0;
+    const int ranks = mc_dist_size();
+    /* the figure is each process's: say so, and what twice the processes would need each
+     * (bin/microcontact-mpi, README "Running on a cluster") */
+    char per[128];
+    snprintf(per, sizeof per, " per process with %d process%s (%.1f MiB each with %d)", ranks,
+             ranks > 1 ? "es" : "", mc_memory_estimate_ranks(s, 2 * ranks) / MiB, 2 * ranks);
     return mc_fail(err, MC_ERR_NOMEM,
-                   "the scene needs about %.1f GiB, %.1f GiB available (grid %d x %d%s); reduce "
-                   "the grid%s",
-                   need / GiB, have / GiB, s->grid.nx, s->grid.ny,
+                   "the scene needs about %.1f GiB (%.1f MiB)%s, %.1f GiB available (grid %d x "
+                   "%d%s); reduce the grid%s, or run with more MPI processes",
+                   need / GiB, need / MiB, per, have / GiB, s->grid.nx, s->grid.ny,
                    s->stress.enabled ? " with stress layers" : "",
                    s->stress.enabled ? " or the number of stress layers" : "");
 }

@@ -9,8 +9,9 @@
 /* Estimated peak bytes of running scene s (surface fields, operator, contact solver with its
  * coarse levels, stress volumes and workspaces). A model calibrated against measured peaks
  * (reports/bench: memory): it errs on the high side by design. Per process: over MPI processes
- * (core/dist.h) the operators' spectra and transform buffers count 1/P, every replicated array
- * in full. */
+ * (core/dist.h) the operators' spectra and transform buffers and the contact solvers' work
+ * arrays count 1/P, every replicated array in full (the surface fields, the preconditioner's
+ * buffers and the gradient and free set gathered for it, the kernel table, the stress layers). */
 double mc_memory_estimate(const mc_scene *s);
 
 /* The same for a run over `ranks` MPI processes (mc_memory_estimate: the run's own count), e.g.

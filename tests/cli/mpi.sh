@@ -11,7 +11,9 @@
 #     by row in row order over the ranks (contact_internal.h, core/dist.h). On the solver paths
 #     cg and pk, free and periodic grids, with a pressure cap (cg's nested solve) and with a
 #     lubricant (the volume equilibrium's repeated solves);
-#  3. what is not distributed yet is refused with P > 1 (exit 2, the key named, no directory).
+#  3. what is not distributed yet is refused with P > 1 (exit 2, the key named, no directory);
+#  4. a grid the memory guard refuses serially under a limit runs with 2 and 3 processes under
+#     the same per-process limit, gives the serial answer, and stays within the guard's figure.
 #   tests/cli/mpi.sh PROGRAM MPI_PROGRAM MPI_OPERATOR_TEST NPY_COMPARE
 set -u
 PROG=$1 MPROG=$2 OPTEST=$3 CMP=$4
@@ -151,6 +153,64 @@ export MC_MEMORY_LIMIT=1000
 CODE=3
 refused memory 'needs about' cases/hertz_point.ini
 unset MC_MEMORY_LIMIT CODE
+
+# ---- 4. memory that divides: refused serially under a limit, run with 2 and 3 processes -------
+# The memory guard's figure is per process (pipeline/memguard.c: the operators' slabs and the
+# contact solvers' work arrays 1/P, the rest replicated). The Hertz point of bench mpi at 768^2
+# (no stress layers) under a limit halfway between its serial and its 2-process figure: the
+# serial program refuses it (exit 3, no directory); the MPI program runs it under the same
+# per-process limit with 2 and with 3 processes and gives the serial answer of the control (the
+# same case without a limit) to the 1e-12 of part 2. And the guard's figure bounds the measured
+# peak of rank 0 (VmHWM; the rank with the most rows): 114 MiB against 127.5 with 2 processes,
+# 97 against 105.3 with 3 when measured; with the solvers' work arrays whole on every rank (before
+# they were split) the peaks were 129 and 119, above the figures. The figures come from the
+# guard's own message ("needs about ... (X MiB) ... (Y MiB each with 2)").
+printf '[mesh]\nnx = 768\nny = 768\ndx = 0.72890625um\n[geometry]\nshape = sphere\nradius = 10mm\n[body1]\nE = 210GPa\nnu = 0.3\n[body2]\nE = 210GPa\nnu = 0.3\n[load]\nforce = 100N\n' > "$T/demo.ini"
+figure() { sed -n "s/.*needs about [0-9.]* GiB (\([0-9.]*\) MiB).*/\1/p" "$1"; }
+MC_MEMORY_LIMIT=1 "$PROG" run "$T/demo.ini" --out "$T/demo-probe" > "$T/demo-probe.log" 2>&1
+MC_MEMORY_LIMIT=1 $MPIRUN -x MC_MEMORY_LIMIT -np 3 "$MPROG" run "$T/demo.ini" --out "$T/demo-probe" \
+    > "$T/demo-probe3.log" 2>&1
+e1=$(figure "$T/demo-probe.log") e3=$(figure "$T/demo-probe3.log")
+e2=$(sed -n 's/.*(\([0-9.]*\) MiB each with 2).*/\1/p' "$T/demo-probe.log")
+if [ -z "$e1" ] || [ -z "$e2" ] || [ -z "$e3" ] ||
+    ! awk -v a="$e1" -v b="$e2" -v c="$e3" 'BEGIN { exit !(c < b && b < a) }'; then
+    bad "memory demo: no falling serial, 2- and 3-process figures in the guard's messages"
+    cat "$T/demo-probe.log" "$T/demo-probe3.log"
+else
+    limit=$(awk -v a="$e1" -v b="$e2" 'BEGIN { printf "%.0f", 0.5 * (a + b) * 1048576 }')
+    MC_MEMORY_LIMIT=$limit "$PROG" run "$T/demo.ini" --out "$T/demo-s" --quiet > "$T/demo-s.log" 2>&1
+    rc=$?
+    if [ $rc -eq 3 ] && grep -q "needs about" "$T/demo-s.log" && [ ! -e "$T/demo-s" ]; then
+        ok "memory demo: serial needs $e1 MiB, refused under a limit of $limit bytes"
+    else
+        bad "memory demo: serial under $limit bytes: exit $rc (want 3, refused)"; cat "$T/demo-s.log"
+    fi
+    "$PROG" run "$T/demo.ini" --out "$T/demo-c" --quiet > "$T/demo-c.log" 2>&1 ||
+        bad "memory demo: the control (serial, no limit) failed"
+    for np in 2 3; do
+        [ $np -eq 2 ] && e=$e2 || e=$e3
+        if MC_MEMORY_LIMIT=$limit $MPIRUN -x MC_MEMORY_LIMIT -np $np "$MPROG" run "$T/demo.ini" \
+            --out "$T/demo-$np" --quiet > "$T/demo-$np.log" 2>&1; then
+            ok "memory demo: $np processes (the guard: $e MiB each) run under the same limit"
+        else
+            bad "memory demo: $np processes under $limit bytes failed"; cat "$T/demo-$np.log"
+            continue
+        fi
+        for f in pressure gap displacement; do
+            if r=$("$CMP" "$T/demo-c/$f.npy" "$T/demo-$np/$f.npy" "$TOL"); then
+                ok "memory demo, $np processes: $f.npy against the serial control: $r"
+            else
+                bad "memory demo, $np processes: $f.npy against the serial control: $r"
+            fi
+        done
+        peak=$(sed -n 's/.*peak memory \([0-9]*\) MiB.*/\1/p' "$T/demo-$np.log")
+        if [ -n "$peak" ] && awk -v m="$peak" -v e="$e" 'BEGIN { exit !(m <= e) }'; then
+            ok "memory demo, $np processes: rank 0's peak $peak MiB within the guard's $e MiB"
+        else
+            bad "memory demo, $np processes: rank 0's peak '$peak' MiB above the guard's $e MiB"
+        fi
+    done
+fi
 if $MPIRUN -np 2 "$MPROG" verify --list > "$T/verify.log" 2>&1; then
     bad "verify with 2 processes was not refused"
 elif grep -q "only 'run' is distributed" "$T/verify.log"; then
