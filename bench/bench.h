@@ -35,8 +35,9 @@ const char *mc_bench_section_names(void);
  * the current directory) into path: 0, or 1 when not readable. */
 int mc_bench_default_case(char *path, size_t len);
 /* Wall time (s) of the run-down step of the default running-in scene with one force (1086 N) and
- * one speed (e.g. "350 rpm") on an nx x ny grid of its 0.8 um cells, extra one more --set
- * override or NULL; *plastic (may be NULL) = the step ran the plastic loop. NAN on failure. */
+ * one speed (e.g. "350 rpm") on an nx x ny grid of its 0.8 um cells, extra more --set overrides
+ * separated by spaces (each "section.key=value" without spaces) or NULL; *plastic (may be NULL) =
+ * the step ran the plastic loop. NAN on failure. */
 double mc_bench_runin_step(int nx, int ny, const char *speed, const char *extra, int *plastic);
 /* The same step with its counts (issue 20 item 3): wall time of the step, process CPU time from
  * the start of the run to the end of the step (all threads; set-up and the operators' creation
@@ -48,6 +49,7 @@ typedef struct {
     double wall_s, cpu_s;
     int plastic, outer, sweeps, applies, equilibria, solves;
     int local_sweeps;  /* near-field sweeps between the applications (theory §9.7) */
+    int nz;            /* layers of the plastic volume, read back from the run's results */
 } mc_bench_step;
 int mc_bench_runin_step_counts(int nx, int ny, const char *speed, const char *extra, int threads,
                                mc_bench_step *out);

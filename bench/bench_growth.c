@@ -200,7 +200,15 @@ int mc_bench_runin_step_counts(int nx, int ny, const char *speed, const char *ex
     snprintf(sp, sizeof sp, "runin.speeds=%s", speed);
     snprintf(rpm, sizeof rpm, "lubrication.rpm=%s", speed); /* the first speed of the run */
     snprintf(th, sizeof th, "solver.threads=%d", threads > 0 ? threads : 0);
-    const char *ov[] = {ox, oy, "runin.forces=1086 N", sp, rpm, th, extra};
+    enum { NEXTRA = 4 };
+    const char *ov[6 + NEXTRA] = {ox, oy, "runin.forces=1086 N", sp, rpm, th};
+    int nov = 6;
+    char words[256] = "";
+    if (extra) { /* "a.b=c d.e=f": one override per word */
+        snprintf(words, sizeof words, "%s", extra);
+        for (char *w = strtok(words, " "); w && nov < 6 + NEXTRA; w = strtok(NULL, " "))
+            ov[nov++] = w;
+    }
     mc_scene sc;
     mc_results res;
     mc_error err = {0};
@@ -210,7 +218,7 @@ int mc_bench_runin_step_counts(int nx, int ny, const char *speed, const char *ex
     int ok = -1;
     char path[1100];
     if (mc_bench_default_case(path, sizeof path) == 0 &&
-        mc_case_load(path, extra ? 7 : 6, ov, &sc, &err) == MC_OK) {
+        mc_case_load(path, nov, ov, &sc, &err) == MC_OK) {
         double at = NAN;
         const mc_runin_options opt = {.progress = first_step_cpu, .progress_ctx = &at};
         const double c0 = mc_bench_cpu();
@@ -222,6 +230,7 @@ int mc_bench_runin_step_counts(int nx, int ny, const char *speed, const char *ex
             out->plastic = w->plastic;
             out->equilibria = w->roots;
             out->solves = w->solves;
+            out->nz = w->plastic ? res.plastic.nz : 0;
             if (w->plastic && res.plastic.steps_done > 0 && res.plastic.steps) {
                 const mc_plastic_step *st = &res.plastic.steps[0];
                 out->outer = st->outer_iterations;
