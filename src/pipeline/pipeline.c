@@ -354,23 +354,11 @@ int mc_pipeline_check_ranks(const mc_scene *sc, int ranks, mc_error *err)
 {
     if (ranks <= 1)
         return MC_OK;
-    /* distributed today: the elastic operator (operator/dfft.h); every other stage computes the
-     * same replicated arrays on every rank, which needs the same plans on every rank. A running-in
-     * is named first: its steps are elastic-plastic too */
-    if (sc->runin.enabled) {
-        mc_fail(err, MC_ERR_INPUT,
-                "[runin] forces: the running-in is not distributed yet (%d MPI processes); run "
-                "this case with one process (mpirun -np 1, or bin/microcontact)",
-                ranks);
-        return blame_key(sc, "runin", "forces", MC_ERR_INPUT, err);
-    }
-    if (sc->plasticity.enabled) {
-        mc_fail(err, MC_ERR_INPUT,
-                "[plasticity] criterion: the elastic-plastic stage is not distributed yet (%d MPI "
-                "processes); run this case with one process (mpirun -np 1, or bin/microcontact)",
-                ranks);
-        return blame_key(sc, "plasticity", "criterion", MC_ERR_INPUT, err);
-    }
+    /* distributed: the elastic operator (operator/dfft.h) and the contact solvers' iterations
+     * (contact_internal.h); every other stage, the elastic-plastic loop and the running-in
+     * included, computes the same replicated arrays on every rank (its volume is whole on each),
+     * which needs the same plans on every rank. The running-in agrees on its stops and shares
+     * its checkpoint's status (runin.c) */
     if (sc->solver.plans != MC_PLANS_ESTIMATE) {
         mc_fail(err, MC_ERR_INPUT,
                 "[solver] plans = %s: with %d MPI processes only estimate is accepted (measured "
