@@ -219,8 +219,13 @@ static void resume_hint(const char *case_path, const char *dir, const char *ckdi
                         const char *const *sets, int nsets)
 {
     fprintf(stderr, "microcontact: the checkpoint in %s/ keeps the completed steps; continue "
-                    "with:\n  microcontact run %s --out %s",
-            ckdir, case_path, dir);
+                    "with:\n  ",
+            ckdir);
+    if (mc_dist_active()) /* under mpirun: the same command, any number of processes */
+        fprintf(stderr, "mpirun -np %d microcontact-mpi ", mc_dist_size());
+    else
+        fprintf(stderr, "microcontact ");
+    fprintf(stderr, "run %s --out %s", case_path, dir);
     for (int k = 0; k < nsets; k++)
         fprintf(stderr, " --set '%s'", sets[k]);
     fprintf(stderr, " --resume\n");
