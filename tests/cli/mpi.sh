@@ -184,36 +184,42 @@ runcase runin cases/default.ini --set mesh.nx=16 --set mesh.ny=16 --set runin.fo
 # with mpirun -np 2 ... --resume: the files of the uninterrupted run, bit for bit (runin.csv but
 # for its seconds), and the serial run's to 1e-12. WHO = rank0: SIGTERM to rank 0 alone (the
 # ranks agree to stop at the next step boundary or outer iteration, runin.c: rank 0 says how to
-# resume); WHO = group: SIGTERM to mpirun and every rank at once (mpirun ends the job).
+# resume); WHO = rank1: to rank 1 alone (the same; without the agreement rank 0 would wait in
+# the next step's collectives for ever); WHO = group: SIGTERM to mpirun and every rank at once
+# (mpirun ends the job).
 RI="cases/default.ini --set mesh.nx=16 --set mesh.ny=16"
 "$PROG" run $RI --out "$T/ri-s" --quiet > "$T/ri-s.log" 2>&1 || { bad "resume: the serial run failed"; cat "$T/ri-s.log"; }
 $MPIRUN -np 2 "$MPROG" run $RI --out "$T/ri-u" --quiet > "$T/ri-u.log" 2>&1 ||
     { bad "resume: the uninterrupted 2-process run failed"; cat "$T/ri-u.log"; }
 stop_resume() { # WHO
     who=$1 out="$T/ri-$1"
-    $MPIRUN -np 2 "$MPROG" run $RI --out "$out" > "$out.log" 2> "$out.err" &
+    # (a deadlock, ranks that do not agree, ends red after 120 s)
+    timeout -s KILL 120 $MPIRUN -np 2 "$MPROG" run $RI --out "$out" > "$out.log" 2> "$out.err" &
     bg=$!
     n=0
     while [ $n -lt 3000 ] && [ ! -f "$out/checkpoint/state.bin" ] && kill -0 $bg 2> /dev/null; do
         sleep 0.01; n=$((n + 1))
     done
-    # the ranks are mpirun's children (each in a process group of its own)
-    ranks=$(pgrep -P $bg)
-    if [ "$who" = rank0 ]; then
+    # mpirun is timeout's child, the ranks mpirun's (each in a process group of its own)
+    mpid=$(pgrep -P $bg) ranks=""
+    [ -n "$mpid" ] && ranks=$(pgrep -P "$mpid")
+    case $who in
+    rank*)
         for c in $ranks; do
-            if tr '\0' '\n' < "/proc/$c/environ" 2> /dev/null | grep -qx 'OMPI_COMM_WORLD_RANK=0'; then
+            if tr '\0' '\n' < "/proc/$c/environ" 2> /dev/null |
+                grep -qx "OMPI_COMM_WORLD_RANK=${who#rank}"; then
                 kill -TERM "$c"
             fi
-        done
-    else # as a terminal's Ctrl-C would: mpirun and every rank at once
-        kill -TERM $bg $ranks
-    fi
+        done ;;
+    *) kill -TERM $mpid $ranks ;; # as a terminal's Ctrl-C would: mpirun and every rank at once
+    esac
     wait $bg
     why=""
     [ -e "$out/summary.json" ] && why="$why it ended before the signal (or committed results);"
     [ -f "$out/checkpoint/state.bin" ] || why="$why no checkpoint;"
-    if [ "$who" = rank0 ]; then
-        grep -q "stopped by SIGTERM" "$out.err" && grep -q "continue with:" "$out.err" ||
+    if [ "$who" != group ]; then # rank 0 speaks, whichever rank the signal reached
+        grep -q "stopped by .* after [0-9]* of 36 steps" "$out.err" &&
+            grep -q "continue with:" "$out.err" ||
             why="$why no stop message or resume hint: $(tail -3 "$out.err" | tr '\n' ' ');"
     fi
     if [ -n "$why" ]; then bad "resume ($who): stopped:$why"; return; fi
@@ -238,6 +244,7 @@ stop_resume() { # WHO
     fi
 }
 stop_resume rank0
+stop_resume rank1
 stop_resume group
 
 # ---- 3. refused with more than one process ----------------------------------------------------
