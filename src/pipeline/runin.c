@@ -578,6 +578,48 @@ static int setup(runin_ctx *c, mc_error *err)
     return rc;
 }
 
+/* ---- the ranks ------------------------------------------------------------------------------ */
+
+static uint64_t fnv_words(uint64_t h, const double *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        uint64_t w;
+        memcpy(&w, &v[i], sizeof w);
+        h ^= w;
+        h *= FNV_PRIME;
+    }
+    return h;
+}
+
+/* Under mpirun every rank computes the carried state replicated, by the same code from the same
+ * gathered pressure: the same bits, or a bug (a rank that diverged would feed its rows of other
+ * numbers to the next distributed solve, and rank 0 alone writes). After each step the state's
+ * hash (pressure, residual displacement, plastic strain, hardening, residual stress) is compared
+ * with rank 0's. Collective; nothing without a communicator. */
+static int same_state(const runin_ctx *c, int step, mc_error *err)
+{
+    if (mc_dist_size() <= 1)
+        return MC_OK;
+    uint64_t h = fnv_words(FNV_OFFSET, c->res->pressure, c->n);
+    h = fnv_words(h, c->u_r, c->n);
+    if (c->plastic) {
+        const size_t nv = (size_t)c->nvol;
+        h = fnv_words(h, c->eps_p, 6 * nv);
+        h = fnv_words(h, c->peq, nv);
+        h = fnv_words(h, c->sig_r, 6 * nv);
+    }
+    /* two 32-bit halves: exact in doubles */
+    const double mine[2] = {(double)(h >> 32), (double)(h & 0xffffffffu)};
+    double root[2] = {mine[0], mine[1]};
+    mc_dist_bcast(root, 2, 0);
+    if (mc_dist_max_int(root[0] != mine[0] || root[1] != mine[1]))
+        return mc_fail(err, MC_ERR_INTERNAL,
+                       "running-in: after step %d the MPI processes hold different states (they "
+                       "compute them replicated and must agree to the bit: a bug)",
+                       step);
+    return MC_OK;
+}
+
 /* ---- checkpoints ----------------------------------------------------------------------------- */
 
 static int save(runin_ctx *c, int done, const mc_plastic_step *records, int nrec, mc_error *err)
@@ -811,7 +853,9 @@ static int run(runin_ctx *c, mc_error *err)
         }
         c->seconds += ri->rows[s].seconds;
         ri->done = s + 1;
-        rc = save(c, ri->done, records, nrec, err);
+        rc = same_state(c, s + 1, err);
+        if (rc == MC_OK)
+            rc = save(c, ri->done, records, nrec, err);
         if (rc == MC_OK && c->opt && c->opt->progress) {
             const double el = mc_clock() - t_session;
             mc_runin_progress pr = {.step = s + 1,
