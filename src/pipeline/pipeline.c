@@ -2,6 +2,7 @@
 #include "pipeline/pipeline.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -345,6 +346,36 @@ static int run_stages(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_resul
     return rc;
 }
 
+/* Under mpirun the whole pressure and gap are gathered on every rank and the elastic-plastic
+ * stage is computed replicated (its volume whole on every rank): every rank must hold the same
+ * bits, and rank 0 alone writes them. A rank that diverged (a bug) would go unseen in the files;
+ * its hash is compared with rank 0's instead (runin.c checks the running-in's state after every
+ * step alike). Collective; nothing without a communicator. */
+static int same_results(const mc_results *res, mc_error *err)
+{
+    if (mc_dist_size() <= 1)
+        return MC_OK;
+    const size_t n = (size_t)res->grid.nx * (size_t)res->grid.ny;
+    const double *f[] = {res->pressure, res->gap, res->residual_displacement, res->plastic_strain};
+    const size_t len[] = {n, n, n, n * (size_t)(res->plastic.nz > 0 ? res->plastic.nz : 0)};
+    uint64_t h = 14695981039346656037ull; /* FNV-1a over 64-bit words */
+    for (int a = 0; a < 4; a++)
+        for (size_t i = 0; f[a] && i < len[a]; i++) {
+            uint64_t w;
+            memcpy(&w, &f[a][i], sizeof w);
+            h ^= w;
+            h *= 1099511628211ull;
+        }
+    const double mine[2] = {(double)(h >> 32), (double)(h & 0xffffffffu)}; /* exact halves */
+    double root[2] = {mine[0], mine[1]};
+    mc_dist_bcast(root, 2, 0);
+    if (mc_dist_max_int(root[0] != mine[0] || root[1] != mine[1]))
+        return mc_fail(err, MC_ERR_INTERNAL,
+                       "the MPI processes hold different results (pressure, gap or plastic "
+                       "fields, computed replicated: they must agree to the bit; a bug)");
+    return MC_OK;
+}
+
 int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
 {
     return mc_pipeline_run_staged(sc, NULL, NULL, res, err);
@@ -393,6 +424,18 @@ int mc_pipeline_run_staged(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_
     const double comm0 = mc_dist_comm_seconds();
     rc = sc->runin.enabled ? mc_runin_run(sc, NULL, res, err)
                            : run_stages(sc, stage, ctx, res, err);
+    /* every rank reaches this point (statuses are replicated); their results must agree */
+    if (sc->plasticity.enabled && !sc->runin.enabled && mc_dist_size() > 1) {
+        int all = mc_dist_max_int(rc); /* the worst status over the ranks, first */
+        if (all != rc && rc == MC_OK)
+            mc_fail(err, all, "the run failed on another MPI process");
+        rc = all;
+        if (rc == MC_OK || rc == MC_NOT_CONVERGED) {
+            int src = same_results(res, err);
+            if (src != MC_OK)
+                rc = src;
+        }
+    }
     res->timing.comm_s = mc_dist_comm_seconds() - comm0;
     if (rc == MC_OK || rc == MC_NOT_CONVERGED)
         mc_results_warnings(sc, res);
