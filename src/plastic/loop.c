@@ -795,6 +795,7 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
         /* the warm start (theory §9.6): the last converged increment, scaled to this one's load
          * (at most 1: a step after split increments starts from the smaller increment) */
         const double s = fmin(1.0, dload / c->w_load);
+        st->warm_cells = c->w_n;
         for (long n = 0; n < c->w_n; n++) { /* the other cells stay 0 (memset above) */
             const long v = c->w_cell[n];
             for (int q = 0; q < 6; q++)

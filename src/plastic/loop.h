@@ -170,6 +170,8 @@ typedef struct {
     long local_cells;           /* near-field spreads of those sweeps (cells whose change was
                                    spread to their neighbours: their cost) */
     int splits;                 /* the step diverged and was done in 2^splits increments */
+    long warm_cells;            /* volume cells the warm start of its (last) increment seeded
+                                   with the increment before (0: a cold start) */
     int converged;
 } mc_plastic_step;
 
