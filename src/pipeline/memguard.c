@@ -69,8 +69,12 @@ double mc_memory_estimate_ranks(const mc_scene *s, int ranks)
 /* the stage's Anderson depth (stage_plastic.c MC_ANDERSON_DEPTH) */
 #define PLASTIC_ANDERSON 4
 /* the yielding cells counted, a fraction of the volume: the plastic zone of a contact sits in
- * the volume under it with a margin and a depth to spare (a Hertz sphere's at 10 P_c: ~10 %) */
-#define PLASTIC_YIELDING 0.25
+ * the volume under it with a margin and a depth to spare (bench plastic's sphere: a few %; a
+ * Hertz sphere at 10 P_c: ~10 %). At 0.1 the model is 5-10 % above the measured peaks of bench
+ * plastic's whole runs (its "guard's estimate / peak" column); a run whose yielding cells are a
+ * larger part of its volume holds ~700 bytes more per extra yielding cell (mc_plastic_loop_bytes)
+ * than the guard counted */
+#define PLASTIC_YIELDING 0.1
 
 double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
                                   int shortcut)

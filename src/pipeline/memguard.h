@@ -32,7 +32,7 @@ int mc_memory_check(const mc_scene *s, mc_error *err);
  * the bytes the stage adds to mc_memory_estimate at its peak, inside the loop's sweeps: the
  * operators (the Love stresses at the cuboid centres, mc_eigen_stress_estimate,
  * mc_eigen_disp_estimate) and the loop's arrays (mc_plastic_loop_bytes, the yielding cells
- * counted as a quarter of the volume), with its output fields once the loop has freed them;
+ * counted as a tenth of the volume), with its output fields once the loop has freed them;
  * shortcut (nothing yields): the output fields alone. */
 double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
                                   int shortcut);
