@@ -24,8 +24,11 @@
 #include "core/fftsize.h"
 #include "core/threads.h"
 #include "operator/operator.h"
+#include "case/case.h"
+#include "pipeline/memguard.h"
 #include "pipeline/pipeline.h"
 #include "plastic/eigen_op.h"
+#include "plastic/loop.h"
 #include "vutil.h"
 
 #define KE_E 210e9
@@ -741,16 +744,51 @@ static void section_skips(vf_ctx *ctx, int quick)
 /* ---- the peak memory of a whole run --------------------------------------------------------- */
 
 /* Peak resident memory (bytes, getrusage ru_maxrss of the child through wait4) of a fresh
- * `microcontact run` (this executable, one thread) of an elastic-plastic sphere whose plastic
- * volume is n x n x 32 cells under the whole grid (dz = 0.5 um on dx = 1 um, depth 16 um),
- * free (per 0), a strip periodic along y (1) or doubly periodic (2). One load step, one outer
- * iteration of at most 5 sweeps: every array of the loop and the operators is allocated and
- * written by then (the run ends not converged, exit 1, by design). -1 on failure. */
-static double whole_run_peak(const char *self, const char *dir, int n, int per)
+ * `microcontact run` (this executable, one thread) of `ini` with up to 8 --set overrides;
+ * -1 on failure (exit 1, not converged with results, counts as run). */
+static double child_peak(const char *self, const char *ini, const char *out, int nset,
+                         const char *const *set)
 {
-    char ini[512], out[512];
-    snprintf(ini, sizeof ini, "%s/peak%d_%d.ini", dir, n, per);
-    snprintf(out, sizeof out, "%s/out%d_%d", dir, n, per);
+    const char *argv[32];
+    int a = 0;
+    argv[a++] = self;
+    argv[a++] = "run";
+    argv[a++] = ini;
+    argv[a++] = "--out";
+    argv[a++] = out;
+    argv[a++] = "--quiet";
+    for (int k = 0; k < nset && k < 8; k++) {
+        argv[a++] = "--set";
+        argv[a++] = set[k];
+    }
+    argv[a] = NULL;
+    const pid_t pid = fork();
+    if (pid < 0)
+        return -1;
+    if (pid == 0) {
+        const int fd = open("/dev/null", O_WRONLY);
+        if (fd >= 0) {
+            dup2(fd, 1);
+            dup2(fd, 2);
+        }
+        setenv("OMP_NUM_THREADS", "1", 1);
+        execv(self, (char *const *)argv);
+        _exit(127);
+    }
+    int status = 0;
+    struct rusage ru;
+    if (wait4(pid, &status, 0, &ru) != pid || !WIFEXITED(status) || WEXITSTATUS(status) > 1)
+        return -1; /* exit 1: not converged, with results */
+    return 1024.0 * (double)ru.ru_maxrss; /* Linux: kilobytes */
+}
+
+/* The case file of an elastic-plastic sphere whose plastic volume is n x n x 32 cells under the
+ * whole grid (dz = 0.5 um on dx = 1 um, depth 16 um), free (per 0), a strip periodic along y (1)
+ * or doubly periodic (2). One load step, one outer iteration of at most 5 sweeps: every array of
+ * the loop and the operators is allocated and written by then (the run ends not converged, exit
+ * 1, by design). 0, or -1 when the file cannot be written. */
+static int whole_run_case(const char *ini, int n, int per)
+{
     FILE *f = fopen(ini, "w");
     if (!f)
         return -1;
@@ -762,24 +800,30 @@ static double whole_run_peak(const char *self, const char *dir, int n, int per)
             n, n, per == 2 ? "yes" : "no", per >= 1 ? "yes" : "no",
             per == 2 ? "" : "margin = 1 mm\n");
     fclose(f);
-    const pid_t pid = fork();
-    if (pid < 0)
-        return -1;
-    if (pid == 0) {
-        const int fd = open("/dev/null", O_WRONLY);
-        if (fd >= 0) {
-            dup2(fd, 1);
-            dup2(fd, 2);
-        }
-        setenv("OMP_NUM_THREADS", "1", 1);
-        execl(self, self, "run", ini, "--out", out, "--quiet", (char *)NULL);
-        _exit(127);
-    }
-    int status = 0;
-    struct rusage ru;
-    if (wait4(pid, &status, 0, &ru) != pid || !WIFEXITED(status) || WEXITSTATUS(status) > 1)
-        return -1; /* exit 1: not converged, with results (the one outer iteration asked) */
-    return 1024.0 * (double)ru.ru_maxrss; /* Linux: kilobytes */
+    return 0;
+}
+
+/* The memory model's parts for the volume of whole_run_case (window = grid, 32 uniform layers),
+ * bytes: [0..4] the stress operator's (mc_eigen_stress_estimate), [5] the displacement
+ * operator, [6] the loop's dense arrays (mc_plastic_loop_bytes without yielding cells), [7] the
+ * memory guard's whole estimate (mc_memory_estimate + mc_memory_estimate_plastic). */
+static void whole_run_model(const char *ini, double m[8])
+{
+    for (int k = 0; k < 8; k++)
+        m[k] = NAN;
+    mc_scene sc;
+    mc_error err = {0};
+    if (mc_case_load(ini, 0, NULL, &sc, &err) != MC_OK)
+        return;
+    const mc_grid *g = &sc.grid;
+    const mc_eigen_volume v = {0, 0, g->nx, g->ny, 32, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL};
+    size_t parts[MC_EIGEN_STRESS_PARTS];
+    mc_eigen_stress_estimate(g, &v, sc.solver.backend, parts);
+    for (int k = 0; k < MC_EIGEN_STRESS_PARTS; k++)
+        m[k] = (double)parts[k];
+    m[5] = (double)mc_eigen_disp_estimate(g, &v, sc.solver.backend);
+    m[6] = mc_plastic_loop_bytes(g, &v, 4, sc.plasticity.near_field, 0);
+    m[7] = mc_memory_estimate(&sc) + mc_memory_estimate_plastic(&sc, g, &v, 0);
 }
 
 static void section_whole_peak(vf_ctx *ctx, int quick)
@@ -798,19 +842,70 @@ static void section_whole_peak(vf_ctx *ctx, int quick)
                  "the whole grid (one load step, one outer iteration: every array of the loop and "
                  "the operators allocated and written), divided by the volume cells; the program "
                  "itself (code, libraries, FFTW, surface fields) is included. Target of issue 20: "
-                 "<= 200 bytes per volume cell at 256² x 32.\n\n"
-                 "| volume | peak (MiB) | bytes per volume cell |\n|---|---|---|\n",
+                 "<= 200 bytes per volume cell at 256² x 32. Beside it, bytes per volume cell of "
+                 "the memory model (the sizes the objects take, computed without building them: "
+                 "mc_eigen_stress_estimate, mc_eigen_disp_estimate, mc_plastic_loop_bytes; a unit "
+                 "test holds them to the built objects): the stress operator's kernel spectra V "
+                 "(21 reals per depth and lateral frequency of a quadrant), its 6 nz layer spectra "
+                 "E, its p3 and Love spectra, its workspaces; the displacement operator; the "
+                 "loop's dense volume arrays (sig_e, sig_r, d_eps, tot, dp, dp_new, the result's "
+                 "eps_p and peq, Anderson's cell map, the near field's index); the rest of the "
+                 "peak is the program, the elastic stages and the arrays of the yielding cells. "
+                 "Last, the memory guard's estimate of the whole run (pipeline/memguard.h) against "
+                 "the measured peak.\n\n"
+                 "| volume | peak (MiB) | peak B/cell | V | E | p3 + Love | stress rest | disp | "
+                 "loop | rest of the peak | guard's estimate / peak |\n"
+                 "|---|---|---|---|---|---|---|---|---|---|---|\n",
             n);
     for (int per = 0; per < nper; per++) {
-        const double rss = whole_run_peak(self, dir, n, per);
-        const double bpc = rss > 0 ? rss / ((double)n * n * 32) : NAN;
-        vf_text(ctx, "| %s %d² x 32 | %.0f | %.0f |\n", name[per], n, rss / 1048576.0, bpc);
+        char ini[512], out[512];
+        snprintf(ini, sizeof ini, "%s/peak%d_%d.ini", dir, n, per);
+        snprintf(out, sizeof out, "%s/out%d_%d", dir, n, per);
+        double rss = -1, m[8];
+        for (int k = 0; k < 8; k++)
+            m[k] = NAN;
+        if (whole_run_case(ini, n, per) == 0) {
+            rss = child_peak(self, ini, out, 0, NULL);
+            whole_run_model(ini, m);
+        }
+        const double cells = (double)n * n * 32, bpc = rss > 0 ? rss / cells : NAN;
+        const double model = m[0] + m[1] + m[2] + m[3] + m[4] + m[5] + m[6];
+        vf_text(ctx, "| %s %d² x 32 | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | "
+                     "%.2f |\n",
+                name[per], n, rss / 1048576.0, bpc, m[0] / cells, m[1] / cells,
+                (m[2] + m[3]) / cells, m[4] / cells, m[5] / cells, m[6] / cells,
+                (rss - model) / cells, m[7] / rss);
         char id[64], q[160];
         snprintf(id, sizeof id, "plastic_run_peak_bytes_%s", key[per]);
         snprintf(q, sizeof q, "peak bytes per volume cell of a whole elastic-plastic run, %s "
                  "%d² x 32 (child ru_maxrss)", name[per], n);
         vf_info(ctx, id, q, "issue 20 target <= 200 at 256² x 32", 200, bpc);
         vf_regress(ctx, id, VF_TIER_NONE);
+        snprintf(id, sizeof id, "plastic_guard_ratio_%s", key[per]);
+        snprintf(q, sizeof q, "memory guard's estimate / measured peak, %s %d² x 32", name[per],
+                 n);
+        vf_info(ctx, id, q, ">= 1: the guard does not pass what does not fit", 1, m[7] / rss);
+    }
+    /* the running-in step of issue 20 (the default scene's first force at 350 rpm, 16 layers of
+     * 0.1875 um over 3 um) at 512 x 256 */
+    char path[1100], out[512];
+    snprintf(out, sizeof out, "%s/runin", dir);
+    if (!quick && mc_bench_default_case(path, sizeof path) == 0) {
+        static const char *const set[] = {"mesh.nx=512",          "mesh.ny=256",
+                                          "runin.forces=1086 N",  "runin.speeds=350 rpm",
+                                          "lubrication.rpm=350 rpm", "plasticity.dz=0.1875 um",
+                                          "plasticity.depth=3 um"};
+        const double rss = child_peak(self, path, out, 7, set);
+        const double cells = 512.0 * 256 * 16;
+        vf_text(ctx, "\nThe running-in of the default scene's first force at 350 rpm (down and up, "
+                     "16 layers of 0.1875 um over 3 um under the whole grid) on 512 x 256 x 16: "
+                     "peak %.0f MiB, %.0f bytes per cell of 512 x 256 x 16 (the running-in keeps its "
+                     "own copy of eps_p, peq and sig_r, 104 bytes per volume cell, beside the "
+                     "loop's).\n",
+                rss / 1048576.0, rss / cells);
+        vf_info(ctx, "runin_peak_bytes_512", "peak bytes per volume cell of the running-in on "
+                "512 x 256 x 16 (child ru_maxrss)", "issue 20 target <= 200", 200, rss / cells);
+        vf_regress(ctx, "runin_peak_bytes_512", VF_TIER_NONE);
     }
     char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);

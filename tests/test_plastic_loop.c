@@ -193,6 +193,17 @@ START_TEST(warm_matches_cold)
         ck_assert_msg(du <= tol && dpeq <= tol && deps <= tol && dp <= tol,
                       "anderson %d: u_r %g, peq %g, eps_p %g, p %g apart (tolerance %g)", aa, du,
                       dpeq, deps, dp, tol);
+        /* the warm start seeds the volume (its compact store of the yielding cells), not only
+         * u_r: after the first step that yields (the sphere yields from its second step), none
+         * cold */
+        long seeded = 0;
+        for (int k = 0; k < warm.steps_done; k++) {
+            ck_assert_int_eq(cold.steps[k].warm_cells, 0);
+            ck_assert(warm.steps[k].warm_cells >= 0 && warm.steps[k].warm_cells <= (long)nv);
+            ck_assert(k > 0 || warm.steps[k].warm_cells == 0);
+            seeded += warm.steps[k].warm_cells;
+        }
+        ck_assert_msg(seeded > 0, "anderson %d: the warm start seeded no volume cell", aa);
         const int sc = sweeps(&cold), sw = sweeps(&warm);
         ck_assert_msg(sw < sc, "anderson %d: %d sweeps warm, %d cold", aa, sw, sc);
         const mc_plastic_result *rs[2] = {&cold, &warm};

@@ -1,6 +1,7 @@
 /* memguard.c - memory estimate and guard (see memguard.h). */
 #include "pipeline/memguard.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,6 +10,8 @@
 #include "contact/contact.h"
 #include "core/dist.h"
 #include "core/fftsize.h"
+#include "plastic/loop.h"
+#include "stress/stress.h"
 
 /* Cells of the transform of one axis (padded when free, as conv.c). */
 static double axis_len(int n, int periodic) { return periodic ? n : mc_fftsize_good(2 * n - 1); }
@@ -76,6 +79,64 @@ double mc_memory_estimate_ranks(const mc_scene *s, int ranks)
         bytes += 8 * tx * ty + 16 * ty * (tx / 2 + 1);
     }
     return bytes;
+}
+
+/* the stage's Anderson depth (stage_plastic.c MC_ANDERSON_DEPTH) */
+#define PLASTIC_ANDERSON 4
+/* the yielding cells counted, a fraction of the volume: the plastic zone of a contact sits in
+ * the volume under it with a margin and a depth to spare (bench plastic's sphere: a few %; a
+ * Hertz sphere at 10 P_c: ~10 %). At 0.1 the model is 5-10 % above the measured peaks of bench
+ * plastic's whole runs (its "guard's estimate / peak" column); a run whose yielding cells are a
+ * larger part of its volume holds ~700 bytes more per extra yielding cell (mc_plastic_loop_bytes)
+ * than the guard counted */
+#define PLASTIC_YIELDING 0.1
+
+double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
+                                  int shortcut)
+{
+    const double cells = (double)g->nx * g->ny;
+    /* the output fields: plastic strain and residual von Mises on the grid's columns, the residual
+     * displacement and the final topography */
+    const double fields = 2 * 8 * cells * v->nz + 2 * 8 * cells;
+    if (shortcut)
+        return fields;
+    const mc_backend b = s->solver.backend;
+    size_t parts[MC_EIGEN_STRESS_PARTS];
+    mc_eigen_stress_estimate(g, v, b, parts);
+    double ops = (double)mc_eigen_disp_estimate(g, v, b);
+    for (int k = 0; k < MC_EIGEN_STRESS_PARTS; k++)
+        ops += (double)parts[k];
+    /* the Love stresses at the cuboid centres (stress/stress.h): per load six kernel spectra
+     * and the load's, six tables, a cell list; on a periodic grid the spectra of every layer
+     * when they fit its cache */
+    const double tx = axis_len(g->nx, g->periodic_x), ty = axis_len(g->ny, g->periodic_y);
+    const double spec = 16 * ty * (tx / 2 + 1);
+    const int loads = s->plasticity.friction > 0 ? 2 : 1;
+    ops += loads * 7 * spec + 6 * 8 * tx * ty + 4 * cells;
+    const double cache = (double)v->nz * 3 * 6 * spec;
+    if ((g->periodic_x || g->periodic_y) && cache <= (double)MC_STRESS_CACHE_BYTES)
+        ops += cache;
+    const double nvol = (double)v->nz * v->nx * v->ny;
+    const double loop = mc_plastic_loop_bytes(g, v, PLASTIC_ANDERSON, s->plasticity.near_field,
+                                              PLASTIC_YIELDING * nvol);
+    /* the peak is in the loop; the fields come after it has freed its operators */
+    return fmax(ops + loop, fields + loop);
+}
+
+int mc_memory_check_plastic(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
+                            int shortcut, mc_error *err)
+{
+    const double need = mc_memory_estimate(s) + mc_memory_estimate_plastic(s, g, v, shortcut);
+    double have = mc_memory_available();
+    mc_dist_bcast(&have, 1, 0);
+    if (need <= have)
+        return MC_OK;
+    const double GiB = 1073741824.0;
+    return mc_fail(err, MC_ERR_NOMEM,
+                   "the elastic-plastic stage needs about %.1f GiB, %.1f GiB available (grid %d x "
+                   "%d, plastic volume %d x %d x %d cells); reduce [plasticity] depth or margin, "
+                   "or the grid",
+                   need / GiB, have / GiB, g->nx, g->ny, v->nx, v->ny, v->nz);
 }
 
 double mc_memory_available(void)

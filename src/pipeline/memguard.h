@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "case/scene.h"
+#include "plastic/eigen_op.h"
 
 /* Estimated peak bytes of running scene s (surface fields, operator, contact solver with its
  * coarse levels, stress volumes and workspaces). A model calibrated against measured peaks
@@ -26,5 +27,20 @@ double mc_memory_available(void);
  * both in GiB and what to reduce. Over MPI processes rank 0's available memory decides for all
  * (collective). */
 int mc_memory_check(const mc_scene *s, mc_error *err);
+
+/* The elastic-plastic stage of scene s on grid g once its volume v is chosen (the pre-run
+ * estimate above cannot know it: the depth and the columns follow from the elastic contact):
+ * the bytes the stage adds to mc_memory_estimate at its peak, inside the loop's sweeps: the
+ * operators (the Love stresses at the cuboid centres, mc_eigen_stress_estimate,
+ * mc_eigen_disp_estimate) and the loop's arrays (mc_plastic_loop_bytes, the yielding cells
+ * counted as a tenth of the volume), with its output fields once the loop has freed them;
+ * shortcut (nothing yields): the output fields alone. */
+double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
+                                  int shortcut);
+
+/* MC_OK if mc_memory_estimate(s) + mc_memory_estimate_plastic(...) fits into the available
+ * memory, else MC_ERR_NOMEM naming both and the volume. */
+int mc_memory_check_plastic(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
+                            int shortcut, mc_error *err);
 
 #endif

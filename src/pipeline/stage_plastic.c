@@ -6,6 +6,7 @@
 
 #include "core/alloc.h"
 #include "kernels/invariants.h"
+#include "pipeline/memguard.h"
 #include "pipeline/stage_lube.h"
 #include "plastic/loop.h"
 #include "stress/stress.h"
@@ -276,14 +277,19 @@ int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
     mc_eigen_volume v;
     if (rc == MC_OK)
         rc = plan_volume(sc, res, ps->yield_initial, p_lub, &v, err);
+    const int shortcut = rc == MC_OK && ps->vm_elastic_max < ps->yield_initial;
     if (rc == MC_OK)
+        rc = mc_memory_check_plastic(sc, &res->grid, &v, shortcut, err);
+    /* the output fields (16 bytes per cell of the grid's depth) now only when nothing yields:
+     * otherwise after the loop, which has then freed its operators (the run's peak is in it) */
+    if (rc == MC_OK && shortcut)
         rc = alloc_fields(res, ps->nz, err);
     if (rc != MC_OK) {
         mc_hardening_free(&law);
         return rc;
     }
     const size_t n = mc_grid_cells(&res->grid);
-    if (ps->vm_elastic_max < ps->yield_initial) { /* nothing yields: the elastic result stands */
+    if (shortcut) { /* nothing yields: the elastic result stands */
         ps->elastic_shortcut = 1;
         ps->converged = 1;
         memcpy(res->topography_final, res->topography, n * sizeof *res->topography);
@@ -324,6 +330,12 @@ int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
     rc = mc_plastic_run(&res->grid, K, solver, &pb, res->pressure, res->displacement, res->gap,
                         &res->contact, &pr, err);
     if (rc == MC_OK || rc == MC_NOT_CONVERGED) {
+        const int arc = alloc_fields(res, ps->nz, err);
+        if (arc != MC_OK) {
+            mc_plastic_result_free(&pr);
+            mc_hardening_free(&law);
+            return arc;
+        }
         const double factor = sc->plasticity.both ? 2.0 : 1.0;
         for (size_t i = 0; i < n; i++) {
             res->residual_displacement[i] = pr.u_r[i];

@@ -328,3 +328,31 @@ void mc_eigen_disp_apply(mc_eigen_disp *op, const double *const eps[6], double *
 }
 
 size_t mc_eigen_disp_bytes(const mc_eigen_disp *op) { return op->bytes; }
+
+size_t mc_eigen_disp_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)
+{
+    mc_error err = {0};
+    if (mc_eig_check(g, v, 0.3, b, "eigen displacement", &err) != MC_OK)
+        return 0;
+    /* the used offsets and the quadrant as mc_eigen_disp_create and fft_create set them */
+    const int px = mc_eig_per_x(g), py = mc_eig_per_y(g);
+    int ux = v->i0 + v->nx > g->nx - v->i0 ? v->i0 + v->nx : g->nx - v->i0;
+    int uy = v->j0 + v->ny > g->ny - v->j0 ? v->j0 + v->ny : g->ny - v->j0;
+    if (px)
+        ux = g->nx / 2 + 1;
+    if (py)
+        uy = g->ny / 2 + 1;
+    size_t bytes = sizeof(mc_eigen_disp), qx = (size_t)ux, qy = (size_t)uy;
+    if (b == MC_BACKEND_FFT) {
+        const int mx = px ? g->nx / 2 : mc_fftsize_good(ux < 2 ? 2 : ux);
+        const int my = py ? g->ny / 2 : mc_fftsize_good(uy < 2 ? 2 : uy);
+        const size_t tx = px ? (size_t)g->nx : 2 * (size_t)mx, ty = py ? (size_t)g->ny : 2 * (size_t)my;
+        const size_t speclen = (ty * (tx / 2 + 1) + 3) / 4 * 4;
+        const int nthr = mc_eig_threads(6 * (size_t)v->nz * tx * ty);
+        qx = (size_t)mx + 1;
+        qy = (size_t)my + 1;
+        bytes += (size_t)nthr * ((size_t)g->ny * tx * sizeof(double) +
+                                 2 * speclen * sizeof(fftw_complex));
+    }
+    return bytes + 6 * (size_t)v->nz * ((qx * qy + 7) / 8 * 8) * sizeof(double);
+}

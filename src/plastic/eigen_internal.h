@@ -214,7 +214,7 @@ struct mc_eigen_stress {
     double *p3;        /* window: p3 of the last apply, Pa */
     double *work;      /* window p3 / 2G */
     void *fft;         /* fft: spectra, transforms and workspaces (eigen_stress_fft.c) */
-    size_t bytes;
+    size_t part[MC_EIGEN_STRESS_PARTS]; /* bytes held, by part (mc_eigen_stress_parts) */
 };
 
 /* Lateral parity bits of the kernel pair (row i, column c): odd(i) XOR odd(c) per axis. */
@@ -248,5 +248,8 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err);
 void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
                              double *const sig[6]);
 void mc_eig_stress_fft_free(mc_eigen_stress *op);
+/* Add to parts the bytes prepare would take for op (its sizes qx, qy, nzf, depth set), without
+ * taking them. */
+void mc_eig_stress_fft_estimate(const mc_eigen_stress *op, size_t parts[MC_EIGEN_STRESS_PARTS]);
 
 #endif

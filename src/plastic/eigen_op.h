@@ -175,6 +175,11 @@ void mc_eigen_disp_apply(mc_eigen_disp *op, const double *const eps[6], double *
 /* Bytes held by the object (tables, spectra, workspaces). */
 size_t mc_eigen_disp_bytes(const mc_eigen_disp *op);
 
+/* What mc_eigen_disp_bytes would return for the object mc_eigen_disp_create(g, v, nu, b) would
+ * build, from the sizes alone (nothing allocated or planned; the memory guard); 0 for a volume or
+ * grid that create refuses. */
+size_t mc_eigen_disp_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b);
+
 void mc_eigen_disp_destroy(mc_eigen_disp **op); /* frees and sets *op = NULL; NULL-safe */
 
 /* ---- eigenstrain -> residual stress at the cuboid centres (theory.md §8.2) -------------------- */
@@ -214,6 +219,23 @@ void mc_eigen_stress_p3(const mc_eigen_stress *op, double *p3);
 
 /* Bytes held by the object (tables, spectra, workspaces). */
 size_t mc_eigen_stress_bytes(const mc_eigen_stress *op);
+
+/* The bytes of mc_eigen_stress_bytes by part (bench plastic, the memory guard):
+ *   [0] the S1 + S2 kernel: fft, its spectra (21 reals per depth frequency and lateral frequency
+ *       of a quadrant); direct, its tables at 2 nz depth offsets;
+ *   [1] fft: the 6 nz layer spectra and the p3 spectrum (0 direct);
+ *   [2] the p3 kernel (6 nz quadrants: spectra or tables);
+ *   [3] Love's stresses per unit pressure (6 nz quadrants);
+ *   [4] the rest: workspaces, p3 on the window, the object. */
+#define MC_EIGEN_STRESS_PARTS 5
+void mc_eigen_stress_parts(const mc_eigen_stress *op, size_t parts[MC_EIGEN_STRESS_PARTS]);
+
+/* The parts above (their sum: what mc_eigen_stress_bytes would return) of the object that
+ * mc_eigen_stress_create(g, v, nu, b) would build, computed from the sizes alone (nothing is
+ * allocated, no FFTW planning; for the memory guard). All zero for a volume or grid that create
+ * refuses. */
+void mc_eigen_stress_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
+                              size_t parts[MC_EIGEN_STRESS_PARTS]);
 
 void mc_eigen_stress_destroy(mc_eigen_stress **op); /* frees and sets *op = NULL; NULL-safe */
 

@@ -263,13 +263,11 @@ static int coarse_pays(int nz, int nzf, int L)
     return pair < fine;
 }
 
-int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
+/* The sizes of prepare, without planning (the transform sizes and spectrum length as
+ * mc_eig_fft_create sets them): shared by prepare and the estimate of the bytes. */
+static void plan_sizes(const mc_eigen_stress *op, sfft *f)
 {
-    sfft *f = mc_calloc(1, sizeof *f);
-    if (!f)
-        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory");
-    op->fft = f;
-    const int nz = op->v.nz, wy = op->v.ny;
+    const int nz = op->v.nz;
     /* depth half period: offsets up to 2 nzf - 1 of the fine lattice must not meet their images
      * (file comment) */
     f->Nz = mc_fftsize_good(2 * op->nzf);
@@ -277,10 +275,11 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     f->coarse = op->depth == MC_EIG_DEPTH_COARSE ||
                 (op->depth == MC_EIG_DEPTH_AUTO && coarse_pays(nz, op->nzf, f->L));
     f->np = f->coarse ? 2 * op->nzf + 1 : f->Nz + 1;
-    int rc = mc_eig_fft_create(&f->fft, size_x(op), size_y(op), 0, wy, wy, err);
-    if (rc)
-        return rc;
-    const int hx = f->fft.hx; /* = qx */
+    f->fft.tx = size_x(op);
+    f->fft.ty = size_y(op);
+    f->fft.hx = f->fft.tx / 2 + 1; /* = qx */
+    f->fft.speclen = ((size_t)f->fft.ty * f->fft.hx + 3) / 4 * 4;
+    const int hx = f->fft.hx;
     f->nch = (hx + CHUNK_TARGET - 1) / CHUNK_TARGET;
     f->ch = (hx + f->nch - 1) / f->nch;
     f->cs = (f->ch + 3) / 4 * 4;
@@ -289,6 +288,45 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     f->nthr = mc_eig_threads(12 * (size_t)nz * (size_t)f->fft.tx * (size_t)f->fft.ty);
     f->zlen = f->coarse ? (size_t)(24 * (nz + 1) + 12) * f->cs / 2 + 1
                         : (size_t)(12 * f->L + 12) * f->cs;
+}
+
+/* Bytes of what prepare takes, by part (mc_eigen_stress_parts): [0] kernel spectra V, [1] layer
+ * spectra E and P, [2] p3 kernel spectra, [4] workspaces (rows, depth scratch, twiddles). */
+static void fft_parts(const mc_eigen_stress *op, const sfft *f, size_t parts[MC_EIGEN_STRESS_PARTS])
+{
+    const int nz = op->v.nz;
+    const size_t blk = (size_t)op->qy * f->nch * f->ch; /* doubles per blocked plane */
+    const size_t sl = f->fft.speclen, rl = (size_t)op->v.ny * f->fft.tx;
+    parts[0] = (size_t)f->np * MC_EIG_NSYM * blk * sizeof(double);
+    parts[1] = (6 * (size_t)nz + 1) * sl * sizeof(fftw_complex);
+    parts[2] = 6 * (size_t)nz * blk * sizeof(double);
+    parts[3] = 0;
+    parts[4] = sizeof *f + ((size_t)f->nthr * f->zlen + f->Nz + 1) * sizeof(fftw_complex) +
+               (size_t)f->nthr * rl * sizeof(double);
+}
+
+void mc_eig_stress_fft_estimate(const mc_eigen_stress *op, size_t parts[MC_EIGEN_STRESS_PARTS])
+{
+    sfft f;
+    memset(&f, 0, sizeof f);
+    plan_sizes(op, &f);
+    size_t add[MC_EIGEN_STRESS_PARTS];
+    fft_parts(op, &f, add);
+    for (int k = 0; k < MC_EIGEN_STRESS_PARTS; k++)
+        parts[k] += add[k];
+}
+
+int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
+{
+    sfft *f = mc_calloc(1, sizeof *f);
+    if (!f)
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory");
+    op->fft = f;
+    const int nz = op->v.nz, wy = op->v.ny;
+    plan_sizes(op, f);
+    int rc = mc_eig_fft_create(&f->fft, size_x(op), size_y(op), 0, wy, wy, err);
+    if (rc)
+        return rc;
     const size_t sl = f->fft.speclen, rl = (size_t)wy * f->fft.tx;
     const size_t blk = (size_t)op->qy * f->nch * f->ch; /* doubles per blocked plane */
     const size_t nv = (size_t)f->np * MC_EIG_NSYM * blk, np3 = 6 * (size_t)nz * blk;
@@ -302,9 +340,10 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     if (!f->V || !f->P3 || !f->E || !f->P || !f->rows || !f->zb || !f->tw)
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for %zu spectra",
                        (size_t)f->np * MC_EIG_NSYM + 12 * (size_t)nz);
-    op->bytes += sizeof *f + (nv + np3) * sizeof(double) +
-                 ((6 * (size_t)nz + 1) * sl + (size_t)f->nthr * f->zlen + f->Nz + 1) *
-                     sizeof(fftw_complex) + (size_t)f->nthr * rl * sizeof(double);
+    size_t parts[MC_EIGEN_STRESS_PARTS];
+    fft_parts(op, f, parts);
+    for (int k = 0; k < MC_EIGEN_STRESS_PARTS; k++)
+        op->part[k] += parts[k];
     /* touch the spectra now: the first apply should not pay the page faults */
     memset(f->E, 0, 6 * (size_t)nz * sl * sizeof *f->E);
     memset(f->P, 0, sl * sizeof *f->P);

@@ -433,7 +433,8 @@ static int direct_prepare(mc_eigen_stress *op, mc_error *err)
     if (!(op->s1 = mc_malloc(n1 * sizeof *op->s1)) || !(op->p3k = mc_malloc(n2 * sizeof *op->p3k)))
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for %zu tables",
                        (n1 + n2) / ql);
-    op->bytes += (n1 + n2) * sizeof(double);
+    op->part[0] += n1 * sizeof(double);
+    op->part[2] += n2 * sizeof(double);
     for (int m = 0; m < 2 * nzf; m++) {
         double *q[MC_EIG_NSYM];
         for (int n = 0; n < MC_EIG_NSYM; n++)
@@ -527,7 +528,8 @@ int mc_eig_stress_create_depth(const mc_grid *g, const mc_eigen_volume *v, doubl
         mc_eigen_stress_destroy(&op);
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for its tables");
     }
-    op->bytes = sizeof *op + (nl + 2 * wc) * sizeof(double);
+    op->part[3] = nl * sizeof(double);
+    op->part[4] = sizeof *op + 2 * wc * sizeof(double) + (2 * (size_t)v->nz + 1) * sizeof(int);
     for (int k = 0; k < v->nz && !mc_eig_periodic(g); k++) {
         double *q[6];
         for (int i = 0; i < 6; i++)
@@ -554,4 +556,46 @@ void mc_eigen_stress_p3(const mc_eigen_stress *op, double *p3)
     memcpy(p3, op->p3, (size_t)op->v.nx * op->v.ny * sizeof *p3);
 }
 
-size_t mc_eigen_stress_bytes(const mc_eigen_stress *op) { return op->bytes; }
+size_t mc_eigen_stress_bytes(const mc_eigen_stress *op)
+{
+    size_t b = 0;
+    for (int k = 0; k < MC_EIGEN_STRESS_PARTS; k++)
+        b += op->part[k];
+    return b;
+}
+
+void mc_eigen_stress_parts(const mc_eigen_stress *op, size_t parts[MC_EIGEN_STRESS_PARTS])
+{
+    memcpy(parts, op->part, sizeof op->part);
+}
+
+void mc_eigen_stress_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
+                              size_t parts[MC_EIGEN_STRESS_PARTS])
+{
+    memset(parts, 0, MC_EIGEN_STRESS_PARTS * sizeof *parts);
+    mc_error err = {0};
+    if (mc_eig_check(g, v, 0.3, b, "eigen stress", &err) != MC_OK)
+        return;
+    /* the shell create fills before its allocations: sizes only */
+    mc_eigen_stress op;
+    memset(&op, 0, sizeof op);
+    op.g = *g;
+    op.v = *v;
+    op.depth = MC_EIG_DEPTH_AUTO;
+    for (int k = 0; k < v->nz; k++)
+        op.nzf += mc_eigen_layer_count(v, k);
+    for (size_t r = 0; r < sizeof backends / sizeof backends[0]; r++)
+        if (backends[r].id == b)
+            op.ops = &backends[r];
+    op.ops->size(&op);
+    op.qlen = ((size_t)op.qx * op.qy + 7) / 8 * 8;
+    const size_t wc = (size_t)v->nx * v->ny, nl = 6 * (size_t)v->nz * op.qlen;
+    parts[3] = nl * sizeof(double);
+    parts[4] = sizeof op + 2 * wc * sizeof(double) + (2 * (size_t)v->nz + 1) * sizeof(int);
+    if (b == MC_BACKEND_FFT) {
+        mc_eig_stress_fft_estimate(&op, parts);
+    } else {
+        parts[0] = 2 * (size_t)op.nzf * MC_EIG_NSYM * op.qlen * sizeof(double);
+        parts[2] = 6 * (size_t)v->nz * op.qlen * sizeof(double);
+    }
+}

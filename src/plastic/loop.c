@@ -57,8 +57,13 @@ typedef struct {
     mc_anderson *aa;             /* acceleration of the plastic fixed point (NULL: none) */
     mc_anderson *aa_outer;       /* and of the outer iteration on u_r */
     /* the last converged increment, the warm start of the next (theory §9.6): its plastic
-     * strain increment, equivalent plastic strain increment, change of u_r and load, N */
-    double *w_eps, *w_dp, *w_ur;
+     * strain increment and equivalent plastic strain increment on the cells where they are not
+     * zero (w_cell: their indices; w_val: 7 values per cell, the six components and dp; the
+     * plastic zone is usually a small part of the volume, so this holds far less than the dense
+     * 56 bytes per volume cell), the change of u_r and the load, N */
+    long *w_cell;
+    double *w_val, *w_ur;
+    long w_n, w_cap;
     double w_load;
     int w_have;                  /* 1: the w_ arrays hold a converged increment */
     long stress_applies;         /* residual stress applications (sweeps that were not skipped) */
@@ -87,9 +92,10 @@ static void ctx_free(loop_ctx *c)
     mc_plastic_ops_destroy(&c->own); /* (borrowed operators are the caller's) */
     mc_anderson_destroy(&c->aa);
     mc_anderson_destroy(&c->aa_outer);
+    mc_free(c->w_cell);
     double *arrays[] = {c->depths, c->s_layer, c->qx,     c->sig_e, c->sig_r, c->d_eps,
                         c->tot,    c->dp,      c->dp_new, c->u_r,   c->u_new, c->h_extra,
-                        c->w_eps,  c->w_dp,    c->w_ur};
+                        c->w_val,  c->w_ur};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         mc_free(arrays[k]);
 }
@@ -193,8 +199,7 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
              (c->dp = mc_zeros((size_t)c->nvol)) &&
              (c->dp_new = mc_zeros((size_t)c->nvol)) &&
              (c->u_r = mc_zeros(c->ncell)) && (c->u_new = mc_zeros(c->ncell)) &&
-             (c->h_extra = mc_zeros(c->ncell)) && (c->w_eps = mc_zeros(nv6)) &&
-             (c->w_dp = mc_zeros((size_t)c->nvol)) && (c->w_ur = mc_zeros(c->ncell));
+             (c->h_extra = mc_zeros(c->ncell)) && (c->w_ur = mc_zeros(c->ncell));
     c->d_new = c->tot;
     if (!ok)
         return mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for %ld volume cells",
@@ -243,6 +248,49 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
     if (rc == MC_OK && pb->anderson > 0)
         rc = mc_anderson_create((long)c->ncell, 1, pb->anderson, &c->aa_outer, err);
     return rc;
+}
+
+/* Keep the converged increment (d_eps, dp) as the warm start: its cells that are not zero, in
+ * the compact arrays w_cell, w_val (grown by doubling; a cell whose seven values are all zero is
+ * left out: the warm start writes zeros there, the same values). */
+static int warm_keep(loop_ctx *c, mc_error *err)
+{
+    const long nvol = c->nvol;
+    long n = 0;
+    for (long v = 0; v < nvol; v++) {
+        int any = c->dp[v] != 0.0;
+        for (int q = 0; q < 6 && !any; q++)
+            any = c->d_eps[(size_t)q * nvol + v] != 0.0;
+        n += any;
+    }
+    if (n > c->w_cap) {
+        long cap = c->w_cap ? c->w_cap : 1024;
+        while (cap < n)
+            cap *= 2;
+        cap = cap > nvol ? nvol : cap;
+        mc_free(c->w_cell);
+        mc_free(c->w_val);
+        c->w_cap = 0;
+        if (!(c->w_cell = mc_malloc((size_t)cap * sizeof *c->w_cell)) ||
+            !(c->w_val = mc_malloc(7 * (size_t)cap * sizeof *c->w_val)))
+            return mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the warm start");
+        c->w_cap = cap;
+    }
+    n = 0;
+    for (long v = 0; v < nvol; v++) {
+        int any = c->dp[v] != 0.0;
+        for (int q = 0; q < 6 && !any; q++)
+            any = c->d_eps[(size_t)q * nvol + v] != 0.0;
+        if (!any)
+            continue;
+        c->w_cell[n] = v;
+        for (int q = 0; q < 6; q++)
+            c->w_val[7 * n + q] = c->d_eps[(size_t)q * nvol + v];
+        c->w_val[7 * n + 6] = c->dp[v];
+        n++;
+    }
+    c->w_n = n;
+    return MC_OK;
 }
 
 /* The six component arrays of a component-major block of 6 * nvol values. */
@@ -773,10 +821,13 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
         /* the warm start (theory §9.6): the last converged increment, scaled to this one's load
          * (at most 1: a step after split increments starts from the smaller increment) */
         const double s = fmin(1.0, dload / c->w_load);
-        for (size_t i = 0; i < nv6; i++)
-            c->d_eps[i] = s * c->w_eps[i];
-        for (long v = 0; v < c->nvol; v++)
-            c->dp[v] = s * c->w_dp[v];
+        st->warm_cells = c->w_n;
+        for (long n = 0; n < c->w_n; n++) { /* the other cells stay 0 (memset above) */
+            const long v = c->w_cell[n];
+            for (int q = 0; q < 6; q++)
+                c->d_eps[(size_t)q * c->nvol + v] = s * c->w_val[7 * n + q];
+            c->dp[v] = s * c->w_val[7 * n + 6];
+        }
         for (size_t i = 0; i < c->ncell; i++)
             c->u_r[i] += s * c->w_ur[i];
     }
@@ -860,8 +911,8 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
         /* accepted only on a tight inner solve: never on a loose one */
         if (tight && change <= pb->tol_outer * size) {
             memcpy(c->u_r, c->u_new, c->ncell * sizeof *c->u_r);
-            memcpy(c->w_eps, c->d_eps, nv6 * sizeof *c->d_eps);
-            memcpy(c->w_dp, c->dp, (size_t)c->nvol * sizeof *c->dp);
+            if ((rc = warm_keep(c, err)) != MC_OK)
+                return rc;
             for (size_t i = 0; i < c->ncell; i++)
                 c->w_ur[i] = c->u_r[i] - res->u_r[i];
             c->w_have = 1;
@@ -929,8 +980,7 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
         res->nvol = c.nvol;
         if (!(res->steps = mc_calloc((size_t)pb->load_steps, sizeof *res->steps)) ||
             !(res->eps_p = mc_zeros(nv6)) || !(res->peq = mc_zeros((size_t)c.nvol)) ||
-            !(res->u_r = mc_zeros(c.ncell)) || !(res->residual_vm = mc_zeros((size_t)c.nvol)) ||
-            !(save_ur = mc_zeros(c.ncell)))
+            !(res->u_r = mc_zeros(c.ncell)) || !(save_ur = mc_zeros(c.ncell)))
             rc = mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the results");
     }
     c.p_lub = pb->p_lub;
@@ -1013,6 +1063,8 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
         residual_stress(&c, res->eps_p);
         res->sig_r = c.sig_r; /* handed over, not copied: the loop is done with it */
         c.sig_r = NULL;
+        res->residual_vm = c.dp_new; /* likewise: a volume array the loop no longer needs */
+        c.dp_new = NULL;
         for (long v = 0; v < c.nvol; v++) {
             double s3[6];
             for (int q = 0; q < 6; q++)
@@ -1044,4 +1096,27 @@ void mc_plastic_result_free(mc_plastic_result *res)
     mc_free(res->residual_vm);
     mc_free(res->sig_r);
     memset(res, 0, sizeof *res);
+}
+
+double mc_plastic_loop_bytes(const mc_grid *g, const mc_eigen_volume *v, int anderson,
+                             int near_reach, double yielding)
+{
+    const double nvol = (double)v->nz * v->nx * v->ny, ncell = (double)g->nx * g->ny;
+    const int whole = v->i0 == 0 && v->j0 == 0 && v->nx == g->nx && v->ny == g->ny;
+    /* ctx_init: sig_e, sig_r, d_eps, tot (6 each), dp, dp_new; the result's eps_p (6), peq */
+    double per_vol = (4 * 6 + 2 + 6 + 1) * 8.0;
+    double per_yield = 7 * 8.0 + 8; /* warm start: 7 values and the index */
+    if (anderson > 0) {
+        per_vol += 16;                            /* map and list of the active cells */
+        per_yield += 2.0 * (anderson + 1) * 6 * 8; /* the f and g histories */
+    }
+    if (near_reach > 0) {
+        per_vol += 4;                  /* the active index */
+        per_yield += 8 + 3 * 6 * 8 + 8; /* list, d0c, dnc, corr, dpc */
+    }
+    /* qx, u_r, u_new, h_extra, w_ur, the result's u_r, save_ur; a window smaller than the grid: one
+     * layer of elastic stresses; Anderson on u_r */
+    double per_cell = 7 * 8.0 + (whole ? 0 : 6 * 8.0) + (anderson > 0 ? 16 + 16.0 * (anderson + 1)
+                                                                        : 0);
+    return per_vol * nvol + per_yield * yielding + per_cell * ncell;
 }

@@ -170,6 +170,8 @@ typedef struct {
     long local_cells;           /* near-field spreads of those sweeps (cells whose change was
                                    spread to their neighbours: their cost) */
     int splits;                 /* the step diverged and was done in 2^splits increments */
+    long warm_cells;            /* volume cells the warm start of its (last) increment seeded
+                                   with the increment before (0: a cold start) */
     int converged;
 } mc_plastic_step;
 
@@ -209,5 +211,15 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
                    mc_contact_summary *sum, mc_plastic_result *res, mc_error *err);
 
 void mc_plastic_result_free(mc_plastic_result *res);
+
+/* The bytes mc_plastic_run holds besides its operators (mc_plastic_ops), for volume v on grid g
+ * with Anderson depth `anderson` (0: none) and near_reach (0: none), at its peak (the sweeps):
+ * the dense volume arrays of the loop and the result (264 bytes per volume cell, + 16 with
+ * Anderson, + 4 with the near field), the surface arrays, and the arrays that grow with the
+ * yielding cells (warm start, Anderson history, near-field lists: 64 + 96 (anderson + 1) + 160
+ * bytes per yielding cell) counted for `yielding` cells. A split load step's copy of the state
+ * (56 bytes per volume cell, taken only when a step diverges) is not counted. */
+double mc_plastic_loop_bytes(const mc_grid *g, const mc_eigen_volume *v, int anderson,
+                             int near_reach, double yielding);
 
 #endif
