@@ -219,8 +219,13 @@ static void resume_hint(const char *case_path, const char *dir, const char *ckdi
                         const char *const *sets, int nsets)
 {
     fprintf(stderr, "microcontact: the checkpoint in %s/ keeps the completed steps; continue "
-                    "with:\n  microcontact run %s --out %s",
-            ckdir, case_path, dir);
+                    "with:\n  ",
+            ckdir);
+    if (mc_dist_active()) /* under mpirun: the same command, any number of processes */
+        fprintf(stderr, "mpirun -np %d microcontact-mpi ", mc_dist_size());
+    else
+        fprintf(stderr, "microcontact ");
+    fprintf(stderr, "run %s --out %s", case_path, dir);
     for (int k = 0; k < nsets; k++)
         fprintf(stderr, " --set '%s'", sets[k]);
     fprintf(stderr, " --resume\n");
@@ -234,7 +239,9 @@ static int run_runin(const mc_scene *scene, const char *case_path, const char *d
                      int resume, mc_outdir *od, mc_results *res, mc_error *err)
 {
     memset(res, 0, sizeof *res);
-    if (resume && !mc_checkpoint_exists(ckdir)) {
+    /* under mpirun rank 0 holds DIR: its view of the checkpoint and its lock decide for all */
+    const int root = mc_dist_rank() == 0;
+    if (resume && !mc_dist_root_int(root && mc_checkpoint_exists(ckdir))) {
         fprintf(stderr, "microcontact: error: --resume: no checkpoint in '%s' (nothing to "
                         "resume; run without --resume to start)\n",
                 ckdir);
@@ -245,13 +252,14 @@ static int run_runin(const mc_scene *scene, const char *case_path, const char *d
      * directory behind: the rollback below) */
     mc_output_hold(1);
     mc_error derr = {0};
-    if (mc_outdir_acquire(od, &derr) != MC_OK) {
+    int arc = mc_dist_root_int(root ? mc_outdir_acquire(od, &derr) : MC_OK);
+    if (arc != MC_OK) {
         mc_output_hold(0);
         fprintf(stderr, "microcontact: error: %s\n", derr.msg);
         mc_output_close(od);
-        return -mc_status_exit_code(derr.code);
+        return -mc_status_exit_code(arc);
     }
-    if (!resume && mc_checkpoint_exists(ckdir)) {
+    if (root && !resume && mc_checkpoint_exists(ckdir)) {
         fprintf(stderr, "microcontact: note: '%s' held the checkpoint of an unfinished run; "
                         "starting over (--resume continues one)\n",
                 ckdir);
@@ -269,7 +277,7 @@ static int run_runin(const mc_scene *scene, const char *case_path, const char *d
                 res->runin.done, res->runin.nsteps);
         if (res->runin.done > 0)
             resume_hint(case_path, dir, ckdir, sets, nsets);
-        else
+        else if (root)
             mc_outdir_rollback(od);
         mc_results_free(res);
         mc_output_close(od);
@@ -277,7 +285,7 @@ static int run_runin(const mc_scene *scene, const char *case_path, const char *d
             mc_cli_signal_exit(sig);
         return -mc_status_exit_code(MC_ERR_INTERRUPTED);
     }
-    if (rc != MC_OK && rc != MC_NOT_CONVERGED && !resume) {
+    if (rc != MC_OK && rc != MC_NOT_CONVERGED && !resume && root) {
         /* a failed run leaves nothing behind (a refused resume keeps its checkpoint) */
         mc_checkpoint_remove(ckdir);
         mc_outdir_rollback(od);
@@ -422,7 +430,7 @@ int mc_cli_run(int argc, char **argv)
         mc_output_close(&od);
         return fail(&werr);
     }
-    if (res.runin.enabled)
+    if (res.runin.enabled && root)
         mc_checkpoint_remove(ckdir); /* the results are committed: nothing left to resume */
     char files[2048];
     mc_output_files_joined(&scene, &res, ", ", files, sizeof files);

@@ -2,6 +2,7 @@
  * a cluster"): MPI and FFTW-MPI are started and stopped here, the run's communicator is handed to
  * the numerics (core/dist.h), and only rank 0 speaks (the other ranks' stdout and stderr go to
  * /dev/null: every rank computes the same numbers and meets the same errors). */
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -14,7 +15,28 @@
 #include <fftw3-mpi.h>
 #include <mpi.h>
 
+/* The threads MPI starts (its progress and PMIx threads) must not take the signals `run` waits
+ * for (signals.c): a process-directed SIGINT or SIGTERM landing on one of them would end the
+ * process at once (their default action) instead of stopping the running-in at a step boundary.
+ * So they are blocked while MPI starts (a thread inherits its creator's mask) and the main
+ * thread's mask is restored afterwards. */
+static int start(int *argc, char ***argv);
+
 int mc_cli_mpi_start(int *argc, char ***argv)
+{
+    sigset_t sigs, old;
+    sigemptyset(&sigs);
+    sigaddset(&sigs, SIGINT);
+    sigaddset(&sigs, SIGTERM);
+    sigaddset(&sigs, SIGHUP);
+    const int masked = pthread_sigmask(SIG_BLOCK, &sigs, &old) == 0;
+    int rc = start(argc, argv);
+    if (masked)
+        pthread_sigmask(SIG_SETMASK, &old, NULL);
+    return rc;
+}
+
+static int start(int *argc, char ***argv)
 {
     int provided;
     /* MPI is called from the main thread only (OpenMP loops never communicate) */

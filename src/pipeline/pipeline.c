@@ -2,6 +2,7 @@
 #include "pipeline/pipeline.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -345,6 +346,36 @@ static int run_stages(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_resul
     return rc;
 }
 
+/* Under mpirun the whole pressure and gap are gathered on every rank and the elastic-plastic
+ * stage is computed replicated (its volume whole on every rank): every rank must hold the same
+ * bits, and rank 0 alone writes them. A rank that diverged (a bug) would go unseen in the files;
+ * its hash is compared with rank 0's instead (runin.c checks the running-in's state after every
+ * step alike). Collective; nothing without a communicator. */
+static int same_results(const mc_results *res, mc_error *err)
+{
+    if (mc_dist_size() <= 1)
+        return MC_OK;
+    const size_t n = (size_t)res->grid.nx * (size_t)res->grid.ny;
+    const double *f[] = {res->pressure, res->gap, res->residual_displacement, res->plastic_strain};
+    const size_t len[] = {n, n, n, n * (size_t)(res->plastic.nz > 0 ? res->plastic.nz : 0)};
+    uint64_t h = 14695981039346656037ull; /* FNV-1a over 64-bit words */
+    for (int a = 0; a < 4; a++)
+        for (size_t i = 0; f[a] && i < len[a]; i++) {
+            uint64_t w;
+            memcpy(&w, &f[a][i], sizeof w);
+            h ^= w;
+            h *= 1099511628211ull;
+        }
+    const double mine[2] = {(double)(h >> 32), (double)(h & 0xffffffffu)}; /* exact halves */
+    double root[2] = {mine[0], mine[1]};
+    mc_dist_bcast(root, 2, 0);
+    if (mc_dist_max_int(root[0] != mine[0] || root[1] != mine[1]))
+        return mc_fail(err, MC_ERR_INTERNAL,
+                       "the MPI processes hold different results (pressure, gap or plastic "
+                       "fields, computed replicated: they must agree to the bit; a bug)");
+    return MC_OK;
+}
+
 int mc_pipeline_run(const mc_scene *sc, mc_results *res, mc_error *err)
 {
     return mc_pipeline_run_staged(sc, NULL, NULL, res, err);
@@ -354,23 +385,11 @@ int mc_pipeline_check_ranks(const mc_scene *sc, int ranks, mc_error *err)
 {
     if (ranks <= 1)
         return MC_OK;
-    /* distributed today: the elastic operator (operator/dfft.h); every other stage computes the
-     * same replicated arrays on every rank, which needs the same plans on every rank. A running-in
-     * is named first: its steps are elastic-plastic too */
-    if (sc->runin.enabled) {
-        mc_fail(err, MC_ERR_INPUT,
-                "[runin] forces: the running-in is not distributed yet (%d MPI processes); run "
-                "this case with one process (mpirun -np 1, or bin/microcontact)",
-                ranks);
-        return blame_key(sc, "runin", "forces", MC_ERR_INPUT, err);
-    }
-    if (sc->plasticity.enabled) {
-        mc_fail(err, MC_ERR_INPUT,
-                "[plasticity] criterion: the elastic-plastic stage is not distributed yet (%d MPI "
-                "processes); run this case with one process (mpirun -np 1, or bin/microcontact)",
-                ranks);
-        return blame_key(sc, "plasticity", "criterion", MC_ERR_INPUT, err);
-    }
+    /* distributed: the elastic operator (operator/dfft.h) and the contact solvers' iterations
+     * (contact_internal.h); every other stage, the elastic-plastic loop and the running-in
+     * included, computes the same replicated arrays on every rank (its volume is whole on each),
+     * which needs the same plans on every rank. The running-in agrees on its stops and shares
+     * its checkpoint's status (runin.c) */
     if (sc->solver.plans != MC_PLANS_ESTIMATE) {
         mc_fail(err, MC_ERR_INPUT,
                 "[solver] plans = %s: with %d MPI processes only estimate is accepted (measured "
@@ -405,6 +424,18 @@ int mc_pipeline_run_staged(const mc_scene *sc, mc_stage_fn stage, void *ctx, mc_
     const double comm0 = mc_dist_comm_seconds();
     rc = sc->runin.enabled ? mc_runin_run(sc, NULL, res, err)
                            : run_stages(sc, stage, ctx, res, err);
+    /* every rank reaches this point (statuses are replicated); their results must agree */
+    if (sc->plasticity.enabled && !sc->runin.enabled && mc_dist_size() > 1) {
+        int all = mc_dist_max_int(rc); /* the worst status over the ranks, first */
+        if (all != rc && rc == MC_OK)
+            mc_fail(err, all, "the run failed on another MPI process");
+        rc = all;
+        if (rc == MC_OK || rc == MC_NOT_CONVERGED) {
+            int src = same_results(res, err);
+            if (src != MC_OK)
+                rc = src;
+        }
+    }
     res->timing.comm_s = mc_dist_comm_seconds() - comm0;
     if (rc == MC_OK || rc == MC_NOT_CONVERGED)
         mc_results_warnings(sc, res);

@@ -25,10 +25,11 @@ typedef void (*mc_stage_fn)(void *ctx, const char *stage);
 int mc_pipeline_run_staged(const mc_scene *scene, mc_stage_fn stage, void *ctx, mc_results *res,
                            mc_error *err);
 
-/* A scene the run's MPI processes (core/dist.h) can compute together: with ranks > 1 the
- * elastic-plastic stage and the running-in are refused (not distributed yet), and [solver] plans
- * other than estimate (every process must make the same plans). MC_OK or MC_ERR_INPUT naming the
- * case file, line and key. mc_pipeline_run_staged checks it with the run's ranks. */
+/* A scene the run's MPI processes (core/dist.h) can compute together: with ranks > 1 [solver]
+ * plans other than estimate are refused (every process must make the same plans); the
+ * elastic-plastic stage and the running-in run replicated (their volume whole on every rank,
+ * their contact solves distributed). MC_OK or MC_ERR_INPUT naming the case file, line and key.
+ * mc_pipeline_run_staged checks it with the run's ranks. */
 int mc_pipeline_check_ranks(const mc_scene *scene, int ranks, mc_error *err);
 
 /* Seconds on a monotonic clock (for timings in the library and front ends). */

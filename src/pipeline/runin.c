@@ -8,6 +8,7 @@
 
 #include "contact/contact.h"
 #include "core/alloc.h"
+#include "core/dist.h"
 #include "core/threads.h"
 #include "kernels/invariants.h"
 #include "lube/film.h"
@@ -138,9 +139,24 @@ static void ctx_free(runin_ctx *c)
     mc_hardening_free(&c->law);
 }
 
+/* A stop asked (a signal): under MPI the ranks agree (a signal may reach one process only), so
+ * every rank stops at the same step boundary or outer iteration. Collective: called at the same
+ * points on every rank (the replicated loop's counts, plastic/loop.h; never a clock). */
 static int stopped(const runin_ctx *c)
 {
-    return c->opt && c->opt->stop && c->opt->stop(c->opt->stop_ctx);
+    int mine = c->opt && c->opt->stop && c->opt->stop(c->opt->stop_ctx);
+    return mc_dist_max_int(mine);
+}
+
+/* A status every rank must share before the next collective step: the worst over the ranks
+ * (the codes grow with their gravity, MC_OK = 0). A rank that succeeded where another failed
+ * says so in err (only rank 0 speaks: its message is the one printed). Collective. */
+static int agree(int rc, const char *what, mc_error *err)
+{
+    int all = mc_dist_max_int(rc);
+    if (all != rc && rc == MC_OK)
+        mc_fail(err, all, "running-in: %s failed on another MPI process", what);
+    return all;
 }
 
 static int stop_poll(void *ctx) { return stopped(ctx); }
@@ -562,6 +578,48 @@ static int setup(runin_ctx *c, mc_error *err)
     return rc;
 }
 
+/* ---- the ranks ------------------------------------------------------------------------------ */
+
+static uint64_t fnv_words(uint64_t h, const double *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        uint64_t w;
+        memcpy(&w, &v[i], sizeof w);
+        h ^= w;
+        h *= FNV_PRIME;
+    }
+    return h;
+}
+
+/* Under mpirun every rank computes the carried state replicated, by the same code from the same
+ * gathered pressure: the same bits, or a bug (a rank that diverged would feed its rows of other
+ * numbers to the next distributed solve, and rank 0 alone writes). After each step the state's
+ * hash (pressure, residual displacement, plastic strain, hardening, residual stress) is compared
+ * with rank 0's. Collective; nothing without a communicator. */
+static int same_state(const runin_ctx *c, int step, mc_error *err)
+{
+    if (mc_dist_size() <= 1)
+        return MC_OK;
+    uint64_t h = fnv_words(FNV_OFFSET, c->res->pressure, c->n);
+    h = fnv_words(h, c->u_r, c->n);
+    if (c->plastic) {
+        const size_t nv = (size_t)c->nvol;
+        h = fnv_words(h, c->eps_p, 6 * nv);
+        h = fnv_words(h, c->peq, nv);
+        h = fnv_words(h, c->sig_r, 6 * nv);
+    }
+    /* two 32-bit halves: exact in doubles */
+    const double mine[2] = {(double)(h >> 32), (double)(h & 0xffffffffu)};
+    double root[2] = {mine[0], mine[1]};
+    mc_dist_bcast(root, 2, 0);
+    if (mc_dist_max_int(root[0] != mine[0] || root[1] != mine[1]))
+        return mc_fail(err, MC_ERR_INTERNAL,
+                       "running-in: after step %d the MPI processes hold different states (they "
+                       "compute them replicated and must agree to the bit: a bug)",
+                       step);
+    return MC_OK;
+}
+
 /* ---- checkpoints ----------------------------------------------------------------------------- */
 
 static int save(runin_ctx *c, int done, const mc_plastic_step *records, int nrec, mc_error *err)
@@ -583,16 +641,25 @@ static int save(runin_ctx *c, int done, const mc_plastic_step *records, int nrec
                         .u_r = c->u_r,
                         .nrec = nrec,
                         .records = (mc_plastic_step *)records};
-    return mc_checkpoint_write(c->opt->checkpoint_dir, &ck, err);
+    /* rank 0 alone writes (the ranks hold the same state); its status for all */
+    int rc = mc_dist_rank() == 0 ? mc_checkpoint_write(c->opt->checkpoint_dir, &ck, err) : MC_OK;
+    int all = mc_dist_root_int(rc);
+    if (all != rc)
+        mc_fail(err, all, "checkpoint: rank 0 could not write it");
+    return all;
 }
 
 static int restore(runin_ctx *c, int *start, mc_plastic_step *records, int *nrec, mc_error *err)
 {
     const char *dir = c->opt->checkpoint_dir;
     mc_checkpoint ck;
-    int rc = mc_checkpoint_read(dir, &ck, err);
-    if (rc != MC_OK)
+    /* every rank reads the same file (DIR/checkpoint on a file system they all see: the one
+     * rank 0 wrote it to); the worst status for all */
+    int rc = agree(mc_checkpoint_read(dir, &ck, err), "reading the checkpoint", err);
+    if (rc != MC_OK) {
+        mc_checkpoint_free(&ck); /* (nothing held when this rank's read failed) */
         return rc;
+    }
     if (ck.case_hash != c->hash)
         rc = mc_fail(err, MC_ERR_INPUT,
                      "the checkpoint in '%s' belongs to another case (or other --set values): "
@@ -733,6 +800,7 @@ static int run(runin_ctx *c, mc_error *err)
         rc = mc_memory_check(sc, err);
     if (rc == MC_OK)
         rc = setup(c, err);
+    rc = agree(rc, "the setup", err);
     mc_runin_summary *ri = &r->runin;
     ri->enabled = 1;
     ri->nforces = c->nf;
@@ -761,7 +829,7 @@ static int run(runin_ctx *c, mc_error *err)
         }
         mc_plastic_step rec;
         memset(&rec, 0, sizeof rec);
-        int src = run_step(c, s, &ri->rows[s], &rec, err);
+        int src = agree(run_step(c, s, &ri->rows[s], &rec, err), "a step", err);
         if (src == MC_ERR_INTERRUPTED) {
             rc = src;
             break;
@@ -785,7 +853,9 @@ static int run(runin_ctx *c, mc_error *err)
         }
         c->seconds += ri->rows[s].seconds;
         ri->done = s + 1;
-        rc = save(c, ri->done, records, nrec, err);
+        rc = same_state(c, s + 1, err);
+        if (rc == MC_OK)
+            rc = save(c, ri->done, records, nrec, err);
         if (rc == MC_OK && c->opt && c->opt->progress) {
             const double el = mc_clock() - t_session;
             mc_runin_progress pr = {.step = s + 1,

@@ -11,6 +11,12 @@
 #     by row in row order over the ranks (contact_internal.h, core/dist.h). On the solver paths
 #     cg and pk, free and periodic grids, with a pressure cap (cg's nested solve) and with a
 #     lubricant (the volume equilibrium's repeated solves);
+#     The elastic-plastic stage and the running-in (their volume replicated on every rank, the
+#     contact solves inside distributed): the plastic fields and the plastic figures of
+#     summary.json to the same 1e-12 and the same bits for P = 1, 2, 3; runin.csv the same text;
+#  2b. a running-in under mpirun stopped by a signal and resumed with --resume gives the files of
+#     an uninterrupted run: the signal to rank 0 alone (the ranks agree to stop at the same step),
+#     and to the whole process group (mpirun ends the job; the checkpoint stays);
 #  3. what is not distributed yet is refused with P > 1 (exit 2, the key named, no directory);
 #  4. a grid the memory guard refuses serially under a limit runs with 2 and 3 processes under
 #     the same per-process limit, gives the serial answer, and stays within the guard's figure.
@@ -45,6 +51,11 @@ for np in 2 3 4; do
 done
 
 # ---- 2. whole runs against the serial program -----------------------------------------------
+# runin.csv without its seconds column (as tests/cli/robustness.sh), the one that may differ
+nosec() {
+    awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "seconds") s = i }
+             { o = ""; for (i = 1; i <= NF; i++) if (i != s) o = o (o == "" ? "" : ",") $i; print o }' "$1"
+}
 # jget FILE SECTION KEY (as tests/cli/cases.sh: sections at two spaces, keys at four)
 jget() {
     awk -v sec="$2" -v key="$3" '
@@ -66,7 +77,8 @@ runcase() { # NAME CASE SET...: serial, then 1, 2 and 3 processes (STOL: against
         if [ "$(cd "$T/$name-s" && ls)" != "$(cd "$out" && ls)" ]; then
             bad "$name, $np processes: other files than the serial run"; continue
         fi
-        for f in pressure gap displacement von_mises stress_xz; do
+        for f in pressure gap displacement von_mises stress_xz plastic_strain \
+            residual_displacement residual_von_mises surface_final; do
             [ -f "$T/$name-s/$f.npy" ] || continue
             if r=$("$CMP" "$T/$name-s/$f.npy" "$out/$f.npy" "${STOL:-$TOL}"); then
                 ok "$name, $np processes: $f.npy against serial: $r"
@@ -98,8 +110,33 @@ runcase() { # NAME CASE SET...: serial, then 1, 2 and 3 processes (STOL: against
                 bad "$name, $np processes: contact.$k = $b, serial $a"
             fi
         done
+        # the plastic figures of summary.json
+        [ -f "$T/$name-s/plastic_strain.npy" ] || continue
+        for k in peq_max residual_max plastic_volume outer_iterations steps_done converged; do
+            a=$(jget "$T/$name-s/summary.json" plastic $k) b=$(jget "$out/summary.json" plastic $k)
+            if [ -n "$a" ] && awk -v a="$a" -v b="$b" -v t="${STOL:-$TOL}" 'BEGIN {
+                    if (a == b) exit 0
+                    if (a !~ /^[-+0-9.eE]+$/ || b !~ /^[-+0-9.eE]+$/) exit 1
+                    d = a - b; if (d < 0) d = -d; m = a < 0 ? -a : a; exit !(d <= t * m) }'; then
+                ok "$name, $np processes: plastic.$k = $b (serial $a)"
+            else
+                bad "$name, $np processes: plastic.$k = '$b', serial '$a'"
+            fi
+        done
     done
-    for f in pressure gap displacement; do
+    for f in pressure gap displacement plastic_strain residual_displacement surface_final \
+        runin.csv; do
+        [ -f "$T/$name-1/$f.npy" ] || [ -f "$T/$name-1/$f" ] || continue
+        case $f in *.csv) nosec "$T/$name-1/$f" > "$T/$name-1.nosec"
+                          for np in 2 3; do
+                              if nosec "$T/$name-$np/$f" | cmp -s - "$T/$name-1.nosec"; then
+                                  ok "$name: $f the same text with 1 and $np processes (seconds aside)"
+                              else
+                                  bad "$name: $f differs between 1 and $np processes"
+                              fi
+                          done
+                          continue ;;
+        esac
         for np in 2 3; do
             if cmp -s "$T/$name-1/$f.npy" "$T/$name-$np/$f.npy"; then
                 ok "$name: $f.npy the same bits with 1 and $np processes"
@@ -132,6 +169,83 @@ runcase cap cases/pressure_cap.ini
 # whose box-sized operator and solver are distributed over their own rows
 runcase box cases/hertz_point.ini --set mesh.nx=255 --set mesh.ny=200 --set mesh.dx=5um \
     --set stress.layers=2
+# the elastic-plastic stage (its volume whole on every rank, the contact solves inside
+# distributed): the rough sphere that yields at 24^2 (three load steps, 22 graded layers); and the
+# default running-in at 16^2 with two forces and two speeds (8 steps, 2 of them elastic-plastic:
+# the lubricant volume equilibrium's solves inside the plastic loop). Measured against serial:
+# 1.1e-14 in the pressure, 8e-15 in the plastic strain (44^2); the same bits for P = 1, 2, 3.
+runcase plastic cases/elastic_plastic.ini --set mesh.nx=24 --set mesh.ny=24
+runcase runin cases/default.ini --set mesh.nx=16 --set mesh.ny=16 --set runin.forces=1086N,2172N \
+    --set runin.speeds=3000,200rpm
+
+# ---- 2b. a running-in stopped under mpirun and resumed ----------------------------------------
+# The default running-in at 16^2 (36 steps, 8 elastic-plastic; about 1.5 s with 2 processes),
+# uninterrupted with 2 processes, then stopped once its first checkpoint is there and resumed
+# with mpirun -np 2 ... --resume: the files of the uninterrupted run, bit for bit (runin.csv but
+# for its seconds), and the serial run's to 1e-12. WHO = rank0: SIGTERM to rank 0 alone (the
+# ranks agree to stop at the next step boundary or outer iteration, runin.c: rank 0 says how to
+# resume); WHO = rank1: to rank 1 alone (the same; without the agreement rank 0 would wait in
+# the next step's collectives for ever); WHO = group: SIGTERM to mpirun and every rank at once
+# (mpirun ends the job).
+RI="cases/default.ini --set mesh.nx=16 --set mesh.ny=16"
+"$PROG" run $RI --out "$T/ri-s" --quiet > "$T/ri-s.log" 2>&1 || { bad "resume: the serial run failed"; cat "$T/ri-s.log"; }
+$MPIRUN -np 2 "$MPROG" run $RI --out "$T/ri-u" --quiet > "$T/ri-u.log" 2>&1 ||
+    { bad "resume: the uninterrupted 2-process run failed"; cat "$T/ri-u.log"; }
+stop_resume() { # WHO
+    who=$1 out="$T/ri-$1"
+    # (a deadlock, ranks that do not agree, ends red after 120 s)
+    timeout -s KILL 120 $MPIRUN -np 2 "$MPROG" run $RI --out "$out" > "$out.log" 2> "$out.err" &
+    bg=$!
+    n=0
+    while [ $n -lt 3000 ] && [ ! -f "$out/checkpoint/state.bin" ] && kill -0 $bg 2> /dev/null; do
+        sleep 0.01; n=$((n + 1))
+    done
+    # mpirun is timeout's child, the ranks mpirun's (each in a process group of its own)
+    mpid=$(pgrep -P $bg) ranks=""
+    [ -n "$mpid" ] && ranks=$(pgrep -P "$mpid")
+    case $who in
+    rank*)
+        for c in $ranks; do
+            if tr '\0' '\n' < "/proc/$c/environ" 2> /dev/null |
+                grep -qx "OMPI_COMM_WORLD_RANK=${who#rank}"; then
+                kill -TERM "$c"
+            fi
+        done ;;
+    *) kill -TERM $mpid $ranks ;; # as a terminal's Ctrl-C would: mpirun and every rank at once
+    esac
+    wait $bg
+    why=""
+    [ -e "$out/summary.json" ] && why="$why it ended before the signal (or committed results);"
+    [ -f "$out/checkpoint/state.bin" ] || why="$why no checkpoint;"
+    if [ "$who" != group ]; then # rank 0 speaks, whichever rank the signal reached
+        grep -q "stopped by .* after [0-9]* of 36 steps" "$out.err" &&
+            grep -q "continue with:" "$out.err" ||
+            why="$why no stop message or resume hint: $(tail -3 "$out.err" | tr '\n' ' ');"
+    fi
+    if [ -n "$why" ]; then bad "resume ($who): stopped:$why"; return; fi
+    if ! $MPIRUN -np 2 "$MPROG" run $RI --out "$out" --resume --quiet > "$out.log" 2> "$out.err"; then
+        bad "resume ($who): mpirun -np 2 --resume failed"; cat "$out.err"; return
+    fi
+    from=$(jget "$out/summary.json" runin resumed_from)
+    [ "${from:-0}" -gt 0 ] || why="$why resumed_from '$from';"
+    [ -e "$out/checkpoint" ] && why="$why the checkpoint is left;"
+    [ "$(nosec "$out/runin.csv")" = "$(nosec "$T/ri-u/runin.csv")" ] || why="$why runin.csv differs;"
+    for f in pressure.npy gap.npy displacement.npy surface_final.npy plastic_strain.npy \
+        residual_displacement.npy residual_von_mises.npy material_ratio.csv runin.gp; do
+        cmp -s "$out/$f" "$T/ri-u/$f" || why="$why $f differs;"
+    done
+    for f in pressure gap plastic_strain residual_displacement surface_final; do
+        "$CMP" "$T/ri-s/$f.npy" "$out/$f.npy" "$TOL" > /dev/null || why="$why $f.npy against serial: $("$CMP" "$T/ri-s/$f.npy" "$out/$f.npy" "$TOL");"
+    done
+    if [ -z "$why" ]; then
+        ok "resume ($who): stopped after step $from of 36, resumed with 2 processes: the uninterrupted run's files, serial to $TOL"
+    else
+        bad "resume ($who):$why"
+    fi
+}
+stop_resume rank0
+stop_resume rank1
+stop_resume group
 
 # ---- 3. refused with more than one process ----------------------------------------------------
 refused() { # NAME WANT CASE SET...: exit ${CODE:-2}, the message naming WANT, no output directory
@@ -145,8 +259,6 @@ refused() { # NAME WANT CASE SET...: exit ${CODE:-2}, the message naming WANT, n
         cat "$T/$name.log"
     fi
 }
-refused plasticity '\[plasticity\]' cases/elastic_plastic.ini
-refused runin '\[runin\]' cases/default.ini
 refused plans '\[solver\] plans' cases/hertz_point.ini --set solver.plans=measure
 # the memory guard decides for all processes alike (rank 0's available memory): exit 3 on all
 export MC_MEMORY_LIMIT=1000
