@@ -232,7 +232,9 @@ void mc_plastic_result_free(mc_plastic_result *res);
  * the dense volume arrays of the loop and the result (264 bytes per volume cell, + 16 with
  * Anderson, + 4 with the near field), the surface arrays, and the arrays that grow with the
  * yielding cells (warm start, Anderson history, near-field lists: 64 + 96 (anderson + 1) + 160
- * bytes per yielding cell) counted for `yielding` cells. A split load step's copy of the state
+ * bytes per yielding cell) counted for `yielding` cells. The arrays a problem lends
+ * (state_eps_p, state_peq, state_sig_r, work_sig_e: 152 bytes per volume cell) are counted too:
+ * the caller holds them instead of the loop. A split load step's copy of the state
  * (56 bytes per volume cell, taken only when a step diverges) is not counted. */
 double mc_plastic_loop_bytes(const mc_grid *g, const mc_eigen_volume *v, int anderson,
                              int near_reach, double yielding);
