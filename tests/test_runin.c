@@ -22,6 +22,7 @@
 #include "operator/operator.h"
 #include "io/npy.h"
 #include "pipeline/checkpoint.h"
+#include "pipeline/memguard.h"
 #include "pipeline/output.h"
 #include "pipeline/pipeline.h"
 #include "pipeline/runin.h"
@@ -276,6 +277,52 @@ START_TEST(loop_carries_state)
     ck_assert(memcmp(b.eps_p, a.eps_p, 6 * nv * sizeof(double)) == 0);
     ck_assert(memcmp(b.peq, a.peq, nv * sizeof(double)) == 0);
     ck_assert(memcmp(b.u_r, a.u_r, n * sizeof(double)) == 0);
+    /* the same state lent in place (loop.h: state_eps_p, state_peq, state_sig_r, work_sig_e, as
+     * the running-in passes it): the same bits, the totals in the lent arrays, which the result
+     * does not free; the lent residual and elastic stress arrays start as garbage (never read
+     * before they are written) */
+    {
+        double *e = mc_malloc(6 * nv * sizeof *e), *q = mc_malloc(nv * sizeof *q);
+        double *sr = mc_malloc(6 * nv * sizeof *sr), *se = mc_malloc(6 * nv * sizeof *se);
+        double *pb_ = mc_malloc(n * sizeof *pb_); /* run b's pressure (the dent shapes it) */
+        ck_assert(e && q && sr && se && pb_);
+        memcpy(pb_, p, n * sizeof *pb_);
+        memcpy(e, a.eps_p, 6 * nv * sizeof *e);
+        memcpy(q, a.peq, nv * sizeof *q);
+        for (size_t i = 0; i < 6 * nv; i++)
+            sr[i] = se[i] = 1e300;
+        mc_plastic_problem lent = again;
+        lent.eps_p0 = lent.peq0 = NULL;
+        lent.state_eps_p = e;
+        lent.state_peq = q;
+        lent.state_sig_r = sr;
+        lent.work_sig_e = se;
+        mc_plastic_result l;
+        ck_assert_msg(mc_plastic_run(&g, K, s, &lent, p, u, gap, &cs, &l, &err) == MC_OK, "%s",
+                      err.msg);
+        ck_assert(l.eps_p == e && l.peq == q && l.sig_r == sr && l.lent == 3);
+        ck_assert(memcmp(e, b.eps_p, 6 * nv * sizeof(double)) == 0);
+        ck_assert(memcmp(q, b.peq, nv * sizeof(double)) == 0);
+        ck_assert(memcmp(sr, b.sig_r, 6 * nv * sizeof(double)) == 0);
+        ck_assert(memcmp(l.u_r, b.u_r, n * sizeof(double)) == 0);
+        ck_assert(memcmp(l.residual_vm, b.residual_vm, nv * sizeof(double)) == 0);
+        ck_assert(memcmp(p, pb_, n * sizeof(double)) == 0);
+        mc_plastic_result_free(&l); /* leaves the lent arrays */
+        ck_assert(l.eps_p == NULL && e[0] == b.eps_p[0]);
+        /* lent with eps_p0 too, or only half of the state: refused */
+        lent.eps_p0 = a.eps_p;
+        ck_assert_int_eq(mc_plastic_run(&g, K, s, &lent, p, u, gap, &cs, &l, &err), MC_ERR_INPUT);
+        mc_plastic_result_free(&l);
+        lent.eps_p0 = NULL;
+        lent.state_peq = NULL;
+        ck_assert_int_eq(mc_plastic_run(&g, K, s, &lent, p, u, gap, &cs, &l, &err), MC_ERR_INPUT);
+        mc_plastic_result_free(&l);
+        mc_free(e);
+        mc_free(q);
+        mc_free(sr);
+        mc_free(se);
+        mc_free(pb_);
+    }
     again.eps_p0 = again.peq0 = NULL;
     ck_assert_msg(mc_plastic_run(&g, K, s, &again, p, u, gap, &cs, &c, &err) == MC_OK, "%s",
                   err.msg);
@@ -416,6 +463,41 @@ START_TEST(running_in)
     }
     ck_assert_double_eq(umax, r->plastic.residual_max);
     ck_assert(r->plastic.peq_max > 0 && isfinite(ri->hysteresis[0]));
+}
+END_TEST
+
+/* The plastic memory guard of the running-in (pipeline/memguard.h): once its volume is planned
+ * (here 32 x 16 x 5 layers of 0.4 um: depth and dz set), a limit one byte below the estimate
+ * refuses the run before the volume arrays are allocated, naming the running-in and the volume;
+ * the limit at the estimate itself lets it run (the estimate is what the guard compares). The
+ * pre-run guard (mc_memory_check) passes at both limits: the refusal is the plastic guard's. */
+START_TEST(plastic_guard)
+{
+    mc_scene s;
+    const char *set[] = {"runin.speeds=200 rpm", "lubrication.rpm=200 rpm"};
+    scene(&s, "", 2, PLASTIC, 2, set);
+    mc_eigen_volume v = mc_eigen_volume_full(&s.grid, 5, 0.4e-6);
+    v.stress_points = s.plasticity.stress_points;
+    const double pre = mc_memory_estimate(&s), need = pre + mc_memory_estimate_runin(&s, &s.grid, &v);
+    ck_assert(need > pre + 5 * 32 * 16 * 280.0); /* at least the loop's dense arrays */
+    char lim[64];
+    snprintf(lim, sizeof lim, "%.0f", floor(need) - 1);
+    setenv("MC_MEMORY_LIMIT", lim, 1);
+    mc_results r;
+    mc_error err = {0};
+    int rc = mc_runin_run(&s, NULL, &r, &err);
+    ck_assert_int_eq(rc, MC_ERR_NOMEM);
+    ck_assert_msg(strstr(err.msg, "the running-in needs about") &&
+                      strstr(err.msg, "plastic volume 32 x 16 x 5 cells"),
+                  "%s", err.msg);
+    mc_results_free(&r);
+    snprintf(lim, sizeof lim, "%.0f", ceil(need));
+    setenv("MC_MEMORY_LIMIT", lim, 1);
+    rc = mc_runin_run(&s, NULL, &r, &err);
+    unsetenv("MC_MEMORY_LIMIT");
+    ck_assert_msg(rc == MC_OK, "%s", err.msg);
+    ck_assert(r.runin.rows[0].plastic && r.plastic.volume_cells == 5 * 32 * 16);
+    mc_results_free(&r);
 }
 END_TEST
 
@@ -1135,6 +1217,7 @@ Suite *suite_runin(void)
     tcase_add_test(t, elastic_material);
     tcase_add_test(t, never_yields);
     tcase_add_test(t, running_in);
+    tcase_add_test(t, plastic_guard);
     tcase_add_test(t, iso_columns);
     tcase_add_test(t, lubricated_plastic_stage);
     tcase_add_test(t, resume_identical);

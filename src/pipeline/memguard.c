@@ -123,20 +123,49 @@ double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_
     return fmax(ops + loop, fields + loop);
 }
 
-int mc_memory_check_plastic(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
-                            int shortcut, mc_error *err)
+/* need against the available memory (rank 0's for all processes), else MC_ERR_NOMEM naming
+ * `what`, the volume and `reduce`. */
+static int check_volume(double need, const char *what, const char *reduce, const mc_grid *g,
+                        const mc_eigen_volume *v, mc_error *err)
 {
-    const double need = mc_memory_estimate(s) + mc_memory_estimate_plastic(s, g, v, shortcut);
     double have = mc_memory_available();
     mc_dist_bcast(&have, 1, 0);
     if (need <= have)
         return MC_OK;
     const double GiB = 1073741824.0;
     return mc_fail(err, MC_ERR_NOMEM,
-                   "the elastic-plastic stage needs about %.1f GiB, %.1f GiB available (grid %d x "
-                   "%d, plastic volume %d x %d x %d cells); reduce [plasticity] depth or margin, "
-                   "or the grid",
-                   need / GiB, have / GiB, g->nx, g->ny, v->nx, v->ny, v->nz);
+                   "%s needs about %.1f GiB, %.1f GiB available (grid %d x %d, plastic volume %d "
+                   "x %d x %d cells); reduce %s",
+                   what, need / GiB, have / GiB, g->nx, g->ny, v->nx, v->ny, v->nz, reduce);
+}
+
+int mc_memory_check_plastic(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
+                            int shortcut, mc_error *err)
+{
+    const double need = mc_memory_estimate(s) + mc_memory_estimate_plastic(s, g, v, shortcut);
+    return check_volume(need, "the elastic-plastic stage",
+                        "[plasticity] depth or margin, or the grid", g, v, err);
+}
+
+double mc_memory_estimate_runin(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v)
+{
+    /* the state it carries (eps_p, peq, sig_r) and the yield check's elastic stresses are lent
+     * to the loop (its result arrays, residual and elastic stress arrays: counted in
+     * mc_plastic_loop_bytes), and the yield check's stress plan becomes the operators' (counted
+     * in the stage's estimate); at the end the operators are still held beside the state and the
+     * output fields (168 bytes per volume cell, fewer than the loop's dense arrays). Besides:
+     * its surface arrays (h_base, h_extra, z, u_r, qx, the bowl, the shape, the lubricant
+     * profile, the residual displacement and final topography of each body: 12 per cell). */
+    const double cells = (double)g->nx * g->ny;
+    return mc_memory_estimate_plastic(s, g, v, 0) + 12 * 8 * cells;
+}
+
+int mc_memory_check_runin(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
+                          mc_error *err)
+{
+    const double need = mc_memory_estimate(s) + mc_memory_estimate_runin(s, g, v);
+    return check_volume(need, "the running-in", "[plasticity] depth or dz, or the grid", g, v,
+                        err);
 }
 
 double mc_memory_available(void)

@@ -43,4 +43,16 @@ double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_
 int mc_memory_check_plastic(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
                             int shortcut, mc_error *err);
 
+/* The running-in of scene s (pipeline/runin.h) on grid g with plastic volume v: the bytes it adds
+ * to mc_memory_estimate at its peak, inside a run-down step's loop: the elastic-plastic stage's
+ * estimate (its state and the yield check's arrays are lent to the loop) and its surface
+ * arrays. The operators are counted although a running-in builds them only at its first
+ * yielding step. */
+double mc_memory_estimate_runin(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v);
+
+/* MC_OK if mc_memory_estimate(s) + mc_memory_estimate_runin(...) fits into the available
+ * memory, else MC_ERR_NOMEM naming the running-in, both figures and the volume. */
+int mc_memory_check_runin(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
+                          mc_error *err);
+
 #endif

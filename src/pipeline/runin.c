@@ -105,10 +105,13 @@ typedef struct {
     mc_eigen_volume vol;
     int *group;               /* graded layers: vol.group (theory.md §8.8); NULL: uniform */
     long nvol;
-    double *eps_p, *peq, *sig_r, *u_r;
-    mc_stress_plan *splan;    /* elastic stresses at the cuboid centres (the yield check) */
+    double *eps_p, *peq, *sig_r, *u_r; /* lent to the loop in place (plastic/loop.h) */
+    mc_stress_plan *splan;    /* elastic stresses at the cuboid centres (the yield check); from
+                                 the first plastic step on the operators' own (ops.elastic) */
     mc_plastic_ops ops;       /* the loop's operators, built at the first plastic step and kept
                                  for the others (plastic/loop.h) */
+    double *s_block;          /* 6 nvol: the yield check's elastic stresses, s_full[q] its
+                                 components; the loop's elastic stress array (lent) */
     double *s_full[6], *qx;
     int qx_loads;             /* the yield check and the loop's operators take q_x too */
     double slide;             /* friction_in_yield: +1 (-1) when disc 2 slides in +x (-x)
@@ -126,15 +129,14 @@ static void ctx_free(runin_ctx *c)
     mc_free(c->step);
     mc_contact_destroy(&c->solver);
     mc_operator_destroy(&c->K);
-    double *a[] = {c->bowl, c->h_base, c->h_extra, c->z,   c->eps_p,
-                   c->peq,  c->sig_r,  c->u_r,     c->qx, c->shape};
+    double *a[] = {c->bowl, c->h_base, c->h_extra, c->z,     c->eps_p,  c->peq,
+                   c->sig_r, c->u_r,   c->qx,      c->shape, c->s_block};
     mc_free(c->rmask);
     mc_free(c->group);
     for (size_t k = 0; k < sizeof a / sizeof a[0]; k++)
         mc_free(a[k]);
-    for (int k = 0; k < 6; k++)
-        mc_free(c->s_full[k]);
-    mc_stress_destroy(&c->splan);
+    if (c->splan != c->ops.elastic) /* (else the operators' own) */
+        mc_stress_destroy(&c->splan);
     mc_plastic_ops_destroy(&c->ops);
     mc_hardening_free(&c->law);
 }
@@ -245,6 +247,10 @@ static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_stag
                                        c->qx_loads, &c->ops, err);
         if (rc != MC_OK)
             return rc;
+        /* the yield check's plan was made with the same options (grid, layer depths, nu,
+         * backend, loads): the operators take it and drop their own, one plan for both */
+        mc_stress_destroy(&c->ops.elastic);
+        c->ops.elastic = c->splan;
     }
     *lc = (mc_stage_lube_contact){.solver = c->solver,
                             .K = c->K,
@@ -270,8 +276,10 @@ static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_stag
                              .max_plastic = sc->plasticity.max_plastic,
                              .near_reach = sc->plasticity.near_field,
                              .anderson = MC_RUNIN_ANDERSON,
-                             .eps_p0 = c->eps_p,
-                             .peq0 = c->peq,
+                             .state_eps_p = c->eps_p, /* lent: the totals come back in them */
+                             .state_peq = c->peq,
+                             .state_sig_r = c->sig_r,
+                             .work_sig_e = c->s_block,
                              .contact = mc_stage_lube_contact_step,
                              .contact_ctx = lc,
                              .ops = &c->ops,
@@ -280,11 +288,10 @@ static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_stag
     mc_plastic_result pr;
     int rc = mc_plastic_run(&c->g, c->K, c->solver, &pb, r->pressure, r->displacement, r->gap,
                             &r->contact, &pr, err);
+    /* eps_p, peq and sig_r are the state's own arrays (lent); after an error other than
+     * MC_NOT_CONVERGED they are undefined, and the running-in ends without writing them (its
+     * checkpoint holds the state of the last step done) */
     if (rc == MC_OK || rc == MC_NOT_CONVERGED) {
-        const size_t nv6 = 6 * (size_t)c->nvol;
-        memcpy(c->eps_p, pr.eps_p, nv6 * sizeof *c->eps_p);
-        memcpy(c->peq, pr.peq, (size_t)c->nvol * sizeof *c->peq);
-        memcpy(c->sig_r, pr.sig_r, nv6 * sizeof *c->sig_r);
         memcpy(c->u_r, pr.u_r, c->n * sizeof *c->u_r);
         if (pr.steps_done > 0)
             *record = pr.steps[pr.steps_done - 1];
@@ -551,14 +558,16 @@ static int setup(runin_ctx *c, mc_error *err)
                        (sc->lubrication.mu_solid > 0 || sc->lubrication.mu_fluid > 0));
         if (rc == MC_OK)
             rc = plan_volume(c, err);
+        if (rc == MC_OK) /* the plastic guard, once the volume is known (pipeline/memguard.h) */
+            rc = mc_memory_check_runin(sc, &c->g, &c->vol, err);
         const size_t nv = (size_t)c->nvol;
         if (rc == MC_OK && (!(c->eps_p = mc_zeros(6 * nv)) || !(c->peq = mc_zeros(nv)) ||
-                            !(c->sig_r = mc_zeros(6 * nv)) || !(c->qx = mc_zeros(c->n))))
+                            !(c->sig_r = mc_zeros(6 * nv)) || !(c->qx = mc_zeros(c->n)) ||
+                            !(c->s_block = mc_zeros(6 * nv))))
             rc = mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory for %ld volume cells",
                          c->nvol);
         for (int q = 0; rc == MC_OK && q < 6; q++)
-            if (!(c->s_full[q] = mc_zeros(nv)))
-                rc = mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory");
+            c->s_full[q] = c->s_block + (size_t)q * nv;
         double *depths = rc == MC_OK ? mc_zeros((size_t)c->vol.nz) : NULL;
         if (rc == MC_OK && !depths)
             rc = mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory");

@@ -47,6 +47,7 @@ typedef struct {
                                     (a window smaller than the grid; NULL when whole) */
     double *qx;                  /* friction traction, ny*nx */
     double *sig_e, *sig_r;       /* 6*nvol, window: elastic and residual stresses */
+    int lent_sig_e, lent_sig_r;  /* 1: the problem's work_sig_e, state_sig_r (not freed here) */
     double *d_eps, *tot;         /* 6*nvol: the step's increment, eps_p + d_eps */
     double *d_new;               /* the increment's update: the same array as tot (tot is
                                     consumed by the residual stress before d_new is written) */
@@ -93,6 +94,10 @@ static void ctx_free(loop_ctx *c)
     mc_anderson_destroy(&c->aa);
     mc_anderson_destroy(&c->aa_outer);
     mc_free(c->w_cell);
+    if (c->lent_sig_e)
+        c->sig_e = NULL;
+    if (c->lent_sig_r)
+        c->sig_r = NULL;
     double *arrays[] = {c->depths, c->s_layer, c->qx,     c->sig_e, c->sig_r, c->d_eps,
                         c->tot,    c->dp,      c->dp_new, c->u_r,   c->u_new, c->h_extra,
                         c->w_val,  c->w_ur};
@@ -177,6 +182,9 @@ static int check_problem(const mc_grid *g, const mc_plastic_problem *pb, mc_erro
         pb->anderson < 0 || pb->anderson > MC_ANDERSON_MAX_DEPTH || pb->near_reach < 0 ||
         pb->near_reach > MC_PLASTIC_NEAR_REACH_MAX)
         return mc_fail(err, MC_ERR_INPUT, "plastic loop: bad iteration control");
+    if (!pb->state_eps_p != !pb->state_peq || (pb->state_eps_p && (pb->eps_p0 || pb->peq0)))
+        return mc_fail(err, MC_ERR_INPUT, "plastic loop: the state lent in place needs both "
+                                          "state_eps_p and state_peq, and no eps_p0 or peq0");
     return MC_OK;
 }
 
@@ -191,10 +199,13 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
     c->ncell = mc_grid_cells(g);
     c->G = pb->E / (2.0 * (1.0 + pb->nu));
     const size_t nv6 = 6 * (size_t)c->nvol;
+    c->lent_sig_e = pb->work_sig_e != NULL; /* lent: written before every read (loop.h) */
+    c->lent_sig_r = pb->state_sig_r != NULL;
     c->whole = pb->volume.i0 == 0 && pb->volume.j0 == 0 && c->nwx == g->nx && c->nwy == g->ny;
     int ok = (c->depths = mc_zeros((size_t)pb->volume.nz)) && (c->qx = mc_zeros(c->ncell)) &&
              (c->whole || (c->s_layer = mc_zeros(6 * c->ncell))) &&
-             (c->sig_e = mc_zeros(nv6)) && (c->sig_r = mc_zeros(nv6)) &&
+             (c->sig_e = pb->work_sig_e ? pb->work_sig_e : mc_zeros(nv6)) &&
+             (c->sig_r = pb->state_sig_r ? pb->state_sig_r : mc_zeros(nv6)) &&
              (c->d_eps = mc_zeros(nv6)) && (c->tot = mc_zeros(nv6)) &&
              (c->dp = mc_zeros((size_t)c->nvol)) &&
              (c->dp_new = mc_zeros((size_t)c->nvol)) &&
@@ -978,19 +989,26 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
     double *save_eps = NULL, *save_peq = NULL, *save_ur = NULL;
     if (rc == MC_OK) {
         res->nvol = c.nvol;
+        if (pb->state_eps_p) { /* lent: the state in place (loop.h) */
+            res->eps_p = pb->state_eps_p;
+            res->peq = pb->state_peq;
+            res->lent |= 1;
+        }
         if (!(res->steps = mc_calloc((size_t)pb->load_steps, sizeof *res->steps)) ||
-            !(res->eps_p = mc_zeros(nv6)) || !(res->peq = mc_zeros((size_t)c.nvol)) ||
+            (!res->eps_p && !(res->eps_p = mc_zeros(nv6))) ||
+            (!res->peq && !(res->peq = mc_zeros((size_t)c.nvol))) ||
             !(res->u_r = mc_zeros(c.ncell)) || !(save_ur = mc_zeros(c.ncell)))
             rc = mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the results");
     }
     c.p_lub = pb->p_lub;
-    if (rc == MC_OK && (pb->eps_p0 || pb->peq0)) { /* the state the steps before left */
+    if (rc == MC_OK && (pb->eps_p0 || pb->peq0 || pb->state_eps_p)) {
+        /* the state the steps before left (copied in, or lent in place) */
         int any = 0;
-        if (pb->eps_p0) {
+        if (pb->eps_p0)
             memcpy(res->eps_p, pb->eps_p0, nv6 * sizeof *res->eps_p);
+        if (pb->eps_p0 || pb->state_eps_p)
             for (size_t i = 0; i < nv6 && !any; i++)
                 any = res->eps_p[i] != 0.0;
-        }
         if (pb->peq0)
             memcpy(res->peq, pb->peq0, (size_t)c.nvol * sizeof *res->peq);
         if (any)
@@ -1063,6 +1081,8 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
         residual_stress(&c, res->eps_p);
         res->sig_r = c.sig_r; /* handed over, not copied: the loop is done with it */
         c.sig_r = NULL;
+        if (c.lent_sig_r)
+            res->lent |= 2;
         res->residual_vm = c.dp_new; /* likewise: a volume array the loop no longer needs */
         c.dp_new = NULL;
         for (long v = 0; v < c.nvol; v++) {
@@ -1090,11 +1110,14 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
 void mc_plastic_result_free(mc_plastic_result *res)
 {
     mc_free(res->steps);
-    mc_free(res->eps_p);
-    mc_free(res->peq);
+    if (!(res->lent & 1)) {
+        mc_free(res->eps_p);
+        mc_free(res->peq);
+    }
     mc_free(res->u_r);
     mc_free(res->residual_vm);
-    mc_free(res->sig_r);
+    if (!(res->lent & 2))
+        mc_free(res->sig_r);
     memset(res, 0, sizeof *res);
 }
 

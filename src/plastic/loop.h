@@ -119,6 +119,17 @@ typedef struct {
      * residual stress of eps_p0 are taken into account from the first contact on. */
     const double *eps_p0;      /* 6 * nvol plastic strain, component-major */
     const double *peq0;        /* nvol accumulated equivalent plastic strain (hardening) */
+    /* the state lent in place (NULL: none; the running-in, which carries it from step to step,
+     * lends its arrays instead of passing eps_p0 / peq0 and copying the result back: no second
+     * copy of the volume state). state_eps_p (6 * nvol) and state_peq (nvol), both or neither,
+     * hold the state before the first step on entry (eps_p0 and peq0 must then be NULL) and the
+     * totals on return: res->eps_p and res->peq are these arrays (res->lent says so;
+     * mc_plastic_result_free leaves them). state_sig_r (6 * nvol, optional) is the loop's
+     * residual stress array and res->sig_r on return (its content on entry is not read);
+     * work_sig_e (6 * nvol, optional) is the loop's elastic stress array (scratch). The same bits
+     * as eps_p0 / peq0 and the loop's own arrays. After an error other than MC_NOT_CONVERGED
+     * their contents are undefined. */
+    double *state_eps_p, *state_peq, *state_sig_r, *work_sig_e;
     /* step (a) by the caller (NULL: mc_contact_solve with the uniform p_lub above); the friction
      * traction then acts where p exceeds the lubricant pressure p_lub lube_shape[i] of the cell,
      * p_lub the one the caller returned (stress/traction.h) */
@@ -179,12 +190,16 @@ typedef struct {
     int converged;              /* every step converged */
     int steps_done;
     mc_plastic_step *steps;     /* load_steps records (owned) */
-    double *eps_p;              /* 6 * nvol plastic strain, component-major (owned) */
-    double *peq;                /* nvol accumulated equivalent plastic strain (owned) */
+    double *eps_p;              /* 6 * nvol plastic strain, component-major (owned unless
+                                   lent) */
+    double *peq;                /* nvol accumulated equivalent plastic strain (owned unless
+                                   lent) */
     double *u_r;                /* ny*nx residual displacement of body 1, m (owned) */
     double *residual_vm;        /* nvol von Mises of the residual stress after unloading (owned) */
     double *sig_r;              /* 6 * nvol residual stress after unloading, Pa, component-major
-                                   (owned) */
+                                   (owned unless lent) */
+    int lent;                   /* bits: 1 eps_p and peq are the problem's state_eps_p and
+                                   state_peq, 2 sig_r is its state_sig_r (not freed here) */
     long nvol;
     long yield_skips;           /* outer iterations where nothing yielded (shortcut taken) */
     double inner_change;        /* largest relative change of the plastic fixed point's last
@@ -217,7 +232,9 @@ void mc_plastic_result_free(mc_plastic_result *res);
  * the dense volume arrays of the loop and the result (264 bytes per volume cell, + 16 with
  * Anderson, + 4 with the near field), the surface arrays, and the arrays that grow with the
  * yielding cells (warm start, Anderson history, near-field lists: 64 + 96 (anderson + 1) + 160
- * bytes per yielding cell) counted for `yielding` cells. A split load step's copy of the state
+ * bytes per yielding cell) counted for `yielding` cells. The arrays a problem lends
+ * (state_eps_p, state_peq, state_sig_r, work_sig_e: 152 bytes per volume cell) are counted too:
+ * the caller holds them instead of the loop. A split load step's copy of the state
  * (56 bytes per volume cell, taken only when a step diverges) is not counted. */
 double mc_plastic_loop_bytes(const mc_grid *g, const mc_eigen_volume *v, int anderson,
                              int near_reach, double yielding);
