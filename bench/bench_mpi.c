@@ -234,7 +234,7 @@ static void memory_per_rank(vf_ctx *ctx, const char *self, const char *mpi, int 
             break;
         double mib[4] = {NAN, NAN, NAN, NAN};
         for (int P = 0; P <= 3; P++) {
-            char out[300], log[300], np[8];
+            char out[300], log[300], np[16];
             snprintf(out, sizeof out, "%s/out%d_%d", dir, N, P);
             snprintf(log, sizeof log, "%s/log%d_%d", dir, N, P);
             snprintf(np, sizeof np, "%d", P);
