@@ -6,8 +6,8 @@
  * the communication seconds it prints ("MPI: ... spent X s communicating"). Then the flank model:
  * the time and memory of the paper's 10 mm x 1 mm gear flank at 0.8 um on N machines of this
  * size, from the measured per-cell cost, the all-to-all volume of FFTW-MPI's transposes and a
- * stated network. The elastic-plastic step is refused with P > 1 (not distributed yet) and not
- * measured. */
+ * stated network. The elastic-plastic stage runs replicated with P > 1 (its volume whole on every
+ * rank: no speed-up to measure) and is not measured. */
 #include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
@@ -353,8 +353,9 @@ int mc_bench_mpi(vf_ctx *ctx, int quick)
             "coarse start's restriction), the preconditioner's transform, which bound the "
             "speed-up. The peak memory is rank 0's. On a 2-core machine shared with other jobs "
             "two processes compete with them for the cores: read the ratios with the load in "
-            "mind (the CPU seconds are the steadier figure). The elastic-plastic step is "
-            "refused with P > 1 (not distributed yet) and not measured.\n\n"
+            "mind (the CPU seconds are the steadier figure). The elastic-plastic stage runs "
+            "replicated with P > 1 (its volume whole on every rank: no speed-up) and is not "
+            "measured.\n\n"
             "| run | wall (s) | CPU (s) | total (s) | contact (s) | communication (s) | "
             "communication / total | contact speed-up vs 1 process | peak MiB | iterations |\n"
             "|---|---|---|---|---|---|---|---|---|---|\n",
