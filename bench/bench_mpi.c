@@ -202,6 +202,23 @@ static void flank_model(vf_ctx *ctx, const mpi_run *one, int N)
             9.0 * 8 * n * FLANK_LAYERS / GiB);
 }
 
+/* One run of the Hertz case ini into out, its stderr and stdout to log: the serial program self
+ * (ranks 0) or mpirun -np ranks of the MPI program mpi, one thread per process; waiting ranks yield
+ * their core (the machine is shared, README). Wall seconds as mc_bench_run_child_to. */
+static double run_hertz(const char *self, const char *mpi, const char *ini, const char *out,
+                        const char *log, int ranks)
+{
+    char np[16];
+    snprintf(np, sizeof np, "%d", ranks);
+    const char *serial[] = {self, "run", ini, "--out", out, "--quiet",
+                            "--set", "solver.threads=1", NULL};
+    const char *par[] = {"mpirun", "--allow-run-as-root", "--oversubscribe",
+                         "--mca", "mpi_yield_when_idle", "1", "-np", np,
+                         mpi, "run", ini, "--out", out, "--quiet",
+                         "--set", "solver.threads=1", NULL};
+    return mc_bench_run_child_to(ranks ? par : serial, log);
+}
+
 /* ---- memory per rank -------------------------------------------------------------------------
  * The peak resident memory (VmHWM) of rank 0 (it holds the most rows: FFTW-MPI's blocks are
  * ceil(ny/P)) of the Hertz case at 1024^2 and 2048^2 (512^2 and 1024^2 quick), P = 1, 2, 3, one
@@ -234,17 +251,10 @@ static void memory_per_rank(vf_ctx *ctx, const char *self, const char *mpi, int 
             break;
         double mib[4] = {NAN, NAN, NAN, NAN};
         for (int P = 0; P <= 3; P++) {
-            char out[300], log[300], np[16];
+            char out[300], log[300];
             snprintf(out, sizeof out, "%s/out%d_%d", dir, N, P);
             snprintf(log, sizeof log, "%s/log%d_%d", dir, N, P);
-            snprintf(np, sizeof np, "%d", P);
-            const char *serial[] = {self, "run", ini, "--out", out, "--quiet",
-                                    "--set", "solver.threads=1", NULL};
-            const char *par[] = {"mpirun", "--allow-run-as-root", "--oversubscribe",
-                                 "--mca", "mpi_yield_when_idle", "1", "-np", np,
-                                 mpi, "run", ini, "--out", out, "--quiet",
-                                 "--set", "solver.threads=1", NULL};
-            if (mc_bench_run_child_to(P ? par : serial, log) > 0)
+            if (run_hertz(self, mpi, ini, out, log, P) > 0)
                 mib[P] = number_after(log, "peak memory ");
             mc_bench_remove_tree(out);
         }
@@ -298,19 +308,11 @@ int mc_bench_mpi(vf_ctx *ctx, int quick)
         mpi_run *r = &runs[k];
         r->wall = INFINITY;
         for (int round = 0; round < rounds; round++) {
-            char out[1300], log[1300], js[1400], np[8];
+            char out[1300], log[1300], js[1400];
             snprintf(out, sizeof out, "%s/out%d_%d", dir, k, round);
             snprintf(log, sizeof log, "%s/log%d_%d", dir, k, round);
-            snprintf(np, sizeof np, "%d", r->ranks);
-            const char *serial[] = {self, "run", ini, "--out", out, "--quiet",
-                                    "--set", "solver.threads=1", NULL};
-            /* waiting ranks yield their core: the machine is shared (README) */
-            const char *par[] = {"mpirun", "--allow-run-as-root", "--oversubscribe",
-                                 "--mca", "mpi_yield_when_idle", "1", "-np", np,
-                                 mpi, "run", ini, "--out", out, "--quiet",
-                                 "--set", "solver.threads=1", NULL};
             const double cpu0 = children_cpu();
-            const double t = mc_bench_run_child_to(r->ranks ? par : serial, log);
+            const double t = run_hertz(self, mpi, ini, out, log, r->ranks);
             const double cpu = children_cpu() - cpu0;
             snprintf(js, sizeof js, "%s/summary.json", out);
             if (!(t > 0)) {
