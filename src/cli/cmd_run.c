@@ -387,7 +387,7 @@ int mc_cli_run(int argc, char **argv)
     char ckdir[MC_PATH_MAX + 16];
     snprintf(ckdir, sizeof ckdir, "%s/checkpoint", dir);
     if (scene.runin.enabled) {
-        if (!resume || mc_checkpoint_exists(ckdir))
+        if (!resume || (root && mc_checkpoint_exists(ckdir))) /* DIR is rank 0's */
             print_stage(&scene, "contact");
         rc = run_runin(&scene, case_path, dir, ckdir, sets, nsets, quiet, resume, &od, &res,
                        &err);

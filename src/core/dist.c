@@ -2,8 +2,11 @@
 #include "core/dist.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <string.h>
 #include <time.h>
+
+#include "core/alloc.h"
 
 static double comm_seconds, comm_cpu;
 
@@ -78,6 +81,54 @@ void mc_dist_bcast(double *v, size_t n, int root)
     for (size_t at = 0; at < n; at += chunk)
         MPI_Bcast(v + at, (int)(n - at < chunk ? n - at : chunk), MPI_DOUBLE, root, run_comm);
     mc_dist_comm_end(t0);
+}
+
+int mc_dist_share_read(int rc, unsigned char **buf, size_t *len, const char *path, mc_error *err)
+{
+    if (run_comm == MPI_COMM_NULL)
+        return rc;
+    const mc_dist_mark t0 = mc_dist_comm_begin();
+    const int rank = mc_dist_rank();
+    MPI_Bcast(&rc, 1, MPI_INT, 0, run_comm);
+    if (rc != MC_OK) { /* rank 0's message, so that every rank reports what rank 0 reports */
+        char msg[MC_ERROR_MSG_MAX] = "";
+        if (rank == 0 && err)
+            memcpy(msg, err->msg, sizeof msg);
+        MPI_Bcast(msg, (int)sizeof msg, MPI_CHAR, 0, run_comm);
+        mc_dist_comm_end(t0);
+        msg[sizeof msg - 1] = '\0';
+        if (rank == 0)
+            return rc;
+        *buf = NULL;
+        *len = 0;
+        return mc_fail(err, (mc_status)rc, "%s", msg);
+    }
+    unsigned long long n = rank == 0 ? (unsigned long long)*len : 0;
+    MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, run_comm);
+    unsigned char *b = NULL;
+    int short_of = 0; /* the highest rank without memory for its copy (rank 0 has its own) */
+    if (rank == 0)
+        b = *buf;
+    else if (n >= (unsigned long long)SIZE_MAX || !(b = mc_malloc((size_t)n + 1)))
+        short_of = rank;
+    MPI_Allreduce(MPI_IN_PLACE, &short_of, 1, MPI_INT, MPI_MAX, run_comm);
+    if (short_of) {
+        mc_free(b);
+        *buf = NULL;
+        *len = 0;
+        mc_dist_comm_end(t0);
+        return mc_fail(err, MC_ERR_NOMEM, "%s: no memory on rank %d for a copy of its %llu bytes",
+                       path ? path : "an input file", short_of, n);
+    }
+    const size_t chunk = (size_t)1 << 30; /* MPI counts are int */
+    for (size_t at = 0; at < (size_t)n; at += chunk)
+        MPI_Bcast(b + at, (int)((size_t)n - at < chunk ? (size_t)n - at : chunk), MPI_BYTE, 0,
+                  run_comm);
+    mc_dist_comm_end(t0);
+    b[n] = '\0';
+    *buf = b;
+    *len = (size_t)n;
+    return MC_OK;
 }
 
 void mc_dist_max(double *v, int n)
@@ -193,6 +244,14 @@ void mc_dist_bcast(double *v, size_t n, int root)
     (void)v;
     (void)n;
     (void)root;
+}
+int mc_dist_share_read(int rc, unsigned char **buf, size_t *len, const char *path, mc_error *err)
+{
+    (void)buf;
+    (void)len;
+    (void)path;
+    (void)err;
+    return rc;
 }
 void mc_dist_max(double *v, int n)
 {

@@ -16,6 +16,8 @@
 
 #include <stddef.h>
 
+#include "core/error.h"
+
 #ifdef MC_MPI
 #include <mpi.h>
 
@@ -35,6 +37,17 @@ int mc_dist_rank(void);
 /* Rank 0's v on every rank (v unchanged without a communicator): a decision only rank 0 can
  * make (it writes the files), shared so that all ranks go on alike. Collective. */
 int mc_dist_root_int(int v);
+
+/* Rank 0's read of one input file, shared with every rank (the inputs of a run are read on rank
+ * 0 alone, README "Running on a cluster"; io/file.h, pipeline/checkpoint.c). Collective. Rank 0
+ * passes the status rc of its read and, when rc is MC_OK, the bytes it read (*buf mc_malloc'ed,
+ * *len bytes followed by a NUL); the other ranks' rc, *buf and *len are not read. On return every
+ * rank holds rank 0's status: on failure rank 0's message in *err (*buf NULL, *len 0), on
+ * success a NUL-terminated copy of the bytes in its own mc_malloc'ed *buf. A rank that cannot
+ * allocate its copy makes every rank fail alike (MC_ERR_NOMEM naming path, the rank and the
+ * size; rank 0's buffer freed), so no rank goes on alone. Without a communicator: rc, nothing
+ * touched. */
+int mc_dist_share_read(int rc, unsigned char **buf, size_t *len, const char *path, mc_error *err);
 
 /* The largest v over the ranks (v without a communicator): a status every rank must share before
  * the next collective step. Collective. */

@@ -8,10 +8,12 @@
 #include <sys/stat.h>
 
 #include "core/alloc.h"
+#include "core/dist.h"
 #include "core/fileguard.h"
 
-int mc_io_read_limited(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
-                         size_t *len, mc_error *err)
+/* This process's read (the serial program's, and rank 0's under mpirun). */
+static int read_limited(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
+                        size_t *len, mc_error *err)
 {
     *buf = NULL;
     *len = 0;
@@ -73,13 +75,33 @@ int mc_io_read_limited(const char *path, size_t max_bytes, const char *what, uns
     return MC_OK;
 }
 
-int mc_io_read_data(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
-                      size_t *len, mc_error *err)
+/* The guard and the read, on this process. */
+static int read_data(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
+                     size_t *len, mc_error *err)
+{
+    int st = mc_file_guard(path, max_bytes, what, err);
+    return st != MC_OK ? st : read_limited(path, max_bytes, what, buf, len, err);
+}
+
+/* Under mpirun rank 0 alone opens the file; its bytes, or its error, go to every rank
+ * (core/dist.h): the same input on all ranks, and one failure reported alike by all. Serially
+ * (and in the serial program, where mc_dist_rank() is 0) the read is this process's own. */
+int mc_io_read_limited(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
+                       size_t *len, mc_error *err)
 {
     *buf = NULL;
     *len = 0;
-    int st = mc_file_guard(path, max_bytes, what, err);
-    return st != MC_OK ? st : mc_io_read_limited(path, max_bytes, what, buf, len, err);
+    int st = mc_dist_rank() == 0 ? read_limited(path, max_bytes, what, buf, len, err) : MC_OK;
+    return mc_dist_share_read(st, buf, len, path, err);
+}
+
+int mc_io_read_data(const char *path, size_t max_bytes, const char *what, unsigned char **buf,
+                    size_t *len, mc_error *err)
+{
+    *buf = NULL;
+    *len = 0;
+    int st = mc_dist_rank() == 0 ? read_data(path, max_bytes, what, buf, len, err) : MC_OK;
+    return mc_dist_share_read(st, buf, len, path, err);
 }
 
 int mc_io_read_file(const char *path, unsigned char **buf, size_t *len, mc_error *err)

@@ -1,5 +1,12 @@
 /* file.h - whole files into memory: the one file reader of the library (case files, height
- * maps, .npy, measured surfaces). */
+ * maps, .npy, measured surfaces, hardening tables).
+ *
+ * Under mpirun (bin/microcontact-mpi, a communicator set in core/dist.h) these calls are
+ * collective: rank 0 alone opens and reads the file and every rank receives its bytes, or its
+ * error with rank 0's message (mc_dist_share_read), so the inputs need not be visible to the
+ * other ranks and every rank fails alike. Every rank must make the same calls in the same order
+ * (the run's stages are replicated, so they do). Without a communicator the read is the
+ * process's own. */
 #ifndef MC_FILE_H
 #define MC_FILE_H
 

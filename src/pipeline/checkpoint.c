@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/alloc.h"
+#include "core/dist.h"
 #include "core/fileguard.h"
 
 #define MAGIC "MCRUNIN"  /* 8 bytes with its NUL */
@@ -205,15 +206,12 @@ static const char *nonfinite_field(const mc_checkpoint *c, char *buf, size_t len
     return NULL;
 }
 
-int mc_checkpoint_read(const char *dir, mc_checkpoint *c, mc_error *err)
+/* The checkpoint file's bytes on this process (*buf mc_malloc'ed, *len bytes and a NUL). */
+static int read_bytes(const char *path, unsigned char **bufp, size_t *lenp, mc_error *err)
 {
-    memset(c, 0, sizeof *c);
-    char path[PATH_MAX_CK];
-    int rc = path_of(path, dir, MC_CHECKPOINT_FILE, err);
-    if (rc != MC_OK)
-        return rc;
     /* a device or FIFO in its place would be read forever or block the open */
-    if ((rc = mc_file_guard(path, MC_FILE_MAX_CHECKPOINT, "a checkpoint", err)) != MC_OK)
+    int rc = mc_file_guard(path, MC_FILE_MAX_CHECKPOINT, "a checkpoint", err);
+    if (rc != MC_OK)
         return rc;
     FILE *f = fopen(path, "rb");
     if (!f)
@@ -238,6 +236,27 @@ int mc_checkpoint_read(const char *dir, mc_checkpoint *c, mc_error *err)
         mc_free(buf);
         return corrupt(path, "it cannot be read", err);
     }
+    buf[size] = '\0';
+    *bufp = buf;
+    *lenp = (size_t)size;
+    return MC_OK;
+}
+
+int mc_checkpoint_read(const char *dir, mc_checkpoint *c, mc_error *err)
+{
+    memset(c, 0, sizeof *c);
+    char path[PATH_MAX_CK];
+    int rc = path_of(path, dir, MC_CHECKPOINT_FILE, err);
+    if (rc != MC_OK)
+        return rc;
+    /* under mpirun rank 0 alone reads it and every rank receives its bytes or its error
+     * (core/dist.h): DIR/checkpoint/ need only be visible to rank 0, which holds DIR */
+    unsigned char *buf = NULL;
+    size_t len = 0;
+    rc = mc_dist_rank() == 0 ? read_bytes(path, &buf, &len, err) : MC_OK;
+    if ((rc = mc_dist_share_read(rc, &buf, &len, path, err)) != MC_OK)
+        return rc;
+    const long size = (long)len;
     header want, got;
     make_header(&want);
     uint64_t sum;

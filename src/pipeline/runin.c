@@ -662,8 +662,8 @@ static int restore(runin_ctx *c, int *start, mc_plastic_step *records, int *nrec
 {
     const char *dir = c->opt->checkpoint_dir;
     mc_checkpoint ck;
-    /* every rank reads the same file (DIR/checkpoint on a file system they all see: the one
-     * rank 0 wrote it to); the worst status for all */
+    /* rank 0 reads the file and every rank receives its bytes or its error (checkpoint.c,
+     * core/dist.h: DIR/checkpoint need only be visible to rank 0); the worst status for all */
     int rc = agree(mc_checkpoint_read(dir, &ck, err), "reading the checkpoint", err);
     if (rc != MC_OK) {
         mc_checkpoint_free(&ck); /* (nothing held when this rank's read failed) */

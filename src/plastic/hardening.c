@@ -9,6 +9,7 @@
 
 #include "core/alloc.h"
 #include "core/fileguard.h"
+#include "io/file.h"
 
 #define SWIFT_MICRO 1e6     /* p in micro-strain in the Swift law (theory.md §7.2) */
 #define LINE_MAX_CHARS 1024 /* longest line of a table file */
@@ -273,13 +274,23 @@ int mc_hardening_table_read(const char *path, double stress_unit, mc_hardening *
         return mc_fail(err, MC_ERR_INPUT,
                        "%s: stress unit = %g Pa must be finite and > 0 (1 for Pa, 1e6 for MPa)",
                        path, stress_unit);
-    int guard = mc_file_guard(path, MC_FILE_MAX_TABLE, "a hardening table", err);
-    if (guard != MC_OK)
-        return guard;
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return mc_fail(err, MC_ERR_IO, "%s: cannot open hardening table: %s", path,
+    /* through the one file reader (io/file.h): the guard, and under mpirun rank 0's read shared
+     * with every rank; the rows are then scanned from memory */
+    unsigned char *text = NULL;
+    size_t len = 0;
+    int rd = mc_io_read_data(path, MC_FILE_MAX_TABLE, "a hardening table", &text, &len, err);
+    if (rd != MC_OK)
+        return rd;
+    if (len == 0) { /* fmemopen may refuse an empty buffer */
+        mc_free(text);
+        return mc_fail(err, MC_ERR_INPUT, "%s: no data rows; need 'eps_p, sigma_y' rows", path);
+    }
+    FILE *f = fmemopen(text, len, "r");
+    if (!f) {
+        mc_free(text);
+        return mc_fail(err, MC_ERR_NOMEM, "%s: cannot scan the hardening table: %s", path,
                        strerror(errno));
+    }
     size_t n = 0;
     double *e = NULL, *s = NULL;
     long *lines = NULL;
@@ -298,6 +309,7 @@ int mc_hardening_table_read(const char *path, double stress_unit, mc_hardening *
         rc = scan_rows(f, path, stress_unit, e, s, lines, n, &n, err);
     }
     fclose(f);
+    mc_free(text);
     if (rc == MC_OK && check_table(e, s, n, lines, path, err))
         rc = MC_ERR_INPUT;
     mc_free(lines);
