@@ -20,6 +20,8 @@
 #  3. what is not distributed yet is refused with P > 1 (exit 2, the key named, no directory);
 #  4. a grid the memory guard refuses serially under a limit runs with 2 and 3 processes under
 #     the same per-process limit, gives the serial answer, and stays within the guard's figure.
+#  5. the inputs are read on rank 0 alone (strace: no other rank opens the case, a surface, a data
+#     file or the checkpoint), and an input that cannot be read fails as the serial run does.
 #   tests/cli/mpi.sh PROGRAM MPI_PROGRAM MPI_OPERATOR_TEST NPY_COMPARE
 set -u
 PROG=$1 MPROG=$2 OPTEST=$3 CMP=$4
@@ -330,6 +332,147 @@ elif grep -q "only 'run' is distributed" "$T/verify.log"; then
 else
     bad "verify with 2 processes: no message"; cat "$T/verify.log"
 fi
+
+# ---- 5. the inputs read on rank 0 alone ------------------------------------------------------
+# Under mpirun rank 0 alone opens each input and every rank receives its bytes, or its error
+# (io/file.c, pipeline/checkpoint.c over mc_dist_share_read of core/dist.h): the case file (a
+# pipe too), the surfaces, the data files (hardening tables, pressure maps), the checkpoint on
+# --resume. An input only rank 0 can see cannot be staged on one machine; instead each rank runs
+# under strace and its file system calls (open, stat, access, ...: strace's %file class) are
+# searched for the inputs' names: rank 0 must name each, no other rank any (nor the output
+# directory, rank 0's). And an input that cannot be read fails on every rank alike: the serial
+# program's exit code and its message naming the file, said once (rank 0 speaks), never a hang
+# (a rank that went on alone would wait for ever in the next collective: timeout).
+TAB="--set mesh.nx=24 --set mesh.ny=24 --set plasticity.hardening=table
+     --set plasticity.yield_stress= --set plasticity.tangent_modulus="
+if command -v strace > /dev/null 2>&1; then
+    traced() { # NAME NP FILES CASE ARG...: mpirun -np NP under strace, rank r's calls in $T/NAME.tr.r
+        name=$1 np=$2 files=$3; shift 3
+        rm -f "$T/$name.tr."*
+        if ! timeout -s KILL 180 $MPIRUN -np "$np" sh -c \
+            'exec strace -qq -f -e trace=%file -o "$0.$OMPI_COMM_WORLD_RANK" "$@"' "$T/$name.tr" \
+            "$MPROG" run "$@" > "$T/$name.log" 2>&1; then
+            bad "inputs ($name, $np processes): the run failed"; cat "$T/$name.log"; return 1
+        fi
+        why=""
+        for r in $(seq 0 $((np - 1))); do
+            [ -s "$T/$name.tr.$r" ] || { why="$why no trace of rank $r;"; continue; }
+            for f in $files; do # (execve's arguments name them too: not a read)
+                k=$(grep -v ' execve(' "$T/$name.tr.$r" | grep -cF -- "$f")
+                if [ "$r" -eq 0 ] && [ "$k" -eq 0 ]; then why="$why rank 0 never opened $f;"; fi
+                if [ "$r" -gt 0 ] && [ "$k" -gt 0 ]; then
+                    why="$why rank $r named $f $k times: $(grep -v ' execve(' "$T/$name.tr.$r" | grep -m1 -F -- "$f");"
+                fi
+            done
+        done
+        if [ -z "$why" ]; then
+            ok "inputs ($name, $np processes): rank 0 alone opened $(echo $files | sed 's|[^ ]*/||g')"
+        else
+            bad "inputs ($name, $np processes):$why"; return 1
+        fi
+    }
+    samebits() { # NAME A B: pressure.npy of two runs, the same bits
+        if cmp -s "$2/pressure.npy" "$3/pressure.npy"; then
+            ok "inputs ($1): pressure.npy the same bits as $(basename "$2")"
+        else
+            bad "inputs ($1): pressure.npy differs from $(basename "$2")"
+        fi
+    }
+    # a measured X3P surface (libzip over rank 0's bytes), with 2 and 3 processes
+    "$PROG" run cases/measured.ini --out "$T/in-x3p-s" --quiet > "$T/in-x3p-s.log" 2>&1 ||
+        bad "inputs: the serial measured run failed"
+    for np in 2 3; do
+        traced in-x3p-$np $np "cases/measured.ini cases/data/ground_sample.x3p $T/in-x3p-$np" \
+            cases/measured.ini --out "$T/in-x3p-$np" --quiet || continue
+        if r=$("$CMP" "$T/in-x3p-s/pressure.npy" "$T/in-x3p-$np/pressure.npy" "$TOL"); then
+            ok "inputs (x3p, $np processes): pressure.npy against serial: $r"
+        else
+            bad "inputs (x3p, $np processes): pressure.npy against serial: $r"
+        fi
+    done
+    samebits x3p "$T/in-x3p-2" "$T/in-x3p-3"
+    # a prescribed pressure map (text), and a hardening table of the elastic-plastic stage
+    traced in-map 2 "cases/prescribed_pressure.ini cases/data/hertz_pressure.txt" \
+        cases/prescribed_pressure.ini --out "$T/in-map" --quiet --set stress.layers=2
+    printf 'eps_p, sigma_y_MPa\n0, 1000\n0.05, 1400\n0.5, 1600\n' > "$T/flow.csv"
+    "$PROG" run cases/elastic_plastic.ini --out "$T/in-tab-s" --quiet $TAB \
+        --set plasticity.table="$T/flow.csv" > "$T/in-tab-s.log" 2>&1 || bad "inputs: the serial table run failed"
+    for np in 2 3; do
+        traced in-tab-$np $np "cases/elastic_plastic.ini $T/flow.csv" cases/elastic_plastic.ini \
+            --out "$T/in-tab-$np" --quiet $TAB --set plasticity.table="$T/flow.csv" || continue
+        if r=$("$CMP" "$T/in-tab-s/plastic_strain.npy" "$T/in-tab-$np/plastic_strain.npy" "$TOL"); then
+            ok "inputs (table, $np processes): plastic_strain.npy against serial: $r"
+        else
+            bad "inputs (table, $np processes): plastic_strain.npy against serial: $r"
+        fi
+    done
+    samebits table "$T/in-tab-2" "$T/in-tab-3"
+    # the case file through a pipe: mpirun hands its standard input to rank 0 alone
+    "$PROG" run cases/hertz_point.ini --out "$T/in-pipe-s" --quiet > /dev/null 2>&1
+    for np in 2 3; do
+        if timeout -s KILL 120 $MPIRUN -np $np "$MPROG" run /dev/stdin --out "$T/in-pipe-$np" --quiet \
+            < cases/hertz_point.ini > "$T/in-pipe-$np.log" 2>&1; then
+            if r=$("$CMP" "$T/in-pipe-s/pressure.npy" "$T/in-pipe-$np/pressure.npy" "$TOL"); then
+                ok "inputs (the case on standard input, $np processes): pressure.npy against serial: $r"
+            else
+                bad "inputs (the case on standard input, $np processes): $r"
+            fi
+        else
+            bad "inputs (the case on standard input, $np processes): exit $?"; cat "$T/in-pipe-$np.log"
+        fi
+    done
+    # the checkpoint on --resume: a serial running-in stopped after its first checkpoint, resumed
+    # with 2 processes (only rank 0 sees DIR/checkpoint)
+    RI="cases/default.ini --set mesh.nx=16 --set mesh.ny=16"
+    "$PROG" run $RI --out "$T/in-ck" > "$T/in-ck-s.log" 2>&1 &
+    bg=$! n=0
+    while [ $n -lt 3000 ] && [ ! -f "$T/in-ck/checkpoint/state.bin" ] && kill -0 $bg 2> /dev/null; do
+        sleep 0.01; n=$((n + 1))
+    done
+    kill -TERM $bg 2> /dev/null; { wait $bg; } 2> /dev/null
+    if [ ! -f "$T/in-ck/checkpoint/state.bin" ] || [ -e "$T/in-ck/summary.json" ]; then
+        bad "inputs (checkpoint): the serial running-in left no checkpoint"; cat "$T/in-ck-s.log"
+    elif traced in-ck 2 "cases/default.ini $T/in-ck/checkpoint/state.bin $T/in-ck" $RI \
+        --out "$T/in-ck" --quiet --resume; then
+        from=$(jget "$T/in-ck/summary.json" runin resumed_from)
+        if [ "${from:-0}" -gt 0 ]; then
+            ok "inputs (checkpoint): resumed from step $from with 2 processes"
+        else
+            bad "inputs (checkpoint): resumed_from '$from'"
+        fi
+    fi
+else
+    echo "SKIP inputs read on rank 0: strace is not installed (make deps installs it)"
+fi
+# inputs that cannot be read: the serial program's exit code and message (the microcontact lines
+# of stderr; mpirun adds its own), once, within the timeout, and no output directory
+printf 'eps_p, sigma_y\n0, 1000\n0.1, 0x10\n' > "$T/bad.csv"
+mkdir -p "$T/a_dir.x3p"
+unreadable() { # NAME CASE ARG...
+    name=$1; shift
+    "$PROG" run "$@" --out "$T/un-$name-s" > /dev/null 2> "$T/un-$name-s.err"
+    want=$?
+    grep '^microcontact' "$T/un-$name-s.err" > "$T/un-$name-s.msg"
+    for np in 2 3; do
+        timeout -s KILL 120 $MPIRUN -np $np "$MPROG" run "$@" --out "$T/un-$name-$np" \
+            > /dev/null 2> "$T/un-$name-$np.err"
+        rc=$?
+        grep '^microcontact' "$T/un-$name-$np.err" > "$T/un-$name-$np.msg"
+        if [ $want -ne 0 ] && [ $rc -eq $want ] && [ -s "$T/un-$name-s.msg" ] &&
+            cmp -s "$T/un-$name-s.msg" "$T/un-$name-$np.msg" && [ ! -e "$T/un-$name-$np" ] &&
+            [ "$(grep -c error "$T/un-$name-$np.msg")" -eq 1 ]; then
+            ok "unreadable input ($name, $np processes): exit $rc as serial: $(cat "$T/un-$name-$np.msg")"
+        else
+            bad "unreadable input ($name, $np processes): exit $rc (serial $want), the messages:"
+            cat "$T/un-$name-s.msg" "$T/un-$name-$np.err"
+        fi
+    done
+}
+unreadable case "$T/no_such_case.ini"
+unreadable surface cases/measured.ini --set roughness.file="$T/no_such_surface.x3p"
+unreadable directory cases/measured.ini --set roughness.file="$T/a_dir.x3p"
+unreadable table cases/elastic_plastic.ini $TAB --set plasticity.table="$T/bad.csv"
+unreadable map cases/prescribed_pressure.ini --set load.pressure_file="$T/no_such_map.txt"
 
 echo "mpi: $pass passed, $fail failed"
 [ $fail -eq 0 ]
