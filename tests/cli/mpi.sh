@@ -1,7 +1,9 @@
 #!/bin/sh
 # The MPI build (bin/microcontact-mpi, README "Running on a cluster") under mpirun:
 #  1. the distributed elastic operator against the direct sum and the serial fft operator, with
-#     1, 2, 3 and 4 processes, and the same bits (hashes) for every process count;
+#     1, 2, 3 and 4 processes, and the same bits (hashes) for every process count (the same
+#     program checks the shared reads of io/file.h: rank 0's bytes, its error, a rank short of
+#     memory);
 #  2. whole runs with 1, 2 and 3 processes (3: an uneven split) against the serial program: the
 #     same files, pressure, gap, displacement and the stresses to <= 1e-12 relative (the one-line
 #     transforms of operator/dfft.c and the row-wise sums differ from the serial program's by

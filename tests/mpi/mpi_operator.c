@@ -7,17 +7,24 @@
  * operator, for the even Love kernel (the real-spectrum path) and an odd kernel (the complex
  * path). Rank 0 prints one line per check and, per grid and kernel, a hash of the result's bits:
  * the script requires the same hashes for every process count (the same bits on any P).
+ * And the inputs read on rank 0 alone (io/file.h over mc_dist_share_read of core/dist.h): a
+ * file that only rank 0 writes reaches every rank byte for byte, a missing one fails on every
+ * rank with rank 0's message, a rank without memory for its copy fails every rank alike.
  * Closes with "N passed, N failed"; exit 1 on a failure. */
+#include <errno.h>
 #include <fftw3-mpi.h>
 #include <math.h>
 #include <mpi.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core/alloc.h"
 #include "core/dist.h"
 #include "core/threads.h"
+#include "io/file.h"
 #include "operator/operator.h"
 
 /* Round-off tier: an FFT of length m carries a relative error of a few eps log2 m against the
@@ -138,6 +145,70 @@ static void one_grid(const char *name, mc_grid g)
     mc_free(ur);
 }
 
+/* A check that holds on every rank (reported by rank 0). */
+static void check_all(const char *what, int ok)
+{
+    MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    ok ? passed++ : failed++;
+    if (rank == 0)
+        printf("%s %s\n", ok ? "PASS" : "FAIL", what);
+}
+
+/* The inputs read on rank 0 alone: the file exists for rank 0 only in the sense that only rank 0
+ * writes it and opens it; the others receive its bytes. */
+static void shared_reads(int size)
+{
+    char path[64] = "/tmp/mc_shared_read_XXXXXX";
+    enum { N = 3001 };
+    unsigned char want[N];
+    for (int k = 0; k < N; k++)
+        want[k] = (unsigned char)(k * 7 + k / 13); /* NUL bytes among them */
+    int made = 1;
+    if (rank == 0) {
+        int fd = mkstemp(path);
+        made = fd >= 0 && write(fd, want, N) == N;
+        if (fd >= 0)
+            close(fd);
+    }
+    MPI_Bcast(&made, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    MPI_Bcast(path, sizeof path, MPI_CHAR, 0, MPI_COMM_WORLD); /* the same call on every rank */
+    if (!made) {
+        check_all("shared read: rank 0 could not write its file", 0);
+        return;
+    }
+    unsigned char *buf = NULL;
+    size_t len = 0;
+    mc_error err = {0};
+    int rc = mc_io_read_data(path, 1 << 20, "a test file", &buf, &len, &err);
+    check_all("shared read: every rank holds rank 0's bytes and their NUL",
+              rc == MC_OK && len == N && memcmp(buf, want, N) == 0 && buf[N] == 0);
+    mc_free(buf);
+
+    /* a file that does not exist: every rank fails with rank 0's status and message */
+    char none[80], expect[MC_ERROR_MSG_MAX];
+    snprintf(none, sizeof none, "%s.none", path);
+    snprintf(expect, sizeof expect, "%s: cannot open: %s", none, strerror(ENOENT));
+    rc = mc_io_read_file(none, &buf, &len, &err);
+    check_all("shared read: a missing file fails on every rank with rank 0's message",
+              rc == MC_ERR_IO && err.code == MC_ERR_IO && buf == NULL && len == 0 &&
+                  strcmp(err.msg, expect) == 0);
+
+    /* the last rank cannot allocate its copy: every rank fails alike, naming that rank */
+    if (size > 1) {
+        if (rank == size - 1)
+            mc_alloc_fail_at(1); /* its copy is its first allocation in the call */
+        rc = mc_io_read_data(path, 1 << 20, "a test file", &buf, &len, &err);
+        char rk[32];
+        snprintf(rk, sizeof rk, "no memory on rank %d", size - 1);
+        check_all("shared read: a rank without memory for its copy fails every rank",
+                  rc == MC_ERR_NOMEM && buf == NULL && len == 0 && strstr(err.msg, rk) &&
+                      strstr(err.msg, path));
+        mc_alloc_fail_at(0);
+    }
+    if (rank == 0)
+        unlink(path);
+}
+
 int main(int argc, char **argv)
 {
     int provided, size;
@@ -169,6 +240,7 @@ int main(int argc, char **argv)
     };
     for (size_t k = 0; k < sizeof grids / sizeof grids[0]; k++)
         one_grid(grids[k].name, grids[k].g);
+    shared_reads(size);
     if (rank == 0)
         printf("%d passed, %d failed\n", passed, failed);
     mc_dist_set(MPI_COMM_NULL);
