@@ -199,7 +199,7 @@ check-sanitize: deps
 # contract (log build/fuzz/fuzz_<x>.log, crashing input build/fuzz/crashes/). UBSan aborts
 # (-fno-sanitize-recover) so that undefined behaviour counts as a crash.
 FUZZ_TARGETS = $(patsubst tests/fuzz/%.c,build/fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))
-FUZZ_LIB_SRC = src/core/error.c src/core/alloc.c src/core/fileguard.c src/case/units.c src/case/keys.c src/case/reader.c src/case/scene.c src/case/datafiles.c src/case/scene_effect.c src/plastic/hardening.c \
+FUZZ_LIB_SRC = src/core/error.c src/core/alloc.c src/core/fileguard.c src/core/dist.c src/case/units.c src/case/keys.c src/case/reader.c src/case/scene.c src/case/datafiles.c src/case/scene_effect.c src/plastic/hardening.c \
                src/kernels/kernel.c src/core/grid.c src/io/npy.c src/io/heightmap.c \
                src/io/file.c src/io/le.c src/io/npy_header.c src/io/surface_file.c src/io/x3p_read.c src/io/x3p_write.c \
                src/io/sdf.c src/io/gsf.c src/io/xyz.c
