@@ -394,13 +394,13 @@ if command -v strace > /dev/null 2>&1; then
     done
     samebits x3p "$T/in-x3p-2" "$T/in-x3p-3"
     # a prescribed pressure map (text), and a hardening table of the elastic-plastic stage
-    traced in-map 2 "cases/prescribed_pressure.ini cases/data/hertz_pressure.txt" \
+    traced in-map 2 "cases/prescribed_pressure.ini cases/data/hertz_pressure.txt $T/in-map" \
         cases/prescribed_pressure.ini --out "$T/in-map" --quiet --set stress.layers=2
     printf 'eps_p, sigma_y_MPa\n0, 1000\n0.05, 1400\n0.5, 1600\n' > "$T/flow.csv"
     "$PROG" run cases/elastic_plastic.ini --out "$T/in-tab-s" --quiet $TAB \
         --set plasticity.table="$T/flow.csv" > "$T/in-tab-s.log" 2>&1 || bad "inputs: the serial table run failed"
     for np in 2 3; do
-        traced in-tab-$np $np "cases/elastic_plastic.ini $T/flow.csv" cases/elastic_plastic.ini \
+        traced in-tab-$np $np "cases/elastic_plastic.ini $T/flow.csv $T/in-tab-$np" cases/elastic_plastic.ini \
             --out "$T/in-tab-$np" --quiet $TAB --set plasticity.table="$T/flow.csv" || continue
         if r=$("$CMP" "$T/in-tab-s/plastic_strain.npy" "$T/in-tab-$np/plastic_strain.npy" "$TOL"); then
             ok "inputs (table, $np processes): plastic_strain.npy against serial: $r"
