@@ -189,6 +189,12 @@ void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)
     *nr = (int)d->nr;
 }
 
+void mc_dfft_cols(const mc_dfft *d, int *k0, int *nk)
+{
+    *k0 = (int)d->k0;
+    *nk = (int)d->nk;
+}
+
 void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)
 {
     /* all ty rows along x, keeping this rank's columns; then its columns along y */
@@ -251,6 +257,12 @@ void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)
 {
     (void)d;
     *r0 = *nr = 0;
+}
+
+void mc_dfft_cols(const mc_dfft *d, int *k0, int *nk)
+{
+    (void)d;
+    *k0 = *nk = 0;
 }
 
 void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)

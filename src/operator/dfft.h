@@ -62,6 +62,9 @@ void mc_dfft_inverse(mc_dfft *d, double *out, int local);
 /* This rank's data rows r0 .. r0 + nr - 1 (of ny): the rows mc_dfft_forward reads. */
 void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr);
 
+/* This rank's spectrum columns kx = k0 .. k0 + nk - 1 (of tx/2 + 1): its part [kx - k0][ky]. */
+void mc_dfft_cols(const mc_dfft *d, int *k0, int *nk);
+
 /* This rank's part of the spectrum of a whole ty x tx table (wrap-around layout, on every rank)
  * into spec, by the same line transforms; local (no communication): each rank transforms all ty
  * rows once. Not collective. */
