@@ -98,6 +98,14 @@ void mc_kernel_table_free(mc_kernel_table *t); /* frees t->k and sets it NULL; N
 int mc_kernel_table_love(const mc_grid *g, int tx, int ty, double Estar, mc_kernel_table *out,
                          mc_error *err);
 
+/* Rows j0 .. j0 + nj - 1 of mc_kernel_table_love's table into rows (nj * tx values, row j0 + r
+ * at r * tx): the same values, for a rank that transforms only its rows of the table
+ * (operator/dfft.h). Free axes: only the corner lattice's rows those table rows read are
+ * evaluated; a periodic axis: the whole table is built and its rows kept. MC_OK, MC_ERR_INPUT,
+ * MC_ERR_NOMEM, MC_ERR_INTERNAL (rows outside the table). */
+int mc_kernel_table_love_rows(const mc_grid *g, int tx, int ty, double Estar, int j0, int nj,
+                              double *rows, mc_error *err);
+
 /* Images per side along a single periodic axis used by mc_kernel_table_love. The truncation error
  * of the image sum with the continued tail falls like M^-6; measured against M = 512, relative to
  * max |K - mean K| (unit-independent, unlike the largest entry: the constant is arbitrary), over
