@@ -207,6 +207,18 @@ int mc_conv_rows(const mc_conv *c, int *r0, int *nr); /* 1: split over the ranks
 void mc_conv_convolve_rows(mc_conv *c, const double *kspec, const double *kre,
                            const double *field, double *out, double *work);
 
+/* A distributed fft engine (mc_conv_rows) tabulates its kernel by slabs: the rows j0 .. j0 +
+ * nj - 1 of the tx x ty table this rank builds (dfft.h, mc_dfft_table_split); returns 1, or 0
+ * (j0 = 0, nj = ty: the whole table, mc_conv_kernel) on any other engine. */
+int mc_conv_table_rows(const mc_conv *c, int *j0, int *nj);
+
+/* The kernel spectrum from those rows (rows: nj rows at a stride of 2 (tx/2 + 1) doubles,
+ * overwritten): the same bits as mc_conv_kernel_real, or when the spectrum is not real (*real =
+ * 0) mc_conv_kernel, into kspec (mc_conv_spectrum_len doubles; *real = 1: its first half holds
+ * the real parts). MC_OK, MC_ERR_NOMEM or MC_ERR_INTERNAL (not a distributed fft engine), alike
+ * on every rank. Collective. */
+int mc_conv_kernel_rows(mc_conv *c, double *rows, double *kspec, int *real, mc_error *err);
+
 /* ---- planner rigor and stored wisdom ----------------------------------------------------- */
 
 /* How the repeated transforms are planned ([solver] plans): the transform engine's field

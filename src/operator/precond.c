@@ -14,7 +14,7 @@
 #include "operator/operator.h"
 
 #define PLAN_CACHE 6
-/* Distributed, each cached size holds its own transform engine and buffers (about 44 bytes per
+/* Distributed, each cached size holds its own transform engine and buffers (about 36 bytes per
  * box cell over P, against the 4 of a serial entry's symbol): fewer sizes are kept. */
 #define PLAN_CACHE_DIST 2
 #define BOX_MARGIN 2 /* cells at least, each side */
@@ -29,7 +29,6 @@ typedef struct {
                            * this rank (of fy) */
     int *rball;           /* distributed: every rank's rb0, nrb (2 per rank) */
     double *field;        /* distributed: those rows, nrb * fx */
-    double *recv;         /* distributed: the box's rows received for them, nrb * fx */
 } box_plan;
 
 struct mc_precond {
@@ -82,7 +81,6 @@ static void free_plan(box_plan *b)
     mc_dfft_destroy(&b->d);
     mc_free(b->rball);
     mc_free(b->field);
-    mc_free(b->recv);
     memset(b, 0, sizeof *b);
 }
 
@@ -150,8 +148,7 @@ static int plan_dist(mc_precond *pc, box_plan *b, mc_error *err)
     b->symbol = mc_malloc(sizeof(double) * ((size_t)nk * (size_t)b->fy + 1));
     b->rball = mc_malloc(2 * sizeof(int) * (size_t)pc->np);
     b->field = mc_malloc(sizeof(double) * (nf + 1));
-    b->recv = mc_malloc(sizeof(double) * (nf + 1));
-    if (mc_dist_max_int(!b->symbol || !b->rball || !b->field || !b->recv))
+    if (mc_dist_max_int(!b->symbol || !b->rball || !b->field))
         return mc_fail(err, MC_ERR_NOMEM, "preconditioner: out of memory for a %d x %d box", b->fx,
                        b->fy);
     int mine[2] = {b->rb0, b->nrb};
@@ -408,19 +405,21 @@ void mc_precond_apply_slab(mc_precond *pc, const unsigned char *mask, const doub
             pc->send[k++] = mask[f + i] ? r[f + i] : 0.0;
     }
     mc_dist_mark t0 = mc_dist_comm_begin();
-    MPI_Alltoallv(pc->send, pc->sc, pc->sd, MPI_DOUBLE, p->recv, pc->rc, pc->rd, MPI_DOUBLE,
+    MPI_Alltoallv(pc->send, pc->sc, pc->sd, MPI_DOUBLE, p->field, pc->rc, pc->rd, MPI_DOUBLE,
                   comm);
     mc_dist_comm_end(t0);
     /* the transform's rows: box rows rb0 .. rb0 + nrb - 1, those inside the box from the
-     * exchange (they arrive in row order: the ranks' rows ascend with the rank), zero-padded */
-    for (int t = 0; t < p->nrb; t++) {
+     * exchange (they arrive packed, bx a row, in row order: the ranks' rows ascend with the
+     * rank), spread in place to fx a row from the last (row t moves up from t bx to t fx >= t bx)
+     * and zero-padded */
+    for (int t = p->nrb - 1; t >= 0; t--) {
         double *dst = p->field + (size_t)t * fx;
         const int jr = p->rb0 + t; /* box row */
         if (jr >= box->ny) {
             memset(dst, 0, sizeof(double) * (size_t)fx);
             continue;
         }
-        memcpy(dst, p->recv + (size_t)t * bx, sizeof(double) * (size_t)bx);
+        memmove(dst, p->field + (size_t)t * bx, sizeof(double) * (size_t)bx);
         memset(dst + bx, 0, sizeof(double) * (size_t)(fx - bx));
     }
     fftw_complex *spec = mc_dfft_spectrum(p->d);
@@ -431,11 +430,12 @@ void mc_precond_apply_slab(mc_precond *pc, const unsigned char *mask, const doub
         spec[c][1] *= p->symbol[c];
     }
     mc_dfft_inverse(p->d, p->field, 1);
-    /* back: the box's columns of the rows inside the box, to the ranks that hold them */
+    /* back: the box's columns of the rows inside the box, packed in place from the first row
+     * (row t moves down from t fx to t bx), to the ranks that hold them */
     for (int t = 0; t < p->nrb && p->rb0 + t < box->ny; t++)
-        memcpy(p->recv + (size_t)t * bx, p->field + (size_t)t * fx, sizeof(double) * (size_t)bx);
+        memmove(p->field + (size_t)t * bx, p->field + (size_t)t * fx, sizeof(double) * (size_t)bx);
     t0 = mc_dist_comm_begin();
-    MPI_Alltoallv(p->recv, pc->rc, pc->rd, MPI_DOUBLE, pc->send, pc->sc, pc->sd, MPI_DOUBLE,
+    MPI_Alltoallv(p->field, pc->rc, pc->rd, MPI_DOUBLE, pc->send, pc->sc, pc->sd, MPI_DOUBLE,
                   comm);
     mc_dist_comm_end(t0);
     for (int j = pc->r0; j < pc->r0 + pc->nr; j++) {
