@@ -14,9 +14,11 @@
 #include "operator/operator.h"
 
 #define PLAN_CACHE 6
-/* Distributed, each cached size holds its own transform engine and buffers (about 36 bytes per
- * box cell over P, against the 4 of a serial entry's symbol): fewer sizes are kept. */
-#define PLAN_CACHE_DIST 2
+/* Distributed, each cached size holds its own transform engine and buffers (about 52 bytes per
+ * box cell over P, against the 4 of a serial entry's symbol): one size is kept (a solve's box
+ * changes size about once per grid level: 9 engines made in the Hertz run at 1024^2 with 1 or 2
+ * kept alike). */
+#define PLAN_CACHE_DIST 1
 #define BOX_MARGIN 2 /* cells at least, each side */
 
 typedef struct {
