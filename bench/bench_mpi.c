@@ -94,15 +94,19 @@ static double children_cpu(void)
  *  - per cell and iteration it costs what the measured one-process run cost per cell and
  *    iteration (coarse levels included), times the ratio of log2 of the padded transform sizes
  *    (FFT work ~ n log n);
- *  - a share FLANK_REPLICATED of that work is replicated on every rank (the preconditioner's
- *    transform pair over the contact's box - at most the grid - against the operator's over the
- *    4x larger padded grid, and the O(N) set-up passes): Amdahl's serial part;
+ *  - a share FLANK_REPLICATED of that work is replicated on every rank (the problem's O(N)
+ *    passes, the coarse start's restriction; the preconditioner's transform is distributed since
+ *    issue 22's second round): Amdahl's serial part, from the measured work speed-up s of 1 -> 2
+ *    processes (f = 2/s - 1: 1.8-1.9x gave 0.05-0.11);
  *  - network: NET_BYTES_S per machine and direction (10 Gbit/s Ethernet), NET_LATENCY_S per
  *    message; per operator application two transposes of 16 ny (tx/2 + 1) bytes, of which each
- *    machine sends and receives (N - 1)/N^2; per iteration the gradient (8 bytes a cell) and the
- *    free set (1 byte) gathered on every rank, (N - 1)/N of it over the network; inside a
+ *    machine sends and receives (N - 1)/N^2; per iteration the preconditioner's transform over
+ *    the contact's box (at most the grid): the box's rows to the transform's and back (2 x 8
+ *    bytes a cell) and its two transposes (2 x 16 bytes a cell of half spectrum, about 16 a
+ *    cell), (N - 1)/N^2 of them per machine; inside a
  *    machine the ranks share memory (its cost is in the measured per-cell figure);
- *  - the set-up (kernel table, replicated on every rank) scales with the padded cells;
+ *  - the set-up scales with the padded cells and divides over the ranks (the kernel table by
+ *    slabs, operator.c) but for a share FLANK_REPLICATED;
  *  - memory: the memory guard's model (pipeline/memguard.c) for P ranks, twice per machine: a
  *    replicated part plus the operators' slabs and the solvers' work arrays over P (the shape
  *    measured by memory_per_rank). */
@@ -112,7 +116,7 @@ static double children_cpu(void)
 #define FLANK_LAYERS 16
 #define FLANK_ITERATIONS 30
 #define FLANK_APPLIES 1.2
-#define FLANK_REPLICATED 0.25
+#define FLANK_REPLICATED 0.10
 #define NET_BYTES_S 1.25e9
 #define NET_LATENCY_S 50e-6
 #define RANKS_PER_MACHINE 2
@@ -142,27 +146,31 @@ static void flank_model(vf_ctx *ctx, const mpi_run *one, int N)
             "cores, %.1f GiB), %d ranks per machine. Measured: %.3g us per cell and cg iteration "
             "(the 1-process run above: contact time / (iterations x cells), coarse levels "
             "included, under today's load), scaled by log2 of the padded sizes to %.3g us; the "
-            "set-up (kernel table, replicated) %.3g s scaled by the padded cells to %.3g s. "
+            "set-up %.3g s scaled by the padded cells to %.3g s on one rank (the kernel table "
+            "by slabs: it divides but for the replicated share). "
             "Assumed: %d iterations (rough contacts took 22-27 at 512²-1024²), %.1f operator "
-            "applications each, %.0f %% of the work replicated on every rank (the "
-            "preconditioner's transform pair over the contact's box against the operator's over "
-            "the 4x larger padded grid; the O(N) set-up passes), a network of %.2g GB/s per "
+            "applications each, %.0f %% of the work replicated on every rank (the problem's O(N) "
+            "passes, the coarse start's restriction: f = 2/s - 1 from the measured work speed-up "
+            "s of 1 -> 2 processes, 1.8-1.9x; the preconditioner's transform is distributed), a "
+            "network of %.2g GB/s per "
             "machine and direction (10 Gbit/s Ethernet) and %.0f us per message. Per operator "
             "application two FFTW-MPI transposes of 16 ny (tx/2 + 1) = %.0f MB, of which each "
-            "machine sends and receives (N - 1)/N²; per iteration the gradient and the free set "
-            "(9 bytes a cell, %.0f MB) gathered on every rank. Memory: the memory guard's model "
+            "machine sends and receives (N - 1)/N²; per iteration the preconditioner's transform "
+            "over the contact's box (at most the grid): its rows to the transform's and back and "
+            "its two transposes (about 32 bytes a cell, %.0f MB), of which each machine sends and "
+            "receives (N - 1)/N². Memory: the memory guard's model "
             "(pipeline/memguard.c) for P ranks, per machine: per rank a replicated part (the "
-            "surface fields, the preconditioner's buffers and the gathered gradient and free set, "
-            "the kernel table while it is built) plus the operators' slabs and the contact "
-            "solvers' work arrays divided by P - the shape measured above (R + S/P), the guard's "
-            "figures erring high.\n\n"
+            "surface fields, the coarse start's whole arrays, the corner lattice of the kernel "
+            "table while it is built) plus the operators' slabs, the preconditioner's and the "
+            "contact solvers' work arrays divided by P - the shape measured above (R + S/P), the "
+            "guard's figures erring high.\n\n"
             "| machines | ranks | compute / iteration (s) | network / iteration (s) | contact "
             "solve (s) | set-up (s) | memory / machine, elastic (GiB) | with %d stress layers "
             "(GiB) | fits |\n|---|---|---|---|---|---|---|---|---|\n",
             FLANK_NX, FLANK_NY, n / 1e6, tx, ty, FLANK_LAYERS, RANKS_PER_MACHINE, ram / GiB,
             RANKS_PER_MACHINE, 1e6 * per_cell_it, 1e6 * c, one->total - one->contact, setup1,
             FLANK_ITERATIONS, FLANK_APPLIES, 100 * FLANK_REPLICATED, NET_BYTES_S / 1e9,
-            1e6 * NET_LATENCY_S, vt / 1e6, 9 * n / 1e6, FLANK_LAYERS);
+            1e6 * NET_LATENCY_S, vt / 1e6, 32 * n / 1e6, FLANK_LAYERS);
     FILE *f = vf_open(ctx, "mpi_flank.csv");
     if (f)
         fprintf(f, "machines,ranks,compute_it_s,network_it_s,contact_s,setup_s,elastic_gib,"
@@ -172,9 +180,10 @@ static void flank_model(vf_ctx *ctx, const mpi_run *one, int N)
         const double comp = c * n * ((1 - FLANK_REPLICATED) / P + FLANK_REPLICATED);
         const double net = m == 1 ? 0.0
                                   : (FLANK_APPLIES * 2 * vt * (m - 1) / ((double)m * m) +
-                                     9 * n * (m - 1) / m) / NET_BYTES_S +
+                                     32 * n * (m - 1) / ((double)m * m)) / NET_BYTES_S +
                                         (FLANK_APPLIES * 2 + 10) * (P - 1) * NET_LATENCY_S;
         const double contact = FLANK_ITERATIONS * (comp + net);
+        const double setup = setup1 * ((1 - FLANK_REPLICATED) / P + FLANK_REPLICATED);
         sc.stress.enabled = 0;
         const double el = RANKS_PER_MACHINE * mc_memory_estimate_ranks(&sc, P);
         sc.stress.enabled = 1;
@@ -182,19 +191,19 @@ static void flank_model(vf_ctx *ctx, const mpi_run *one, int N)
         sc.stress.spacing = MC_SPACING_LINEAR;
         const double st = RANKS_PER_MACHINE * mc_memory_estimate_ranks(&sc, P);
         vf_text(ctx, "| %d | %d | %.2f | %.3f | %.0f | %.0f | %.1f | %.1f | %s |\n", m, P, comp,
-                net, contact, setup1, el / GiB, st / GiB,
+                net, contact, setup, el / GiB, st / GiB,
                 st <= ram ? "yes" : (el <= ram ? "elastic only" : "no"));
         if (f)
-            fprintf(f, "%d,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", m, P, comp, net, contact, setup1,
+            fprintf(f, "%d,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", m, P, comp, net, contact, setup,
                     el / GiB, st / GiB);
     }
     if (f)
         vf_close(ctx, f);
     vf_text(ctx,
-            "\nRead: the elastic flank fits on one machine; its contact solve stops gaining "
-            "beyond a few machines because the replicated share (above all the preconditioner's "
-            "transform, not distributed yet) is 1/%.0f of the work (Amdahl: at most %.0fx); the "
-            "network is a small part at 10 Gbit/s. The %d stress layers do not divide: every rank "
+            "\nRead: the elastic flank fits on one machine; its contact solve gains over "
+            "machines until the replicated share (the O(N) passes; the preconditioner's transform "
+            "and the kernel table are distributed) of 1/%.0f of the work bounds it (Amdahl: at "
+            "most %.0fx); the network is a small part at 10 Gbit/s. The %d stress layers do not divide: every rank "
             "keeps every layer (9 fields of 8 bytes a cell each, %.1f GiB a rank), so the "
             "stresses need them kept on the rank that computed them (not done) before the flank "
             "with stresses fits any number of these machines.\n\n",
@@ -234,11 +243,11 @@ static void memory_per_rank(vf_ctx *ctx, const char *self, const char *mpi, int 
             "Peak resident memory (VmHWM) of rank 0 - the rank with the most rows - of the Hertz "
             "case (one run each, one thread per process), and the fit peak = R + S / P through "
             "P = 2 and 3: R is held whole by every rank (the surface fields of the pipeline, the "
-            "preconditioner's buffers with the gradient and free set gathered for it, the coarse "
-            "start's whole arrays, the process), S divides (the operators' spectra and transform "
-            "buffers, the kernel spectrum, the contact solvers' work arrays: each rank its slab "
-            "of rows). With one process the gradient and free set need no gathering (9 bytes a "
-            "cell less than R + S).\n\n"
+            "coarse start's whole arrays, the kernel table's corner lattice while it is built, "
+            "the process), S divides (the operators' spectra and transform buffers, the kernel "
+            "table's rows while they are transformed and the kernel spectrum, the "
+            "preconditioner's transform over the contact's box, the contact solvers' work "
+            "arrays: each rank its slab of rows).\n\n"
             "| grid | serial (MiB) | P = 1 | P = 2 | P = 3 | R (MiB) | S (MiB) | R + S (MiB) | "
             "R per cell (bytes) | S per cell (bytes) |\n|---|---|---|---|---|---|---|---|---|---|\n");
     FILE *f = vf_open(ctx, "mpi_memory.csv");
@@ -350,10 +359,11 @@ int mc_bench_mpi(vf_ctx *ctx, int quick)
             "contact) and the seconds rank 0 spent in communication (transposes, gathers, the "
             "row sums: MPI_Wtime around them, waiting for the other rank included). Distributed "
             "(README \"Running on a cluster\"): the operator's FFT and the contact solvers' "
-            "iterations (each rank its slab of rows, sums row by row over the ranks); "
-            "replicated on every rank: the set-up (kernel table, the problem's O(N) passes, the "
-            "coarse start's restriction), the preconditioner's transform, which bound the "
-            "speed-up. The peak memory is rank 0's. On a 2-core machine shared with other jobs "
+            "iterations (each rank its slab of rows, sums row by row over the ranks), the "
+            "preconditioner's transform over the contact's box (its rows exchanged all-to-all), "
+            "the kernel table (each rank tabulates and transforms its rows of it); replicated on "
+            "every rank: the problem's O(N) passes and the coarse start's restriction, which "
+            "bound the speed-up. The peak memory is rank 0's. On a 2-core machine shared with other jobs "
             "two processes compete with them for the cores: read the ratios with the load in "
             "mind (the CPU seconds are the steadier figure). The elastic-plastic stage runs "
             "replicated with P > 1 (its volume whole on every rank: no speed-up) and is not "

@@ -73,22 +73,6 @@ double mc_contact_max(const mc_contact_solver *s, double v)
     return v;
 }
 
-const double *mc_contact_whole(mc_contact_solver *s, const double *v)
-{
-    if (!s->stage)
-        return v;
-    mc_dist_gather_slab(v, s->gwhole, s->r0, s->nr, s->g.nx);
-    return s->gwhole;
-}
-
-const unsigned char *mc_contact_whole_mask(mc_contact_solver *s, const unsigned char *v)
-{
-    if (!s->stage)
-        return v;
-    mc_dist_gather_slab_u8(v, s->mwhole, s->r0, s->nr, s->g.nx);
-    return s->mwhole;
-}
-
 double mc_contact_sum(mc_contact_solver *s, const double *v)
 {
     double sum = 0;
@@ -258,11 +242,6 @@ int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_
         ok &= (*arrays[k] = mc_zeros(nl)) != NULL;
     ok &= (s->free_set = mc_calloc(nl, 1)) != NULL;
     ok &= (s->free_prev = mc_calloc(nl, 1)) != NULL;
-    s->stage = s->dist && mc_dist_size() > 1; /* the same on every rank */
-    if (s->stage) {
-        ok &= (s->gwhole = mc_zeros(n)) != NULL;
-        ok &= (s->mwhole = mc_calloc(n, 1)) != NULL;
-    }
     const size_t npieces = (size_t)(g->ny > MC_PSUM_MAX_BLOCKS ? g->ny : MC_PSUM_MAX_BLOCKS);
     ok &= (s->rpart = mc_zeros(npieces * MC_CONTACT_SUMS)) != NULL;
     ok &= (s->rall = mc_zeros((size_t)g->ny * MC_CONTACT_SUMS)) != NULL;
@@ -271,8 +250,9 @@ int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_
         return mc_fail(err, MC_ERR_NOMEM, "contact solver: out of memory for %zu cells", n);
     }
     int rc = MC_OK;
-    if (opt->method != MC_METHOD_ACTIVE_SET)
-        rc = mc_precond_create(g, &s->pc, err);
+    if (opt->method != MC_METHOD_ACTIVE_SET) /* distributed: the box's FFT over the ranks */
+        rc = s->dist ? mc_precond_create_rows(g, s->r0, s->nr, &s->pc, err)
+                     : mc_precond_create(g, &s->pc, err);
     else
         rc = mc_contact_active_set_prepare(s, err);
     if (rc == MC_OK)
@@ -292,12 +272,11 @@ void mc_contact_destroy(mc_contact_solver **sp)
     mc_contact_solver *s = *sp;
     double *arrays[] = {s->htil, s->plow, s->capq, s->q,    s->u,     s->gap,
                         s->z,    s->dir,  s->kdir, s->ulow, s->dense, s->factor,
-                        s->rpart, s->rall, s->gwhole};
+                        s->rpart, s->rall};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         mc_free(arrays[k]);
     mc_free(s->free_set);
     mc_free(s->free_prev);
-    mc_free(s->mwhole);
     mc_free(s->map);
     mc_free(s->coarse_h);
     mc_free(s->coarse_low);

@@ -13,12 +13,14 @@
 
 #define BOX_MARGIN 4 /* cells at least, each side */
 
-/* The box around the cells flagged in mark, widened by the solvers' margin, and never smaller
- * than prev when given; 0 if no cell is flagged. */
+/* The box around the cells flagged in mark (a workspace: this rank's rows when distributed, the
+ * bound then reduced over the ranks, operator/box.h), widened by the solvers' margin, and never
+ * smaller than prev when given; 0 if no cell is flagged. Collective. */
 static int box_of(const mc_contact_solver *s, const unsigned char *mark, const mc_box *prev,
                   mc_box *b)
 {
-    if (!mc_box_bound(&s->g, mark, NULL, b))
+    if (!(s->dist ? mc_box_bound_rows(&s->g, mark, s->r0, s->nr, b)
+                  : mc_box_bound(&s->g, mark, NULL, b)))
         return 0;
     mc_box_widen(&s->g, mc_box_margin(b->nx, BOX_MARGIN), mc_box_margin(b->ny, BOX_MARGIN), b);
     if (prev) /* never shrink while widening */
@@ -80,7 +82,7 @@ int mc_contact_box_solve(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qr
     for (size_t i = 0; i < nl; i++)
         mark[i] = q[i] > 0;
     mc_box b;
-    if (!box_of(s, mc_contact_whole_mask(s, mark), NULL, &b) ||
+    if (!box_of(s, mark, NULL, &b) ||
         (double)mc_box_cells(&b) > MC_BOX_FRACTION * (double)n)
         return MC_OK;
     int iters = 0;
@@ -143,7 +145,7 @@ int mc_contact_box_solve(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qr
             return res->converged ? MC_OK : MC_NOT_CONVERGED;
         }
         mc_box wider;
-        if (!box_of(s, mc_contact_whole_mask(s, mark), &b, &wider) ||
+        if (!box_of(s, mark, &b, &wider) ||
             (double)mc_box_cells(&wider) > MC_BOX_FRACTION * (double)n)
             break; /* q is now a good warm start for the full-grid solve */
         b = wider;

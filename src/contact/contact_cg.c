@@ -185,9 +185,9 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
         if (m == 0) /* nothing can move although the residual is above tolerance */
             break;
         if (nchanged > 0) {
-            /* the preconditioner's box spans the ranks: it sees the whole set (kept in
-             * s->mwhole while the set stays) */
-            rc = mc_precond_set_mask(s->pc, mc_contact_whole_mask(s, S), err);
+            /* distributed, the preconditioner bounds the set over the ranks (precond.h) */
+            rc = s->dist ? mc_precond_set_mask_rows(s->pc, S, err)
+                         : mc_precond_set_mask(s->pc, S, err);
             /* a plan that failed on one rank fails the solve on all (they must stay in step) */
             if (mc_contact_max(s, rc != MC_OK) > 0)
                 return rc != MC_OK ? rc
@@ -209,10 +209,11 @@ int mc_contact_cg(mc_contact_solver *s, mc_qproblem *qp, double *q, mc_qresult *
                 if (!S[i])
                     g[i] = 0.0;
         }
-        /* the preconditioner's FFT runs on the whole box on every rank (precond.h): it reads g
-         * on all rows (gathered), and writes this rank's rows of z */
-        mc_precond_apply_rows(s->pc, s->stage ? s->mwhole : S, mc_contact_whole(s, g), z, s->r0,
-                              s->nr);
+        /* distributed, the box's FFT runs over the ranks on their rows of g and z (precond.h) */
+        if (s->dist)
+            mc_precond_apply_slab(s->pc, S, g, z);
+        else
+            mc_precond_apply(s->pc, S, g, z);
         if (force) {
             double mz = mean_on(s, z, S);
 #pragma omp parallel for schedule(static) if (PAR(s))

@@ -47,12 +47,6 @@ struct mc_contact_solver {
      * of ranks. */
     int r0, nr, dist;
     size_t lo, hi, nl, off;
-    /* distributed over more than one rank (stage): the whole gradient for the preconditioner
-     * and the whole free set or the box's marks, gathered (n each; with one rank the
-     * workspaces are whole already) */
-    int stage;
-    double *gwhole;
-    unsigned char *mwhole;
     mc_psum ps;           /* the pieces of the sums without ranks (mc_contact_pieces) */
     double *rpart, *rall; /* piece sums: this rank's (MC_CONTACT_SUMS per piece), all rows' */
     double A; /* cell area, m^2 */
@@ -129,11 +123,6 @@ void mc_contact_totals(mc_contact_solver *s, int m, double *out);
 
 /* The largest v (flags, maxima) over the ranks of a distributed solver. Collective. */
 double mc_contact_max(const mc_contact_solver *s, double v);
-
-/* v (a workspace, nl cells) whole: distributed, every rank's rows gathered into s->gwhole
- * (s->mwhole), which is returned; serially v itself. Collective. */
-const double *mc_contact_whole(mc_contact_solver *s, const double *v);
-const unsigned char *mc_contact_whole_mask(mc_contact_solver *s, const unsigned char *v);
 
 /* The sum of v[0 .. nl) over all ranks: serially in index order (the serial program's plain
  * sum); distributed row by row, the row sums added in row order over the ranks (the same bits

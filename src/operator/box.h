@@ -16,6 +16,12 @@ typedef struct {
  * is NULL, with f[k] != 0. Returns 1, or 0 with an empty box if there is no such cell. */
 int mc_box_bound(const mc_grid *g, const unsigned char *mask, const double *f, mc_box *b);
 
+/* The same over the run's ranks (core/dist.h): mask holds rows r0 .. r0 + nr - 1 of g alone
+ * (nr * nx values, row r0 + r at r * nx), the ranks' slabs together the whole grid; every rank
+ * gets the bounding box of the whole set (the rows' bounds reduced, no mask gathered). Without a
+ * communicator r0 = 0, nr = ny: mc_box_bound. Collective. */
+int mc_box_bound_rows(const mc_grid *g, const unsigned char *mask, int r0, int nr, mc_box *b);
+
 /* Widen b by mx cells on each side along x and my along y, clipped to the grid. A periodic axis
  * always takes the whole axis: a box on it must keep the period. */
 void mc_box_widen(const mc_grid *g, int mx, int my, mc_box *b);

@@ -408,3 +408,40 @@ int mc_conv_rows(const mc_conv *c, int *r0, int *nr)
 
 mc_backend mc_conv_backend(const mc_conv *c) { return c->ops->id; }
 const mc_grid *mc_conv_grid(const mc_conv *c) { return &c->g; }
+
+int mc_conv_table_rows(const mc_conv *c, int *j0, int *nj)
+{
+    *j0 = 0;
+    *nj = c->ty;
+    if (!c->dfft || c->ops->id != MC_BACKEND_FFT)
+        return 0;
+    mc_dfft_table_split(c->dfft, j0, nj);
+    return 1;
+}
+
+int mc_conv_kernel_rows(mc_conv *c, double *rows, double *kspec, int *real, mc_error *err)
+{
+    *real = 0;
+    if (!c->dfft || c->ops->id != MC_BACKEND_FFT)
+        return mc_fail(err, MC_ERR_INTERNAL, "kernel rows: not a distributed fft engine");
+    if (mc_dfft_table_rows(c->dfft, rows, mc_dfft_spectrum(c->dfft)) != MC_OK)
+        return mc_fail(err, MC_ERR_NOMEM, "kernel rows: out of memory for the exchange");
+    /* as mc_conv_kernel_real, then fft_kernel: the same test, the same scaling */
+    const size_t nc = half_len(c);
+    const double *s = (const double *)work_spec(c);
+    double m[2] = {0, 0}; /* max |Re|, max |Im| */
+    for (size_t q = 0; q < nc; q++) {
+        m[0] = fmax(m[0], fabs(s[2 * q]));
+        m[1] = fmax(m[1], fabs(s[2 * q + 1]));
+    }
+    mc_dist_max(m, 2);
+    const double scale = 1.0 / ((double)c->tx * (double)c->ty);
+    *real = m[1] <= 1e-13 * m[0];
+    if (*real)
+        for (size_t q = 0; q < nc; q++)
+            kspec[q] = scale * s[2 * q];
+    else
+        for (size_t q = 0; q < 2 * nc; q++)
+            kspec[q] = scale * s[q];
+    return MC_OK;
+}

@@ -189,6 +189,12 @@ void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)
     *nr = (int)d->nr;
 }
 
+void mc_dfft_cols(const mc_dfft *d, int *k0, int *nk)
+{
+    *k0 = (int)d->k0;
+    *nk = (int)d->nk;
+}
+
 void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)
 {
     /* all ty rows along x, keeping this rank's columns; then its columns along y */
@@ -200,6 +206,82 @@ void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)
     }
     for (ptrdiff_t k = 0; k < d->nk; k++)
         col_forward(d, spec + (size_t)k * d->ty, d->ty, spec + (size_t)k * d->ty);
+}
+
+void mc_dfft_table_split(const mc_dfft *d, int *j0, int *nj)
+{
+    int size, rank;
+    MPI_Comm_size(d->comm, &size);
+    MPI_Comm_rank(d->comm, &rank);
+    const int b = (d->ty + size - 1) / size, lo = rank * b < d->ty ? rank * b : d->ty;
+    *j0 = lo;
+    *nj = lo + b < d->ty ? b : d->ty - lo;
+}
+
+int mc_dfft_table_rows(mc_dfft *d, double *rows, fftw_complex *spec)
+{
+    int size;
+    MPI_Comm_size(d->comm, &size);
+    int j0, nj;
+    mc_dfft_table_split(d, &j0, &nj);
+    const int hx = d->hx;
+    /* each row along x in place (its hx complex values fill its room of 2 hx doubles) */
+    for (int r = 0; r < nj; r++) {
+        double *row = rows + (size_t)r * 2 * (size_t)hx;
+        memcpy(d->line, row, (size_t)d->tx * sizeof *d->line);
+        fftw_execute_dft_r2c(d->r2c, d->line, d->cline);
+        memcpy(row, d->cline, (size_t)hx * sizeof *d->cline);
+    }
+    /* every rank's rows and columns; to rank q the columns k0_q .. of each of these rows (a
+     * strided block), from rank p its rows of this rank's columns, [r][k] */
+    int *all = mc_malloc(4 * (size_t)size * sizeof *all);
+    int *cnt = mc_malloc(4 * (size_t)size * sizeof *cnt);
+    MPI_Datatype *types = mc_malloc(2 * (size_t)size * sizeof *types);
+    double *recv = mc_malloc((2 * (size_t)d->nk * (size_t)d->ty + 1) * sizeof *recv);
+    int bad = !all || !cnt || !types || !recv;
+    MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, d->comm);
+    if (bad) {
+        mc_free(all);
+        mc_free(cnt);
+        mc_free(types);
+        mc_free(recv);
+        return MC_ERR_NOMEM;
+    }
+    int mine[4] = {j0, nj, (int)d->k0, (int)d->nk};
+    mc_dist_mark t0 = mc_dist_comm_begin();
+    MPI_Allgather(mine, 4, MPI_INT, all, 4, MPI_INT, d->comm);
+    int *sc = cnt, *sd = cnt + size, *rc = cnt + 2 * size, *rd = cnt + 3 * size;
+    MPI_Datatype *st = types, *rt = types + size;
+    int off = 0;
+    for (int q = 0; q < size; q++) {
+        const int k0q = all[4 * q + 2], nkq = all[4 * q + 3], njq = all[4 * q + 1];
+        sc[q] = nj > 0 && nkq > 0 ? 1 : 0;
+        sd[q] = (int)((size_t)2 * (size_t)k0q * sizeof(double));
+        MPI_Type_vector(nj > 0 ? nj : 1, 2 * (nkq > 0 ? nkq : 1), 2 * hx, MPI_DOUBLE, &st[q]);
+        MPI_Type_commit(&st[q]);
+        rc[q] = njq * (int)d->nk * 2;
+        rd[q] = (int)((size_t)off * sizeof(double));
+        off += rc[q];
+        rt[q] = MPI_DOUBLE;
+    }
+    MPI_Alltoallw(rows, sc, sd, st, recv, rc, rd, rt, d->comm);
+    mc_dist_comm_end(t0);
+    for (int q = 0; q < size; q++)
+        MPI_Type_free(&st[q]);
+    /* into the columns [k][jt], then each column along y (as mc_dfft_table) */
+    const fftw_complex *rv = (const fftw_complex *)recv;
+    size_t at = 0;
+    for (int p = 0; p < size; p++)
+        for (int r = 0; r < all[4 * p + 1]; r++)
+            for (ptrdiff_t k = 0; k < d->nk; k++)
+                memcpy(spec + (size_t)k * d->ty + all[4 * p] + r, rv + at++, sizeof *spec);
+    for (ptrdiff_t k = 0; k < d->nk; k++)
+        col_forward(d, spec + (size_t)k * d->ty, d->ty, spec + (size_t)k * d->ty);
+    mc_free(all);
+    mc_free(cnt);
+    mc_free(types);
+    mc_free(recv);
+    return MC_OK;
 }
 
 #else /* no MPI: the engine is never made */
@@ -253,10 +335,29 @@ void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)
     *r0 = *nr = 0;
 }
 
+void mc_dfft_cols(const mc_dfft *d, int *k0, int *nk)
+{
+    (void)d;
+    *k0 = *nk = 0;
+}
+
 void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)
 {
     (void)d;
     (void)table;
     (void)spec;
+}
+void mc_dfft_table_split(const mc_dfft *d, int *j0, int *nj)
+{
+    (void)d;
+    *j0 = *nj = 0;
+}
+
+int mc_dfft_table_rows(mc_dfft *d, double *rows, fftw_complex *spec)
+{
+    (void)d;
+    (void)rows;
+    (void)spec;
+    return MC_ERR_INTERNAL;
 }
 #endif

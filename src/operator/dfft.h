@@ -62,9 +62,24 @@ void mc_dfft_inverse(mc_dfft *d, double *out, int local);
 /* This rank's data rows r0 .. r0 + nr - 1 (of ny): the rows mc_dfft_forward reads. */
 void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr);
 
+/* This rank's spectrum columns kx = k0 .. k0 + nk - 1 (of tx/2 + 1): its part [kx - k0][ky]. */
+void mc_dfft_cols(const mc_dfft *d, int *k0, int *nk);
+
 /* This rank's part of the spectrum of a whole ty x tx table (wrap-around layout, on every rank)
  * into spec, by the same line transforms; local (no communication): each rank transforms all ty
  * rows once. Not collective. */
 void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec);
+
+/* The rows j0 .. j0 + nj - 1 of a ty x tx table this rank tabulates for mc_dfft_table_rows
+ * (blocks of ceil(ty / P) rows). Not collective. */
+void mc_dfft_table_split(const mc_dfft *d, int *j0, int *nj);
+
+/* mc_dfft_table from each rank's rows alone: rows holds this rank's table rows (mc_dfft_table_split)
+ * at a stride of 2 (tx/2 + 1) doubles (row j0 + r at r * 2 (tx/2 + 1); the room of its spectrum,
+ * which overwrites it). Each rank transforms its rows along x, an all-to-all brings every rank
+ * its columns (16 bytes a table row and column, (P - 1)/P of it sent), then its columns along y:
+ * the same bits as mc_dfft_table, a P-th of the work and of the table's memory on each rank.
+ * MC_OK, or MC_ERR_NOMEM on every rank alike. Collective. */
+int mc_dfft_table_rows(mc_dfft *d, double *rows, fftw_complex *spec);
 
 #endif

@@ -80,18 +80,24 @@ typedef double (*entry_fn)(int ox, int oy, const void *ctx);
 
 /* k[jt tx + it] = entry(ox, oy) for every used entry of a tx x ty table of grid g, ox and oy its
  * offsets (mc_table_offset); the padding slots are left as they are. OpenMP over table rows. */
-static void fill_entries(const mc_grid *g, int tx, int ty, double *k, entry_fn entry,
-                         const void *ctx)
+static void fill_rows(const mc_grid *g, int tx, int ty, int j0, int nj, double *k,
+                      entry_fn entry, const void *ctx)
 {
 #pragma omp parallel for schedule(dynamic)
-    for (int jt = 0; jt < ty; jt++) {
+    for (int jt = j0; jt < j0 + nj; jt++) {
         int usedy, oy = mc_table_offset(jt, g->ny, ty, &usedy);
         for (int it = 0; it < tx && usedy; it++) {
             int usedx, ox = mc_table_offset(it, g->nx, tx, &usedx);
             if (usedx)
-                k[(size_t)jt * tx + it] = entry(ox, oy, ctx);
+                k[(size_t)(jt - j0) * tx + it] = entry(ox, oy, ctx);
         }
     }
+}
+
+static void fill_entries(const mc_grid *g, int tx, int ty, double *k, entry_fn entry,
+                         const void *ctx)
+{
+    fill_rows(g, tx, ty, 0, ty, k, entry, ctx);
 }
 
 /* The image sum of mc_kernel_table_build at one offset. */
@@ -261,17 +267,23 @@ void mc_kernel_fn_love(const mc_grid *g, double Estar, mc_kernel_love_ctx *ctx, 
 
 /* F on the corner lattice ((p - 1/2) dx, (q - 1/2) dy), p = 0..np-1, q = 0..nq-1 (theory.md §5.5):
  * each pixel value is then the four-term difference, one corner evaluation per cell. */
-static double *corner_lattice(int np, int nq, double dx, double dy)
+static double *corner_lattice_from(int np, int q0, int nq, double dx, double dy)
 {
     size_t n;
-    double *f = mc_size_mul((size_t)np, (size_t)nq, &n) ? mc_malloc(n * sizeof *f) : NULL;
+    double *f = mc_size_mul((size_t)np, (size_t)nq, &n) ? mc_malloc((n ? n : 1) * sizeof *f)
+                                                        : NULL;
     if (!f)
         return NULL;
 #pragma omp parallel for schedule(static)
     for (int q = 0; q < nq; q++)
         for (int p = 0; p < np; p++)
-            f[(size_t)q * np + p] = mc_love_corner((p - 0.5) * dx, (q - 0.5) * dy);
+            f[(size_t)q * np + p] = mc_love_corner((p - 0.5) * dx, (q0 + q - 0.5) * dy);
     return f;
+}
+
+static double *corner_lattice(int np, int nq, double dx, double dy)
+{
+    return corner_lattice_from(np, 0, nq, dx, dy);
 }
 
 /* Love's rectangle at offset (m, l) >= 0 cells from the lattice, in the order of mc_love_uz. */
@@ -297,14 +309,14 @@ static double quarter_entry(int ox, int oy, const void *ctx)
 
 /* Love's rectangle from the corner lattice (lattice_love) at offsets >= 0. */
 typedef struct {
-    const double *f;
-    int np;
+    const double *f; /* lattice rows q0 .. */
+    int np, q0;
 } lattice_view;
 
 static double lattice_entry(int ox, int oy, const void *ctx)
 {
     const lattice_view *c = ctx;
-    return lattice_love(c->f, c->np, abs(ox), abs(oy));
+    return lattice_love(c->f, c->np, abs(ox), abs(oy) - c->q0);
 }
 
 /* Both axes free: the kernel is even in both offsets; only |ox| < nx, |oy| < ny are evaluated. */
@@ -314,7 +326,7 @@ static int love_free(const mc_grid *g, double *k, int tx, int ty, mc_error *err)
     double *f = corner_lattice(np, g->ny + 1, g->dx, g->dy);
     if (!f)
         return mc_fail(err, MC_ERR_NOMEM, "Love table: out of memory for the corner lattice");
-    const lattice_view c = {f, np};
+    const lattice_view c = {f, np, 0};
     fill_entries(g, tx, ty, k, lattice_entry, &c);
     mc_free(f);
     return MC_OK;
@@ -502,5 +514,49 @@ int mc_kernel_table_love(const mc_grid *g, int tx, int ty, double Estar, mc_kern
     const size_t n = (size_t)tx * (size_t)ty;
     for (size_t q = 0; q < n; q++)
         out->k[q] /= Estar;
+    return MC_OK;
+}
+
+int mc_kernel_table_love_rows(const mc_grid *g, int tx, int ty, double Estar, int j0, int nj,
+                              double *rows, mc_error *err)
+{
+    if (!(isfinite(Estar) && Estar > 0.0))
+        return mc_fail(err, MC_ERR_INPUT, "Love table: E* = %g Pa must be finite and > 0", Estar);
+    int rc = mc_kernel_table_check(g, tx, ty, err);
+    if (rc)
+        return rc;
+    if (j0 < 0 || nj < 0 || j0 + nj > ty)
+        return mc_fail(err, MC_ERR_INTERNAL, "Love table: rows %d .. %d outside 0 .. %d", j0,
+                       j0 + nj - 1, ty - 1);
+    const size_t n = (size_t)nj * (size_t)tx;
+    memset(rows, 0, n * sizeof *rows);
+    if (g->periodic_x || g->periodic_y) { /* the whole table, its rows kept */
+        mc_kernel_table t;
+        if ((rc = mc_kernel_table_love(g, tx, ty, Estar, &t, err)))
+            return rc;
+        memcpy(rows, t.k + (size_t)j0 * tx, n * sizeof *rows);
+        mc_kernel_table_free(&t);
+        return MC_OK;
+    }
+    /* free axes: the corner lattice's rows these table rows read (|oy| and |oy| + 1) */
+    int qlo = g->ny, qhi = -1;
+    for (int jt = j0; jt < j0 + nj; jt++) {
+        int used, oy = abs(mc_table_offset(jt, g->ny, ty, &used));
+        if (used) {
+            qlo = oy < qlo ? oy : qlo;
+            qhi = oy > qhi ? oy : qhi;
+        }
+    }
+    if (qhi < 0)
+        return MC_OK; /* only padding rows */
+    const int np = g->nx + 1;
+    double *f = corner_lattice_from(np, qlo, qhi - qlo + 2, g->dx, g->dy);
+    if (!f)
+        return mc_fail(err, MC_ERR_NOMEM, "Love table: out of memory for the corner lattice");
+    const lattice_view c = {f, np, qlo};
+    fill_rows(g, tx, ty, j0, nj, rows, lattice_entry, &c);
+    mc_free(f);
+    for (size_t q = 0; q < n; q++)
+        rows[q] /= Estar;
     return MC_OK;
 }

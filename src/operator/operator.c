@@ -1,7 +1,10 @@
 /* operator.c - conv + one kernel: what a solver plans, applies and destroys; (see operator.h). */
 #include <fftw3.h>
 
+#include <string.h>
+
 #include "core/alloc.h"
+#include "core/dist.h"
 #include "operator/operator.h"
 
 struct mc_operator {
@@ -61,6 +64,56 @@ int mc_operator_plan(const mc_grid *g, const mc_kernel_table *t, mc_backend b, m
     return rc ? rc : plan_with_conv(conv, t, out, err);
 }
 
+/* Distributed (mc_conv_table_rows): each rank tabulates and transforms its rows of the table
+ * alone (operator.h, mc_conv_kernel_rows); the same spectrum as the whole table's. Takes
+ * ownership of conv. Collective. */
+static int plan_love_rows(mc_conv *conv, const mc_grid *g, double Estar, int j0, int nj,
+                          mc_operator **out, mc_error *err)
+{
+    int tx, ty;
+    mc_conv_table_dims(conv, &tx, &ty);
+    const size_t w = 2 * (size_t)(tx / 2 + 1), n = mc_conv_spectrum_len(conv);
+    double *rows = mc_zeros((size_t)nj * w + 1);
+    mc_operator *op = mc_calloc(1, sizeof *op);
+    double *kspec = mc_malloc((n + 1) * sizeof *kspec);
+    int rc = rows && op && kspec ? MC_OK
+                                 : mc_fail(err, MC_ERR_NOMEM, "operator: out of memory for %d "
+                                                              "rows of its kernel table", nj);
+    if (rc == MC_OK)
+        rc = mc_kernel_table_love_rows(g, tx, ty, Estar, j0, nj, rows, err);
+    if (rc == MC_OK) /* the rows at the spectrum's stride, from the last (row r: r tx -> r w) */
+        for (int r = nj - 1; r > 0; r--)
+            memmove(rows + (size_t)r * w, rows + (size_t)r * tx, (size_t)tx * sizeof *rows);
+    int any = mc_dist_max_int(rc != MC_OK); /* all ranks go on, or none */
+    int real = 0;
+    if (!any) {
+        rc = mc_conv_kernel_rows(conv, rows, kspec, &real, err);
+        any = rc != MC_OK;
+    } else if (rc == MC_OK) {
+        rc = mc_fail(err, MC_ERR_NOMEM, "operator: another process could not tabulate its rows");
+    }
+    mc_free(rows);
+    if (any) {
+        mc_free(kspec);
+        mc_free(op);
+        mc_conv_destroy(&conv);
+        return rc;
+    }
+    if (real) { /* half the memory: the real parts are the first n / 2 doubles */
+        double *k2 = mc_malloc((n / 2 + 1) * sizeof *k2);
+        if (k2) {
+            memcpy(k2, kspec, n / 2 * sizeof *k2);
+            mc_free(kspec);
+            kspec = k2;
+        }
+    }
+    op->kspec = kspec;
+    op->real_kernel = real;
+    op->conv = conv;
+    *out = op;
+    return MC_OK;
+}
+
 int mc_operator_plan_love(const mc_grid *g, double Estar, mc_backend b, mc_operator **out,
                           mc_error *err)
 {
@@ -69,7 +122,9 @@ int mc_operator_plan_love(const mc_grid *g, double Estar, mc_backend b, mc_opera
     int rc = mc_conv_create_distributed(g, b, &conv, err);
     if (rc)
         return rc;
-    int tx, ty;
+    int tx, ty, j0, nj;
+    if (mc_conv_table_rows(conv, &j0, &nj))
+        return plan_love_rows(conv, g, Estar, j0, nj, out, err);
     mc_conv_table_dims(conv, &tx, &ty);
     mc_kernel_table t;
     if ((rc = mc_kernel_table_love(g, tx, ty, Estar, &t, err))) {

@@ -98,6 +98,14 @@ void mc_kernel_table_free(mc_kernel_table *t); /* frees t->k and sets it NULL; N
 int mc_kernel_table_love(const mc_grid *g, int tx, int ty, double Estar, mc_kernel_table *out,
                          mc_error *err);
 
+/* Rows j0 .. j0 + nj - 1 of mc_kernel_table_love's table into rows (nj * tx values, row j0 + r
+ * at r * tx): the same values, for a rank that transforms only its rows of the table
+ * (operator/dfft.h). Free axes: only the corner lattice's rows those table rows read are
+ * evaluated; a periodic axis: the whole table is built and its rows kept. MC_OK, MC_ERR_INPUT,
+ * MC_ERR_NOMEM, MC_ERR_INTERNAL (rows outside the table). */
+int mc_kernel_table_love_rows(const mc_grid *g, int tx, int ty, double Estar, int j0, int nj,
+                              double *rows, mc_error *err);
+
 /* Images per side along a single periodic axis used by mc_kernel_table_love. The truncation error
  * of the image sum with the continued tail falls like M^-6; measured against M = 512, relative to
  * max |K - mean K| (unit-independent, unlike the largest entry: the constant is arbitrary), over
@@ -198,6 +206,18 @@ int mc_conv_rows(const mc_conv *c, int *r0, int *nr); /* 1: split over the ranks
  * arrays. Collective. */
 void mc_conv_convolve_rows(mc_conv *c, const double *kspec, const double *kre,
                            const double *field, double *out, double *work);
+
+/* A distributed fft engine (mc_conv_rows) tabulates its kernel by slabs: the rows j0 .. j0 +
+ * nj - 1 of the tx x ty table this rank builds (dfft.h, mc_dfft_table_split); returns 1, or 0
+ * (j0 = 0, nj = ty: the whole table, mc_conv_kernel) on any other engine. */
+int mc_conv_table_rows(const mc_conv *c, int *j0, int *nj);
+
+/* The kernel spectrum from those rows (rows: nj rows at a stride of 2 (tx/2 + 1) doubles,
+ * overwritten): the same bits as mc_conv_kernel_real, or when the spectrum is not real (*real =
+ * 0) mc_conv_kernel, into kspec (mc_conv_spectrum_len doubles; *real = 1: its first half holds
+ * the real parts). MC_OK, MC_ERR_NOMEM or MC_ERR_INTERNAL (not a distributed fft engine), alike
+ * on every rank. Collective. */
+int mc_conv_kernel_rows(mc_conv *c, double *rows, double *kspec, int *real, mc_error *err);
 
 /* ---- planner rigor and stored wisdom ----------------------------------------------------- */
 

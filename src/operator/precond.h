@@ -35,4 +35,25 @@ void mc_precond_apply(mc_precond *pc, const unsigned char *mask, const double *r
 void mc_precond_apply_rows(mc_precond *pc, const unsigned char *mask, const double *r, double *z,
                            int r0, int nr);
 
+/* ---- distributed (core/dist.h): the box's transform split over the run's ranks ------------
+ * Under a communicator the box's FFT runs over the ranks (operator/dfft.h, a transform of the
+ * box's size): each rank passes its slab of grid rows r0 .. r0 + nr - 1 (nr * nx values, row
+ * r0 + k at k * nx; the ranks' slabs ascend with the rank and cover the grid) of the mask, of r
+ * and of z; the box is bounded by a reduction, the box's rows go to the transform's rows and
+ * back by all-to-all exchanges (8 bytes a box cell each way): neither the gradient nor the mask
+ * is gathered whole, no array of the grid's size is kept. The same bits on any number of ranks
+ * (dfft.h: one-line transforms; the exchanges only move values); against the serial transform
+ * (a 2-D FFTW plan) they differ by round-off. Without a communicator these are the calls above
+ * on the whole grid (r0 = 0, nr = ny). */
+
+/* Collective. */
+int mc_precond_create_rows(const mc_grid *g, int r0, int nr, mc_precond **out, mc_error *err);
+
+/* mc_precond_set_mask on this rank's rows of the mask. Collective. */
+int mc_precond_set_mask_rows(mc_precond *pc, const unsigned char *mask, mc_error *err);
+
+/* z = R_S M R_S^T r on this rank's rows (mask, r, z: slabs as above). Never allocates.
+ * Collective. */
+void mc_precond_apply_slab(mc_precond *pc, const unsigned char *mask, const double *r, double *z);
+
 #endif

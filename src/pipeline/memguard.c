@@ -19,31 +19,40 @@ static double axis_len(int n, int periodic) { return periodic ? n : mc_fftsize_g
 /* Bytes of one operator on grid (nx, ny): fft - kernel spectrum, real and complex work buffers,
  * and the kernel table while it is built; direct - the table. Over P MPI processes
  * (operator/dfft.h) the spectrum, the work spectrum and the two transpose buffers are a slab each,
- * 1/P; the whole kernel table is still built on every process. */
+ * 1/P; the kernel table is built by slabs (operator.c, mc_conv_kernel_rows): free axes, a rank's
+ * rows (8 tx ty / P) beside the corner lattice they read (8 nx ny: whole for few ranks, the
+ * table's wrap-around rows reading every offset), then those rows and the exchange's columns
+ * (8 tx ty / P more), all three counted together (the guard errs high: rank 0's measured peak
+ * with 3 processes at 768^2 came within 6 % of the figure without that); a periodic axis builds
+ * the whole table on every rank. */
 static double operator_bytes(int nx, int ny, int px, int py, mc_backend b, int ranks)
 {
     double tx = axis_len(nx, px), ty = axis_len(ny, py), half = ty * (tx / 2 + 1);
     if (b == MC_BACKEND_DIRECT)
         return 8 * tx * ty;
-    if (ranks > 1)
-        return (16 * half * 2 + 2 * 16 * (double)ny * (tx / 2 + 1)) / ranks + 8 * tx * ty;
+    if (ranks > 1) {
+        const double table =
+            px || py ? 8 * tx * ty : 16 * tx * ty / ranks + 8 * (double)nx * (double)ny;
+        return (16 * half * 2 + 2 * 16 * (double)ny * (tx / 2 + 1)) / ranks + table;
+    }
     return 16 * half * 2 + 8 * tx * ty + 8 * tx * ty;
 }
 
 /* Bytes of one contact solver on `cells` cells: ten work arrays and two masks, over P > 1 MPI
  * processes a slab each (1/P, contact_internal.h: every rank holds its rows alone), plus the
- * replicated preconditioner's box buffers (a real and a half complex array of the grid, 16 bytes
- * a cell) and, with P > 1, the whole gradient and free set it is given (9 bytes a cell). The
- * active set is whole on every rank. Measured per rank (Hertz 2048^2, P = 2, 3: reports/bench,
- * mpi section): the peak divides as R + S/P with R ~ 75 and S ~ 195 bytes a cell (R: these
- * replicated buffers, the surface fields of pipeline.h, the coarse start's whole arrays, the
- * process); this model gives 20-35 % more (the kernel table counted beside the solver). */
+ * preconditioner's box buffers: serially a real and a half complex array of the grid (16 bytes a
+ * cell); over P > 1 processes its transform engine over the box (the box at most the grid:
+ * transposes, spectrum, rows, symbol, about 52 bytes a cell) and its exchange's slab (8), all
+ * divided by P (precond.h). The active set is whole on every rank. Measured per rank (Hertz
+ * 2048^2, P = 2, 3: reports/bench, mpi section): the peak divides as R + S/P (R: the surface
+ * fields of pipeline.h, the coarse start's whole arrays, the process); this model errs high
+ * (the kernel table counted beside the solver). */
 static double solver_bytes(double cells, mc_contact_method m, int ranks)
 {
     const double work = (10 * 8 + 2) * cells, precond = 16 * cells;
     if (ranks <= 1 || m == MC_METHOD_ACTIVE_SET)
         return work + precond;
-    return work / ranks + precond + 9 * cells;
+    return (work + 60 * cells) / ranks;
 }
 
 double mc_memory_estimate(const mc_scene *s) { return mc_memory_estimate_ranks(s, mc_dist_size()); }
