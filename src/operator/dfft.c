@@ -189,6 +189,20 @@ void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)
     *nr = (int)d->nr;
 }
 
+void mc_dfft_columns(const mc_dfft *d, int *k0, int *nk)
+{
+    *k0 = (int)d->k0;
+    *nk = (int)d->nk;
+}
+
+size_t mc_dfft_bytes(const mc_dfft *d)
+{
+    int p, r;
+    MPI_Comm_size(d->comm, &p);
+    MPI_Comm_rank(d->comm, &r);
+    return mc_dfft_estimate(d->nx, d->ny, d->tx, d->ty, p, r);
+}
+
 void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)
 {
     /* all ty rows along x, keeping this rank's columns; then its columns along y */
@@ -203,6 +217,18 @@ void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)
 }
 
 #else /* no MPI: the engine is never made */
+
+void mc_dfft_columns(const mc_dfft *d, int *k0, int *nk)
+{
+    (void)d;
+    *k0 = *nk = 0;
+}
+
+size_t mc_dfft_bytes(const mc_dfft *d)
+{
+    (void)d;
+    return 0;
+}
 
 int mc_dfft_create(int nx, int ny, int tx, int ty, mc_dfft **out, mc_error *err)
 {
@@ -260,3 +286,25 @@ void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)
     (void)spec;
 }
 #endif
+
+void mc_dfft_split(int n, int p, int r, int *first, int *count)
+{
+    const int block = p > 0 ? (n + p - 1) / p : n;
+    const long f = (long)r * block;
+    *first = f < n ? (int)f : n;
+    *count = f < n ? (n - (int)f < block ? n - (int)f : block) : 0;
+}
+
+size_t mc_dfft_estimate(int nx, int ny, int tx, int ty, int p, int r)
+{
+    (void)nx;
+    const int hx = tx / 2 + 1;
+    int r0, nr, k0, nk;
+    mc_dfft_split(ny, p, r, &r0, &nr);
+    mc_dfft_split(hx, p, r, &k0, &nk);
+    const size_t nrow = 2 * (size_t)nr * (size_t)hx, ncol = 2 * (size_t)nk * (size_t)ny;
+    const size_t nbuf = nrow > ncol ? nrow : ncol;
+    const size_t cl = (size_t)(hx > ty ? hx : ty);
+    return (2 * nbuf + 2 * (size_t)nk * (size_t)ty + (size_t)tx + 2 * cl) * sizeof(double) +
+           2 * (size_t)p * sizeof(int);
+}

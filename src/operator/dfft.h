@@ -62,6 +62,21 @@ void mc_dfft_inverse(mc_dfft *d, double *out, int local);
 /* This rank's data rows r0 .. r0 + nr - 1 (of ny): the rows mc_dfft_forward reads. */
 void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr);
 
+/* This rank's spectrum columns k0 .. k0 + nk - 1 (of tx/2 + 1; nk may be 0). */
+void mc_dfft_columns(const mc_dfft *d, int *k0, int *nk);
+
+/* Bytes held by the engine (its transpose buffers, spectrum and lines; FFTW's plans aside). */
+size_t mc_dfft_bytes(const mc_dfft *d);
+
+/* What mc_dfft_bytes gives on rank r of p for an nx x ny field padded to tx x ty, from the sizes
+ * alone (FFTW-MPI's default blocks, mc_dfft_split). Not collective; any build. */
+size_t mc_dfft_estimate(int nx, int ny, int tx, int ty, int p, int r);
+
+/* The columns of n that FFTW-MPI's default block gives rank r of p (blocks of ceil(n / p), the
+ * last ones short or empty): what mc_dfft_columns returns for n = tx/2 + 1, computed from the
+ * sizes alone (memory estimates). Not collective; any build. */
+void mc_dfft_split(int n, int p, int r, int *first, int *count);
+
 /* This rank's part of the spectrum of a whole ty x tx table (wrap-around layout, on every rank)
  * into spec, by the same line transforms; local (no communication): each rank transforms all ty
  * rows once. Not collective. */

@@ -249,7 +249,9 @@ void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], do
                              double *const sig[6]);
 void mc_eig_stress_fft_free(mc_eigen_stress *op);
 /* Add to parts the bytes prepare would take for op (its sizes qx, qy, nzf, depth set), without
- * taking them. */
-void mc_eig_stress_fft_estimate(const mc_eigen_stress *op, size_t parts[MC_EIGEN_STRESS_PARTS]);
+ * taking them; ranks = 0 the serial operator, ranks >= 1 rank 0's share of the distributed one
+ * (part 3, Love's spectra, replaced by that share). */
+void mc_eig_stress_fft_estimate(const mc_eigen_stress *op, int ranks,
+                                size_t parts[MC_EIGEN_STRESS_PARTS]);
 
 #endif

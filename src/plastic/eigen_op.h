@@ -179,6 +179,9 @@ size_t mc_eigen_disp_bytes(const mc_eigen_disp *op);
  * build, from the sizes alone (nothing allocated or planned; the memory guard); 0 for a volume or
  * grid that create refuses. */
 size_t mc_eigen_disp_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b);
+/* ... for a given arrangement (ranks as mc_eigen_stress_estimate_ranks). */
+size_t mc_eigen_disp_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
+                                    int ranks);
 
 void mc_eigen_disp_destroy(mc_eigen_disp **op); /* frees and sets *op = NULL; NULL-safe */
 
@@ -236,6 +239,12 @@ void mc_eigen_stress_parts(const mc_eigen_stress *op, size_t parts[MC_EIGEN_STRE
  * refuses. */
 void mc_eigen_stress_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
                               size_t parts[MC_EIGEN_STRESS_PARTS]);
+
+/* The same for a given arrangement: ranks = 0 the serial operator, ranks >= 1 rank 0's share of
+ * the operator distributed over that many ranks (it holds the most frequencies).
+ * mc_eigen_stress_estimate is this with the run's: mc_dist_active() ? mc_dist_size() : 0. */
+void mc_eigen_stress_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
+                                    int ranks, size_t parts[MC_EIGEN_STRESS_PARTS]);
 
 void mc_eigen_stress_destroy(mc_eigen_stress **op); /* frees and sets *op = NULL; NULL-safe */
 

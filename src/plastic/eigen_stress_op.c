@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/dist.h"
 #include "kernels/eigen.h"
 #include "kernels/kernel.h"
 #include "plastic/eigen_internal.h"
@@ -572,6 +573,12 @@ void mc_eigen_stress_parts(const mc_eigen_stress *op, size_t parts[MC_EIGEN_STRE
 void mc_eigen_stress_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
                               size_t parts[MC_EIGEN_STRESS_PARTS])
 {
+    mc_eigen_stress_estimate_ranks(g, v, b, mc_dist_active() ? mc_dist_size() : 0, parts);
+}
+
+void mc_eigen_stress_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
+                                    int ranks, size_t parts[MC_EIGEN_STRESS_PARTS])
+{
     memset(parts, 0, MC_EIGEN_STRESS_PARTS * sizeof *parts);
     mc_error err = {0};
     if (mc_eig_check(g, v, 0.3, b, "eigen stress", &err) != MC_OK)
@@ -593,7 +600,7 @@ void mc_eigen_stress_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_bac
     parts[3] = nl * sizeof(double);
     parts[4] = sizeof op + 2 * wc * sizeof(double) + (2 * (size_t)v->nz + 1) * sizeof(int);
     if (b == MC_BACKEND_FFT) {
-        mc_eig_stress_fft_estimate(&op, parts);
+        mc_eig_stress_fft_estimate(&op, ranks, parts);
     } else {
         parts[0] = 2 * (size_t)op.nzf * MC_EIG_NSYM * op.qlen * sizeof(double);
         parts[2] = 6 * (size_t)v->nz * op.qlen * sizeof(double);
