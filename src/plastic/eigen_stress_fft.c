@@ -315,8 +315,8 @@ static int coarse_pays(int nz, int nzf, int L)
 /* The sizes of prepare, without planning (the transform sizes and spectrum length as
  * mc_eig_fft_create sets them): shared by prepare and the estimate of the bytes. ranks = 0: the
  * serial operator; ranks >= 1: distributed, rank `rank`'s frequencies (FFTW-MPI's default
- * blocks of kx, mc_dfft_split; the blocks of ch kx and their stride cs are those of the whole
- * hx, the same on every rank and as serial: the same depth plans, hence the same bits). */
+ * blocks of kx, mc_dfft_split; the blocks of ch kx split rank 0's share, the same on every
+ * rank: the same depth plans). */
 static void plan_sizes(const mc_eigen_stress *op, sfft *f, int ranks, int rank)
 {
     const int nz = op->v.nz;
@@ -336,8 +336,11 @@ static void plan_sizes(const mc_eigen_stress *op, sfft *f, int ranks, int rank)
     if (ranks > 0)
         mc_dfft_split(hx, ranks, rank, &f->k0, &f->nk);
     f->fft.speclen = ((size_t)f->fft.ty * f->nk + 3) / 4 * 4;
-    const int nch = (hx + CHUNK_TARGET - 1) / CHUNK_TARGET;
-    f->ch = (hx + nch - 1) / nch;
+    /* blocks of at most CHUNK_TARGET kx splitting evenly the serial hx or, distributed, the
+     * largest rank's share (rank 0's; the others' shorter last blocks pad with zeros) */
+    const int share = ranks > 0 ? (hx + ranks - 1) / ranks : hx;
+    const int nch = (share + CHUNK_TARGET - 1) / CHUNK_TARGET;
+    f->ch = (share + nch - 1) / nch;
     f->nch = (f->nk + f->ch - 1) / f->ch;
     f->dbytes = ranks > 0 ? mc_dfft_estimate(op->v.nx, op->v.ny, f->fft.tx, f->fft.ty, ranks, rank)
                           : 0;
