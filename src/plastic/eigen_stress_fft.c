@@ -51,6 +51,11 @@
 /* kx values per block at most */
 #define CHUNK_TARGET 64
 
+/* Distributed: layers per batch of the lateral transforms (mc_dfft_create_many): a 128^2 x 16
+ * stress apply makes 2 x 6 x 16 + 2 transposes and 6 x 16 + 1 gathers one at a time, 26 + 13
+ * in batches of 8; the batch's buffers cost 2 x 8 / (6 nz) of E per rank */
+#define DIST_BATCH 8
+
 /* the cost model of coarse_pays, relative units (flops of the loops, scaled by measurement) */
 #define COARSE_PAIR 115.0
 #define FINE_DFT 2.5
@@ -64,7 +69,10 @@ typedef struct {
     int ch, nch;          /* kx per block, blocks per quadrant row (nch ch >= nk) */
     int k0, nk;           /* this rank's lateral frequencies kx = k0 .. k0 + nk - 1 (serial: 0, hx;
                            * distributed: mc_dfft_columns). E, P, V, P3 and Love hold them alone */
-    mc_dfft *d;           /* distributed (mc_dist_active at create): the lateral transforms */
+    mc_dfft *d;           /* distributed (mc_dist_active at create): the lateral transforms, in
+                           * batches of bm layers of a component */
+    int bm;               /* layers per batch (min(nz, DIST_BATCH)) */
+    fftw_complex *bs;     /* bm spectra in mc_dfft's layout, nk x ty each */
     int lrow;             /* Love's spectra: row stride (qx serial, nk distributed) */
     size_t lql;           /* Love's spectra: doubles per quadrant */
     size_t dbytes;        /* the bytes of d */
@@ -342,7 +350,10 @@ static void plan_sizes(const mc_eigen_stress *op, sfft *f, int ranks, int rank)
     const int nch = (share + CHUNK_TARGET - 1) / CHUNK_TARGET;
     f->ch = (share + nch - 1) / nch;
     f->nch = (f->nk + f->ch - 1) / f->ch;
-    f->dbytes = ranks > 0 ? mc_dfft_estimate(op->v.nx, op->v.ny, f->fft.tx, f->fft.ty, ranks, rank)
+    f->bm = ranks > 0 ? (nz < DIST_BATCH ? nz : DIST_BATCH) : 0;
+    f->dbytes = ranks > 0 ? mc_dfft_estimate_many(op->v.nx, op->v.ny, f->fft.tx, f->fft.ty, f->bm,
+                                                  ranks, rank) +
+                                (size_t)f->bm * f->nk * f->fft.ty * sizeof(fftw_complex)
                           : 0;
     f->cs = (f->ch + 3) / 4 * 4;
     if (f->cs % 16 == 0) /* a power-of-2 stride between depth planes thrashes the cache */
@@ -401,7 +412,7 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     int rc;
     if (dist) {
         const mc_eig_fft sz = f->fft; /* the sizes plan_sizes set */
-        if ((rc = mc_dfft_create(op->v.nx, wy, sz.tx, sz.ty, &f->d, err)))
+        if ((rc = mc_dfft_create_many(op->v.nx, wy, sz.tx, sz.ty, f->bm, &f->d, err)))
             return rc;
         int k0, nk;
         mc_dfft_columns(f->d, &k0, &nk);
@@ -409,7 +420,10 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
             return mc_fail(err, MC_ERR_INTERNAL,
                            "eigen stress: FFTW-MPI gave columns %d + %d, expected %d + %d", k0, nk,
                            f->k0, f->nk);
-        f->dbytes = mc_dfft_bytes(f->d);
+        const size_t nb = (size_t)f->bm * f->nk * sz.ty;
+        if (!(f->bs = mc_malloc((nb + 1) * sizeof *f->bs)))
+            return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory");
+        f->dbytes = mc_dfft_bytes(f->d) + nb * sizeof *f->bs;
     } else if ((rc = mc_eig_fft_create(&f->fft, size_x(op), size_y(op), 0, wy, wy, err))) {
         return rc;
     }
@@ -469,6 +483,7 @@ void mc_eig_stress_fft_free(mc_eigen_stress *op)
         return;
     mc_eig_fft_destroy(&f->fft);
     mc_dfft_destroy(&f->d);
+    mc_free(f->bs);
     if (f->zf)
         fftw_destroy_plan(f->zf);
     if (f->zi)
@@ -821,37 +836,41 @@ static void dist_apply(mc_eigen_stress *op, const double *const eps[6], double G
                        double *const sig[6])
 {
     sfft *f = op->fft;
-    const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny;
-    const size_t sl = f->fft.speclen, wc = (size_t)wx * wy;
+    const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, bm = f->bm;
+    const size_t sl = f->fft.speclen, wc = (size_t)wx * wy, dl = (size_t)f->nk * f->fft.ty;
     const double scale = 1.0 / ((double)f->fft.tx * f->fft.ty); /* FFTW does not normalise */
-    fftw_complex *ds = mc_dfft_spectrum(f->d);
-    for (int t = 0; t < 6 * nz; t++) {
-        const int c = t / nz, k = t % nz;
-        mc_dfft_forward(f->d, eps[c] + k * wc, ds, 0);
-        from_dfft(f, ds, f->E + (size_t)t * sl);
-    }
+    for (int c = 0; c < 6; c++) /* a component's layers are contiguous: batches of bm */
+        for (int k0 = 0; k0 < nz; k0 += bm) {
+            const int m = nz - k0 < bm ? nz - k0 : bm;
+            mc_dfft_forward_many(f->d, eps[c] + k0 * wc, wc, m, f->bs, dl);
+            for (int q = 0; q < m; q++)
+                from_dfft(f, f->bs + q * dl, f->E + (size_t)(c * nz + k0 + q) * sl);
+        }
 #pragma omp parallel num_threads(f->nthr)
     depth_all(op, f, omp_get_thread_num());
     /* p3 on the window only: back to space (whole on every rank), cut, forward again */
-    to_dfft(f, f->P, ds);
-    mc_dfft_inverse(f->d, op->work, 0);
+    to_dfft(f, f->P, f->bs);
+    mc_dfft_inverse_many(f->d, f->bs, dl, 1, op->work, wc);
     for (size_t q = 0; q < wc; q++) {
         const double p = scale * op->work[q];
         op->work[q] = p;
         op->p3[q] = 2.0 * G * p;
     }
-    mc_dfft_forward(f->d, op->work, ds, 0);
-    from_dfft(f, ds, f->P);
-    for (int t = 0; t < 6 * nz; t++) {
-        const int i = t / nz, k = t % nz;
-        fftw_complex *e = f->E + (size_t)t * sl;
-        love_add(op, f, i, k, e);
-        to_dfft(f, e, ds);
-        double *out = sig[i] + k * wc;
-        mc_dfft_inverse(f->d, out, 0);
-        for (size_t q = 0; q < wc; q++)
-            out[q] *= 2.0 * G * scale;
-    }
+    mc_dfft_forward_many(f->d, op->work, wc, 1, f->bs, dl);
+    from_dfft(f, f->bs, f->P);
+    for (int i = 0; i < 6; i++)
+        for (int k0 = 0; k0 < nz; k0 += bm) {
+            const int m = nz - k0 < bm ? nz - k0 : bm;
+            for (int q = 0; q < m; q++) {
+                fftw_complex *e = f->E + (size_t)(i * nz + k0 + q) * sl;
+                love_add(op, f, i, k0 + q, e);
+                to_dfft(f, e, f->bs + q * dl);
+            }
+            double *out = sig[i] + k0 * wc;
+            mc_dfft_inverse_many(f->d, f->bs, dl, m, out, wc);
+            for (size_t q = 0; q < (size_t)m * wc; q++)
+                out[q] *= 2.0 * G * scale;
+        }
 }
 
 void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,

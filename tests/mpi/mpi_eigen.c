@@ -168,6 +168,8 @@ int main(int argc, char **argv)
     mc_eigen_volume vg = mc_eigen_volume_full(&free_g, 4, 0.3 * d);
     vg.group = group;
     one_case("free 20x14x4", free_g, vf, MC_EIG_DEPTH_AUTO);
+    const mc_grid small = {12, 10, d, d, 0, 0}; /* 11 layers: batches of 8 and 3 */
+    one_case("free 12x10x11", small, mc_eigen_volume_full(&small, 11, 0.4 * d), MC_EIG_DEPTH_AUTO);
     one_case("free 26x18, window 13x9x3 at (5,3)", big, vw, MC_EIG_DEPTH_AUTO);
     one_case("strip 18x12 (periodic y), window 11 at 3, centre", strip, vs, MC_EIG_DEPTH_AUTO);
     one_case("doubly periodic 15x11x3", per, vp, MC_EIG_DEPTH_AUTO);
