@@ -39,8 +39,10 @@ struct mc_eigen_disp {
     int k0, nk;      /* this rank's frequencies kx = k0 .. k0 + nk - 1; tab holds them alone:
                       * quadrant t at t * tlen, [kx - k0][ky] (ky < qy) */
     size_t tlen;
-    double *whole;   /* grid ny * nx: the layer's window embedded in zeros */
-    fftw_complex *acc; /* nk * ty: the sum, mc_dfft_spectrum's layout */
+    int bm;          /* layers per batch of transforms (min(nz, DIST_BATCH)) */
+    double *whole;   /* bm x grid ny * nx: a batch of layers' windows embedded in zeros */
+    fftw_complex *bs; /* bm x nk * ty: the batch's spectra, mc_dfft's layout */
+    fftw_complex *acc; /* nk * ty: the sum, mc_dfft's layout */
     size_t bytes;
 };
 
@@ -197,6 +199,9 @@ static int make_quad(const mc_eigen_disp *op, mc_eig_quad *quad, mc_error *err)
     return rc;
 }
 
+/* layers per batch of the distributed transforms (dfft.h batches: fewer collectives) */
+#define DIST_BATCH 8
+
 /* The distributed fft backend (theory.md §8.4): the grid's transforms by mc_dfft, the window
  * embedded in a grid-sized field at (i0, j0) as the serial rows place it; this rank's columns of
  * the quadrant spectra, built layer by layer through a scratch of six whole quadrants (never the
@@ -208,18 +213,21 @@ static int dist_create(mc_eigen_disp *op, mc_error *err)
     op->fft.tx = tx; /* the sizes alone: the serial transforms are not made */
     op->fft.ty = ty;
     op->fft.hx = tx / 2 + 1;
-    int rc = mc_dfft_create(op->g.nx, op->g.ny, tx, ty, &op->d, err);
+    op->bm = nz < DIST_BATCH ? nz : DIST_BATCH;
+    int rc = mc_dfft_create_many(op->g.nx, op->g.ny, tx, ty, op->bm, &op->d, err);
     if (rc)
         return rc;
     mc_dfft_columns(op->d, &op->k0, &op->nk);
     op->tlen = ((size_t)op->nk * op->qy + 7) / 8 * 8;
     const size_t cells = (size_t)op->g.nx * op->g.ny, al = (size_t)op->nk * ty;
     double *scr = NULL;
-    if (!(op->whole = mc_zeros(cells)) || !(op->acc = mc_malloc((al + 1) * sizeof *op->acc)) ||
+    if (!(op->whole = mc_zeros((size_t)op->bm * cells)) ||
+        !(op->acc = mc_malloc((al + 1) * sizeof *op->acc)) ||
+        !(op->bs = mc_malloc(((size_t)op->bm * al + 1) * sizeof *op->bs)) ||
         !(op->tab = mc_malloc((6 * (size_t)nz * op->tlen + 1) * sizeof *op->tab)) ||
         !(scr = mc_malloc(6 * op->qlen * sizeof *scr)))
         return mc_fail(err, MC_ERR_NOMEM, "eigen displacement: out of memory");
-    op->bytes += cells * sizeof(double) + al * sizeof *op->acc +
+    op->bytes += (size_t)op->bm * cells * sizeof(double) + (op->bm + 1) * al * sizeof *op->acc +
                  6 * (size_t)nz * op->tlen * sizeof *op->tab + mc_dfft_bytes(op->d);
     mc_eig_quad quad;
     if ((rc = make_quad(op, &quad, err))) {
@@ -246,43 +254,50 @@ static int dist_create(mc_eigen_disp *op, mc_error *err)
     return MC_OK;
 }
 
-/* u_z distributed: each (layer, column) forward over the ranks, K E summed on this rank's
- * frequencies (in the order of the serial tasks, each frequency alone: the same bits on any
- * number of ranks and threads), one inverse gathered whole on every rank. Collective. */
+/* u_z distributed: each column's layers forward over the ranks in batches, K E summed on this
+ * rank's frequencies (batch by batch, column by column, layer by layer: an order fixed by the
+ * sizes, each frequency alone: the same bits on any number of ranks and threads), one inverse
+ * gathered whole on every rank. Collective. */
 static void dist_apply(mc_eigen_disp *op, const double *const eps[6], double *uz)
 {
-    const int nz = op->v.nz, ty = op->fft.ty, my = op->qy - 1, nk = op->nk;
+    const int nz = op->v.nz, ty = op->fft.ty, my = op->qy - 1, nk = op->nk, bm = op->bm;
     const int nx = op->g.nx, wx = op->v.nx, wy = op->v.ny, i0 = op->v.i0, j0 = op->v.j0;
-    const size_t wcells = (size_t)wx * wy;
-    fftw_complex *ds = mc_dfft_spectrum(op->d), *acc = op->acc;
-    memset(acc, 0, (size_t)nk * ty * sizeof *acc);
-    for (int t = 0; t < 6 * nz; t++) {
-        const int k = t / 6, c = t % 6;
-        const double *e = eps[c] + k * wcells;
-        for (int j = 0; j < wy; j++)
-            memcpy(op->whole + (size_t)(j0 + j) * nx + i0, e + (size_t)j * wx,
-                   (size_t)wx * sizeof *e);
-        mc_dfft_forward(op->d, op->whole, ds, 0);
-        const double *R = op->tab + (size_t)t * op->tlen;
-        const int rot = mc_eig_odd_x(c) + mc_eig_odd_y(c), oy = mc_eig_odd_y(c);
-#pragma omp parallel for schedule(static) num_threads(op->nthr)
-        for (int kx = 0; kx < nk; kx++) {
-            const double *r = R + (size_t)kx * op->qy;
-            for (int ky = 0; ky < ty; ky++) {
-                const int mirror = ky > my;
-                const double s = (mirror && oy) ? -1.0 : 1.0, v = r[mirror ? ty - ky : ky];
-                const size_t q = (size_t)kx * ty + ky;
-                double re = s * v * ds[q][0], im = s * v * ds[q][1];
-                mc_eig_rot(&re, &im, rot);
-                acc[q][0] += re;
-                acc[q][1] += im;
+    const size_t wcells = (size_t)wx * wy, cells = (size_t)nx * op->g.ny, al = (size_t)nk * ty;
+    fftw_complex *acc = op->acc;
+    memset(acc, 0, al * sizeof *acc);
+    for (int k0 = 0; k0 < nz; k0 += bm) {
+        const int m = nz - k0 < bm ? nz - k0 : bm;
+        for (int c = 0; c < 6; c++) {
+            for (int q = 0; q < m; q++) {
+                const double *e = eps[c] + (k0 + q) * wcells;
+                for (int j = 0; j < wy; j++)
+                    memcpy(op->whole + q * cells + (size_t)(j0 + j) * nx + i0,
+                           e + (size_t)j * wx, (size_t)wx * sizeof *e);
             }
+            mc_dfft_forward_many(op->d, op->whole, cells, m, op->bs, al);
+            const int rot = mc_eig_odd_x(c) + mc_eig_odd_y(c), oy = mc_eig_odd_y(c);
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+            for (int kx = 0; kx < nk; kx++)
+                for (int q = 0; q < m; q++) {
+                    const double *r = op->tab + (size_t)((k0 + q) * 6 + c) * op->tlen +
+                                      (size_t)kx * op->qy;
+                    const fftw_complex *E = op->bs + q * al;
+                    for (int ky = 0; ky < ty; ky++) {
+                        const int mirror = ky > my;
+                        const double s = (mirror && oy) ? -1.0 : 1.0,
+                                     v = r[mirror ? ty - ky : ky];
+                        const size_t at = (size_t)kx * ty + ky;
+                        double re = s * v * E[at][0], im = s * v * E[at][1];
+                        mc_eig_rot(&re, &im, rot);
+                        acc[at][0] += re;
+                        acc[at][1] += im;
+                    }
+                }
         }
     }
-    memcpy(ds, acc, (size_t)nk * ty * sizeof *ds);
-    mc_dfft_inverse(op->d, uz, 0);
+    memcpy(op->bs, acc, al * sizeof *acc);
+    mc_dfft_inverse_many(op->d, op->bs, al, 1, uz, cells);
     const double scale = 1.0 / ((double)op->fft.tx * ty); /* FFTW does not normalise */
-    const size_t cells = (size_t)nx * op->g.ny;
     for (size_t q = 0; q < cells; q++)
         uz[q] *= scale;
 }
@@ -381,6 +396,7 @@ void mc_eigen_disp_destroy(mc_eigen_disp **op)
     mc_eig_fft_destroy(&(*op)->fft);
     mc_dfft_destroy(&(*op)->d);
     mc_free((*op)->whole);
+    mc_free((*op)->bs);
     mc_free((*op)->acc);
     mc_free((*op)->tab);
     mc_free((*op)->rows);
@@ -494,9 +510,11 @@ size_t mc_eigen_disp_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, 
             int k0, nk;
             mc_dfft_split((int)qx, ranks, 0, &k0, &nk);
             const size_t cells = (size_t)g->nx * g->ny;
-            return bytes + cells * sizeof(double) + (size_t)nk * ty * sizeof(fftw_complex) +
+            const int bm = v->nz < DIST_BATCH ? v->nz : DIST_BATCH;
+            return bytes + (size_t)bm * cells * sizeof(double) +
+                   (size_t)(bm + 1) * nk * ty * sizeof(fftw_complex) +
                    6 * (size_t)v->nz * (((size_t)nk * qy + 7) / 8 * 8) * sizeof(double) +
-                   mc_dfft_estimate(g->nx, g->ny, (int)tx, (int)ty, ranks, 0);
+                   mc_dfft_estimate_many(g->nx, g->ny, (int)tx, (int)ty, bm, ranks, 0);
         }
         bytes += (size_t)nthr * ((size_t)g->ny * tx * sizeof(double) +
                                  2 * speclen * sizeof(fftw_complex));
