@@ -407,7 +407,7 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     const int nz = op->v.nz, wy = op->v.ny;
     /* under mpirun (any number of ranks, one included: the same path, the same bits for every
      * P) the lateral transforms are distributed and this rank keeps its frequencies alone */
-    const int dist = mc_dist_active();
+    const int dist = mc_dist_active() && !op->replicated;
     plan_sizes(op, f, dist ? mc_dist_size() : 0, mc_dist_rank());
     int rc;
     if (dist) {

@@ -485,8 +485,23 @@ int mc_eigen_stress_create(const mc_grid *g, const mc_eigen_volume *v, double nu
     return mc_eig_stress_create_depth(g, v, nu, b, MC_EIG_DEPTH_AUTO, out, err);
 }
 
+static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                  int depth, int replicated, mc_eigen_stress **out, mc_error *err);
+
 int mc_eig_stress_create_depth(const mc_grid *g, const mc_eigen_volume *v, double nu,
                                mc_backend b, int depth, mc_eigen_stress **out, mc_error *err)
+{
+    return create(g, v, nu, b, depth, 0, out, err);
+}
+
+int mc_eig_stress_create_replicated(const mc_grid *g, const mc_eigen_volume *v, double nu,
+                                    mc_eigen_stress **out, mc_error *err)
+{
+    return create(g, v, nu, MC_BACKEND_FFT, MC_EIG_DEPTH_AUTO, 1, out, err);
+}
+
+static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                  int depth, int replicated, mc_eigen_stress **out, mc_error *err)
 {
     *out = NULL;
     int rc = mc_eig_check(g, v, nu, b, "eigen stress", err);
@@ -499,6 +514,7 @@ int mc_eig_stress_create_depth(const mc_grid *g, const mc_eigen_volume *v, doubl
     op->v = *v;
     op->nu = nu;
     op->depth = depth;
+    op->replicated = replicated;
     /* the layering: the object's copy of the groups, the first fine layer of each layer (and
      * the count at nz) and the fine layer of each layer's centre */
     op->first = mc_malloc((2 * (size_t)v->nz + 1) * sizeof *op->first);
