@@ -69,6 +69,25 @@ static double same_on_ranks(const double *v, size_t n)
 }
 
 /* sig (6 nv), p3 (window) and uz (grid) through operators built serially or distributed. */
+/* bytes of the built operators against the estimates from the sizes (exact, serial as
+ * distributed: the memory guard's figures), on every rank (a rank with fewer columns holds no
+ * more than rank 0's estimate) */
+static double bytes_off(const mc_grid *g, const mc_eigen_volume *v, const mc_eigen_stress *s,
+                        const mc_eigen_disp *d)
+{
+    size_t parts[MC_EIGEN_STRESS_PARTS], est = 0;
+    mc_eigen_stress_estimate(g, v, MC_BACKEND_FFT, parts);
+    for (int k = 0; k < MC_EIGEN_STRESS_PARTS; k++)
+        est += parts[k];
+    const size_t sb = mc_eigen_stress_bytes(s), db = mc_eigen_disp_bytes(d);
+    const size_t de = mc_eigen_disp_estimate(g, v, MC_BACKEND_FFT);
+    double off = rank == 0 ? (sb != est) + (db != de) : (sb > est) + (db > de);
+    MPI_Allreduce(MPI_IN_PLACE, &off, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    return off;
+}
+
+static double bytes_state; /* the last distributed create's bytes_off */
+
 static int apply(const mc_grid *g, const mc_eigen_volume *v, int depth, int distributed,
                  const double *eps, double *sig, double *p3, double *uz)
 {
@@ -81,6 +100,8 @@ static int apply(const mc_grid *g, const mc_eigen_volume *v, int depth, int dist
     int rc = mc_eig_stress_create_depth(g, v, 0.3, MC_BACKEND_FFT, depth, &s, &err);
     if (rc == MC_OK)
         rc = mc_eigen_disp_create(g, v, 0.3, MC_BACKEND_FFT, &d, &err);
+    if (rc == MC_OK && distributed && depth == MC_EIG_DEPTH_AUTO)
+        bytes_state = bytes_off(g, v, s, d);
     if (rc == MC_OK) {
         const size_t nv = (size_t)v->nz * v->ny * v->nx;
         const double *e[6];
@@ -124,6 +145,10 @@ static void one_case(const char *name, mc_grid g, mc_eigen_volume v, int depth)
         check(what, rel_diff(pd, ps, nw), TOL_ROUNDOFF);
         snprintf(what, sizeof what, "%s: residual u_z, distributed vs serial fft", name);
         check(what, rel_diff(ud, us, ng), TOL_ROUNDOFF);
+        if (depth == MC_EIG_DEPTH_AUTO) {
+            snprintf(what, sizeof what, "%s: bytes of the distributed operators = estimates", name);
+            check(what, bytes_state, 0.0);
+        }
         snprintf(what, sizeof what, "%s: the same stress and u_z on every rank", name);
         check(what, same_on_ranks(sd, 6 * nv) + same_on_ranks(ud, ng), 0.0);
         if (rank == 0)
