@@ -74,6 +74,7 @@ MPI_LIB_OBJ  = $(LIB_SRC:%.c=$(MPI_BUILD)/%.o)
 MPI_CLI_OBJ  = $(CLI_SRC:%.c=$(MPI_BUILD)/%.o)
 MPI_PROGRAM  = $(dir $(PROGRAM))microcontact-mpi
 MPI_TESTS    = $(MPI_BUILD)/tests/mpi_operator
+MPI_EIGEN    = $(MPI_BUILD)/tests/mpi_eigen
 NPY_COMPARE  = $(BUILD)/tests/npy_compare
 MPI_LIBS     = -lfftw3_mpi $(LIBS)
 
@@ -132,6 +133,10 @@ $(MPI_TESTS): tests/mpi/mpi_operator.c $(MPI_LIB_OBJ)
 	@mkdir -p $(dir $@)
 	$(MPICC) $(ALL_CFLAGS) -DMC_MPI -o $@ $< $(MPI_LIB_OBJ) $(LDFLAGS) $(MPI_LIBS)
 
+$(MPI_EIGEN): tests/mpi/mpi_eigen.c $(MPI_LIB_OBJ)
+	@mkdir -p $(dir $@)
+	$(MPICC) $(ALL_CFLAGS) -DMC_MPI -o $@ $< $(MPI_LIB_OBJ) $(LDFLAGS) $(MPI_LIBS)
+
 $(NPY_COMPARE): tests/mpi/npy_compare.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -o $@ $< -lm
@@ -143,8 +148,8 @@ mpi: deps
 
 # the distributed operator against the direct sum and across rank counts, and whole runs under
 # mpirun -np 2 and 3 against the serial program (tests/cli/mpi.sh)
-mpi-check: $(PROGRAM) $(MPI_PROGRAM) $(MPI_TESTS) $(NPY_COMPARE)
-	tests/cli/mpi.sh ./$(PROGRAM) ./$(MPI_PROGRAM) ./$(MPI_TESTS) ./$(NPY_COMPARE)
+mpi-check: $(PROGRAM) $(MPI_PROGRAM) $(MPI_TESTS) $(MPI_EIGEN) $(NPY_COMPARE)
+	tests/cli/mpi.sh ./$(PROGRAM) ./$(MPI_PROGRAM) ./$(MPI_TESTS) ./$(NPY_COMPARE) ./$(MPI_EIGEN)
 
 # ---- front doors ----------------------------------------------------------------------------
 run: deps

@@ -23,6 +23,9 @@ struct mc_dfft {
     fftw_plan r2c, c2r, fwd, bwd; /* one line each, FFTW_ESTIMATE */
     fftw_plan tr_fwd, tr_bwd;     /* FFTW-MPI transposes ny x hx <-> hx x ny (complex pairs) */
     int *counts, *displs;         /* the gather of the output rows, in doubles per rank */
+    int m;                        /* fields per batch (mc_dfft_create_many; 1: mc_dfft_create) */
+    double *pack;                 /* batches: this rank's output rows, [r][f][x] */
+    int *rcounts, *rdispls;       /* batches: the gather's rows per rank and first rows */
 };
 
 void mc_dfft_destroy(mc_dfft **pd)
@@ -41,6 +44,9 @@ void mc_dfft_destroy(mc_dfft **pd)
     mc_free(d->cline);
     mc_free(d->counts);
     mc_free(d->displs);
+    mc_free(d->pack);
+    mc_free(d->rcounts);
+    mc_free(d->rdispls);
     mc_free(d);
     *pd = NULL;
 }
@@ -49,7 +55,14 @@ static void *alloc_doubles(size_t n) { return mc_malloc((n ? n : 1) * sizeof(dou
 
 int mc_dfft_create(int nx, int ny, int tx, int ty, mc_dfft **out, mc_error *err)
 {
+    return mc_dfft_create_many(nx, ny, tx, ty, 1, out, err);
+}
+
+int mc_dfft_create_many(int nx, int ny, int tx, int ty, int m, mc_dfft **out, mc_error *err)
+{
     *out = NULL;
+    if (m < 1)
+        return mc_fail(err, MC_ERR_INTERNAL, "distributed FFT: %d fields per batch", m);
     if (!mc_dist_active())
         return mc_fail(err, MC_ERR_INTERNAL, "distributed FFT: no MPI communicator");
     int rc = mc_fftw_prepare(err);
@@ -64,13 +77,16 @@ int mc_dfft_create(int nx, int ny, int tx, int ty, mc_dfft **out, mc_error *err)
     d->tx = tx;
     d->ty = ty;
     d->hx = tx / 2 + 1;
+    d->m = m;
     const ptrdiff_t n[2] = {ny, d->hx};
     const ptrdiff_t alloc = fftw_mpi_local_size_many_transposed(
         2, n, 2, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, d->comm, &d->nr, &d->r0, &d->nk,
         &d->k0);
-    /* the transposes' buffers: what FFTW asks for, at least both layouts (complex = 2 doubles) */
-    size_t nbuf = 2 * (size_t)alloc;
-    const size_t nrow = 2 * (size_t)d->nr * (size_t)d->hx, ncol = 2 * (size_t)d->nk * (size_t)ny;
+    /* the transposes' buffers: what FFTW asks for, at least both layouts (complex = 2 doubles),
+     * m fields interleaved */
+    size_t nbuf = 2 * (size_t)alloc * (size_t)m;
+    const size_t nrow = 2 * (size_t)d->nr * (size_t)d->hx * m,
+                 ncol = 2 * (size_t)d->nk * (size_t)ny * m;
     if (nbuf < nrow)
         nbuf = nrow;
     if (nbuf < ncol)
@@ -98,6 +114,19 @@ int mc_dfft_create(int nx, int ny, int tx, int ty, mc_dfft **out, mc_error *err)
         d->counts[p] = all[2 * p];
         d->displs[p] = all[2 * p + 1];
     }
+    if (m > 1) { /* the batches' gather: whole rows (m fields each) per rank */
+        if (!(d->pack = alloc_doubles((size_t)d->nr * m * nx)) ||
+            !(d->rcounts = mc_calloc((size_t)size, sizeof *d->rcounts)) ||
+            !(d->rdispls = mc_calloc((size_t)size, sizeof *d->rdispls))) {
+            mc_free(all);
+            mc_dfft_destroy(&d);
+            return mc_fail(err, MC_ERR_NOMEM, "distributed FFT: out of memory");
+        }
+        for (int p = 0; p < size; p++) {
+            d->rcounts[p] = all[2 * p] / (nx > 0 ? nx : 1);
+            d->rdispls[p] = all[2 * p + 1] / (nx > 0 ? nx : 1);
+        }
+    }
     mc_free(all);
     /* one-line plans on one thread, always FFTW_ESTIMATE: the same plan, hence the same bits, on
      * every rank (dfft.h) */
@@ -106,10 +135,10 @@ int mc_dfft_create(int nx, int ny, int tx, int ty, mc_dfft **out, mc_error *err)
     d->c2r = fftw_plan_dft_c2r_1d(tx, d->cline, d->line, FFTW_ESTIMATE);
     d->fwd = fftw_plan_dft_1d(ty, d->cline, d->cline, FFTW_FORWARD, FFTW_ESTIMATE);
     d->bwd = fftw_plan_dft_1d(ty, d->cline, d->cline, FFTW_BACKWARD, FFTW_ESTIMATE);
-    d->tr_fwd = fftw_mpi_plan_many_transpose(ny, d->hx, 2, FFTW_MPI_DEFAULT_BLOCK,
+    d->tr_fwd = fftw_mpi_plan_many_transpose(ny, d->hx, 2 * m, FFTW_MPI_DEFAULT_BLOCK,
                                              FFTW_MPI_DEFAULT_BLOCK, d->rows, d->cols, d->comm,
                                              FFTW_ESTIMATE);
-    d->tr_bwd = fftw_mpi_plan_many_transpose(d->hx, ny, 2, FFTW_MPI_DEFAULT_BLOCK,
+    d->tr_bwd = fftw_mpi_plan_many_transpose(d->hx, ny, 2 * m, FFTW_MPI_DEFAULT_BLOCK,
                                              FFTW_MPI_DEFAULT_BLOCK, d->cols, d->rows, d->comm,
                                              FFTW_ESTIMATE);
     fftw_plan_with_nthreads(mc_threads_count());
@@ -183,16 +212,118 @@ void mc_dfft_inverse(mc_dfft *d, double *out, int local)
     mc_dist_comm_end(t0);
 }
 
+void mc_dfft_forward_many(mc_dfft *d, const double *fields, size_t stride, int m,
+                          fftw_complex *spec, size_t sstride)
+{
+    const int M = d->m;
+    fftw_complex *rows = (fftw_complex *)d->rows, *cols = (fftw_complex *)d->cols;
+    for (ptrdiff_t r = 0; r < d->nr; r++)
+        for (int f = 0; f < M; f++) {
+            fftw_complex *dst = rows + ((size_t)r * d->hx) * M + f;
+            if (f >= m) { /* the batch's unused slots: zeros */
+                for (int k = 0; k < d->hx; k++)
+                    dst[(size_t)k * M][0] = dst[(size_t)k * M][1] = 0.0;
+                continue;
+            }
+            const double *src = fields + f * stride + (size_t)(d->r0 + r) * d->nx;
+            memcpy(d->line, src, (size_t)d->nx * sizeof *d->line);
+            memset(d->line + d->nx, 0, (size_t)(d->tx - d->nx) * sizeof *d->line);
+            fftw_execute_dft_r2c(d->r2c, d->line, d->cline);
+            for (int k = 0; k < d->hx; k++) {
+                dst[(size_t)k * M][0] = d->cline[k][0];
+                dst[(size_t)k * M][1] = d->cline[k][1];
+            }
+        }
+    const mc_dist_mark t0 = mc_dist_comm_begin();
+    fftw_execute(d->tr_fwd); /* one transpose for the batch */
+    mc_dist_comm_end(t0);
+    for (int f = 0; f < m; f++)
+        for (ptrdiff_t k = 0; k < d->nk; k++) {
+            const fftw_complex *src = cols + ((size_t)k * d->ny) * M + f;
+            for (int j = 0; j < d->ny; j++) {
+                d->cline[j][0] = src[(size_t)j * M][0];
+                d->cline[j][1] = src[(size_t)j * M][1];
+            }
+            memset(d->cline + d->ny, 0, (size_t)(d->ty - d->ny) * sizeof *d->cline);
+            fftw_execute_dft(d->fwd, d->cline, d->cline);
+            memcpy(spec + f * sstride + (size_t)k * d->ty, d->cline,
+                   (size_t)d->ty * sizeof *spec);
+        }
+}
+
+void mc_dfft_inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m, double *out,
+                          size_t stride)
+{
+    const int M = d->m;
+    fftw_complex *rows = (fftw_complex *)d->rows, *cols = (fftw_complex *)d->cols;
+    for (int f = 0; f < M; f++)
+        for (ptrdiff_t k = 0; k < d->nk; k++) {
+            fftw_complex *dst = cols + ((size_t)k * d->ny) * M + f;
+            if (f >= m) {
+                for (int j = 0; j < d->ny; j++)
+                    dst[(size_t)j * M][0] = dst[(size_t)j * M][1] = 0.0;
+                continue;
+            }
+            memcpy(d->cline, spec + f * sstride + (size_t)k * d->ty,
+                   (size_t)d->ty * sizeof *d->cline);
+            fftw_execute_dft(d->bwd, d->cline, d->cline);
+            for (int j = 0; j < d->ny; j++) {
+                dst[(size_t)j * M][0] = d->cline[j][0];
+                dst[(size_t)j * M][1] = d->cline[j][1];
+            }
+        }
+    mc_dist_mark t0 = mc_dist_comm_begin();
+    fftw_execute(d->tr_bwd);
+    mc_dist_comm_end(t0);
+    /* this rank's rows of each field, packed [r][f][x] for the gather (m = 1: in place) */
+    double *pack = M > 1 ? d->pack : out + (size_t)d->r0 * d->nx;
+    for (ptrdiff_t r = 0; r < d->nr; r++)
+        for (int f = 0; f < m; f++) {
+            const fftw_complex *src = rows + ((size_t)r * d->hx) * M + f;
+            for (int k = 0; k < d->hx; k++) {
+                d->cline[k][0] = src[(size_t)k * M][0];
+                d->cline[k][1] = src[(size_t)k * M][1];
+            }
+            fftw_execute_dft_c2r(d->c2r, d->cline, d->line);
+            memcpy(pack + ((size_t)r * m + f) * d->nx, d->line, (size_t)d->nx * sizeof *pack);
+        }
+    t0 = mc_dist_comm_begin();
+    if (M == 1) {
+        MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, out, d->counts, d->displs, MPI_DOUBLE,
+                       d->comm);
+    } else {
+        /* one row of the m fields: m runs of nx at the fields' stride, its extent one row, so
+         * that rank p's rows r0 .. r0 + nr - 1 land in every field at once */
+        MPI_Datatype vec, row;
+        MPI_Type_vector(m, d->nx, (int)stride, MPI_DOUBLE, &vec);
+        MPI_Type_create_resized(vec, 0, (MPI_Aint)(d->nx * sizeof(double)), &row);
+        MPI_Type_commit(&row);
+        MPI_Allgatherv(d->pack, (int)(d->nr * m * d->nx), MPI_DOUBLE, out, d->rcounts,
+                       d->rdispls, row, d->comm);
+        MPI_Type_free(&row);
+        MPI_Type_free(&vec);
+    }
+    mc_dist_comm_end(t0);
+}
+
 void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)
 {
     *r0 = (int)d->r0;
     *nr = (int)d->nr;
 }
 
-void mc_dfft_cols(const mc_dfft *d, int *k0, int *nk)
+void mc_dfft_columns(const mc_dfft *d, int *k0, int *nk)
 {
     *k0 = (int)d->k0;
     *nk = (int)d->nk;
+}
+
+size_t mc_dfft_bytes(const mc_dfft *d)
+{
+    int p, r;
+    MPI_Comm_size(d->comm, &p);
+    MPI_Comm_rank(d->comm, &r);
+    return mc_dfft_estimate_many(d->nx, d->ny, d->tx, d->ty, d->m, p, r);
 }
 
 void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)
@@ -286,6 +417,46 @@ int mc_dfft_table_rows(mc_dfft *d, double *rows, fftw_complex *spec)
 
 #else /* no MPI: the engine is never made */
 
+void mc_dfft_columns(const mc_dfft *d, int *k0, int *nk)
+{
+    (void)d;
+    *k0 = *nk = 0;
+}
+
+int mc_dfft_create_many(int nx, int ny, int tx, int ty, int m, mc_dfft **out, mc_error *err)
+{
+    (void)m;
+    return mc_dfft_create(nx, ny, tx, ty, out, err);
+}
+
+void mc_dfft_forward_many(mc_dfft *d, const double *fields, size_t stride, int m,
+                          fftw_complex *spec, size_t sstride)
+{
+    (void)d;
+    (void)fields;
+    (void)stride;
+    (void)m;
+    (void)spec;
+    (void)sstride;
+}
+
+void mc_dfft_inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m, double *out,
+                          size_t stride)
+{
+    (void)d;
+    (void)spec;
+    (void)sstride;
+    (void)m;
+    (void)out;
+    (void)stride;
+}
+
+size_t mc_dfft_bytes(const mc_dfft *d)
+{
+    (void)d;
+    return 0;
+}
+
 int mc_dfft_create(int nx, int ny, int tx, int ty, mc_dfft **out, mc_error *err)
 {
     (void)nx;
@@ -335,12 +506,6 @@ void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)
     *r0 = *nr = 0;
 }
 
-void mc_dfft_cols(const mc_dfft *d, int *k0, int *nk)
-{
-    (void)d;
-    *k0 = *nk = 0;
-}
-
 void mc_dfft_table(mc_dfft *d, const double *table, fftw_complex *spec)
 {
     (void)d;
@@ -361,3 +526,31 @@ int mc_dfft_table_rows(mc_dfft *d, double *rows, fftw_complex *spec)
     return MC_ERR_INTERNAL;
 }
 #endif
+
+void mc_dfft_split(int n, int p, int r, int *first, int *count)
+{
+    const int block = p > 0 ? (n + p - 1) / p : n;
+    const long f = (long)r * block;
+    *first = f < n ? (int)f : n;
+    *count = f < n ? (n - (int)f < block ? n - (int)f : block) : 0;
+}
+
+size_t mc_dfft_estimate(int nx, int ny, int tx, int ty, int p, int r)
+{
+    return mc_dfft_estimate_many(nx, ny, tx, ty, 1, p, r);
+}
+
+size_t mc_dfft_estimate_many(int nx, int ny, int tx, int ty, int m, int p, int r)
+{
+    const int hx = tx / 2 + 1;
+    int r0, nr, k0, nk;
+    mc_dfft_split(ny, p, r, &r0, &nr);
+    mc_dfft_split(hx, p, r, &k0, &nk);
+    const size_t nrow = 2 * (size_t)nr * (size_t)hx * m, ncol = 2 * (size_t)nk * (size_t)ny * m;
+    const size_t nbuf = nrow > ncol ? nrow : ncol;
+    const size_t cl = (size_t)(hx > ty ? hx : ty);
+    const size_t pack = m > 1 ? (size_t)nr * m * nx : 0;
+    return (2 * nbuf + 2 * (size_t)nk * (size_t)ty + (size_t)tx + 2 * cl + pack) *
+               sizeof(double) +
+           (m > 1 ? 4 : 2) * (size_t)p * sizeof(int);
+}

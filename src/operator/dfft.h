@@ -59,11 +59,47 @@ void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec, int lo
  * Collective. */
 void mc_dfft_inverse(mc_dfft *d, double *out, int local);
 
+/* ---- batches: m fields through one transpose each way and one gather -------------------------
+ * Fewer collectives (each a latency, and on a shared machine a wait for the other ranks to be
+ * scheduled): the m fields' row spectra are interleaved (FFTW-MPI's howmany = 2 m) and moved by
+ * one transpose; every line is still transformed alone by the same one-line plans, so a batch
+ * gives the bits of m single transforms. Buffers m times the single engine's. */
+
+/* An engine for batches of up to m >= 1 fields (mc_dfft_create is m = 1; the single-field
+ * functions above work on m = 1 engines only). Collective. */
+int mc_dfft_create_many(int nx, int ny, int tx, int ty, int m, mc_dfft **out, mc_error *err);
+
+/* m fields (<= the engine's m), whole on every rank, field f at fields + f * stride (nx*ny
+ * values each), forward into spec + f * sstride (complex values; each mc_dfft_spectrum_len / 2
+ * of them: this rank's columns, [kx - k0][ky]). Collective. */
+void mc_dfft_forward_many(mc_dfft *d, const double *fields, size_t stride, int m,
+                          fftw_complex *spec, size_t sstride);
+
+/* m spectra (spec + f * sstride, destroyed) backward, unnormalised, cropped to nx x ny and
+ * gathered whole on every rank into out + f * stride (stride >= nx*ny). Collective. */
+void mc_dfft_inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m, double *out,
+                          size_t stride);
+
+/* What mc_dfft_bytes gives for an engine of m fields (mc_dfft_estimate is m = 1). */
+size_t mc_dfft_estimate_many(int nx, int ny, int tx, int ty, int m, int p, int r);
+
 /* This rank's data rows r0 .. r0 + nr - 1 (of ny): the rows mc_dfft_forward reads. */
 void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr);
 
-/* This rank's spectrum columns kx = k0 .. k0 + nk - 1 (of tx/2 + 1): its part [kx - k0][ky]. */
-void mc_dfft_cols(const mc_dfft *d, int *k0, int *nk);
+/* This rank's spectrum columns k0 .. k0 + nk - 1 (of tx/2 + 1; nk may be 0). */
+void mc_dfft_columns(const mc_dfft *d, int *k0, int *nk);
+
+/* Bytes held by the engine (its transpose buffers, spectrum and lines; FFTW's plans aside). */
+size_t mc_dfft_bytes(const mc_dfft *d);
+
+/* What mc_dfft_bytes gives on rank r of p for an nx x ny field padded to tx x ty, from the sizes
+ * alone (FFTW-MPI's default blocks, mc_dfft_split). Not collective; any build. */
+size_t mc_dfft_estimate(int nx, int ny, int tx, int ty, int p, int r);
+
+/* The columns of n that FFTW-MPI's default block gives rank r of p (blocks of ceil(n / p), the
+ * last ones short or empty): what mc_dfft_columns returns for n = tx/2 + 1, computed from the
+ * sizes alone (memory estimates). Not collective; any build. */
+void mc_dfft_split(int n, int p, int r, int *first, int *count);
 
 /* This rank's part of the spectrum of a whole ty x tx table (wrap-around layout, on every rank)
  * into spec, by the same line transforms; local (no communication): each rank transforms all ty

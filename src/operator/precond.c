@@ -144,7 +144,7 @@ static int plan_dist(mc_precond *pc, box_plan *b, mc_error *err)
     if (rc != MC_OK)
         return rc;
     int k0, nk;
-    mc_dfft_cols(b->d, &k0, &nk);
+    mc_dfft_columns(b->d, &k0, &nk);
     mc_dfft_rows(b->d, &b->rb0, &b->nrb);
     const size_t nf = (size_t)b->nrb * (size_t)b->fx;
     b->symbol = mc_malloc(sizeof(double) * ((size_t)nk * (size_t)b->fy + 1));

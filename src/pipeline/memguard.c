@@ -110,6 +110,9 @@ double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_
     if (shortcut)
         return fields;
     const mc_backend b = s->solver.backend;
+    /* the operators' exact bytes; under mpirun rank 0's share of their distributed fft backends
+     * (their spectra divide by P, plastic/eigen_op.h); the loop's volume arrays below stay
+     * whole on every rank */
     size_t parts[MC_EIGEN_STRESS_PARTS];
     mc_eigen_stress_estimate(g, v, b, parts);
     double ops = (double)mc_eigen_disp_estimate(g, v, b);

@@ -11,8 +11,10 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/dist.h"
 #include "core/fftsize.h"
 #include "kernels/eigen.h"
+#include "operator/dfft.h"
 #include "plastic/eigen_internal.h"
 
 typedef struct disp_ops disp_ops;
@@ -32,6 +34,15 @@ struct mc_eigen_disp {
     double *rows;    /* nthr x (ny * tx) */
     fftw_complex *spec; /* nthr x 2 spectra: the transformed layer and the thread's sum */
     int *group;      /* the object's copy of v.group (NULL: uniform) */
+    /* fft distributed (under mpirun, mc_dist_active at create; theory.md §8.4) */
+    mc_dfft *d;      /* the grid's lateral transforms, the window embedded at (i0, j0) */
+    int k0, nk;      /* this rank's frequencies kx = k0 .. k0 + nk - 1; tab holds them alone:
+                      * quadrant t at t * tlen, [kx - k0][ky] (ky < qy) */
+    size_t tlen;
+    int bm;          /* layers per batch of transforms (min(nz, DIST_BATCH)) */
+    double *whole;   /* bm x grid ny * nx: a batch of layers' windows embedded in zeros */
+    fftw_complex *bs; /* bm x nk * ty: the batch's spectra, mc_dfft's layout */
+    fftw_complex *acc; /* nk * ty: the sum, mc_dfft's layout */
     size_t bytes;
 };
 
@@ -75,7 +86,8 @@ static void disp_limit(int di, int dj, const void *ctx, double *out)
     mc_eigen_surface_uz_bar(cx - 0.5 * c->dx, cx + 0.5 * c->dx, c->z1, c->z2, c->nu, out);
 }
 
-static void build_tables(mc_eigen_disp *op)
+/* Layer k's six tables into q[6] (quadrants of qlen). */
+static void build_layer(mc_eigen_disp *op, int k, double *const q[6])
 {
     const mc_grid *g = &op->g;
     const int px = mc_eig_per_x(g), py = mc_eig_per_y(g);
@@ -86,18 +98,24 @@ static void build_tables(mc_eigen_disp *op)
         par[c] = mc_eig_par(c);
     /* a graded layer is one cuboid of its whole thickness (the kernels take any z1 < z2; the
      * same as the sum of its fine sub-cuboids, theory.md §8.8) */
-    for (int k = 0, f = 0; k < op->v.nz; f += mc_eigen_layer_count(&op->v, k), k++) {
-        const disp_ctx ctx = {g->dx, g->dy, f * op->v.dz,
-                              (f + mc_eigen_layer_count(&op->v, k)) * op->v.dz, op->nu,
-                              mc_eig_line(g), px};
+    const int f = mc_eigen_layer_first(&op->v, k);
+    const disp_ctx ctx = {g->dx, g->dy, f * op->v.dz,
+                          (f + mc_eigen_layer_count(&op->v, k)) * op->v.dz, op->nu,
+                          mc_eig_line(g), px};
+    if (mc_eig_periodic(g))
+        mc_eig_fill_images(op->qx, op->qy, op->ux, op->uy, 6, par, disp_kernel, disp_limit, &ctx,
+                           period, images, q);
+    else
+        mc_eig_fill(op->qx, op->qy, op->ux, op->uy, 6, par, disp_kernel, &ctx, q);
+}
+
+static void build_tables(mc_eigen_disp *op)
+{
+    for (int k = 0; k < op->v.nz; k++) {
         double *q[6];
         for (int c = 0; c < 6; c++)
             q[c] = op->tab + (size_t)(k * 6 + c) * op->qlen;
-        if (mc_eig_periodic(g))
-            mc_eig_fill_images(op->qx, op->qy, op->ux, op->uy, 6, par, disp_kernel, disp_limit,
-                               &ctx, period, images, q);
-        else
-            mc_eig_fill(op->qx, op->qy, op->ux, op->uy, 6, par, disp_kernel, &ctx, q);
+        build_layer(op, k, q);
     }
 }
 
@@ -153,6 +171,8 @@ static int fft_create(mc_eigen_disp *op, mc_error *err)
     const int my = py ? op->g.ny / 2 : mc_fftsize_good(op->uy < 2 ? 2 : op->uy);
     op->qx = mx + 1;
     op->qy = my + 1;
+    if (mc_dist_active()) /* the distributed arrangement: dist_create */
+        return MC_OK;
     int rc = mc_eig_fft_create(&op->fft, px ? op->g.nx : 2 * mx, py ? op->g.ny : 2 * my,
                                op->v.j0, op->v.ny, op->g.ny, err);
     if (rc)
@@ -167,17 +187,128 @@ static int fft_create(mc_eigen_disp *op, mc_error *err)
     return MC_OK;
 }
 
+static int make_quad(const mc_eigen_disp *op, mc_eig_quad *quad, mc_error *err)
+{
+    const int px = mc_eig_per_x(&op->g), py = mc_eig_per_y(&op->g);
+    const int tx = px ? op->g.nx : 2 * (op->qx - 1), ty = py ? op->g.ny : 2 * (op->qy - 1);
+    int rc = mc_eig_periodic(&op->g)
+                 ? mc_eig_quad_create_full(quad, tx, ty, op->qx, op->qy, err)
+                 : mc_eig_quad_create(quad, op->qx - 1, op->qy - 1, err);
+    if (rc)
+        mc_eig_quad_destroy(quad);
+    return rc;
+}
+
+/* layers per batch of the distributed transforms (dfft.h batches: fewer collectives) */
+#define DIST_BATCH 8
+
+/* The distributed fft backend (theory.md §8.4): the grid's transforms by mc_dfft, the window
+ * embedded in a grid-sized field at (i0, j0) as the serial rows place it; this rank's columns of
+ * the quadrant spectra, built layer by layer through a scratch of six whole quadrants (never the
+ * whole tables). */
+static int dist_create(mc_eigen_disp *op, mc_error *err)
+{
+    const int px = mc_eig_per_x(&op->g), py = mc_eig_per_y(&op->g), nz = op->v.nz;
+    const int tx = px ? op->g.nx : 2 * (op->qx - 1), ty = py ? op->g.ny : 2 * (op->qy - 1);
+    op->fft.tx = tx; /* the sizes alone: the serial transforms are not made */
+    op->fft.ty = ty;
+    op->fft.hx = tx / 2 + 1;
+    op->bm = nz < DIST_BATCH ? nz : DIST_BATCH;
+    int rc = mc_dfft_create_many(op->g.nx, op->g.ny, tx, ty, op->bm, &op->d, err);
+    if (rc)
+        return rc;
+    mc_dfft_columns(op->d, &op->k0, &op->nk);
+    op->tlen = ((size_t)op->nk * op->qy + 7) / 8 * 8;
+    const size_t cells = (size_t)op->g.nx * op->g.ny, al = (size_t)op->nk * ty;
+    double *scr = NULL;
+    if (!(op->whole = mc_zeros((size_t)op->bm * cells)) ||
+        !(op->acc = mc_malloc((al + 1) * sizeof *op->acc)) ||
+        !(op->bs = mc_malloc(((size_t)op->bm * al + 1) * sizeof *op->bs)) ||
+        !(op->tab = mc_malloc((6 * (size_t)nz * op->tlen + 1) * sizeof *op->tab)) ||
+        !(scr = mc_malloc(6 * op->qlen * sizeof *scr)))
+        return mc_fail(err, MC_ERR_NOMEM, "eigen displacement: out of memory");
+    op->bytes += (size_t)op->bm * cells * sizeof(double) + (op->bm + 1) * al * sizeof *op->acc +
+                 6 * (size_t)nz * op->tlen * sizeof *op->tab + mc_dfft_bytes(op->d);
+    mc_eig_quad quad;
+    if ((rc = make_quad(op, &quad, err))) {
+        mc_free(scr);
+        return rc;
+    }
+    double *q[6];
+    for (int c = 0; c < 6; c++)
+        q[c] = scr + (size_t)c * op->qlen;
+    for (int k = 0; k < nz; k++) {
+        build_layer(op, k, q);
+#pragma omp parallel for schedule(dynamic, 1)
+        for (int c = 0; c < 6; c++)
+            mc_eig_quad_transform(&quad, mc_eig_par(c), q[c]);
+        for (int c = 0; c < 6; c++) {
+            double *t = op->tab + (size_t)(k * 6 + c) * op->tlen;
+            for (int kx = 0; kx < op->nk; kx++)
+                for (int ky = 0; ky < op->qy; ky++)
+                    t[(size_t)kx * op->qy + ky] = q[c][(size_t)ky * op->qx + op->k0 + kx];
+        }
+    }
+    mc_eig_quad_destroy(&quad);
+    mc_free(scr);
+    return MC_OK;
+}
+
+/* u_z distributed: each column's layers forward over the ranks in batches, K E summed on this
+ * rank's frequencies (batch by batch, column by column, layer by layer: an order fixed by the
+ * sizes, each frequency alone: the same bits on any number of ranks and threads), one inverse
+ * gathered whole on every rank. Collective. */
+static void dist_apply(mc_eigen_disp *op, const double *const eps[6], double *uz)
+{
+    const int nz = op->v.nz, ty = op->fft.ty, my = op->qy - 1, nk = op->nk, bm = op->bm;
+    const int nx = op->g.nx, wx = op->v.nx, wy = op->v.ny, i0 = op->v.i0, j0 = op->v.j0;
+    const size_t wcells = (size_t)wx * wy, cells = (size_t)nx * op->g.ny, al = (size_t)nk * ty;
+    fftw_complex *acc = op->acc;
+    memset(acc, 0, al * sizeof *acc);
+    for (int k0 = 0; k0 < nz; k0 += bm) {
+        const int m = nz - k0 < bm ? nz - k0 : bm;
+        for (int c = 0; c < 6; c++) {
+            for (int q = 0; q < m; q++) {
+                const double *e = eps[c] + (k0 + q) * wcells;
+                for (int j = 0; j < wy; j++)
+                    memcpy(op->whole + q * cells + (size_t)(j0 + j) * nx + i0,
+                           e + (size_t)j * wx, (size_t)wx * sizeof *e);
+            }
+            mc_dfft_forward_many(op->d, op->whole, cells, m, op->bs, al);
+            const int rot = mc_eig_odd_x(c) + mc_eig_odd_y(c), oy = mc_eig_odd_y(c);
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+            for (int kx = 0; kx < nk; kx++)
+                for (int q = 0; q < m; q++) {
+                    const double *r = op->tab + (size_t)((k0 + q) * 6 + c) * op->tlen +
+                                      (size_t)kx * op->qy;
+                    const fftw_complex *E = op->bs + q * al;
+                    for (int ky = 0; ky < ty; ky++) {
+                        const int mirror = ky > my;
+                        const double s = (mirror && oy) ? -1.0 : 1.0,
+                                     v = r[mirror ? ty - ky : ky];
+                        const size_t at = (size_t)kx * ty + ky;
+                        double re = s * v * E[at][0], im = s * v * E[at][1];
+                        mc_eig_rot(&re, &im, rot);
+                        acc[at][0] += re;
+                        acc[at][1] += im;
+                    }
+                }
+        }
+    }
+    memcpy(op->bs, acc, al * sizeof *acc);
+    mc_dfft_inverse_many(op->d, op->bs, al, 1, uz, cells);
+    const double scale = 1.0 / ((double)op->fft.tx * ty); /* FFTW does not normalise */
+    for (size_t q = 0; q < cells; q++)
+        uz[q] *= scale;
+}
+
 /* the tables, built by build_tables, into quadrant spectra */
 static int fft_transform_tables(mc_eigen_disp *op, mc_error *err)
 {
     mc_eig_quad quad;
-    int rc = mc_eig_periodic(&op->g)
-                 ? mc_eig_quad_create_full(&quad, op->fft.tx, op->fft.ty, op->qx, op->qy, err)
-                 : mc_eig_quad_create(&quad, op->qx - 1, op->qy - 1, err);
-    if (rc) {
-        mc_eig_quad_destroy(&quad);
+    int rc = make_quad(op, &quad, err);
+    if (rc)
         return rc;
-    }
     const int n = 6 * op->v.nz;
 #pragma omp parallel for schedule(dynamic, 1)
     for (int t = 0; t < n; t++)
@@ -209,6 +340,10 @@ static void fft_accumulate(const mc_eigen_disp *op, const double *R, int c,
 
 static void fft_apply(mc_eigen_disp *op, const double *const eps[6], double *uz)
 {
+    if (op->d) {
+        dist_apply(op, eps, uz);
+        return;
+    }
     const int nz = op->v.nz, tx = op->fft.tx, ty = op->fft.ty, nx = op->g.nx, ny = op->g.ny;
     const size_t sl = op->fft.speclen, rlen = (size_t)ny * tx;
     const size_t wcells = (size_t)op->v.nx * op->v.ny;
@@ -259,6 +394,10 @@ void mc_eigen_disp_destroy(mc_eigen_disp **op)
     if (!op || !*op)
         return;
     mc_eig_fft_destroy(&(*op)->fft);
+    mc_dfft_destroy(&(*op)->d);
+    mc_free((*op)->whole);
+    mc_free((*op)->bs);
+    mc_free((*op)->acc);
     mc_free((*op)->tab);
     mc_free((*op)->rows);
     mc_free((*op)->spec);
@@ -300,7 +439,17 @@ int mc_eigen_disp_create(const mc_grid *g, const mc_eigen_volume *v, double nu, 
     if (mc_eig_per_y(g))
         op->uy = g->ny / 2 + 1;
     op->bytes = sizeof *op;
-    if ((rc = op->ops->create(op, err)) == MC_OK) {
+    if ((rc = op->ops->create(op, err)) == MC_OK && b == MC_BACKEND_FFT && mc_dist_active()) {
+        op->qlen = ((size_t)op->qx * op->qy + 7) / 8 * 8;
+        op->nthr = mc_eig_threads(6 * (size_t)v->nz * (size_t)op->fft.tx * (size_t)op->fft.ty);
+        if ((rc = dist_create(op, err))) {
+            mc_eigen_disp_destroy(&op);
+            return rc;
+        }
+        *out = op;
+        return MC_OK;
+    }
+    if (rc == MC_OK) {
         op->qlen = ((size_t)op->qx * op->qy + 7) / 8 * 8;
         const size_t n = 6 * (size_t)v->nz * op->qlen;
         if (!(op->tab = mc_malloc(n * sizeof *op->tab)))
@@ -331,6 +480,12 @@ size_t mc_eigen_disp_bytes(const mc_eigen_disp *op) { return op->bytes; }
 
 size_t mc_eigen_disp_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)
 {
+    return mc_eigen_disp_estimate_ranks(g, v, b, mc_dist_active() ? mc_dist_size() : 0);
+}
+
+size_t mc_eigen_disp_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
+                                    int ranks)
+{
     mc_error err = {0};
     if (mc_eig_check(g, v, 0.3, b, "eigen displacement", &err) != MC_OK)
         return 0;
@@ -351,6 +506,16 @@ size_t mc_eigen_disp_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_bac
         const int nthr = mc_eig_threads(6 * (size_t)v->nz * tx * ty);
         qx = (size_t)mx + 1;
         qy = (size_t)my + 1;
+        if (ranks > 0) { /* dist_create, rank 0's columns (the most) */
+            int k0, nk;
+            mc_dfft_split((int)qx, ranks, 0, &k0, &nk);
+            const size_t cells = (size_t)g->nx * g->ny;
+            const int bm = v->nz < DIST_BATCH ? v->nz : DIST_BATCH;
+            return bytes + (size_t)bm * cells * sizeof(double) +
+                   (size_t)(bm + 1) * nk * ty * sizeof(fftw_complex) +
+                   6 * (size_t)v->nz * (((size_t)nk * qy + 7) / 8 * 8) * sizeof(double) +
+                   mc_dfft_estimate_many(g->nx, g->ny, (int)tx, (int)ty, bm, ranks, 0);
+        }
         bytes += (size_t)nthr * ((size_t)g->ny * tx * sizeof(double) +
                                  2 * speclen * sizeof(fftw_complex));
     }

@@ -202,6 +202,7 @@ struct mc_eigen_stress {
     int *first;        /* nz + 1: first fine layer of each layer, nzf at nz */
     int *centre;       /* nz (inside first's block): the fine layer of each layer's centre */
     int depth;         /* fft depth step: MC_EIG_DEPTH_AUTO / _FINE / _COARSE (eigen_stress_fft.c) */
+    int replicated;    /* 1: never distributed (mc_eig_stress_create_replicated) */
     const struct mc_eig_stress_ops *ops; /* the backend's row (eigen_stress_op.c) */
     int qx, qy;        /* quadrant of the tables (direct: the window; fft: half periods + 1) */
     size_t qlen;       /* doubles per quadrant (rounded up to a cache line) */
@@ -238,6 +239,12 @@ enum { MC_EIG_DEPTH_AUTO = 0, MC_EIG_DEPTH_FINE = 1, MC_EIG_DEPTH_COARSE = 2 };
  * direct backend). */
 int mc_eig_stress_create_depth(const mc_grid *g, const mc_eigen_volume *v, double nu,
                                mc_backend b, int depth, mc_eigen_stress **out, mc_error *err);
+/* mc_eigen_stress_create's fft operator, never distributed over the ranks even under mpirun
+ * (not collective): for small operators applied many times by every rank alike, whose transforms
+ * cost less than the collectives' latency (the near field's probe, local_op.c). */
+int mc_eig_stress_create_replicated(const mc_grid *g, const mc_eigen_volume *v, double nu,
+                                    mc_eigen_stress **out, mc_error *err);
+
 /* The depth step an fft operator uses (MC_EIG_DEPTH_FINE or _COARSE; 0 for the direct backend). */
 int mc_eig_stress_fft_depth(const mc_eigen_stress *op);
 
@@ -249,7 +256,9 @@ void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], do
                              double *const sig[6]);
 void mc_eig_stress_fft_free(mc_eigen_stress *op);
 /* Add to parts the bytes prepare would take for op (its sizes qx, qy, nzf, depth set), without
- * taking them. */
-void mc_eig_stress_fft_estimate(const mc_eigen_stress *op, size_t parts[MC_EIGEN_STRESS_PARTS]);
+ * taking them; ranks = 0 the serial operator, ranks >= 1 rank 0's share of the distributed one
+ * (part 3, Love's spectra, replaced by that share). */
+void mc_eig_stress_fft_estimate(const mc_eigen_stress *op, int ranks,
+                                size_t parts[MC_EIGEN_STRESS_PARTS]);
 
 #endif

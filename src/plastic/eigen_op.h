@@ -27,6 +27,19 @@
  * Objects are planned once and applied many times; apply never allocates and cannot fail; one
  * thread at a time per object (it owns its workspace); create from one thread (FFTW's planner).
  *
+ * Under mpirun (core/dist.h: mc_dist_active() when create is called, any number of ranks, one
+ * included) the fft backends are distributed by lateral frequency (theory.md §8.4): the lateral
+ * transforms are operator/dfft.h's (each rank its rows along x, a transpose, its columns kx =
+ * k0 .. k0 + nk - 1 along y; batches of up to 8 layers of a component per transpose), each rank
+ * builds and keeps the spectra of its own frequencies (V, P3, Love's, E, the displacement
+ * kernel: their bytes divide by P, mc_eigen_*_bytes and the estimates say so), runs the depth
+ * step on them, and the results are gathered whole on every rank: the interface is the same, and
+ * create, apply and destroy are then COLLECTIVE (every rank calls them alike, as the replicated
+ * plastic loop does). Every grid type, the line contact's bars included. P = 1, 2, 3 give the
+ * same bits (same one-line plans, FFTW_ESTIMATE, sums per frequency in an order fixed by the
+ * sizes); against the serial backends round-off apart (tests/mpi/mpi_eigen.c). The direct
+ * backend stays replicated.
+ *
  * Cost and memory (measured on the project's 2-core machine with one thread and window = grid;
  * mc_eigen_*_bytes gives the exact figure of an object):
  *   displacement, fft: 6 nz forward transforms and one inverse at (grid + window) padding;
@@ -178,7 +191,11 @@ size_t mc_eigen_disp_bytes(const mc_eigen_disp *op);
 /* What mc_eigen_disp_bytes would return for the object mc_eigen_disp_create(g, v, nu, b) would
  * build, from the sizes alone (nothing allocated or planned; the memory guard); 0 for a volume or
  * grid that create refuses. */
+/* (under mpirun: rank 0's share of the distributed operator, see the header) */
 size_t mc_eigen_disp_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b);
+/* ... for a given arrangement (ranks as mc_eigen_stress_estimate_ranks). */
+size_t mc_eigen_disp_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
+                                    int ranks);
 
 void mc_eigen_disp_destroy(mc_eigen_disp **op); /* frees and sets *op = NULL; NULL-safe */
 
@@ -236,6 +253,12 @@ void mc_eigen_stress_parts(const mc_eigen_stress *op, size_t parts[MC_EIGEN_STRE
  * refuses. */
 void mc_eigen_stress_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
                               size_t parts[MC_EIGEN_STRESS_PARTS]);
+
+/* The same for a given arrangement: ranks = 0 the serial operator, ranks >= 1 rank 0's share of
+ * the operator distributed over that many ranks (it holds the most frequencies).
+ * mc_eigen_stress_estimate is this with the run's: mc_dist_active() ? mc_dist_size() : 0. */
+void mc_eigen_stress_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
+                                    int ranks, size_t parts[MC_EIGEN_STRESS_PARTS]);
 
 void mc_eigen_stress_destroy(mc_eigen_stress **op); /* frees and sets *op = NULL; NULL-safe */
 

@@ -33,7 +33,9 @@
 
 #include "core/alloc.h"
 #include "core/fftsize.h"
+#include "core/dist.h"
 #include "core/threads.h"
+#include "operator/dfft.h"
 #include "operator/operator.h"
 #include "plastic/eigen_internal.h"
 
@@ -49,6 +51,11 @@
 /* kx values per block at most */
 #define CHUNK_TARGET 64
 
+/* Distributed: layers per batch of the lateral transforms (mc_dfft_create_many): a 128^2 x 16
+ * stress apply makes 2 x 6 x 16 + 2 transposes and 6 x 16 + 1 gathers one at a time, 26 + 13
+ * in batches of 8; the batch's buffers cost 2 x 8 / (6 nz) of E per rank */
+#define DIST_BATCH 8
+
 /* the cost model of coarse_pays, relative units (flops of the loops, scaled by measurement) */
 #define COARSE_PAIR 115.0
 #define FINE_DFT 2.5
@@ -59,15 +66,25 @@ typedef struct {
     int coarse;           /* 1: the coarse depth step (graded volumes; file comment) */
     int Nz, L;            /* depth half period and period (fine lattice step) */
     int np;               /* depth planes per block of V: Nz + 1 (fine) or 2 nzf + 1 (coarse) */
-    int ch, nch;          /* kx per block, blocks per quadrant row (nch ch >= qx) */
+    int ch, nch;          /* kx per block, blocks per quadrant row (nch ch >= nk) */
+    int k0, nk;           /* this rank's lateral frequencies kx = k0 .. k0 + nk - 1 (serial: 0, hx;
+                           * distributed: mc_dfft_columns). E, P, V, P3 and Love hold them alone */
+    mc_dfft *d;           /* distributed (mc_dist_active at create): the lateral transforms, in
+                           * batches of bm layers of a component */
+    int bm;               /* layers per batch (min(nz, DIST_BATCH)) */
+    fftw_complex *bs;     /* bm spectra in mc_dfft's layout, nk x ty each */
+    int lrow;             /* Love's spectra: row stride (qx serial, nk distributed) */
+    size_t lql;           /* Love's spectra: doubles per quadrant */
+    size_t dbytes;        /* the bytes of d */
     int cs;               /* buffer stride: ch rounded up to whole cache lines, off powers of 2 */
     int nthr;             /* workspaces */
     double *V;            /* S1 + S2 spectra, blocked: [(b np + kz) 21 + n] ch + x; coarse: the
                            * prefix sums of the real tables at plane m (m = 0 .. 2 nzf) */
     double *P3;           /* p3 kernel spectra, blocked: [(b nz + k) 6 + c] ch + x */
-    fftw_complex *E;      /* 6 nz spectra [c * nz + k]: eps, then the stresses / 2G */
+    fftw_complex *E;      /* 6 nz spectra [c * nz + k]: eps, then the stresses / 2G; each ty rows
+                           * of nk values [ky * nk + kx - k0] */
     fftw_complex *P;      /* p3 spectrum */
-    double *rows;         /* nthr x (wy x tx) */
+    double *rows;         /* nthr x (wy x tx) (serial only) */
     fftw_complex *zb;     /* nthr x zlen: source and output (6 x L x cs each), planar scratch;
                            * coarse: the boundary jumps (2 x (nz + 1) x 12 cs doubles), output */
     size_t zlen;
@@ -128,31 +145,74 @@ static double xysign(int i, int c)
 static void scatter_blocks(const mc_eigen_stress *op, const sfft *f, double *const *q, int n,
                            int plane0, int nplanes, double *dst)
 {
-    const int qx = op->qx, ch = f->ch;
+    const int qx = op->qx, ch = f->ch, k0 = f->k0;
 #pragma omp parallel for schedule(static)
     for (int ky = 0; ky < op->qy; ky++)
-        for (int kx = 0; kx < qx; kx++) {
+        for (int kx = 0; kx < f->nk; kx++) { /* this rank's frequencies, local index kx */
             const size_t b = (size_t)ky * f->nch + kx / ch;
             for (int p = 0; p < n; p++)
-                dst[(b * nplanes + plane0 + p) * ch + kx % ch] = q[p][(size_t)ky * qx + kx];
+                dst[(b * nplanes + plane0 + p) * ch + kx % ch] = q[p][(size_t)ky * qx + k0 + kx];
         }
 }
 
+/* The lateral quadrant transforms of the operator's sizes. */
+static int make_quad(const mc_eigen_stress *op, mc_eig_quad *quad, mc_error *err)
+{
+    int rc = mc_eig_periodic(&op->g)
+                 ? mc_eig_quad_create_full(quad, size_x(op), size_y(op), op->qx, op->qy, err)
+                 : mc_eig_quad_create(quad, op->qx - 1, op->qy - 1, err);
+    if (rc)
+        mc_eig_quad_destroy(quad);
+    return rc;
+}
+
+/* Love's tables into their spectra, in place; distributed, then cut to this rank's columns
+ * (rows of nk values, before the kernel spectra are allocated: the whole tables and V are never
+ * held together). */
+static int love_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
+{
+    const int nz = op->v.nz;
+    const size_t ql = op->qlen;
+    mc_eig_quad quad;
+    int rc = make_quad(op, &quad, err);
+    if (rc)
+        return rc;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int t = 0; t < 6 * nz; t++)
+        mc_eig_quad_transform(&quad, mc_eig_par(t % 6), op->love + (size_t)t * ql);
+    mc_eig_quad_destroy(&quad);
+    f->lrow = op->qx;
+    f->lql = ql;
+    if (!f->d)
+        return MC_OK;
+    const size_t lql = ((size_t)op->qy * f->nk + 7) / 8 * 8;
+    double *mine = mc_malloc((6 * (size_t)nz * lql + 1) * sizeof *mine);
+    if (!mine)
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for Love's spectra");
+    for (int t = 0; t < 6 * nz; t++)
+        for (int ky = 0; ky < op->qy; ky++)
+            memcpy(mine + (size_t)t * lql + (size_t)ky * f->nk,
+                   op->love + (size_t)t * ql + (size_t)ky * op->qx + f->k0,
+                   (size_t)f->nk * sizeof *mine);
+    mc_free(op->love);
+    op->love = mine;
+    f->lrow = f->nk;
+    f->lql = lql;
+    op->part[3] = 6 * (size_t)nz * lql * sizeof(double);
+    return MC_OK;
+}
+
 /* The kernel spectra: lateral r2r of each table (quadrant by quadrant through a scratch of 21),
- * scattered into blocks; then, block by block, the depth r2r of the S1 family and the folded
- * signs; Love's tables are transformed in place. */
+ * scattered into blocks (this rank's frequencies); then, block by block, the depth r2r of the S1
+ * family and the folded signs. */
 static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
 {
     const int nz = op->v.nz, nzf = op->nzf, Nz = f->Nz, ch = f->ch, np = f->np * MC_EIG_NSYM;
     const size_t ql = op->qlen, nblk = (size_t)op->qy * f->nch;
     mc_eig_quad quad;
-    int rc = mc_eig_periodic(&op->g)
-                 ? mc_eig_quad_create_full(&quad, size_x(op), size_y(op), op->qx, op->qy, err)
-                 : mc_eig_quad_create(&quad, op->qx - 1, op->qy - 1, err);
-    if (rc) {
-        mc_eig_quad_destroy(&quad);
+    int rc = make_quad(op, &quad, err);
+    if (rc)
         return rc;
-    }
     double *scr = mc_malloc((size_t)MC_EIG_NSYM * ql * sizeof *scr);
     if (!scr) {
         mc_eig_quad_destroy(&quad);
@@ -187,9 +247,6 @@ static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
             mc_eig_quad_transform(&quad, mc_eig_par(c), q[c]);
         scatter_blocks(op, f, q, 6, 6 * k, 6 * nz, f->P3);
     }
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int t = 0; t < 6 * nz; t++)
-        mc_eig_quad_transform(&quad, mc_eig_par(t % 6), op->love + (size_t)t * ql);
     mc_eig_quad_destroy(&quad);
     mc_free(scr);
     if (f->coarse) {
@@ -264,8 +321,11 @@ static int coarse_pays(int nz, int nzf, int L)
 }
 
 /* The sizes of prepare, without planning (the transform sizes and spectrum length as
- * mc_eig_fft_create sets them): shared by prepare and the estimate of the bytes. */
-static void plan_sizes(const mc_eigen_stress *op, sfft *f)
+ * mc_eig_fft_create sets them): shared by prepare and the estimate of the bytes. ranks = 0: the
+ * serial operator; ranks >= 1: distributed, rank `rank`'s frequencies (FFTW-MPI's default
+ * blocks of kx, mc_dfft_split; the blocks of ch kx split rank 0's share, the same on every
+ * rank: the same depth plans). */
+static void plan_sizes(const mc_eigen_stress *op, sfft *f, int ranks, int rank)
 {
     const int nz = op->v.nz;
     /* depth half period: offsets up to 2 nzf - 1 of the fine lattice must not meet their images
@@ -278,10 +338,23 @@ static void plan_sizes(const mc_eigen_stress *op, sfft *f)
     f->fft.tx = size_x(op);
     f->fft.ty = size_y(op);
     f->fft.hx = f->fft.tx / 2 + 1; /* = qx */
-    f->fft.speclen = ((size_t)f->fft.ty * f->fft.hx + 3) / 4 * 4;
     const int hx = f->fft.hx;
-    f->nch = (hx + CHUNK_TARGET - 1) / CHUNK_TARGET;
-    f->ch = (hx + f->nch - 1) / f->nch;
+    f->k0 = 0;
+    f->nk = hx;
+    if (ranks > 0)
+        mc_dfft_split(hx, ranks, rank, &f->k0, &f->nk);
+    f->fft.speclen = ((size_t)f->fft.ty * f->nk + 3) / 4 * 4;
+    /* blocks of at most CHUNK_TARGET kx splitting evenly the serial hx or, distributed, the
+     * largest rank's share (rank 0's; the others' shorter last blocks pad with zeros) */
+    const int share = ranks > 0 ? (hx + ranks - 1) / ranks : hx;
+    const int nch = (share + CHUNK_TARGET - 1) / CHUNK_TARGET;
+    f->ch = (share + nch - 1) / nch;
+    f->nch = (f->nk + f->ch - 1) / f->ch;
+    f->bm = ranks > 0 ? (nz < DIST_BATCH ? nz : DIST_BATCH) : 0;
+    f->dbytes = ranks > 0 ? mc_dfft_estimate_many(op->v.nx, op->v.ny, f->fft.tx, f->fft.ty, f->bm,
+                                                  ranks, rank) +
+                                (size_t)f->bm * f->nk * f->fft.ty * sizeof(fftw_complex)
+                          : 0;
     f->cs = (f->ch + 3) / 4 * 4;
     if (f->cs % 16 == 0) /* a power-of-2 stride between depth planes thrashes the cache */
         f->cs += 4;
@@ -296,24 +369,33 @@ static void fft_parts(const mc_eigen_stress *op, const sfft *f, size_t parts[MC_
 {
     const int nz = op->v.nz;
     const size_t blk = (size_t)op->qy * f->nch * f->ch; /* doubles per blocked plane */
-    const size_t sl = f->fft.speclen, rl = (size_t)op->v.ny * f->fft.tx;
+    const size_t sl = f->fft.speclen, rl = f->dbytes ? 0 : (size_t)op->v.ny * f->fft.tx;
     parts[0] = (size_t)f->np * MC_EIG_NSYM * blk * sizeof(double);
     parts[1] = (6 * (size_t)nz + 1) * sl * sizeof(fftw_complex);
     parts[2] = 6 * (size_t)nz * blk * sizeof(double);
     parts[3] = 0;
     parts[4] = sizeof *f + ((size_t)f->nthr * f->zlen + f->Nz + 1) * sizeof(fftw_complex) +
-               (size_t)f->nthr * rl * sizeof(double);
+               (size_t)f->nthr * rl * sizeof(double) + f->dbytes;
 }
 
-void mc_eig_stress_fft_estimate(const mc_eigen_stress *op, size_t parts[MC_EIGEN_STRESS_PARTS])
+/* Love's spectra (part 3) when distributed: rows of this rank's nk frequencies. */
+static size_t love_bytes(const mc_eigen_stress *op, const sfft *f)
+{
+    return 6 * (size_t)op->v.nz * (((size_t)op->qy * f->nk + 7) / 8 * 8) * sizeof(double);
+}
+
+void mc_eig_stress_fft_estimate(const mc_eigen_stress *op, int ranks,
+                                size_t parts[MC_EIGEN_STRESS_PARTS])
 {
     sfft f;
     memset(&f, 0, sizeof f);
-    plan_sizes(op, &f);
+    plan_sizes(op, &f, ranks, 0); /* rank 0 holds the most frequencies */
     size_t add[MC_EIGEN_STRESS_PARTS];
     fft_parts(op, &f, add);
     for (int k = 0; k < MC_EIGEN_STRESS_PARTS; k++)
         parts[k] += add[k];
+    if (ranks > 0)
+        parts[3] = love_bytes(op, &f);
 }
 
 int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
@@ -323,18 +405,38 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory");
     op->fft = f;
     const int nz = op->v.nz, wy = op->v.ny;
-    plan_sizes(op, f);
-    int rc = mc_eig_fft_create(&f->fft, size_x(op), size_y(op), 0, wy, wy, err);
-    if (rc)
+    /* under mpirun (any number of ranks, one included: the same path, the same bits for every
+     * P) the lateral transforms are distributed and this rank keeps its frequencies alone */
+    const int dist = mc_dist_active() && !op->replicated;
+    plan_sizes(op, f, dist ? mc_dist_size() : 0, mc_dist_rank());
+    int rc;
+    if (dist) {
+        const mc_eig_fft sz = f->fft; /* the sizes plan_sizes set */
+        if ((rc = mc_dfft_create_many(op->v.nx, wy, sz.tx, sz.ty, f->bm, &f->d, err)))
+            return rc;
+        int k0, nk;
+        mc_dfft_columns(f->d, &k0, &nk);
+        if (k0 != f->k0 || nk != f->nk)
+            return mc_fail(err, MC_ERR_INTERNAL,
+                           "eigen stress: FFTW-MPI gave columns %d + %d, expected %d + %d", k0, nk,
+                           f->k0, f->nk);
+        const size_t nb = (size_t)f->bm * f->nk * sz.ty;
+        if (!(f->bs = mc_malloc((nb + 1) * sizeof *f->bs)))
+            return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory");
+        f->dbytes = mc_dfft_bytes(f->d) + nb * sizeof *f->bs;
+    } else if ((rc = mc_eig_fft_create(&f->fft, size_x(op), size_y(op), 0, wy, wy, err))) {
         return rc;
-    const size_t sl = f->fft.speclen, rl = (size_t)wy * f->fft.tx;
+    }
+    if ((rc = love_spectra(op, f, err)))
+        return rc;
+    const size_t sl = f->fft.speclen, rl = dist ? 0 : (size_t)wy * f->fft.tx;
     const size_t blk = (size_t)op->qy * f->nch * f->ch; /* doubles per blocked plane */
     const size_t nv = (size_t)f->np * MC_EIG_NSYM * blk, np3 = 6 * (size_t)nz * blk;
-    f->V = mc_calloc(nv, sizeof *f->V);
-    f->P3 = mc_calloc(np3, sizeof *f->P3);
-    f->E = mc_malloc(6 * (size_t)nz * sl * sizeof *f->E);
-    f->P = mc_malloc(sl * sizeof *f->P);
-    f->rows = mc_malloc((size_t)f->nthr * rl * sizeof *f->rows);
+    f->V = mc_calloc(nv + 1, sizeof *f->V);
+    f->P3 = mc_calloc(np3 + 1, sizeof *f->P3);
+    f->E = mc_malloc((6 * (size_t)nz * sl + 1) * sizeof *f->E);
+    f->P = mc_malloc((sl + 1) * sizeof *f->P);
+    f->rows = mc_malloc(((size_t)f->nthr * rl + 1) * sizeof *f->rows);
     f->zb = mc_calloc((size_t)f->nthr * f->zlen, sizeof *f->zb);
     f->tw = mc_malloc((size_t)(f->Nz + 1) * sizeof *f->tw);
     if (!f->V || !f->P3 || !f->E || !f->P || !f->rows || !f->zb || !f->tw)
@@ -357,8 +459,9 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err)
     }
     /* depth DFTs: length L with stride cs, over cs interleaved sequences (one kx each) */
     fftw_iodim dim = {f->L, f->cs, f->cs}, vec = {f->cs, 1, 1};
-    /* repeated: [solver] plans (operator/operator.h); zb is scratch, filled at each apply */
-    const unsigned rep = mc_fft_plan_flags();
+    /* repeated: [solver] plans (operator/operator.h); zb is scratch, filled at each apply.
+     * Distributed: FFTW_ESTIMATE, the same plan on every rank (dfft.h) */
+    const unsigned rep = dist ? FFTW_ESTIMATE : mc_fft_plan_flags();
     fftw_plan_with_nthreads(1);
     f->zf = fftw_plan_guru_dft(1, &dim, 1, &vec, f->zb, f->zb, FFTW_FORWARD, rep);
     f->zi = fftw_plan_guru_dft(1, &dim, 1, &vec, f->zb, f->zb, FFTW_BACKWARD, rep);
@@ -379,6 +482,8 @@ void mc_eig_stress_fft_free(mc_eigen_stress *op)
     if (!f)
         return;
     mc_eig_fft_destroy(&f->fft);
+    mc_dfft_destroy(&f->d);
+    mc_free(f->bs);
     if (f->zf)
         fftw_destroy_plan(f->zf);
     if (f->zi)
@@ -402,9 +507,9 @@ DEPTH_CLONES static void depth_step(const mc_eigen_stress *op, const sfft *f, in
                        fftw_complex *zb)
 {
     const int nz = op->v.nz, nzf = op->nzf, Nz = f->Nz, L = f->L, ch = f->ch, cs = f->cs;
-    const int hx = f->fft.hx, ty = f->fft.ty, my = op->qy - 1, mirror = ky > my, kx0 = chunk * ch;
-    const int len = hx - kx0 < ch ? hx - kx0 : ch;
-    const size_t sl = f->fft.speclen, at = (size_t)ky * hx + kx0; /* spectrum index */
+    const int nk = f->nk, ty = f->fft.ty, my = op->qy - 1, mirror = ky > my, kx0 = chunk * ch;
+    const int len = nk - kx0 < ch ? nk - kx0 : ch;
+    const size_t sl = f->fft.speclen, at = (size_t)ky * nk + kx0; /* spectrum index (local kx) */
     const size_t b = (size_t)(mirror ? ty - ky : ky) * f->nch + chunk; /* kernel block */
     const double *Vb = f->V + b * (size_t)(Nz + 1) * MC_EIG_NSYM * ch;
     const double *Pb = f->P3 + b * (size_t)nz * 6 * ch;
@@ -546,9 +651,9 @@ DEPTH_CLONES static void depth_step_coarse(const mc_eigen_stress *op, const sfft
                                            int chunk, fftw_complex *zb)
 {
     const int nz = op->v.nz, ch = f->ch, cs = f->cs, np = f->np;
-    const int hx = f->fft.hx, ty = f->fft.ty, my = op->qy - 1, mirror = ky > my, kx0 = chunk * ch;
-    const int len = hx - kx0 < ch ? hx - kx0 : ch;
-    const size_t sl = f->fft.speclen, at = (size_t)ky * hx + kx0;
+    const int nk = f->nk, ty = f->fft.ty, my = op->qy - 1, mirror = ky > my, kx0 = chunk * ch;
+    const int len = nk - kx0 < ch ? nk - kx0 : ch;
+    const size_t sl = f->fft.speclen, at = (size_t)ky * nk + kx0;
     const size_t b = (size_t)(mirror ? ty - ky : ky) * f->nch + chunk;
     const double *Sb = f->V + b * (size_t)np * MC_EIG_NSYM * ch;
     const double *Pb = f->P3 + b * (size_t)nz * 6 * ch;
@@ -666,15 +771,119 @@ DEPTH_CLONES static void depth_step_coarse(const mc_eigen_stress *op, const sfft
     }
 }
 
+/* The depth steps of every quadrant row and block of this rank's frequencies (and the mirror
+ * rows, which share the kernel), threads over the tasks. */
+static void depth_all(const mc_eigen_stress *op, const sfft *f, int me)
+{
+    const int ty = f->fft.ty, my = op->qy - 1, ntask = op->qy * f->nch;
+    fftw_complex *zb = f->zb + (size_t)me * f->zlen;
+    void (*step)(const mc_eigen_stress *, const sfft *, int, int, fftw_complex *) =
+        f->coarse ? depth_step_coarse : depth_step;
+#pragma omp for schedule(dynamic, 1)
+    for (int t = 0; t < ntask; t++) {
+        const int ky = t / f->nch, chunk = t % f->nch;
+        step(op, f, ky, chunk, zb);
+        if (ky > 0 && ty - ky > my) /* its mirror row (an odd period has no Nyquist row) */
+            step(op, f, ty - ky, chunk, zb);
+    }
+}
+
+/* S3 into the stress spectrum e (component i, layer k): Love's spectra times p3's. */
+static void love_add(const mc_eigen_stress *op, const sfft *f, int i, int k, fftw_complex *e)
+{
+    const int ty = f->fft.ty, nk = f->nk, my = op->qy - 1;
+    const int rot = mc_eig_odd_x(i) + mc_eig_odd_y(i), oy = mc_eig_odd_y(i);
+    const double *L = op->love + (size_t)(k * 6 + i) * f->lql;
+    for (int ky = 0; ky < ty; ky++) {
+        const int mirror = ky > my;
+        const double s = (mirror && oy) ? -1.0 : 1.0;
+        const double *l = L + (size_t)(mirror ? ty - ky : ky) * f->lrow;
+        for (int kx = 0; kx < nk; kx++) {
+            const size_t q = (size_t)ky * nk + kx;
+            double re = s * l[kx] * f->P[q][0], im = s * l[kx] * f->P[q][1];
+            mc_eig_rot(&re, &im, rot);
+            e[q][0] += re;
+            e[q][1] += im;
+        }
+    }
+}
+
+/* The distributed spectrum ([kx - k0][ky], mc_dfft_spectrum) into E's layout ([ky][kx - k0])
+ * and back. */
+static void from_dfft(const sfft *f, const fftw_complex *d, fftw_complex *e)
+{
+    const int ty = f->fft.ty, nk = f->nk;
+    for (int k = 0; k < nk; k++)
+        for (int ky = 0; ky < ty; ky++) {
+            e[(size_t)ky * nk + k][0] = d[(size_t)k * ty + ky][0];
+            e[(size_t)ky * nk + k][1] = d[(size_t)k * ty + ky][1];
+        }
+}
+static void to_dfft(const sfft *f, const fftw_complex *e, fftw_complex *d)
+{
+    const int ty = f->fft.ty, nk = f->nk;
+    for (int k = 0; k < nk; k++)
+        for (int ky = 0; ky < ty; ky++) {
+            d[(size_t)k * ty + ky][0] = e[(size_t)ky * nk + k][0];
+            d[(size_t)k * ty + ky][1] = e[(size_t)ky * nk + k][1];
+        }
+}
+
+/* The distributed apply (theory.md §8.4): the lateral transforms by mc_dfft (each rank its rows,
+ * then its columns), the depth step on this rank's frequencies, p3 and the stresses gathered
+ * whole on every rank by the inverse transforms. Collective. */
+static void dist_apply(mc_eigen_stress *op, const double *const eps[6], double G,
+                       double *const sig[6])
+{
+    sfft *f = op->fft;
+    const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, bm = f->bm;
+    const size_t sl = f->fft.speclen, wc = (size_t)wx * wy, dl = (size_t)f->nk * f->fft.ty;
+    const double scale = 1.0 / ((double)f->fft.tx * f->fft.ty); /* FFTW does not normalise */
+    for (int c = 0; c < 6; c++) /* a component's layers are contiguous: batches of bm */
+        for (int k0 = 0; k0 < nz; k0 += bm) {
+            const int m = nz - k0 < bm ? nz - k0 : bm;
+            mc_dfft_forward_many(f->d, eps[c] + k0 * wc, wc, m, f->bs, dl);
+            for (int q = 0; q < m; q++)
+                from_dfft(f, f->bs + q * dl, f->E + (size_t)(c * nz + k0 + q) * sl);
+        }
+#pragma omp parallel num_threads(f->nthr)
+    depth_all(op, f, omp_get_thread_num());
+    /* p3 on the window only: back to space (whole on every rank), cut, forward again */
+    to_dfft(f, f->P, f->bs);
+    mc_dfft_inverse_many(f->d, f->bs, dl, 1, op->work, wc);
+    for (size_t q = 0; q < wc; q++) {
+        const double p = scale * op->work[q];
+        op->work[q] = p;
+        op->p3[q] = 2.0 * G * p;
+    }
+    mc_dfft_forward_many(f->d, op->work, wc, 1, f->bs, dl);
+    from_dfft(f, f->bs, f->P);
+    for (int i = 0; i < 6; i++)
+        for (int k0 = 0; k0 < nz; k0 += bm) {
+            const int m = nz - k0 < bm ? nz - k0 : bm;
+            for (int q = 0; q < m; q++) {
+                fftw_complex *e = f->E + (size_t)(i * nz + k0 + q) * sl;
+                love_add(op, f, i, k0 + q, e);
+                to_dfft(f, e, f->bs + q * dl);
+            }
+            double *out = sig[i] + k0 * wc;
+            mc_dfft_inverse_many(f->d, f->bs, dl, m, out, wc);
+            for (size_t q = 0; q < (size_t)m * wc; q++)
+                out[q] *= 2.0 * G * scale;
+        }
+}
+
 void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
                              double *const sig[6])
 {
     sfft *f = op->fft;
+    if (f->d) {
+        dist_apply(op, eps, G, sig);
+        return;
+    }
     const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, tx = f->fft.tx, ty = f->fft.ty;
-    const int hx = f->fft.hx, my = op->qy - 1;
-    const size_t sl = f->fft.speclen, wc = (size_t)wx * wy, rl = (size_t)wy * tx, ql = op->qlen;
+    const size_t sl = f->fft.speclen, wc = (size_t)wx * wy, rl = (size_t)wy * tx;
     const double scale = 1.0 / ((double)tx * ty); /* FFTW does not normalise */
-    const int ntask = op->qy * f->nch; /* quadrant rows: a row and its mirror share kernels */
 #pragma omp parallel num_threads(f->nthr)
     {
         const int me = omp_get_thread_num();
@@ -687,18 +896,7 @@ void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], do
             mc_eig_fft_forward(&f->fft, rows, f->E + (size_t)t * sl);
         }
         /* depth coupling, frequency by frequency */
-#pragma omp for schedule(dynamic, 1)
-        for (int t = 0; t < ntask; t++) {
-            const int ky = t / f->nch, chunk = t % f->nch;
-            if (chunk * f->ch >= hx)
-                continue;
-            fftw_complex *zb = f->zb + (size_t)me * f->zlen;
-            void (*step)(const mc_eigen_stress *, const sfft *, int, int, fftw_complex *) =
-                f->coarse ? depth_step_coarse : depth_step;
-            step(op, f, ky, chunk, zb);
-            if (ky > 0 && ty - ky > my) /* its mirror row (an odd period has no Nyquist row) */
-                step(op, f, ty - ky, chunk, zb);
-        }
+        depth_all(op, f, me);
 #pragma omp single
         {
             /* p3 on the window only: back to space, cut, forward again */
@@ -716,21 +914,8 @@ void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], do
 #pragma omp for schedule(dynamic, 1)
         for (int t = 0; t < 6 * nz; t++) {
             const int i = t / nz, k = t % nz;
-            const int rot = mc_eig_odd_x(i) + mc_eig_odd_y(i), oy = mc_eig_odd_y(i);
-            const double *L = op->love + (size_t)(k * 6 + i) * ql;
             fftw_complex *e = f->E + (size_t)t * sl;
-            for (int ky = 0; ky < ty; ky++) {
-                const int mirror = ky > my;
-                const double s = (mirror && oy) ? -1.0 : 1.0;
-                const double *l = L + (size_t)(mirror ? ty - ky : ky) * op->qx;
-                for (int kx = 0; kx < hx; kx++) {
-                    const size_t q = (size_t)ky * hx + kx;
-                    double re = s * l[kx] * f->P[q][0], im = s * l[kx] * f->P[q][1];
-                    mc_eig_rot(&re, &im, rot);
-                    e[q][0] += re;
-                    e[q][1] += im;
-                }
-            }
+            love_add(op, f, i, k, e);
             mc_eig_fft_inverse(&f->fft, e, rows);
             double *out = sig[i] + k * wc;
             for (int j = 0; j < wy; j++)

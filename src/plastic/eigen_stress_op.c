@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/dist.h"
 #include "kernels/eigen.h"
 #include "kernels/kernel.h"
 #include "plastic/eigen_internal.h"
@@ -484,8 +485,23 @@ int mc_eigen_stress_create(const mc_grid *g, const mc_eigen_volume *v, double nu
     return mc_eig_stress_create_depth(g, v, nu, b, MC_EIG_DEPTH_AUTO, out, err);
 }
 
+static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                  int depth, int replicated, mc_eigen_stress **out, mc_error *err);
+
 int mc_eig_stress_create_depth(const mc_grid *g, const mc_eigen_volume *v, double nu,
                                mc_backend b, int depth, mc_eigen_stress **out, mc_error *err)
+{
+    return create(g, v, nu, b, depth, 0, out, err);
+}
+
+int mc_eig_stress_create_replicated(const mc_grid *g, const mc_eigen_volume *v, double nu,
+                                    mc_eigen_stress **out, mc_error *err)
+{
+    return create(g, v, nu, MC_BACKEND_FFT, MC_EIG_DEPTH_AUTO, 1, out, err);
+}
+
+static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                  int depth, int replicated, mc_eigen_stress **out, mc_error *err)
 {
     *out = NULL;
     int rc = mc_eig_check(g, v, nu, b, "eigen stress", err);
@@ -498,6 +514,7 @@ int mc_eig_stress_create_depth(const mc_grid *g, const mc_eigen_volume *v, doubl
     op->v = *v;
     op->nu = nu;
     op->depth = depth;
+    op->replicated = replicated;
     /* the layering: the object's copy of the groups, the first fine layer of each layer (and
      * the count at nz) and the fine layer of each layer's centre */
     op->first = mc_malloc((2 * (size_t)v->nz + 1) * sizeof *op->first);
@@ -572,6 +589,12 @@ void mc_eigen_stress_parts(const mc_eigen_stress *op, size_t parts[MC_EIGEN_STRE
 void mc_eigen_stress_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
                               size_t parts[MC_EIGEN_STRESS_PARTS])
 {
+    mc_eigen_stress_estimate_ranks(g, v, b, mc_dist_active() ? mc_dist_size() : 0, parts);
+}
+
+void mc_eigen_stress_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
+                                    int ranks, size_t parts[MC_EIGEN_STRESS_PARTS])
+{
     memset(parts, 0, MC_EIGEN_STRESS_PARTS * sizeof *parts);
     mc_error err = {0};
     if (mc_eig_check(g, v, 0.3, b, "eigen stress", &err) != MC_OK)
@@ -593,7 +616,7 @@ void mc_eigen_stress_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_bac
     parts[3] = nl * sizeof(double);
     parts[4] = sizeof op + 2 * wc * sizeof(double) + (2 * (size_t)v->nz + 1) * sizeof(int);
     if (b == MC_BACKEND_FFT) {
-        mc_eig_stress_fft_estimate(&op, parts);
+        mc_eig_stress_fft_estimate(&op, ranks, parts);
     } else {
         parts[0] = 2 * (size_t)op.nzf * MC_EIG_NSYM * op.qlen * sizeof(double);
         parts[2] = 6 * (size_t)v->nz * op.qlen * sizeof(double);

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "plastic/eigen_internal.h"
 
 /* Columns of probe grid on each side of the stencil along a free axis: the probe's window is
  * the probe grid, and its surface correction S3 differs from the large window's by the traction
@@ -82,7 +83,7 @@ int mc_plastic_local_create(const mc_grid *g, const mc_eigen_volume *v, double n
     if (!(op->b = mc_zeros(nb)) || !(field = mc_zeros(12 * nvp)))
         rc = mc_fail(err, MC_ERR_NOMEM, "plastic near field: out of memory");
     if (rc == MC_OK)
-        rc = mc_eigen_stress_create(&pg, &pv, nu, MC_BACKEND_FFT, &probe, err);
+        rc = mc_eig_stress_create_replicated(&pg, &pv, nu, &probe, err); /* no collectives */
     if (rc != MC_OK) {
         mc_free(field);
         mc_plastic_local_destroy(&op);

@@ -22,11 +22,14 @@
 #  3. what is not distributed yet is refused with P > 1 (exit 2, the key named, no directory);
 #  4. a grid the memory guard refuses serially under a limit runs with 2 and 3 processes under
 #     the same per-process limit, gives the serial answer, and stays within the guard's figure.
+#  1b. the eigenstrain operators' fft backends distributed (plastic/eigen_op.h): residual stress,
+#     p3 and residual u_z against the serial operators to <= 1e-12 on every grid type, with 1, 2
+#     and 3 processes, and the same bits (hashes) for every process count;
 #  5. the inputs are read on rank 0 alone (strace: no other rank opens the case, a surface, a data
 #     file or the checkpoint), and an input that cannot be read fails as the serial run does.
-#   tests/cli/mpi.sh PROGRAM MPI_PROGRAM MPI_OPERATOR_TEST NPY_COMPARE
+#   tests/cli/mpi.sh PROGRAM MPI_PROGRAM MPI_OPERATOR_TEST NPY_COMPARE [MPI_EIGEN_TEST]
 set -u
-PROG=$1 MPROG=$2 OPTEST=$3 CMP=$4
+PROG=$1 MPROG=$2 OPTEST=$3 CMP=$4 EIGTEST=${5:-}
 T=$(mktemp -d "${TMPDIR:-/tmp}/mc_mpi.XXXXXX") || exit 2
 trap 'rm -rf "$T"' EXIT INT TERM
 # as root (CI) OpenMPI needs --allow-run-as-root; more processes than cores: --oversubscribe.
@@ -53,6 +56,25 @@ for np in 2 3 4; do
         bad "distributed operator: $np processes do not give the bits of 1"; diff "$T/hash1" "$T/hash$np"
     fi
 done
+
+# ---- 1b. the eigenstrain operators ------------------------------------------------------------
+if [ -n "$EIGTEST" ]; then
+    for np in 1 2 3; do
+        if $MPIRUN -np $np "$EIGTEST" > "$T/eig$np.log" 2>&1; then
+            ok "distributed eigenstrain operators, $np processes: $(tail -1 "$T/eig$np.log")"
+        else
+            bad "distributed eigenstrain operators, $np processes:"; grep -v '^PASS\|^hash' "$T/eig$np.log"
+        fi
+        grep '^hash' "$T/eig$np.log" > "$T/ehash$np"
+    done
+    for np in 2 3; do
+        if [ -s "$T/ehash1" ] && cmp -s "$T/ehash1" "$T/ehash$np"; then
+            ok "distributed eigenstrain operators: $np processes give the bits of 1 ($(wc -l < "$T/ehash1") grids)"
+        else
+            bad "distributed eigenstrain operators: $np processes do not give the bits of 1"; diff "$T/ehash1" "$T/ehash$np"
+        fi
+    done
+fi
 
 # ---- 2. whole runs against the serial program -----------------------------------------------
 # runin.csv without its seconds column (as tests/cli/robustness.sh), the one that may differ
