@@ -911,23 +911,28 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
             return MC_OK;
         }
         const double rel = change / fmax(size, 1e-3);
-        if (rel <= pb->tol_plastic) { /* the tight inner test: now the outer test */
+        if (rel <= pb->tol_plastic) {
+            /* the tight inner test met: the image becomes the iterate (a plain step) and the
+             * outer test compares its residual displacement with u_r. d_new shares its array
+             * with tot (ctx_init), so eps_p + d_new is formed in d_eps, which the image then
+             * overwrites. */
             for (size_t i = 0; i < nv6; i++)
-                c->tot[i] = res->eps_p[i] + c->d_new[i];
-            residual_displacement(c, c->tot, c->u_new);
+                c->d_eps[i] = res->eps_p[i] + c->d_new[i];
+            residual_displacement(c, c->d_eps, c->u_new);
+            memcpy(c->d_eps, c->d_new, nv6 * sizeof *c->d_eps);
+            memcpy(c->dp, c->dp_new, (size_t)c->nvol * sizeof *c->dp);
             double uch = 0, usz = 0;
             for (size_t i = 0; i < c->ncell; i++) {
                 uch = fmax(uch, fabs(c->u_new[i] - c->u_r[i]));
                 usz = fmax(usz, fabs(c->u_new[i]));
             }
             if (uch <= pb->tol_outer * usz) {
-                memcpy(c->d_eps, c->d_new, nv6 * sizeof *c->d_eps);
-                memcpy(c->dp, c->dp_new, (size_t)c->nvol * sizeof *c->dp);
                 memcpy(c->u_r, c->u_new, c->ncell * sizeof *c->u_r);
                 res->inner_change = fmax(res->inner_change, rel);
                 *done = 1;
                 return MC_OK;
             }
+            continue; /* (the history keeps its pairs: the next one spans this step too) */
         }
         if (rel < least) {
             least = rel;
