@@ -118,6 +118,7 @@ START_TEST(inexact_matches_tight)
     for (int aa = 0; aa <= 4; aa += 4) {
         mc_plastic_problem pb = t.pb;
         pb.anderson = aa;
+        pb.iteration = MC_PLASTIC_NESTED; /* the inexact scheme of the nested iteration */
         mc_plastic_result tight, loose;
         mc_contact_summary cs;
         mc_error err = {0};
@@ -172,6 +173,8 @@ START_TEST(warm_matches_cold)
         mc_plastic_problem pb = t.pb;
         pb.anderson = aa;
         pb.load_steps = 4;
+        pb.iteration = MC_PLASTIC_NESTED; /* its sweeps fall with the warm start; the joint
+                                             iteration's do not (joint_matches_nested) */
         mc_plastic_result cold, warm;
         mc_contact_summary cs;
         mc_error err = {0};
@@ -224,6 +227,96 @@ START_TEST(warm_matches_cold)
         mc_plastic_result_free(&warm);
     }
     mc_free(p_cold);
+    sphere_free(&t);
+    mc_threads_end(&scope);
+}
+END_TEST
+
+/* The joint iteration (theory §9.8) against the nested one solved tight (every fixed point to
+ * tol_plastic), in one load step and in four (the warm start and the committed state of the
+ * steps before: a joint iteration that counted the committed plastic strain twice at its
+ * acceptance was 0.2 apart in u_r after two steps and passed in one): the same state within
+ * STATE_TOL_FACTOR tol_outer (two states that each meet the stopping rules), every accepted
+ * image within tol_plastic, fewer residual stress applications, one contact solve, one sweep
+ * and one outer iteration per evaluation, no fallback. Then (one step) with max_outer two
+ * evaluations short: the nested iteration goes on from its state (joint_fallback) and converges
+ * to the same state. */
+START_TEST(joint_matches_nested)
+{
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    sphere t;
+    sphere_init(&t);
+    const size_t n = mc_grid_cells(&t.g);
+    double *p_ref = mc_zeros(n);
+    ck_assert(p_ref);
+    for (int steps = 1; steps <= 4; steps += 3) {
+        mc_plastic_problem pb = t.pb;
+        pb.anderson = 4;
+        pb.load_steps = steps;
+        mc_plastic_result ref, joint, fb;
+        mc_contact_summary cs;
+        mc_error err = {0};
+        pb.iteration = MC_PLASTIC_NESTED;
+        pb.tight_inner = 1;
+        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &ref, &err) ==
+                          MC_OK, "%s", err.msg);
+        memcpy(p_ref, t.p, n * sizeof *p_ref);
+        pb.iteration = MC_PLASTIC_JOINT;
+        pb.tight_inner = 0;
+        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &joint, &err) ==
+                          MC_OK, "%s", err.msg);
+        ck_assert(ref.converged && joint.converged);
+        ck_assert_msg(joint.inner_change <= pb.tol_plastic, "accepted at %g > tol_plastic %g",
+                      joint.inner_change, pb.tol_plastic);
+        const size_t nv = (size_t)ref.nvol;
+        ck_assert(maxabs(ref.peq, nv) > 0);
+        const double tol = STATE_TOL_FACTOR * pb.tol_outer;
+        const double du = rel_diff(joint.u_r, ref.u_r, n);
+        const double dpeq = rel_diff(joint.peq, ref.peq, nv);
+        const double deps = rel_diff(joint.eps_p, ref.eps_p, 6 * nv);
+        const double dp = rel_diff(t.p, p_ref, n);
+        int applies_ref = 0, applies = 0, evals = 0;
+        for (int k = 0; k < ref.steps_done; k++)
+            applies_ref += ref.steps[k].stress_applies;
+        for (int k = 0; k < joint.steps_done; k++) {
+            const mc_plastic_step *st = &joint.steps[k];
+            ck_assert_int_eq(st->joint_fallback, 0);
+            ck_assert_int_eq(st->joint_evaluations, st->outer_iterations);
+            ck_assert_int_eq(st->joint_evaluations, st->plastic_iterations);
+            ck_assert_int_eq(st->joint_evaluations, st->contact_solves);
+            ck_assert(st->stress_applies <= st->plastic_iterations);
+            applies += st->stress_applies;
+            evals += st->joint_evaluations;
+        }
+        if (getenv("MC_TEST_VERBOSE"))
+            fprintf(stderr, "joint, %d steps: %d evaluations, applies %d (nested tight %d); u_r "
+                            "%.2e, peq %.2e, eps_p %.2e, p %.2e apart\n",
+                    steps, evals, applies, applies_ref, du, dpeq, deps, dp);
+        ck_assert_msg(du <= tol && dpeq <= tol && deps <= tol && dp <= tol,
+                      "%d steps: u_r %g, peq %g, eps_p %g, p %g apart (tolerance %g)", steps, du,
+                      dpeq, deps, dp, tol);
+        ck_assert_msg(applies < applies_ref, "%d steps: %d applications joint, %d nested",
+                      steps, applies, applies_ref);
+        /* two evaluations too few for the joint iteration (one step): the nested one finishes
+         * from its state */
+        pb.max_outer = steps == 1 ? evals - 2 : pb.max_outer;
+        ck_assert(pb.max_outer >= 2);
+        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &fb, &err) ==
+                          MC_OK, "max_outer %d: %s", pb.max_outer, err.msg);
+        int fallbacks = 0;
+        for (int k = 0; k < fb.steps_done; k++)
+            fallbacks += fb.steps[k].joint_fallback;
+        ck_assert_msg(fallbacks == (steps == 1), "max_outer %d: %d fallbacks", pb.max_outer,
+                      fallbacks);
+        const double fu = rel_diff(fb.u_r, ref.u_r, n), fe = rel_diff(fb.eps_p, ref.eps_p, 6 * nv);
+        ck_assert_msg(fb.converged && fu <= tol && fe <= tol,
+                      "after a fallback: u_r %g, eps_p %g apart", fu, fe);
+        mc_plastic_result_free(&ref);
+        mc_plastic_result_free(&joint);
+        mc_plastic_result_free(&fb);
+    }
+    mc_free(p_ref);
     sphere_free(&t);
     mc_threads_end(&scope);
 }
@@ -561,6 +654,7 @@ Suite *suite_plastic_loop(void)
     tcase_add_test(t, inexact_matches_tight);
     tcase_add_test(t, accepts_only_tight);
     tcase_add_test(t, warm_matches_cold);
+    tcase_add_test(t, joint_matches_nested);
     tcase_add_test(t, shared_operators);
     tcase_add_test(t, stops_at_caps);
     tcase_add_test(t, stops_on_contact);

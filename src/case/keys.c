@@ -466,6 +466,17 @@ const case_key mc_keys[] = {
      .off = AT(plasticity.max_plastic),
      .doc = "Fixed-point sweeps per outer iteration; a fixed point that uses them all in 8 "
             "successive outer iterations ends the run, not converged (docs/theory.md §9.5)."},
+    {.section = "plasticity", .name = "iteration", .kind = K_ENUM, .choices = "joint nested",
+     .def = "joint", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
+     .off = AT(plasticity.iteration),
+     .doc = "How a load increment iterates contact, residual displacement and plastic strain "
+            "(docs/theory.md §9.8): joint, Anderson mixing of the plastic strain increment "
+            "through the whole coupled map, one contact solve and one residual stress "
+            "application per evaluation (a 512 x 256 x 16 running-in step: 19 applications "
+            "instead of 125), the nested iteration going on from its state if it has not "
+            "converged in max_outer evaluations; nested, an outer iteration on the residual "
+            "displacement around a plastic fixed point (docs/theory.md §9.1, §9.4). The same "
+            "stopping tests either way."},
     {.section = "plasticity", .name = "near_field", .kind = K_INT, .lo = 0, .hi = 8,
      .def = "0", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
      .off = AT(plasticity.near_field),

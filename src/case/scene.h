@@ -21,6 +21,7 @@
 #include "lube/film.h"
 #include "lube/friction.h"
 #include "plastic/eigen_op.h"
+#include "plastic/loop.h"
 #include "plastic/hardening.h"
 #include "stress/stress.h"
 #include "surface/surface.h"
@@ -145,6 +146,7 @@ typedef struct {
         int max_outer;
         double plastic_tolerance;     /* fixed point of the plastic strain increment */
         int max_plastic;
+        mc_plastic_iteration iteration; /* joint (default) or nested (docs/theory.md §9.8) */
         int near_field;          /* > 0: local-global fixed point with this lateral reach (cells,
                                     docs/theory.md §9.7); 0: one global application per sweep */
         double dz;                    /* layer thickness, m; 0: min(dx, dy) / 2 (line: dx / 2) */

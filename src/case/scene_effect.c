@@ -50,6 +50,7 @@
  *  runin friction_in_yield        no [plasticity] (von_mises); pure rolling   here (new)
  *                                  (no sliding direction)
  *  plasticity friction            runin friction_in_yield = yes (replaced)    here (new)
+ *  plasticity near_field          iteration = joint (global sweeps only)      here (new)
  *  stress / lubrication /         the section's enabled = no                  accepted: the
  *   plasticity / runin keys                                                    switch keeps a
  *                                                                              section for later
@@ -188,6 +189,13 @@ static int plastic_runin_rules(const mc_scene *s, mc_error *err, const char **se
               "[plasticity] %s has no effect with layering = auto and a given depth (the layers "
               "are then uniform): add layering = graded, or set depth = auto",
               s->plasticity.fine_depth > 0 ? "fine_depth" : "grading");
+    /* the local-global fixed point is a scheme of the nested iteration (theory §9.7, §9.8) */
+    if (vm && s->plasticity.near_field > 0 && s->plasticity.iteration == MC_PLASTIC_JOINT)
+        BLAME("plasticity", "near_field",
+              "[plasticity] near_field = %d has no effect with iteration = joint (the default: "
+              "its evaluations sweep with the whole residual stress operator); add iteration = "
+              "nested, or remove near_field",
+              s->plasticity.near_field);
     if (vm && s->plasticity.margin > 0 && s->grid.periodic_x && s->grid.periodic_y &&
         !s->runin.enabled)
         BLAME("plasticity", "margin",

@@ -274,6 +274,7 @@ static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_stag
                              .max_outer = sc->plasticity.max_outer,
                              .tol_plastic = sc->plasticity.plastic_tolerance,
                              .max_plastic = sc->plasticity.max_plastic,
+                             .iteration = sc->plasticity.iteration,
                              .near_reach = sc->plasticity.near_field,
                              .anderson = MC_RUNIN_ANDERSON,
                              .state_eps_p = c->eps_p, /* lent: the totals come back in them */
@@ -720,6 +721,7 @@ static int plastic_results(runin_ctx *c, const mc_plastic_step *records, int nre
     ps->criterion = "von_mises";
     ps->hardening = mc_hardening_name(sc->plasticity.hardening);
     ps->stress_points = mc_eig_stress_points_name(sc->plasticity.stress_points);
+    ps->iteration = mc_plastic_iteration_name(sc->plasticity.iteration);
     ps->yield_initial = mc_hardening_initial(&c->law);
     ps->load_steps = nrec;
     ps->steps_done = nrec;

@@ -249,6 +249,7 @@ int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
     ps->criterion = "von_mises";
     ps->hardening = mc_hardening_name(sc->plasticity.hardening);
     ps->stress_points = mc_eig_stress_points_name(sc->plasticity.stress_points);
+    ps->iteration = mc_plastic_iteration_name(sc->plasticity.iteration);
     ps->load_steps = sc->plasticity.load_steps;
     mc_hardening law;
     memset(&law, 0, sizeof law);
@@ -324,6 +325,7 @@ int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
                              .max_outer = sc->plasticity.max_outer,
                              .tol_plastic = sc->plasticity.plastic_tolerance,
                              .max_plastic = sc->plasticity.max_plastic,
+                             .iteration = sc->plasticity.iteration,
                              .near_reach = sc->plasticity.near_field};
     mc_plastic_result pr;
     (void)K;

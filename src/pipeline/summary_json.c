@@ -414,6 +414,13 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
             jset(b, o, "hardening", jstr(q->hardening));
         if (q->stress_points)
             jset(b, o, "stress_points", jstr(q->stress_points));
+        if (q->iteration) { /* and how many increments the joint iteration left to the nested */
+            int fallbacks = 0;
+            for (int n = 0; q->steps && n < q->steps_done; n++)
+                fallbacks += q->steps[n].joint_fallback;
+            jset(b, o, "iteration", jstr(q->iteration));
+            jset(b, o, "joint_fallbacks", json_integer(fallbacks));
+        }
         jset(b, o, "yield_initial", jnum(q->yield_initial));
         jset(b, o, "vm_elastic_max", jnum(q->vm_elastic_max));
         jset(b, o, "elastic_shortcut", json_boolean(q->elastic_shortcut));

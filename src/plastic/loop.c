@@ -435,6 +435,62 @@ static double surely_elastic_below(const mc_hardening *law)
  * increment beyond DIVERGED_STRAIN): the caller splits the load step. The update is under-relaxed
  * adaptively (omega halves whenever the change grows, dossier §1.4), and the residual operator is
  * skipped while nothing has yielded (the elastic shortcut). */
+/* One global sweep of the plastic fixed point: sig_r = S(eps_p + d_eps) (zero without plastic
+ * strain: *any 0), the trial stresses sigma_e + sig_r + 2 G d_eps and their return maps into
+ * d_new, dp_new; the largest change |d_new - d_eps| and magnitude |d_new| into *change, *size,
+ * whether a cell yields into *plastic. Returns 1 when a return map failed (non-finite trial). */
+static int sweep(loop_ctx *c, const double *eps_p, const double *peq, double elastic_below,
+                 double *change_out, double *size_out, int *plastic_out, int *any_out)
+{
+    const mc_plastic_problem *pb = c->pb;
+    const size_t nv6 = 6 * (size_t)c->nvol;
+    int any = 0;
+    for (size_t i = 0; i < nv6; i++) {
+        c->tot[i] = eps_p[i] + c->d_eps[i];
+        any |= c->tot[i] != 0.0;
+    }
+    if (any) {
+        residual_stress(c, c->tot);
+        c->stress_applies++;
+    } else
+        memset(c->sig_r, 0, nv6 * sizeof *c->sig_r);
+    int bad = 0, plastic = 0;
+    double change = 0, size = 0;
+#pragma omp parallel for schedule(static) reduction(| : plastic, bad) \
+    reduction(max : change, size) if (c->nvol > 4096)
+    for (long v = 0; v < c->nvol; v++) {
+        double trial[6], out[6], de[6], dpv = 0.0;
+        for (int q = 0; q < 6; q++)
+            trial[q] = c->sig_e[q * c->nvol + v] + c->sig_r[q * c->nvol + v] +
+                       2.0 * c->G * c->d_eps[q * c->nvol + v];
+        if (mc_von_mises(trial) < elastic_below) { /* mc_return_map's elastic branch */
+            for (int q = 0; q < 6; q++)
+                de[q] = 0.0;
+        } else {
+            mc_error e1;
+            if (mc_return_map(trial, peq[v], pb->law, c->G, out, de, &dpv, &e1) != MC_OK) {
+                bad = 1;
+                continue;
+            }
+        }
+        double ch = 0, sz = 0;
+        for (int q = 0; q < 6; q++) {
+            c->d_new[q * c->nvol + v] = de[q];
+            ch = fmax(ch, fabs(de[q] - c->d_eps[q * c->nvol + v]));
+            sz = fmax(sz, fabs(de[q]));
+        }
+        change = change > ch ? change : ch;
+        size = size > sz ? size : sz;
+        c->dp_new[v] = dpv;
+        plastic |= dpv > 0;
+    }
+    *change_out = change;
+    *size_out = size;
+    *plastic_out = plastic;
+    *any_out = any;
+    return bad;
+}
+
 static int plastic_fixed_point_lg(loop_ctx *c, const double *eps_p, const double *peq,
                                   double tol, int *sweeps, int *converged, int *tight,
                                   double *rel_change, int *yielded, int *diverged,
@@ -459,47 +515,9 @@ static int plastic_fixed_point(loop_ctx *c, const double *eps_p, const double *p
     (void)err;
     for (int m = 1; m <= pb->max_plastic; m++) {
         *sweeps = m;
-        int any = 0;
-        for (size_t i = 0; i < nv6; i++) {
-            c->tot[i] = eps_p[i] + c->d_eps[i];
-            any |= c->tot[i] != 0.0;
-        }
-        if (any) {
-            residual_stress(c, c->tot);
-            c->stress_applies++;
-        } else
-            memset(c->sig_r, 0, nv6 * sizeof *c->sig_r);
-        int bad = 0, plastic = 0;
+        int any = 0, plastic = 0;
         double change = 0, size = 0; /* sweep_change's maxima, taken in the same pass */
-#pragma omp parallel for schedule(static) reduction(| : plastic, bad) \
-    reduction(max : change, size) if (c->nvol > 4096)
-        for (long v = 0; v < c->nvol; v++) {
-            double trial[6], out[6], de[6], dpv = 0.0;
-            for (int q = 0; q < 6; q++)
-                trial[q] = c->sig_e[q * c->nvol + v] + c->sig_r[q * c->nvol + v] +
-                           2.0 * c->G * c->d_eps[q * c->nvol + v];
-            if (mc_von_mises(trial) < elastic_below) { /* mc_return_map's elastic branch */
-                for (int q = 0; q < 6; q++)
-                    de[q] = 0.0;
-            } else {
-                mc_error e1;
-                if (mc_return_map(trial, peq[v], pb->law, c->G, out, de, &dpv, &e1) != MC_OK) {
-                    bad = 1;
-                    continue;
-                }
-            }
-            double ch = 0, sz = 0;
-            for (int q = 0; q < 6; q++) {
-                c->d_new[q * c->nvol + v] = de[q];
-                ch = fmax(ch, fabs(de[q] - c->d_eps[q * c->nvol + v]));
-                sz = fmax(sz, fabs(de[q]));
-            }
-            change = change > ch ? change : ch;
-            size = size > sz ? size : sz;
-            c->dp_new[v] = dpv;
-            plastic |= dpv > 0;
-        }
-        if (bad) {
+        if (sweep(c, eps_p, peq, elastic_below, &change, &size, &plastic, &any)) {
             *diverged = 1;
             return MC_OK;
         }
@@ -809,6 +827,129 @@ const char *mc_plastic_stop_text(mc_plastic_stop why)
  * caller splits; the warm start forgets the last increment), or *why set (a stop of theory §9.5:
  * the last iterate committed, the caller ends the run); or an error. st accumulates the
  * iteration counts. */
+
+/* The joint iteration (docs/theory.md §9.8): Anderson mixing of the plastic strain increment x
+ * through the whole coupled map, one contact solve and one residual stress application per
+ * evaluation,
+ *     u_r = D(eps_p + x),  p = contact(h + u_r),  x' = R(sigma_e(p) + S(eps_p + x) + 2 G x),
+ * instead of an outer iteration on u_r around a plastic fixed point solved anew for every
+ * contact solve. Its fixed point is the nested loop's, and so is its acceptance: the sweep
+ * changes x by at most tol_plastic (the tight inner test of §9.4) and the residual displacement
+ * of the image, D(eps_p + x'), differs from u_r by at most tol_outer (the outer test of §9.1);
+ * the image is then the increment. *done 0: not converged within max_outer evaluations, or no
+ * progress in JOINT_PATIENCE evaluations (the relative change of the sweep not below its least
+ * so far), or a blow-up (the increment is then cleared: a cold start): the nested iteration goes
+ * on from the state left in c->d_eps, c->dp. *contact_failed 1: the contact solve did not
+ * converge (the run stops, §9.5). */
+#define JOINT_PATIENCE 6
+
+static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, int warm,
+                           double *p, double *u, double *gap, mc_contact_summary *sum,
+                           mc_plastic_result *res, mc_plastic_step *st, int *done,
+                           int *contact_failed, mc_error *err)
+{
+    const mc_plastic_problem *pb = c->pb;
+    const size_t nv6 = 6 * (size_t)c->nvol;
+    const double gap_factor = pb->both ? 2.0 : 1.0;
+    const double elastic_below = surely_elastic_below(pb->law);
+    double least = INFINITY;
+    int since_least = 0;
+    *done = 0;
+    *contact_failed = 0;
+    mc_anderson_restart(c->aa);
+    for (int k = 1; k <= pb->max_outer; k++) {
+        if (pb->stop && pb->stop(pb->stop_ctx))
+            return mc_fail(err, MC_ERR_INTERRUPTED, "plastic loop: stopped on request");
+        st->joint_evaluations++;
+        st->outer_iterations++;
+        st->plastic_iterations++;
+        int any = 0;
+        for (size_t i = 0; i < nv6; i++) {
+            c->tot[i] = res->eps_p[i] + c->d_eps[i];
+            any |= c->tot[i] != 0.0;
+        }
+        if (any)
+            residual_displacement(c, c->tot, c->u_r);
+        else
+            memset(c->u_r, 0, c->ncell * sizeof *c->u_r);
+        for (size_t i = 0; i < c->ncell; i++)
+            c->h_extra[i] = gap_factor * c->u_r[i];
+        mc_contact_problem cp = {.h = pb->h,
+                                 .h_extra = c->h_extra,
+                                 .p_lub = pb->p_lub,
+                                 .p_cap = INFINITY,
+                                 .control = MC_CONTROL_FORCE,
+                                 .load = load,
+                                 .p_start = warm || k > 1 ? p : NULL};
+        c->solves++;
+        st->contact_solves++;
+        int rc = pb->contact ? pb->contact(pb->contact_ctx, &cp, p, u, gap, sum, &c->p_lub, err)
+                             : mc_contact_solve(solver, &cp, p, u, gap, sum, err);
+        if (rc == MC_NOT_CONVERGED) {
+            *contact_failed = 1;
+            return MC_OK;
+        }
+        if (rc != MC_OK)
+            return rc;
+        if ((rc = elastic_stresses(c, p, err)) != MC_OK)
+            return rc;
+        int plastic = 0, had = 0;
+        double change = 0, size = 0;
+        const int bad = sweep(c, res->eps_p, res->peq, elastic_below, &change, &size, &plastic,
+                              &had);
+        if (bad || !(size <= DIVERGED_STRAIN)) { /* blew up: the nested loop starts cold */
+            memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
+            memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
+            memcpy(c->u_r, res->u_r, c->ncell * sizeof *c->u_r);
+            return MC_OK;
+        }
+        if (!plastic && !had) { /* nothing yields and nothing has: the increment is elastic */
+            memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
+            memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
+            res->yield_skips++;
+            *done = 1;
+            return MC_OK;
+        }
+        const double rel = change / fmax(size, 1e-3);
+        if (rel <= pb->tol_plastic) {
+            /* the tight inner test met: the image becomes the iterate (a plain step) and the
+             * outer test compares its residual displacement with u_r. d_new shares its array
+             * with tot (ctx_init), so eps_p + d_new is formed in d_eps, which the image then
+             * overwrites. */
+            for (size_t i = 0; i < nv6; i++)
+                c->d_eps[i] = res->eps_p[i] + c->d_new[i];
+            residual_displacement(c, c->d_eps, c->u_new);
+            memcpy(c->d_eps, c->d_new, nv6 * sizeof *c->d_eps);
+            memcpy(c->dp, c->dp_new, (size_t)c->nvol * sizeof *c->dp);
+            double uch = 0, usz = 0;
+            for (size_t i = 0; i < c->ncell; i++) {
+                uch = fmax(uch, fabs(c->u_new[i] - c->u_r[i]));
+                usz = fmax(usz, fabs(c->u_new[i]));
+            }
+            if (uch <= pb->tol_outer * usz) {
+                memcpy(c->u_r, c->u_new, c->ncell * sizeof *c->u_r);
+                res->inner_change = fmax(res->inner_change, rel);
+                *done = 1;
+                return MC_OK;
+            }
+            continue; /* (the history keeps its pairs: the next one spans this step too) */
+        }
+        if (rel < least) {
+            least = rel;
+            since_least = 0;
+        } else if (++since_least >= JOINT_PATIENCE)
+            break;
+        mc_error aerr;
+        if (mc_anderson_step(c->aa, c->d_eps, c->d_new, &aerr) != MC_OK) {
+            mc_anderson_destroy(&c->aa); /* no memory to mix: the nested loop, unaccelerated */
+            break;
+        }
+        memcpy(c->dp, c->dp_new, (size_t)c->nvol * sizeof *c->dp);
+    }
+    st->joint_fallback = 1;
+    return MC_OK;
+}
+
 static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double dload,
                      int warm, double *p, double *u, double *gap, mc_contact_summary *sum,
                      mc_plastic_result *res, mc_plastic_step *st, int *conv, int *diverged,
@@ -842,7 +983,24 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
         for (size_t i = 0; i < c->ncell; i++)
             c->u_r[i] += s * c->w_ur[i];
     }
-    int rc = MC_OK;
+    int joint_done = 0, joint_contact = 0, rc = MC_OK;
+    if (pb->iteration == MC_PLASTIC_JOINT && c->aa && !c->near && !pb->tight_inner &&
+        (rc = joint_iteration(c, solver, load, warm, p, u, gap, sum, res, st, &joint_done,
+                              &joint_contact, err)) != MC_OK)
+        return rc;
+    if (joint_contact)
+        *why = MC_PLASTIC_STOP_CONTACT;
+    if (joint_done) {
+        if ((rc = warm_keep(c, err)) != MC_OK)
+            return rc;
+        for (size_t i = 0; i < c->ncell; i++)
+            c->w_ur[i] = c->u_r[i] - res->u_r[i];
+        c->w_have = 1;
+        c->w_load = dload;
+        *conv = 1;
+    }
+    if (joint_done || joint_contact)
+        goto commit;
     double outer_rel = 1.0; /* relative change of u_r in the last outer iteration */
     double rel_hist[2] = {INFINITY, INFINITY}; /* in the two before it, older first */
     double forcing = pb->tight_inner ? 0.0 : INNER_FORCING;
@@ -962,6 +1120,7 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
     }
     if (!*conv && !*why)
         *why = MC_PLASTIC_STOP_OUTER_CAP;
+commit:
     /* commit: the converged state, or the last iterate of a stop (the run ends with it) */
     for (size_t i = 0; i < nv6; i++)
         res->eps_p[i] += c->d_eps[i];

@@ -24,6 +24,18 @@
 #include "plastic/local_op.h"
 #include "stress/stress.h"
 
+/* How an increment iterates its coupled state (docs/theory.md §9.1, §9.8). */
+typedef enum {
+    MC_PLASTIC_JOINT = 0, /* Anderson mixing of the plastic increment through the whole map */
+    MC_PLASTIC_NESTED = 1 /* outer iteration on u_r around the plastic fixed point */
+} mc_plastic_iteration;
+
+/* The key word of each ([plasticity] iteration, summary.json). */
+static inline const char *mc_plastic_iteration_name(mc_plastic_iteration it)
+{
+    return it == MC_PLASTIC_NESTED ? "nested" : "joint";
+}
+
 /* The operators of the loop - the elastic stresses of the surface tractions at the cuboid
  * centres (stress/stress.h: patch kernels, p and, with friction, q_x), the residual surface
  * displacement and the residual stress of the plastic strain (eigen_op.h) - for one grid, volume,
@@ -102,6 +114,15 @@ typedef struct {
                                   tests); 0 (default): from the last converged increment of the
                                   run scaled to this one's load (warm start, docs/theory.md
                                   §9.6) */
+    mc_plastic_iteration iteration; /* MC_PLASTIC_JOINT (0, the default): each increment
+                                  first iterates the coupled state by Anderson mixing, one
+                                  contact solve and one residual stress application per
+                                  evaluation (docs/theory.md §9.8), and goes on with the nested
+                                  iteration below from its state only if that has not converged
+                                  in max_outer evaluations; MC_PLASTIC_NESTED: the nested
+                                  iteration alone (outer iteration on u_r, plastic fixed point
+                                  inside). The joint iteration needs anderson > 0 and is not
+                                  used with tight_inner or near_reach (nested schemes) */
     int near_reach;            /* > 0: local-global fixed point (docs/theory.md §9.7): between
                                   two applications of the residual stress operator the plastic
                                   increment is iterated on the cells at or near yield with the
@@ -181,6 +202,10 @@ typedef struct {
     long local_cells;           /* near-field spreads of those sweeps (cells whose change was
                                    spread to their neighbours: their cost) */
     int splits;                 /* the step diverged and was done in 2^splits increments */
+    int joint_evaluations;      /* evaluations of the joint iteration (each also counted as an
+                                   outer iteration, a sweep and a contact solve) */
+    int joint_fallback;         /* 1: the joint iteration did not converge and the nested one
+                                   went on from its state */
     long warm_cells;            /* volume cells the warm start of its (last) increment seeded
                                    with the increment before (0: a cold start) */
     int converged;

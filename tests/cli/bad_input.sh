@@ -247,6 +247,11 @@ control control_plastic_strip o 0 plastic_line.ini --out o --set mesh.ny=2
 row plastic_periodic_x o 1 "--set mesh.periodic_x=yes" "[plasticity] with [mesh] periodic_x = yes" \
     "needs periodic_y = yes too" "accepted: x free, or x and y periodic" \
     -- good.ini --out o --set plasticity.yield_stress=1GPa --set mesh.periodic_x=yes
+# the local-global fixed point is a scheme of the nested iteration (docs/theory.md §9.8)
+row near_field_joint   o 1 "--set plasticity.near_field=1" "[plasticity] near_field = 1 has no effect with iteration = joint" \
+    "add iteration = nested" -- good.ini --out o --set plasticity.yield_stress=1GPa --set plasticity.near_field=1
+control control_near_nested o 0 good.ini --out o --set plasticity.yield_stress=1GPa \
+    --set plasticity.near_field=1 --set plasticity.iteration=nested
 # measured surfaces: every reader's error names the case line, the file and what is wrong
 row surf_truncated    o 1 "surf_truncated.ini:5:" "[roughness] file" "surfaces/truncated.x3p" \
     "truncated or corrupt zip archive" -- surf_truncated.ini --out o
