@@ -288,10 +288,10 @@ static void memory_per_rank(vf_ctx *ctx, const char *self, const char *mpi, int 
 
 /* ---- the elastic-plastic step ------------------------------------------------------------------
  * The running-in step of the default scene on 256 x 128 x 16 (one force, one speed: one
- * elastic-plastic run-down step and one elastic run-up step), serial and P = 1, 2, 3. The eigenstrain
- * operators are distributed (theory §8.4: their lateral transforms are mc_dfft batches, each rank
- * its columns' spectra); the plastic loop's volume arrays and its per-cell work (return maps,
- * Anderson) stay replicated on every rank. */
+ * elastic-plastic run-down step and one elastic run-up step), serial and P = 1, 2, 3. The
+ * eigenstrain operators are distributed (theory §8.4: their lateral transforms are mc_dfft
+ * batches, each rank its columns' spectra); the plastic loop's volume arrays and its per-cell work
+ * (return maps, Anderson) stay replicated on every rank. */
 static const char *const plastic_sets[] = {
     "mesh.nx=256",          "mesh.ny=128",           "runin.forces=1086N",
     "runin.speeds=350rpm",  "lubrication.rpm=350rpm", "plasticity.dz=0.1875um",
@@ -392,10 +392,11 @@ static void plastic_step(vf_ctx *ctx, const char *self, const char *mpi, int qui
     }
     /* least of 2 runs (1 quick); P = 3 once: the whole row set within about 4 minutes */
     const int rounds = quick ? 1 : 2;
-    plastic_run runs[] = {{.name = "bin/microcontact, 1 thread", .ranks = 0, .rounds = rounds},
-                          {.name = "bin/microcontact-mpi, 1 process", .ranks = 1, .rounds = rounds},
-                          {.name = "bin/microcontact-mpi, 2 processes", .ranks = 2, .rounds = rounds},
-                          {.name = "bin/microcontact-mpi, 3 processes", .ranks = 3, .rounds = 1}};
+    plastic_run runs[] = {
+        {.name = "bin/microcontact, 1 thread", .ranks = 0, .rounds = rounds},
+        {.name = "bin/microcontact-mpi, 1 process", .ranks = 1, .rounds = rounds},
+        {.name = "bin/microcontact-mpi, 2 processes", .ranks = 2, .rounds = rounds},
+        {.name = "bin/microcontact-mpi, 3 processes", .ranks = 3, .rounds = 1}};
     const int nruns = (int)(sizeof runs / sizeof runs[0]);
     for (int k = 0; k < nruns; k++) {
         plastic_run *r = &runs[k];
@@ -469,7 +470,8 @@ static void plastic_step(vf_ctx *ctx, const char *self, const char *mpi, int qui
         const plastic_run *r = &runs[k];
         if (!r->ok)
             continue;
-        vf_text(ctx, "| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %.2f | %d | %d | %d |\n",
+        vf_text(ctx,
+                "| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %.2f | %d | %d | %d |\n",
                 r->name, r->wall, r->cpu, r->r0cpu, r->r0comm, r->r0comm / r->r0cpu,
                 r->r0cpu - r->r0comm, r->mib, r->step_s, r->solves, r->outer, r->sweeps);
         if (f)
@@ -550,7 +552,7 @@ int mc_bench_mpi(vf_ctx *ctx, int quick)
         return 1;
     self[sl] = '\0';
     snprintf(mpi, sizeof mpi, "%s-mpi", self); /* bin/microcontact-mpi beside bin/microcontact */
-    vf_text(ctx, "## MPI: strong scaling of the elastic contact and of an elastic-plastic step\n\n");
+    vf_text(ctx, "## MPI: strong scaling of the elastic contact and an elastic-plastic step\n\n");
     if (access(mpi, X_OK) != 0) {
         vf_text(ctx, "`%s` is not built (`make mpi` needs mpicc and FFTW-MPI): not measured.\n\n",
                 mpi);
