@@ -443,7 +443,7 @@ static void plastic_step(vf_ctx *ctx, const char *self, const char *mpi, int qui
             "plasticity.depth=3um, solver.threads=1 (one force, one speed: the elastic-plastic "
             "run-down step, then the elastic run-up step), run as the Hertz rows above: the "
             "serial program and `mpirun ... -np P bin/microcontact-mpi run`, the least wall time "
-            "of %d runs (P = 3 once), fork to exit, with that run's CPU seconds (all its "
+            "of %d run%s (P = 3 once), fork to exit, with that run's CPU seconds (all its "
             "processes, mpirun included), rank 0's CPU seconds and those of it in communication "
             "(mc_dist_cpu_seconds and mc_dist_comm_cpu_seconds at the end of the run, printed "
             "by the MPI executable; the running-in does not record the wall seconds of "
@@ -460,7 +460,7 @@ static void plastic_step(vf_ctx *ctx, const char *self, const char *mpi, int qui
             "(s) | communication / rank 0 CPU | rank 0 CPU outside communication (s) | peak "
             "MiB | step (s) | contact solves | outer iterations | plastic sweeps |\n"
             "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
-            rounds);
+            rounds, rounds > 1 ? "s" : "");
     FILE *f = vf_open(ctx, "mpi_plastic.csv");
     if (f)
         fprintf(f, "run,processes,wall_s,cpu_s,rank0_cpu_s,rank0_comm_cpu_s,peak_mib,step_s,"
@@ -516,12 +516,13 @@ static void plastic_step(vf_ctx *ctx, const char *self, const char *mpi, int qui
                 "rank 0's CPU outside communication %.2f s -> %.2f s, %.2fx; communication "
                 "%.0f %% of rank 0's CPU with two processes (%.0f %% with one: the local "
                 "transposes). The replicated per-cell work of the plastic loop does not divide: "
-                "with it the work of a rank cannot fall below that share of the serial run's, "
-                "and on this 2-core machine, shared with other jobs, a second process competes "
-                "with them for the cores.\n\n",
+                "read by Amdahl's law, the work speed-up s gives f = 2/s - 1 = %.2f of rank 0's "
+                "work done whole on every rank, which bounds the speed-up at 1/f = %.1fx on any "
+                "number of ranks; and on this 2-core machine, shared with other jobs, a second "
+                "process competes with them for the cores.\n\n",
                 s, TARGET_SPEEDUP, s >= TARGET_SPEEDUP ? "met" : "not met on this machine", w1,
                 w2, w1 / w2, 100 * runs[2].r0comm / runs[2].r0cpu,
-                100 * runs[1].r0comm / runs[1].r0cpu);
+                100 * runs[1].r0comm / runs[1].r0cpu, 2 * w2 / w1 - 1, 1 / (2 * w2 / w1 - 1));
         /* the target, checked as the wall time ratio 2 processes / 1 <= 1 / 1.6 */
         vf_check(ctx, "mpi_speedup_plastic",
                  "elastic-plastic step: wall time 2 processes / 1 process (speed-up 1.6x: <= "
