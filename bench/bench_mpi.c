@@ -409,7 +409,9 @@ static void plastic_step(vf_ctx *ctx, const char *self, const char *mpi, int qui
             const double t = run_plastic(self, mpi, ini, out, log, r->ranks);
             const double cpu = children_cpu() - cpu0;
             if (!(t > 0)) {
-                vf_fail(ctx, "mpi_plastic_run", "%s: the run of %s failed", r->name, ini);
+                char id[64];
+                snprintf(id, sizeof id, "mpi_plastic_run_p%d", r->ranks);
+                vf_fail(ctx, id, "%s: the run of %s failed", r->name, ini);
                 break;
             }
             if (t < r->wall) {
