@@ -6,8 +6,9 @@
  * the communication seconds it prints ("MPI: ... spent X s communicating"). Then the flank model:
  * the time and memory of the paper's 10 mm x 1 mm gear flank at 0.8 um on N machines of this
  * size, from the measured per-cell cost, the all-to-all volume of FFTW-MPI's transposes and a
- * stated network. The elastic-plastic stage runs replicated with P > 1 (its volume whole on every
- * rank: no speed-up to measure) and is not measured. */
+ * stated network. Beside it the elastic-plastic running-in step of the default scene on
+ * 256 x 128 x 16 (plastic_step): the same runs, its eigenstrain operators distributed, its plastic
+ * loop's per-cell work replicated, the MPI results checked against the serial one. */
 #include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
@@ -285,6 +286,267 @@ static void memory_per_rank(vf_ctx *ctx, const char *self, const char *mpi, int 
     mc_bench_remove_tree(dir);
 }
 
+/* ---- the elastic-plastic step ------------------------------------------------------------------
+ * The running-in step of the default scene on 256 x 128 x 16 (one force, one speed: one
+ * elastic-plastic run-down step and one elastic run-up step), serial and P = 1, 2, 3. The
+ * eigenstrain operators are distributed (theory §8.4: their lateral transforms are mc_dfft
+ * batches, each rank its columns' spectra); the plastic loop's volume arrays and its per-cell work
+ * (return maps, Anderson) stay replicated on every rank. */
+static const char *const plastic_sets[] = {
+    "mesh.nx=256",          "mesh.ny=128",           "runin.forces=1086N",
+    "runin.speeds=350rpm",  "lubrication.rpm=350rpm", "plasticity.dz=0.1875um",
+    "plasticity.depth=3um", "solver.threads=1"};
+#define NSETS ((int)(sizeof plastic_sets / sizeof plastic_sets[0]))
+
+/* The value in column name of the first data row of the CSV file path, NAN if absent. */
+static double csv_first_row(const char *path, const char *name)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return NAN;
+    char head[2048], row[4096];
+    double v = NAN;
+    if (fgets(head, sizeof head, f) && fgets(row, sizeof row, f)) {
+        head[strcspn(head, "\r\n")] = '\0';
+        int col = -1, k = 0;
+        for (char *s = head, *tok; (tok = strsep(&s, ",")); k++)
+            if (!strcmp(tok, name))
+                col = k;
+        k = 0;
+        for (char *s = row, *tok; col >= 0 && (tok = strsep(&s, ",")); k++)
+            if (k == col)
+                v = strtod(tok, NULL);
+    }
+    fclose(f);
+    return v;
+}
+
+/* Rank 0's CPU seconds of the whole run and those in communication, from the MPI executable's
+ * line "its CPU X s, Y s of it in communication" (mc_dist_cpu_seconds and
+ * mc_dist_comm_cpu_seconds at the end of the run); NAN if absent. */
+static void rank0_cpu(const char *path, double *cpu, double *comm)
+{
+    *cpu = *comm = NAN;
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return;
+    char line[1024];
+    while (fgets(line, sizeof line, f)) {
+        const char *key = "its CPU ", *p = strstr(line, key);
+        if (!p)
+            continue;
+        char *end;
+        *cpu = strtod(p + strlen(key), &end);
+        const char *q = strstr(end, "s, ");
+        if (q)
+            *comm = strtod(q + 3, NULL);
+        break;
+    }
+    fclose(f);
+}
+
+static double run_plastic(const char *self, const char *mpi, const char *ini, const char *out,
+                          const char *log, int ranks)
+{
+    char np[16];
+    snprintf(np, sizeof np, "%d", ranks);
+    const char *argv[48];
+    int n = 0;
+    if (ranks) {
+        const char *pre[] = {"mpirun", "--allow-run-as-root", "--oversubscribe", "--mca",
+                             "mpi_yield_when_idle", "1", "-np", np, mpi};
+        for (size_t k = 0; k < sizeof pre / sizeof pre[0]; k++)
+            argv[n++] = pre[k];
+    } else
+        argv[n++] = self;
+    argv[n++] = "run";
+    argv[n++] = ini;
+    argv[n++] = "--out";
+    argv[n++] = out;
+    argv[n++] = "--quiet";
+    for (int k = 0; k < NSETS; k++) {
+        argv[n++] = "--set";
+        argv[n++] = plastic_sets[k];
+    }
+    argv[n] = NULL;
+    return mc_bench_run_child_to(argv, log);
+}
+
+typedef struct {
+    const char *name;
+    int ranks, rounds;
+    double wall, cpu, r0cpu, r0comm, mib, step_s;
+    int outer, sweeps, solves, ok;
+    double fig[3]; /* summary.json: peq_max, plastic_volume, residual_max */
+} plastic_run;
+
+static const char *const plastic_figs[3] = {"peq_max", "plastic_volume", "residual_max"};
+
+static void plastic_step(vf_ctx *ctx, const char *self, const char *mpi, int quick)
+{
+    char ini[1024], dir[] = "/tmp/mc_bench_mpipl_XXXXXX";
+    vf_text(ctx, "### The elastic-plastic step\n\n");
+    if (mc_bench_default_case(ini, sizeof ini) || !mkdtemp(dir)) {
+        vf_fail(ctx, "mpi_plastic_case", "cannot read cases/default.ini");
+        return;
+    }
+    /* least of 2 runs (1 quick); P = 3 once: the whole row set within about 4 minutes */
+    const int rounds = quick ? 1 : 2;
+    plastic_run runs[] = {
+        {.name = "bin/microcontact, 1 thread", .ranks = 0, .rounds = rounds},
+        {.name = "bin/microcontact-mpi, 1 process", .ranks = 1, .rounds = rounds},
+        {.name = "bin/microcontact-mpi, 2 processes", .ranks = 2, .rounds = rounds},
+        {.name = "bin/microcontact-mpi, 3 processes", .ranks = 3, .rounds = 1}};
+    const int nruns = (int)(sizeof runs / sizeof runs[0]);
+    for (int k = 0; k < nruns; k++) {
+        plastic_run *r = &runs[k];
+        r->wall = INFINITY;
+        for (int round = 0; round < r->rounds; round++) {
+            char out[300], log[300], js[400], pl[400], ri[400];
+            snprintf(out, sizeof out, "%s/out%d_%d", dir, k, round);
+            snprintf(log, sizeof log, "%s/log%d_%d", dir, k, round);
+            const double cpu0 = children_cpu();
+            const double t = run_plastic(self, mpi, ini, out, log, r->ranks);
+            const double cpu = children_cpu() - cpu0;
+            if (!(t > 0)) {
+                char id[64];
+                snprintf(id, sizeof id, "mpi_plastic_run_p%d", r->ranks);
+                vf_fail(ctx, id, "%s: the run of %s failed", r->name, ini);
+                break;
+            }
+            if (t < r->wall) {
+                snprintf(js, sizeof js, "%s/summary.json", out);
+                snprintf(pl, sizeof pl, "%s/plastic.csv", out);
+                snprintf(ri, sizeof ri, "%s/runin.csv", out);
+                r->wall = t;
+                r->cpu = cpu;
+                if (r->ranks)
+                    rank0_cpu(log, &r->r0cpu, &r->r0comm);
+                else /* the serial program: its CPU is the run's, none in communication */
+                    r->r0cpu = cpu, r->r0comm = 0.0;
+                r->mib = number_after(log, "peak memory ");
+                r->step_s = csv_first_row(ri, "seconds");
+                r->solves = (int)csv_first_row(ri, "contact_solves");
+                r->outer = (int)csv_first_row(pl, "outer_iterations");
+                r->sweeps = (int)csv_first_row(pl, "plastic_iterations");
+                for (int q = 0; q < 3; q++)
+                    r->fig[q] = mc_bench_json_number(js, plastic_figs[q]);
+                r->ok = 1;
+            }
+            mc_bench_remove_tree(out);
+        }
+    }
+    mc_bench_remove_tree(dir);
+
+    vf_text(ctx,
+            "The running-in step of the default scene on 256 x 128 cells x 16 layers: "
+            "cases/default.ini with `--set` mesh.nx=256, mesh.ny=128, runin.forces=1086N, "
+            "runin.speeds=350rpm, lubrication.rpm=350rpm, plasticity.dz=0.1875um, "
+            "plasticity.depth=3um, solver.threads=1 (one force, one speed: the elastic-plastic "
+            "run-down step, then the elastic run-up step), run as the Hertz rows above: the "
+            "serial program and `mpirun ... -np P bin/microcontact-mpi run`, the least wall time "
+            "of %d run%s (P = 3 once), fork to exit, with that run's CPU seconds (all its "
+            "processes, mpirun included), rank 0's CPU seconds and those of it in communication "
+            "(mc_dist_cpu_seconds and mc_dist_comm_cpu_seconds at the end of the run, printed "
+            "by the MPI executable; the running-in does not record the wall seconds of "
+            "communication, so its share is of rank 0's CPU), rank 0's peak memory, the step's "
+            "seconds and contact solves (runin.csv, the elastic-plastic row) and its outer "
+            "iterations and plastic sweeps (plastic.csv). Distributed (docs/theory.md §8.4): "
+            "the contact solves and the eigenstrain operators (their lateral transforms are "
+            "mc_dfft batches, each rank keeps its columns' spectra); replicated on every rank: "
+            "the plastic loop's volume arrays and its per-cell work (return maps, Anderson "
+            "mixing), which bound the speed-up. The lead's bench and CI ran on the same 2 cores "
+            "meanwhile: the wall times are noisy, rank 0's CPU outside communication is the "
+            "steadier figure.\n\n"
+            "| run | wall (s) | CPU, all processes (s) | rank 0 CPU (s) | of it communication "
+            "(s) | communication / rank 0 CPU | rank 0 CPU outside communication (s) | peak "
+            "MiB | step (s) | contact solves | outer iterations | plastic sweeps |\n"
+            "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+            rounds, rounds > 1 ? "s" : "");
+    FILE *f = vf_open(ctx, "mpi_plastic.csv");
+    if (f)
+        fprintf(f, "run,processes,wall_s,cpu_s,rank0_cpu_s,rank0_comm_cpu_s,peak_mib,step_s,"
+                   "contact_solves,outer_iterations,plastic_sweeps,peq_max,plastic_volume,"
+                   "residual_max\n");
+    for (int k = 0; k < nruns; k++) {
+        const plastic_run *r = &runs[k];
+        if (!r->ok)
+            continue;
+        vf_text(ctx,
+                "| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %.2f | %d | %d | %d |\n",
+                r->name, r->wall, r->cpu, r->r0cpu, r->r0comm, r->r0comm / r->r0cpu,
+                r->r0cpu - r->r0comm, r->mib, r->step_s, r->solves, r->outer, r->sweeps);
+        if (f)
+            fprintf(f, "%s,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%d,%.17g,%.17g,%.17g\n",
+                    r->name, r->ranks, r->wall, r->cpu, r->r0cpu, r->r0comm, r->mib, r->step_s,
+                    r->solves, r->outer, r->sweeps, r->fig[0], r->fig[1], r->fig[2]);
+    }
+    if (f)
+        vf_close(ctx, f);
+
+    /* The same answer: issue 22 item 2 asks <= 1e-10 relative in the plastic fields of P ranks
+     * against the serial run (the distributed transforms sum in another order; the replicated
+     * per-cell work is the serial code's). A bench row that measured a wrong answer would be
+     * worthless, so the agreement is checked before any speed-up is read. */
+    if (runs[0].ok) {
+        for (int k = 1; k < nruns; k++) {
+            const plastic_run *r = &runs[k];
+            if (!r->ok)
+                continue;
+            double worst = 0.0;
+            for (int q = 0; q < 3; q++)
+                worst = vf_worst(worst, fabs(r->fig[q] - runs[0].fig[q]) / fabs(runs[0].fig[q]));
+            if (r->outer != runs[0].outer || r->sweeps != runs[0].sweeps)
+                worst = vf_worst(worst, INFINITY); /* another iteration path: not the same run */
+            char id[64], quant[160];
+            snprintf(id, sizeof id, "mpi_plastic_agreement_p%d", r->ranks);
+            snprintf(quant, sizeof quant,
+                     "elastic-plastic step, %d process%s: worst relative difference of "
+                     "summary.json peq_max, plastic_volume, residual_max from the serial run "
+                     "(the same counts)",
+                     r->ranks, r->ranks > 1 ? "es" : "");
+            vf_check(ctx, id, quant, "serial bin/microcontact, issue 22: <= 1e-10", 0.0, worst,
+                     1e-10, VF_MAX);
+            vf_regress(ctx, id, VF_TIER_NONE);
+        }
+    }
+    if (runs[1].ok && runs[2].ok) {
+        const double s = runs[1].wall / runs[2].wall;
+        const double w1 = runs[1].r0cpu - runs[1].r0comm, w2 = runs[2].r0cpu - runs[2].r0comm;
+        vf_text(ctx,
+                "\nElastic-plastic step, 1 -> 2 processes: %.2fx in wall time (target %.1fx: %s); "
+                "rank 0's CPU outside communication %.2f s -> %.2f s, %.2fx; communication "
+                "%.0f %% of rank 0's CPU with two processes (%.0f %% with one: the local "
+                "transposes). The replicated per-cell work of the plastic loop does not divide: "
+                "read by Amdahl's law, the work speed-up s gives f = 2/s - 1 = %.2f of rank 0's "
+                "work done whole on every rank, which bounds the speed-up at 1/f = %.1fx on any "
+                "number of ranks; and on this 2-core machine, shared with other jobs, a second "
+                "process competes with them for the cores.\n\n",
+                s, TARGET_SPEEDUP, s >= TARGET_SPEEDUP ? "met" : "not met on this machine", w1,
+                w2, w1 / w2, 100 * runs[2].r0comm / runs[2].r0cpu,
+                100 * runs[1].r0comm / runs[1].r0cpu, 2 * w2 / w1 - 1, 1 / (2 * w2 / w1 - 1));
+        /* the issue's target, checked as the wall time ratio 2 processes / 1 <= 1 / 1.6 */
+        vf_check(ctx, "mpi_speedup_plastic",
+                 "elastic-plastic step: wall time 2 processes / 1 process (speed-up 1.6x: <= "
+                 "0.625)",
+                 "issue 22 item 4: target 1.6x", 1.0 / TARGET_SPEEDUP, 1.0 / s,
+                 1.0 / TARGET_SPEEDUP, VF_MAX);
+        vf_regress(ctx, "mpi_speedup_plastic", VF_TIER_NONE);
+        vf_info(ctx, "mpi_work_speedup_plastic",
+                "elastic-plastic step: rank 0 CPU outside communication, 1 -> 2 processes", "",
+                NAN, w1 / w2);
+        vf_regress(ctx, "mpi_work_speedup_plastic", VF_TIER_NONE);
+        vf_info(ctx, "mpi_comm_share_plastic",
+                "elastic-plastic step: communication / rank 0 CPU, 2 processes", "", NAN,
+                runs[2].r0comm / runs[2].r0cpu);
+        vf_regress(ctx, "mpi_comm_share_plastic", VF_TIER_NONE);
+        vf_info(ctx, "mpi_memory_plastic_p2_over_p1",
+                "elastic-plastic step: peak memory of rank 0, 2 processes / 1", "", NAN,
+                runs[2].mib / runs[1].mib);
+        vf_regress(ctx, "mpi_memory_plastic_p2_over_p1", VF_TIER_NONE);
+    }
+}
+
 int mc_bench_mpi(vf_ctx *ctx, int quick)
 {
     char self[1024], mpi[1100], dir[] = "/tmp/mc_bench_mpi_XXXXXX";
@@ -293,7 +555,7 @@ int mc_bench_mpi(vf_ctx *ctx, int quick)
         return 1;
     self[sl] = '\0';
     snprintf(mpi, sizeof mpi, "%s-mpi", self); /* bin/microcontact-mpi beside bin/microcontact */
-    vf_text(ctx, "## MPI: strong scaling of the elastic contact\n\n");
+    vf_text(ctx, "## MPI: strong scaling of the elastic contact and an elastic-plastic step\n\n");
     if (access(mpi, X_OK) != 0) {
         vf_text(ctx, "`%s` is not built (`make mpi` needs mpicc and FFTW-MPI): not measured.\n\n",
                 mpi);
@@ -365,9 +627,8 @@ int mc_bench_mpi(vf_ctx *ctx, int quick)
             "every rank: the problem's O(N) passes and the coarse start's restriction, which "
             "bound the speed-up. The peak memory is rank 0's. On a 2-core machine shared with other jobs "
             "two processes compete with them for the cores: read the ratios with the load in "
-            "mind (the CPU seconds are the steadier figure). The elastic-plastic stage runs "
-            "replicated with P > 1 (its volume whole on every rank: no speed-up) and is not "
-            "measured.\n\n"
+            "mind (the CPU seconds are the steadier figure). The elastic-plastic step: the "
+            "next subsection.\n\n"
             "| run | wall (s) | CPU (s) | total (s) | contact (s) | communication (s) | "
             "communication / total | contact speed-up vs 1 process | peak MiB | iterations |\n"
             "|---|---|---|---|---|---|---|---|---|---|\n",
@@ -412,6 +673,7 @@ int mc_bench_mpi(vf_ctx *ctx, int quick)
                 runs[2].comm / runs[2].total);
         vf_regress(ctx, "mpi_comm_share", VF_TIER_NONE);
     }
+    plastic_step(ctx, self, mpi, quick);
     memory_per_rank(ctx, self, mpi, quick);
     if (runs[1].ok && runs[1].iterations > 0)
         flank_model(ctx, &runs[1], N);
