@@ -269,7 +269,9 @@ static int run_runin(const mc_scene *scene, const char *case_path, const char *d
                             .resume = resume,
                             .progress = quiet ? NULL : progress_line,
                             .stop = stop_requested};
+    const double comm0 = mc_dist_comm_seconds();
     int rc = mc_runin_run(scene, &opt, res, err);
+    res->timing.comm_s = mc_dist_comm_seconds() - comm0; /* as mc_pipeline_run's */
     mc_output_hold(0);
     if (rc == MC_ERR_INTERRUPTED) {
         int sig = mc_cli_signal_caught();
