@@ -129,11 +129,11 @@ $(MPI_PROGRAM): $(MPI_CLI_OBJ) $(MPI_LIB_OBJ)
 	@mkdir -p $(dir $@)
 	$(MPICC) $(LDFLAGS) -o $@ $(MPI_CLI_OBJ) $(MPI_LIB_OBJ) $(MPI_LIBS)
 
-$(MPI_TESTS): tests/mpi/mpi_operator.c $(MPI_LIB_OBJ)
+$(MPI_TESTS): tests/mpi/mpi_operator.c tests/mpi/mpi_check.h $(MPI_LIB_OBJ)
 	@mkdir -p $(dir $@)
 	$(MPICC) $(ALL_CFLAGS) -DMC_MPI -o $@ $< $(MPI_LIB_OBJ) $(LDFLAGS) $(MPI_LIBS)
 
-$(MPI_EIGEN): tests/mpi/mpi_eigen.c $(MPI_LIB_OBJ)
+$(MPI_EIGEN): tests/mpi/mpi_eigen.c tests/mpi/mpi_check.h $(MPI_LIB_OBJ)
 	@mkdir -p $(dir $@)
 	$(MPICC) $(ALL_CFLAGS) -DMC_MPI -o $@ $< $(MPI_LIB_OBJ) $(LDFLAGS) $(MPI_LIBS)
 

@@ -304,6 +304,20 @@ static int warm_keep(loop_ctx *c, mc_error *err)
     return MC_OK;
 }
 
+/* The accepted increment as the next one's warm start (theory §9.6): its cells (warm_keep) and
+ * its change of u_r against the committed res->u_r, for a load increment dload. */
+static int warm_remember(loop_ctx *c, const mc_plastic_result *res, double dload, mc_error *err)
+{
+    const int rc = warm_keep(c, err);
+    if (rc != MC_OK)
+        return rc;
+    for (size_t i = 0; i < c->ncell; i++)
+        c->w_ur[i] = c->u_r[i] - res->u_r[i];
+    c->w_have = 1;
+    c->w_load = dload;
+    return MC_OK;
+}
+
 /* The six component arrays of a component-major block of 6 * nvol values. */
 static void split6(const loop_ctx *c, const double *block, const double *out[6])
 {
@@ -828,6 +842,29 @@ const char *mc_plastic_stop_text(mc_plastic_stop why)
  * the last iterate committed, the caller ends the run); or an error. st accumulates the
  * iteration counts. */
 
+/* Step (a) on the current u_r: the contact (with a lubricant, the volume equilibrium of the
+ * problem's callback) under the load with h_extra = gap_factor u_r, warm from p when p_warm. */
+static int contact_on_ur(loop_ctx *c, mc_contact_solver *solver, double load, int p_warm,
+                         double *p, double *u, double *gap, mc_contact_summary *sum,
+                         mc_plastic_step *st, mc_error *err)
+{
+    const mc_plastic_problem *pb = c->pb;
+    const double gap_factor = pb->both ? 2.0 : 1.0;
+    for (size_t i = 0; i < c->ncell; i++)
+        c->h_extra[i] = gap_factor * c->u_r[i];
+    mc_contact_problem cp = {.h = pb->h,
+                             .h_extra = c->h_extra,
+                             .p_lub = pb->p_lub,
+                             .p_cap = INFINITY,
+                             .control = MC_CONTROL_FORCE,
+                             .load = load,
+                             .p_start = p_warm ? p : NULL};
+    c->solves++;
+    st->contact_solves++;
+    return pb->contact ? pb->contact(pb->contact_ctx, &cp, p, u, gap, sum, &c->p_lub, err)
+                       : mc_contact_solve(solver, &cp, p, u, gap, sum, err);
+}
+
 /* The joint iteration (docs/theory.md §9.8): Anderson mixing of the plastic strain increment x
  * through the whole coupled map, one contact solve and one residual stress application per
  * evaluation,
@@ -850,7 +887,6 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
 {
     const mc_plastic_problem *pb = c->pb;
     const size_t nv6 = 6 * (size_t)c->nvol;
-    const double gap_factor = pb->both ? 2.0 : 1.0;
     const double elastic_below = surely_elastic_below(pb->law);
     double least = INFINITY;
     int since_least = 0;
@@ -872,19 +908,7 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
             residual_displacement(c, c->tot, c->u_r);
         else
             memset(c->u_r, 0, c->ncell * sizeof *c->u_r);
-        for (size_t i = 0; i < c->ncell; i++)
-            c->h_extra[i] = gap_factor * c->u_r[i];
-        mc_contact_problem cp = {.h = pb->h,
-                                 .h_extra = c->h_extra,
-                                 .p_lub = pb->p_lub,
-                                 .p_cap = INFINITY,
-                                 .control = MC_CONTROL_FORCE,
-                                 .load = load,
-                                 .p_start = warm || k > 1 ? p : NULL};
-        c->solves++;
-        st->contact_solves++;
-        int rc = pb->contact ? pb->contact(pb->contact_ctx, &cp, p, u, gap, sum, &c->p_lub, err)
-                             : mc_contact_solve(solver, &cp, p, u, gap, sum, err);
+        int rc = contact_on_ur(c, solver, load, warm || k > 1, p, u, gap, sum, st, err);
         if (rc == MC_NOT_CONVERGED) {
             *contact_failed = 1;
             return MC_OK;
@@ -957,7 +981,6 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
 {
     const mc_plastic_problem *pb = c->pb;
     const size_t nv6 = 6 * (size_t)c->nvol;
-    const double gap_factor = pb->both ? 2.0 : 1.0;
     *conv = 0;
     *diverged = 0;
     *why = MC_PLASTIC_RUN_CONVERGED;
@@ -991,12 +1014,8 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
     if (joint_contact)
         *why = MC_PLASTIC_STOP_CONTACT;
     if (joint_done) {
-        if ((rc = warm_keep(c, err)) != MC_OK)
+        if ((rc = warm_remember(c, res, dload, err)) != MC_OK)
             return rc;
-        for (size_t i = 0; i < c->ncell; i++)
-            c->w_ur[i] = c->u_r[i] - res->u_r[i];
-        c->w_have = 1;
-        c->w_load = dload;
         *conv = 1;
     }
     if (joint_done || joint_contact)
@@ -1012,21 +1031,7 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
             break;
         }
         st->outer_iterations++;
-        for (size_t i = 0; i < c->ncell; i++)
-            c->h_extra[i] = gap_factor * c->u_r[i];
-        mc_contact_problem cp = {.h = pb->h,
-                                 .h_extra = c->h_extra,
-                                 .p_lub = pb->p_lub,
-                                 .p_cap = INFINITY,
-                                 .control = MC_CONTROL_FORCE,
-                                 .load = load,
-                                 .p_start = warm || k > 1 ? p : NULL};
-        c->solves++;
-        st->contact_solves++;
-        if (pb->contact)
-            rc = pb->contact(pb->contact_ctx, &cp, p, u, gap, sum, &c->p_lub, err);
-        else
-            rc = mc_contact_solve(solver, &cp, p, u, gap, sum, err);
+        rc = contact_on_ur(c, solver, load, warm || k > 1, p, u, gap, sum, st, err);
         if (rc == MC_NOT_CONVERGED) { /* ends the run with the iterate before it (§9.5) */
             *why = MC_PLASTIC_STOP_CONTACT;
             rc = MC_OK;
@@ -1080,12 +1085,8 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
         /* accepted only on a tight inner solve: never on a loose one */
         if (tight && change <= pb->tol_outer * size) {
             memcpy(c->u_r, c->u_new, c->ncell * sizeof *c->u_r);
-            if ((rc = warm_keep(c, err)) != MC_OK)
+            if ((rc = warm_remember(c, res, dload, err)) != MC_OK)
                 return rc;
-            for (size_t i = 0; i < c->ncell; i++)
-                c->w_ur[i] = c->u_r[i] - res->u_r[i];
-            c->w_have = 1;
-            c->w_load = dload;
             res->inner_change = fmax(res->inner_change, fp_change);
             *conv = 1;
             break;

@@ -21,6 +21,7 @@
 #include "core/threads.h"
 #include "plastic/eigen_internal.h"
 #include "plastic/eigen_op.h"
+#include "mpi_check.h"
 
 /* Round-off tier: both sides evaluate the same sums over the same kernel spectra; they differ
  * only in the lateral transforms (one-line plans of operator/dfft.c against padfft-style plans
@@ -28,36 +29,6 @@
  * through the depth step's 6 x 6 products (~1e-15 measured). 1e-12, the brief's figure, leaves
  * two orders of magnitude and catches any wrong column, block or row (errors of O(1)). */
 #define TOL_ROUNDOFF 1e-12
-
-static int passed, failed, rank;
-
-static void check(const char *what, double rel, double tol)
-{
-    const int ok = rel <= tol;
-    ok ? passed++ : failed++;
-    if (rank == 0)
-        printf("%s %s: max |a - b| / max |b| = %.3g (tol %.0e)\n", ok ? "PASS" : "FAIL", what,
-               rel, tol);
-}
-
-static double rel_diff(const double *a, const double *b, size_t n)
-{
-    double d = 0, m = 0;
-    for (size_t i = 0; i < n; i++) {
-        d = fmax(d, fabs(a[i] - b[i]));
-        m = fmax(m, fabs(b[i]));
-    }
-    return m > 0 ? d / m : d;
-}
-
-static uint64_t hash_bits(const double *v, size_t n) /* FNV-1a over the bytes */
-{
-    uint64_t h = 1469598103934665603ull;
-    const unsigned char *p = (const unsigned char *)v;
-    for (size_t i = 0; i < n * sizeof *v; i++)
-        h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
 
 /* the same value on every rank (0 when so) */
 static double same_on_ranks(const double *v, size_t n)
@@ -166,20 +137,10 @@ static void one_case(const char *name, mc_grid g, mc_eigen_volume v, int depth)
 
 int main(int argc, char **argv)
 {
-    int provided, size;
-    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    int size;
     mc_threads_scope ts;
-    mc_threads_begin(1, &ts);
-    mc_error err = {0};
-    if (mc_fftw_prepare(&err) != MC_OK)
+    if (mpi_test_begin(&argc, &argv, "distributed eigenstrain operators", &ts, &size))
         return 1;
-    fftw_mpi_init();
-    mc_dist_set(MPI_COMM_WORLD);
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    if (rank == 0)
-        printf("distributed eigenstrain operators, %d MPI process%s\n", size,
-               size > 1 ? "es" : "");
     const double d = 1e-6;
     static const int group[4] = {1, 1, 3, 5};
     const mc_grid free_g = {20, 14, d, 1.3 * d, 0, 0}, big = {26, 18, d, d, 0, 0};

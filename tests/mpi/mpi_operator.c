@@ -27,41 +27,12 @@
 #include "io/file.h"
 #include "operator/operator.h"
 #include "operator/precond.h"
+#include "mpi_check.h"
 
 /* Round-off tier: an FFT of length m carries a relative error of a few eps log2 m against the
  * largest value (here < 1e-14 for m <= 256), the direct sum a few eps sqrt(N); 1e-12 leaves two
  * orders of magnitude and still catches any wrong slab, offset or missing row (errors of O(1)). */
 #define TOL_ROUNDOFF 1e-12
-
-static int passed, failed, rank;
-
-static void check(const char *what, double rel, double tol)
-{
-    const int ok = rel <= tol;
-    ok ? passed++ : failed++;
-    if (rank == 0)
-        printf("%s %s: max |a - b| / max |b| = %.3g (tol %.0e)\n", ok ? "PASS" : "FAIL", what,
-               rel, tol);
-}
-
-static double rel_diff(const double *a, const double *b, size_t n)
-{
-    double d = 0, m = 0;
-    for (size_t i = 0; i < n; i++) {
-        d = fmax(d, fabs(a[i] - b[i]));
-        m = fmax(m, fabs(b[i]));
-    }
-    return m > 0 ? d / m : d;
-}
-
-static uint64_t hash_bits(const double *v, size_t n) /* FNV-1a over the bytes */
-{
-    uint64_t h = 1469598103934665603ull;
-    const unsigned char *p = (const unsigned char *)v;
-    for (size_t i = 0; i < n * sizeof *v; i++)
-        h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
 
 /* An odd kernel (no symmetry in either offset): its spectrum is complex. */
 static double odd_value(double ox, double oy, const void *ctx)
@@ -283,19 +254,10 @@ static void shared_reads(int size)
 
 int main(int argc, char **argv)
 {
-    int provided, size;
-    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    int size;
     mc_threads_scope ts;
-    mc_threads_begin(1, &ts);
-    mc_error err = {0};
-    if (mc_fftw_prepare(&err) != MC_OK)
+    if (mpi_test_begin(&argc, &argv, "distributed elastic operator", &ts, &size))
         return 1;
-    fftw_mpi_init();
-    mc_dist_set(MPI_COMM_WORLD);
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    if (rank == 0)
-        printf("distributed elastic operator, %d MPI process%s\n", size, size > 1 ? "es" : "");
     const double d = 1e-6;
     struct {
         const char *name;
