@@ -25,7 +25,7 @@ FUZZ_SECONDS ?= 30
 
 DEB_PACKAGES = pkg-config libfftw3-dev libgsl-dev libinih-dev libjansson-dev check libsubunit-dev \
                gnuplot-nox clang libclang-rt-14-dev libzip-dev libxml2-dev nettle-dev \
-               libopenmpi-dev openmpi-bin libfftw3-mpi-dev
+               libopenmpi-dev openmpi-bin libfftw3-mpi-dev strace
 
 OPT      ?= -O2
 CFLAGS_BASE = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $(OPT) -g -fopenmp \
