@@ -44,10 +44,11 @@ static double number_after(const char *path, const char *key)
     return v;
 }
 
-/* The two numbers of "contact stage CPU X s, Y s of it in communication" in a run's log (the MPI
- * executable's last line): the contact stage's CPU seconds of rank 0 and those in communication;
- * NAN if absent. */
-static void contact_cpu(const char *path, double *cpu, double *comm)
+/* The two numbers after key in "KEY X s, Y s of it in communication" of a run's log (the MPI
+ * executable's last line, the last such line if several): "contact stage CPU " gives the
+ * contact stage's CPU seconds of rank 0 and those in communication, "its CPU " rank 0's CPU of
+ * the whole run (mc_dist_cpu_seconds, mc_dist_comm_cpu_seconds); NAN if absent. */
+static void cpu_pair(const char *path, const char *key, double *cpu, double *comm)
 {
     *cpu = *comm = NAN;
     FILE *f = fopen(path, "r");
@@ -55,7 +56,7 @@ static void contact_cpu(const char *path, double *cpu, double *comm)
         return;
     char line[1024];
     while (fgets(line, sizeof line, f)) {
-        const char *key = "contact stage CPU ", *p = strstr(line, key);
+        const char *p = strstr(line, key);
         if (!p)
             continue;
         char *end;
@@ -321,30 +322,6 @@ static double csv_first_row(const char *path, const char *name)
     return v;
 }
 
-/* Rank 0's CPU seconds of the whole run and those in communication, from the MPI executable's
- * line "its CPU X s, Y s of it in communication" (mc_dist_cpu_seconds and
- * mc_dist_comm_cpu_seconds at the end of the run); NAN if absent. */
-static void rank0_cpu(const char *path, double *cpu, double *comm)
-{
-    *cpu = *comm = NAN;
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return;
-    char line[1024];
-    while (fgets(line, sizeof line, f)) {
-        const char *key = "its CPU ", *p = strstr(line, key);
-        if (!p)
-            continue;
-        char *end;
-        *cpu = strtod(p + strlen(key), &end);
-        const char *q = strstr(end, "s, ");
-        if (q)
-            *comm = strtod(q + 3, NULL);
-        break;
-    }
-    fclose(f);
-}
-
 static double run_plastic(const char *self, const char *mpi, const char *ini, const char *out,
                           const char *log, int ranks)
 {
@@ -421,7 +398,7 @@ static void plastic_step(vf_ctx *ctx, const char *self, const char *mpi, int qui
                 r->wall = t;
                 r->cpu = cpu;
                 if (r->ranks)
-                    rank0_cpu(log, &r->r0cpu, &r->r0comm);
+                    cpu_pair(log, "its CPU ", &r->r0cpu, &r->r0comm);
                 else /* the serial program: its CPU is the run's, none in communication */
                     r->r0cpu = cpu, r->r0comm = 0.0;
                 r->mib = number_after(log, "peak memory ");
@@ -599,7 +576,7 @@ int mc_bench_mpi(vf_ctx *ctx, int quick)
                 r->comm = r->ranks ? number_after(log, "spent ") : 0.0;
                 r->mib = number_after(log, "peak memory ");
                 if (r->ranks)
-                    contact_cpu(log, &r->ccpu, &r->ccomm);
+                    cpu_pair(log, "contact stage CPU ", &r->ccpu, &r->ccomm);
                 r->ok = 1;
             }
             mc_bench_remove_tree(out);
