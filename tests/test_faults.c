@@ -16,6 +16,7 @@
 #include <dirent.h>
 #include <jansson.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -576,6 +577,33 @@ START_TEST(test_null_error_keeps_status)
 }
 END_TEST
 
+START_TEST(test_alloc_alignment)
+{
+    /* alloc.c: every block 64-byte aligned; blocks of >= 4 MiB aligned to 2 MiB (huge page
+     * candidates) unless mc_alloc_huge_pages(0); every byte usable either way */
+    const size_t big = (size_t)5 << 20;
+    for (int on = 1; on >= 0; on--) {
+        mc_alloc_huge_pages(on);
+        unsigned char *a = mc_malloc(100), *b = mc_malloc(big);
+        ck_assert_ptr_nonnull(a);
+        ck_assert_ptr_nonnull(b);
+        ck_assert_uint_eq((uintptr_t)a % 64, 0);
+        ck_assert_uint_eq((uintptr_t)b % 64, 0);
+        if (on)
+            ck_assert_uint_eq((uintptr_t)b % ((size_t)2 << 20), 0);
+        memset(b, 0xA5, big);
+        ck_assert_uint_eq(b[big - 1], 0xA5);
+        mc_free(a);
+        mc_free(b);
+    }
+    mc_alloc_huge_pages(1);
+    double *z = mc_zeros((size_t)1 << 20); /* 8 MiB: the huge path of calloc */
+    ck_assert_ptr_nonnull(z);
+    ck_assert(z[0] == 0.0 && z[((size_t)1 << 20) - 1] == 0.0);
+    mc_free(z);
+}
+END_TEST
+
 Suite *suite_faults(void);
 Suite *suite_faults(void)
 {
@@ -590,6 +618,7 @@ Suite *suite_faults(void)
     TCase *reg = tcase_create("regressions");
     tcase_add_test(reg, test_negative_pressure_map);
     tcase_add_test(reg, test_null_error_keeps_status);
+    tcase_add_test(reg, test_alloc_alignment);
     suite_add_tcase(s, reg);
     return s;
 }

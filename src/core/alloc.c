@@ -5,12 +5,28 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 #define MC_ALIGN 64
+
+/* Arrays of at least HUGE_MIN bytes are aligned to HUGE_PAGE and advised to the kernel as huge
+ * page candidates (MADV_HUGEPAGE: transparent huge pages in their "madvise" mode, the default of
+ * Debian's kernels). Why: a 4 KiB page fault costs microseconds, on a virtual machine more, and
+ * the operators of the elastic-plastic stage touch ~2 GiB at 512 x 256 x 16; measured on the
+ * project's machine, the residual stress operator's creation there took 9.3 s instead of
+ * 10.6-11.1 s and one application 1.0-1.2 s instead of 1.5-1.7 s (one thread; fewer page faults
+ * and TLB misses). The cost: up to HUGE_PAGE of address space per such array (not resident).
+ * Without THP, or where madvise fails, nothing changes but the alignment. */
+#define HUGE_PAGE ((size_t)2 << 20)
+#define HUGE_MIN (2 * HUGE_PAGE)
+
+static atomic_int huge_off; /* mc_alloc_huge_pages(0) */
 
 static atomic_long fail_countdown; /* > 0: armed; the allocation that brings it to 0 fails */
 static atomic_long n_allocs;
 static atomic_long n_injected;
+
+void mc_alloc_huge_pages(int on) { atomic_store(&huge_off, !on); }
 
 void mc_alloc_fail_at(long n) { atomic_store(&fail_countdown, n > 0 ? n : 0); }
 long mc_alloc_count(void) { return atomic_load(&n_allocs); }
@@ -36,8 +52,17 @@ void *mc_malloc(size_t bytes)
         return NULL;
     void *p = NULL;
     size_t rounded = bytes ? (bytes + MC_ALIGN - 1) / MC_ALIGN * MC_ALIGN : MC_ALIGN;
-    if (rounded < bytes || posix_memalign(&p, MC_ALIGN, rounded) != 0)
+    if (rounded < bytes)
         return NULL;
+    if (rounded >= HUGE_MIN && !atomic_load(&huge_off)) {
+        if (posix_memalign(&p, HUGE_PAGE, rounded) != 0)
+            return NULL;
+#ifdef MADV_HUGEPAGE
+        (void)madvise(p, rounded, MADV_HUGEPAGE);
+#endif
+    } else if (posix_memalign(&p, MC_ALIGN, rounded) != 0) {
+        return NULL;
+    }
     atomic_fetch_add(&n_allocs, 1);
     return p;
 }

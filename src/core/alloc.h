@@ -18,6 +18,11 @@ void mc_free(void *ptr);
 /* n doubles, zero-initialised; NULL on failure or overflow. */
 double *mc_zeros(size_t n);
 
+/* Large arrays (>= 4 MiB) are aligned to 2 MiB and advised as transparent huge pages (alloc.c
+ * says why and what it saves); mc_alloc_huge_pages(0) turns that off for the allocations that
+ * follow (the bench measures both), (1) on again. */
+void mc_alloc_huge_pages(int on);
+
 /* Fault injection: the nth allocation after this call fails (n >= 1); n = 0 disables.
  * Once triggered, injection disarms itself (only one allocation fails). */
 void mc_alloc_fail_at(long n);
