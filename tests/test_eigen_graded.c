@@ -314,6 +314,71 @@ START_TEST(test_grade)
 }
 END_TEST
 
+/* The corner lattice of the s1 and p3 tables (eigen_internal.h mc_eig_corners) against the
+ * per-entry kernels, on the free cases (graded and uniform, centre values and cell averages):
+ * the same corner sums, whose corner coordinates differ in their last bits ((I + 1) dx - hx
+ * against I dx + hx). Both carry the round-off of sums of 8 corner functions of size up to ~30
+ * (logarithms of lengths in metres), an absolute ~1e-15 that does not fall with the kernel, so
+ * the difference is taken relative to the largest entry of all the tables of a kind (measured
+ * ~3e-15; a deep offset's own table is 1e-4 of it). */
+#define TOL_LATTICE 1e-13
+
+typedef struct {
+    double diff, size;
+} table_cmp;
+
+static void table_add(table_cmp *t, const double *a, const double *b, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        t->diff = fmax(t->diff, fabs(a[i] - b[i]));
+        t->size = fmax(t->size, fabs(b[i]));
+    }
+}
+
+START_TEST(test_corner_lattice)
+{
+    const gcase *gc = &cases[(_i / 2) % 2];
+    const mc_grid g = grid_of(gc);
+    mc_eigen_volume v = {gc->i0, gc->j0, gc->wx, gc->wy, gc->nz, gc->dz,
+                         (_i & 1) ? MC_EIG_CELL_CENTRE : MC_EIG_CELL_AVERAGE, gc->group};
+    if (_i >= 4) /* the same windows, uniform */
+        v.group = NULL;
+    mc_eigen_stress *op = NULL;
+    mc_error err;
+    ck_assert_int_eq(mc_eigen_stress_create(&g, &v, NU, MC_BACKEND_DIRECT, &op, &err), MC_OK);
+    mc_eig_corners cc;
+    ck_assert_int_eq(mc_eig_corners_init(op, &cc, &err), MC_OK);
+    ck_assert_ptr_nonnull(cc.h[0]); /* free axes, cuboids: the lattice applies */
+    const size_t ql = op->qlen;
+    double *a = calloc(MC_EIG_NSYM * ql, sizeof *a), *b = calloc(MC_EIG_NSYM * ql, sizeof *b);
+    double *qa[MC_EIG_NSYM], *qb[MC_EIG_NSYM];
+    for (int n = 0; n < MC_EIG_NSYM; n++) {
+        qa[n] = a + n * ql;
+        qb[n] = b + n * ql;
+    }
+    table_cmp s1 = {0, 0}, p3 = {0, 0};
+    for (int m = 0; m < 2 * op->nzf; m++) {
+        mc_eig_s1_fill(op, m, &cc, qa);
+        mc_eig_s1_fill(op, m, NULL, qb);
+        table_add(&s1, a, b, MC_EIG_NSYM * ql);
+    }
+    for (int k = 0; k < op->v.nz; k++) {
+        mc_eig_p3_fill(op, k, &cc, qa);
+        mc_eig_p3_fill(op, k, NULL, qb);
+        table_add(&p3, a, b, 6 * ql);
+    }
+    const double e1 = s1.diff / s1.size, e3 = p3.diff / p3.size;
+    if (getenv("MC_TEST_VERBOSE"))
+        printf("corner lattice case %d: s1 %.3g, p3 %.3g\n", _i, e1, e3);
+    ck_assert_msg(e1 <= TOL_LATTICE && e3 <= TOL_LATTICE,
+                  "case %d: lattice vs per-entry tables: s1 %.3g, p3 %.3g", _i, e1, e3);
+    mc_eig_corners_free(&cc);
+    mc_eigen_stress_destroy(&op);
+    free(a);
+    free(b);
+}
+END_TEST
+
 Suite *suite_eigen_graded(void);
 Suite *suite_eigen_graded(void)
 {
@@ -325,6 +390,7 @@ Suite *suite_eigen_graded(void)
     tcase_add_loop_test(tc, test_superposition, 0, N_CASES);
     tcase_add_loop_test(tc, test_uniform_closed_form, 0, 4);
     tcase_add_test(tc, test_grade);
+    tcase_add_loop_test(tc, test_corner_lattice, 0, 8); /* cases 0, 1: graded and uniform */
     suite_add_tcase(s, tc);
     return s;
 }

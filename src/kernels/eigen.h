@@ -64,6 +64,22 @@ void mc_eigen_stress12(double x, double y, double z, double hx, double hy, doubl
 void mc_eigen_stress1(double x, double y, double z, double hx, double hy, double z1, double z2,
                       double nu, double S[6][6]);
 
+/* ---- corner sums, for tables of many cuboids (docs/theory.md §8.2) ------------------------------
+ *
+ * Every value of mc_eigen_stress1 is Chiu's formula applied to a signed sum, over the cuboid's 8
+ * corners, of MC_EIGEN_NH corner functions of the offset a = field point - corner (sign +1 per
+ * axis at the LOWER bound of the cuboid). Cuboids of one lattice seen from lattice points share
+ * their corners: a table of n cells needs about n corner evaluations instead of 8 n (the
+ * residual stress operator's tables, plastic/eigen_stress_op.c). */
+#define MC_EIGEN_NH 21
+
+/* The corner functions at the offset (ax, ay, az), not all 0 (h: MC_EIGEN_NH values). */
+void mc_eigen_corner_h(double ax, double ay, double az, double h[MC_EIGEN_NH]);
+
+/* S of mc_eigen_stress1 from the corner sum; inside: 1 when the field point is inside the
+ * cuboid (half-open, lower faces included: then -C:eps* / (2G) is added). */
+void mc_eigen_stress1_sum(const double sum[MC_EIGEN_NH], double nu, int inside, double S[6][6]);
+
 /* sigma_zz of S1 + S2 on the surface z = 0 at (x, y) relative to the cuboid's lateral centre, per
  * unit eigenstrain component c, divided by 2G (the "p3" of theory.md §8.2: a tensile value is a
  * positive pushing pressure p3 = 2G sum_c s[c] eps*_c that the S3 term must carry). By the mirror

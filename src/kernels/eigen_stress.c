@@ -234,6 +234,21 @@ static int inside(double x, double y, double z, double hx, double hy, double z1,
     return x >= -hx && x < hx && y >= -hy && y < hy && z >= z1 && z < z2;
 }
 
+_Static_assert(NH == MC_EIGEN_NH, "eigen.h counts the corner functions");
+
+void mc_eigen_corner_h(double ax, double ay, double az, double h[MC_EIGEN_NH])
+{
+    const double a[3] = {ax, ay, az};
+    corner_H(a, h);
+}
+
+void mc_eigen_stress1_sum(const double sum[MC_EIGEN_NH], double nu, int inside, double S[6][6])
+{
+    double eps[6][6];
+    chiu_strain(sum, nu, 0, 6, eps);
+    hooke(eps, nu, inside, S);
+}
+
 void mc_eigen_stress1(double x, double y, double z, double hx, double hy, double z1, double z2,
                       double nu, double S[6][6])
 {

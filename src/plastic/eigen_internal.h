@@ -218,6 +218,24 @@ struct mc_eigen_stress {
     size_t part[MC_EIGEN_STRESS_PARTS]; /* bytes held, by part (mc_eigen_stress_parts) */
 };
 
+/* The corner lattice of the s1 and p3 tables (theory.md §8.2, eigen.h mc_eigen_corner_h): on a
+ * grid with both axes free and cuboids (not bars), a table entry's corner sum is read from planes
+ * of corner functions at the lattice points (I dx - hx, J dy - hy), I <= ux, J <= uy, one plane
+ * per depth of a corner, instead of 8 corner evaluations per entry; the planes of the corners
+ * consecutive depth offsets share are kept (two at a time). The entries averaged over the
+ * observation cell (MC_EIG_CELL_AVERAGE near the source) are evaluated as before. Fill the
+ * tables of one kind in order of m (or k) with one object to reuse the planes. With h[0] == NULL
+ * (other grids, or mc_eig_corners_init not called: a zeroed struct) every entry is evaluated on
+ * its own (the reference the tests compare with). */
+typedef struct {
+    int n1x, n1y;  /* lattice points per plane: ux + 1, uy + 1 */
+    double *h[2];  /* two planes of n1x n1y MC_EIGEN_NH corner functions */
+    long key[2];   /* which depth each holds (LONG_MIN: none) */
+} mc_eig_corners;
+int mc_eig_corners_init(const mc_eigen_stress *op, mc_eig_corners *cc, mc_error *err);
+void mc_eig_corners_free(mc_eig_corners *cc);
+size_t mc_eig_corners_bytes(const mc_eigen_stress *op);
+
 /* Lateral parity bits of the kernel pair (row i, column c): odd(i) XOR odd(c) per axis. */
 int mc_eig_pair_par(int i, int c);
 
@@ -226,8 +244,9 @@ int mc_eig_pair_par(int i, int c);
  *         exactly 0 at m = 0, their value by symmetry);
  *   p3:   sigma_zz^(1+2)(z = 0) of source layer k, per column;
  *   love: Love's stresses at depth (k + 1/2) dz per unit pressure on one cell, per row. */
-void mc_eig_s1_fill(const mc_eigen_stress *op, int m, double *const q[MC_EIG_NSYM]);
-void mc_eig_p3_fill(const mc_eigen_stress *op, int k, double *const q[6]);
+void mc_eig_s1_fill(const mc_eigen_stress *op, int m, mc_eig_corners *cc,
+                    double *const q[MC_EIG_NSYM]);
+void mc_eig_p3_fill(const mc_eigen_stress *op, int k, mc_eig_corners *cc, double *const q[6]);
 void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6]);
 
 /* The fft backend's depth step (theory.md §8.8): AUTO picks by the volume (a graded volume whose

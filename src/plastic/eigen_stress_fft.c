@@ -214,9 +214,11 @@ static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
     if (rc)
         return rc;
     double *scr = mc_malloc((size_t)MC_EIG_NSYM * ql * sizeof *scr);
-    if (!scr) {
+    mc_eig_corners cc;
+    if (!scr || (rc = mc_eig_corners_init(op, &cc, err))) {
+        mc_free(scr);
         mc_eig_quad_destroy(&quad);
-        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for table scratch");
+        return scr ? rc : mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for table scratch");
     }
     double *q[MC_EIG_NSYM];
     for (int n = 0; n < MC_EIG_NSYM; n++)
@@ -234,19 +236,20 @@ static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
         }
     /* the fine lattice's offsets; planes m >= 2 nzf stay zero (calloc) */
     for (int m = 0; m < 2 * nzf; m++) {
-        mc_eig_s1_fill(op, m, q);
+        mc_eig_s1_fill(op, m, &cc, q);
 #pragma omp parallel for schedule(dynamic, 1)
         for (int n = 0; n < MC_EIG_NSYM; n++)
             mc_eig_quad_transform(&quad, par[n], q[n]);
         scatter_blocks(op, f, q, MC_EIG_NSYM, m * MC_EIG_NSYM, np, f->V);
     }
     for (int k = 0; k < nz; k++) {
-        mc_eig_p3_fill(op, k, q);
+        mc_eig_p3_fill(op, k, &cc, q);
 #pragma omp parallel for schedule(dynamic, 1)
         for (int c = 0; c < 6; c++)
             mc_eig_quad_transform(&quad, mc_eig_par(c), q[c]);
         scatter_blocks(op, f, q, 6, 6 * k, 6 * nz, f->P3);
     }
+    mc_eig_corners_free(&cc);
     mc_eig_quad_destroy(&quad);
     mc_free(scr);
     if (f->coarse) {

@@ -12,6 +12,7 @@
  * z, P = sigma_zz^(1+2)(z = 0) of source layer k', L = Love's rectangle stresses at the depth of
  * layer k. The sums over s run over the window only (p3 lives on the window).
  */
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -55,11 +56,18 @@ static void s1_point(const table_ctx *t, double x, double y, double z, double S[
  * source (theory.md §8.7: the average makes the operator Galerkin-like and removes the unstable
  * checkerboard modes of the centre values; farther out the field is smooth and centre and
  * average differ by O((h / distance)^2) of a kernel falling like distance^-3). */
+/* whether s1_cell averages the entry (di, dj) of depth offset t->k */
+static int s1_averaged(const table_ctx *t, int di, int dj)
+{
+    const double x = di * t->dx, y = dj * t->dy;
+    const double reach = MC_EIG_AVERAGE_REACH * fmax(t->dx, t->line ? t->dx : t->dy);
+    return t->average && fabs(x) <= reach && fabs(y) <= reach && t->k * t->dz <= reach;
+}
+
 static void s1_cell(const table_ctx *t, int di, int dj, double S[6][6])
 {
     const double x = di * t->dx, y = dj * t->dy, z = (t->k + 0.5) * t->dz;
-    const double reach = MC_EIG_AVERAGE_REACH * fmax(t->dx, t->line ? t->dx : t->dy);
-    if (!t->average || fabs(x) > reach || fabs(y) > reach || t->k * t->dz > reach) {
+    if (!s1_averaged(t, di, dj)) {
         s1_point(t, x, y, z, S);
         return;
     }
@@ -185,13 +193,147 @@ int mc_eig_pair_par(int i, int c)
     return (mc_eig_odd_x(i) ^ mc_eig_odd_x(c)) | (mc_eig_odd_y(i) ^ mc_eig_odd_y(c)) << 1;
 }
 
-void mc_eig_s1_fill(const mc_eigen_stress *op, int m, double *const q[MC_EIG_NSYM])
+/* ---- the corner lattice (eigen_internal.h mc_eig_corners; theory.md §8.2) ------------------- */
+
+static int lattice_applies(const mc_eigen_stress *op)
+{
+    return !mc_eig_periodic(&op->g) && !mc_eig_line(&op->g);
+}
+
+size_t mc_eig_corners_bytes(const mc_eigen_stress *op)
+{
+    if (!lattice_applies(op))
+        return 0;
+    return 2 * ((size_t)op->v.nx + 1) * ((size_t)op->v.ny + 1) * MC_EIGEN_NH * sizeof(double);
+}
+
+int mc_eig_corners_init(const mc_eigen_stress *op, mc_eig_corners *cc, mc_error *err)
+{
+    memset(cc, 0, sizeof *cc);
+    cc->key[0] = cc->key[1] = LONG_MIN;
+    if (!lattice_applies(op))
+        return MC_OK;
+    cc->n1x = op->v.nx + 1;
+    cc->n1y = op->v.ny + 1;
+    const size_t n = (size_t)cc->n1x * cc->n1y * MC_EIGEN_NH;
+    if (!(cc->h[0] = mc_malloc(n * sizeof(double))) || !(cc->h[1] = mc_malloc(n * sizeof(double)))) {
+        mc_eig_corners_free(cc);
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for the corner lattice");
+    }
+    return MC_OK;
+}
+
+void mc_eig_corners_free(mc_eig_corners *cc)
+{
+    mc_free(cc->h[0]);
+    mc_free(cc->h[1]);
+    memset(cc, 0, sizeof *cc);
+}
+
+/* The plane of corner functions at depth offset az (identified by key), kept or computed into
+ * the slot that does not hold the plane `keep`. */
+static const double *corner_plane(const mc_eigen_stress *op, mc_eig_corners *cc, long key,
+                                  double az, long keep)
+{
+    for (int s = 0; s < 2; s++)
+        if (cc->key[s] == key)
+            return cc->h[s];
+    const int s = cc->key[0] == keep ? 1 : 0;
+    double *h = cc->h[s];
+    const double dx = op->g.dx, dy = op->g.dy, hx = 0.5 * dx, hy = 0.5 * dy;
+    const int n1x = cc->n1x, n1y = cc->n1y;
+#pragma omp parallel for schedule(static)
+    for (int J = 0; J < n1y; J++)
+        for (int I = 0; I < n1x; I++)
+            mc_eigen_corner_h(I * dx - hx, J * dy - hy, az,
+                              h + ((size_t)J * n1x + I) * MC_EIGEN_NH);
+    cc->key[s] = key;
+    return h;
+}
+
+typedef struct {
+    table_ctx t;
+    const double *lo, *hi; /* the planes of the cuboid's lower and upper z corners */
+    int n1x;
+    int inside; /* the field point of entry (0, 0) is inside the cuboid */
+} lattice_ctx;
+
+/* The corner sum of entry (di, dj): cuboid_H's corners and signs (+1 at each lower bound: the
+ * lattice point di + 1 along x, dj + 1 along y, the plane lo in z), read from the planes. */
+static void lattice_sum(const lattice_ctx *c, int di, int dj, double sum[MC_EIGEN_NH])
+{
+    for (int n = 0; n < MC_EIGEN_NH; n++)
+        sum[n] = 0.0;
+    for (int k = 0; k < 2; k++)
+        for (int j = 0; j < 2; j++)
+            for (int i = 0; i < 2; i++) {
+                const double *h = (k ? c->hi : c->lo) +
+                                  ((size_t)(dj + 1 - j) * c->n1x + (size_t)(di + 1 - i)) *
+                                      MC_EIGEN_NH;
+                const double s = ((i + j + k) & 1) ? -1.0 : 1.0;
+                for (int n = 0; n < MC_EIGEN_NH; n++)
+                    sum[n] += s * h[n];
+            }
+}
+
+static void s1_lattice_kernel(int di, int dj, const void *ctx, double *out)
+{
+    const lattice_ctx *c = ctx;
+    if (s1_averaged(&c->t, di, dj)) {
+        s1_kernel(di, dj, &c->t, out);
+        return;
+    }
+    double sum[MC_EIGEN_NH], S[6][6];
+    lattice_sum(c, di, dj, sum);
+    mc_eigen_stress1_sum(sum, c->t.nu, c->inside && di == 0 && dj == 0, S);
+    for (int i = 0; i < 6; i++)
+        for (int e = i; e < 6; e++)
+            out[mc_eig_sym(i, e)] = S[i][e];
+}
+
+static void p3_lattice_kernel(int di, int dj, const void *ctx, double *out)
+{
+    const lattice_ctx *c = ctx;
+    double sum[MC_EIGEN_NH], S[6][6];
+    lattice_sum(c, di, dj, sum);
+    mc_eigen_stress1_sum(sum, c->t.nu, c->inside && di == 0 && dj == 0, S);
+    for (int e = 0; e < 6; e++)
+        out[e] = 2.0 * S[2][e]; /* as mc_eigen_surface_szz12 */
+}
+
+/* The lattice context of one table: the field point at depth zf over the cuboid [z1, z2] (fine
+ * layers; the corner depths zf - z1 and zf - z2 as the per-entry kernels form them, keyed by
+ * family and layer index). */
+static lattice_ctx lattice_at(const mc_eigen_stress *op, mc_eig_corners *cc, const table_ctx *t,
+                              long key_lo, double az_lo, long key_hi, double az_hi, int inside)
+{
+    lattice_ctx c = {*t, NULL, NULL, cc->n1x, inside};
+    c.lo = corner_plane(op, cc, key_lo, az_lo, key_hi);
+    c.hi = corner_plane(op, cc, key_hi, az_hi, key_lo);
+    return c;
+}
+
+void mc_eig_s1_fill(const mc_eigen_stress *op, int m, mc_eig_corners *cc,
+                    double *const q[MC_EIG_NSYM])
 {
     int par[MC_EIG_NSYM];
     for (int i = 0; i < 6; i++)
         for (int c = i; c < 6; c++)
             par[mc_eig_sym(i, c)] = mc_eig_pair_par(i, c);
-    fill_table(op, m, m + 1, MC_EIG_NSYM, par, s1_kernel, s1_limit, q);
+    if (cc && cc->h[0] && lattice_applies(op)) {
+        /* the field point at (m + 1/2) dz over the fine cuboid [0, dz]: corner depths
+         * zf - 0 and zf - dz; the plane of corner depth (t - 1/2) dz has key 2 t, computed as
+         * (t + 1/2) dz - dz (the upper corner of offset t, the lower one of t - 1) */
+        const double dz = op->v.dz;
+        const table_ctx t = {op->g.dx, op->g.dy, dz, op->nu, m, m + 1, 0, 0,
+                             op->v.stress_points == MC_EIG_CELL_AVERAGE};
+        lattice_ctx c = lattice_at(op, cc, &t, 2L * (m + 1), (m + 1.5) * dz - dz, 2L * m,
+                                   (m + 0.5) * dz - dz, m == 0);
+        mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, MC_EIG_NSYM, par, s1_lattice_kernel, &c,
+                    q);
+    } else {
+        fill_table(op, m, m + 1, MC_EIG_NSYM, par, s1_kernel, s1_limit, q);
+    }
     /* pairs odd in z vanish at depth offset 0 (the fft backend's DST-I ignores that plane) */
     for (int i = 0; m == 0 && i < 6; i++)
         for (int c = i; c < 6; c++)
@@ -199,13 +341,24 @@ void mc_eig_s1_fill(const mc_eigen_stress *op, int m, double *const q[MC_EIG_NSY
                 memset(q[mc_eig_sym(i, c)], 0, op->qlen * sizeof(double));
 }
 
-void mc_eig_p3_fill(const mc_eigen_stress *op, int k, double *const q[6])
+void mc_eig_p3_fill(const mc_eigen_stress *op, int k, mc_eig_corners *cc, double *const q[6])
 {
     int par[6];
     for (int c = 0; c < 6; c++)
         par[c] = mc_eig_par(c);
     /* a graded layer: one cuboid of its whole thickness (theory.md §8.8) */
-    fill_table(op, op->first[k], op->first[k + 1], 6, par, p3_kernel, p3_limit, q);
+    const int f0 = op->first[k], f1 = op->first[k + 1];
+    if (cc && cc->h[0] && lattice_applies(op)) {
+        /* the field point on the surface over [f0 dz, f1 dz]: corner depths 0 - f dz, key
+         * 2 f + 1 */
+        const double dz = op->v.dz;
+        const table_ctx t = {op->g.dx, op->g.dy, dz, op->nu, f0, f1, 0, 0, 0};
+        lattice_ctx c = lattice_at(op, cc, &t, 2L * f0 + 1, 0.0 - f0 * dz, 2L * f1 + 1,
+                                   0.0 - f1 * dz, f0 == 0);
+        mc_eig_fill(op->qx, op->qy, op->v.nx, op->v.ny, 6, par, p3_lattice_kernel, &c, q);
+        return;
+    }
+    fill_table(op, f0, f1, 6, par, p3_kernel, p3_limit, q);
 }
 
 void mc_eig_love_fill(const mc_eigen_stress *op, int k, double *const q[6])
@@ -436,18 +589,23 @@ static int direct_prepare(mc_eigen_stress *op, mc_error *err)
                        (n1 + n2) / ql);
     op->part[0] += n1 * sizeof(double);
     op->part[2] += n2 * sizeof(double);
+    mc_eig_corners cc;
+    int rc = mc_eig_corners_init(op, &cc, err);
+    if (rc)
+        return rc;
     for (int m = 0; m < 2 * nzf; m++) {
         double *q[MC_EIG_NSYM];
         for (int n = 0; n < MC_EIG_NSYM; n++)
             q[n] = op->s1 + (size_t)(m * MC_EIG_NSYM + n) * ql;
-        mc_eig_s1_fill(op, m, q);
+        mc_eig_s1_fill(op, m, &cc, q);
     }
     for (int k = 0; k < nz; k++) {
         double *q[6];
         for (int c = 0; c < 6; c++)
             q[c] = op->p3k + (size_t)(k * 6 + c) * ql;
-        mc_eig_p3_fill(op, k, q);
+        mc_eig_p3_fill(op, k, &cc, q);
     }
+    mc_eig_corners_free(&cc);
     return MC_OK;
 }
 
