@@ -55,7 +55,7 @@ static double layer_time(int N, int friction, mc_stress_timing *tm, int *tx, int
     for (int k = 0; k < LAYERS; k++)
         depths[k] = (2.0 + 8.0 * k) * g.dx;
     mc_stress_options o = {MC_STRESS_PATCH, 0.3, LAYERS, depths, MC_BACKEND_FFT,
-                           MC_TRACTION_P | (friction ? MC_TRACTION_QX : 0)};
+                           MC_TRACTION_P | (friction ? MC_TRACTION_QX : 0), 0};
     mc_stress_plan *op = NULL;
     mc_error err = {0};
     size_t n = (size_t)N * N, nv = n * LAYERS;

@@ -453,7 +453,7 @@ static double **stress_run(const mc_grid *g, mc_stress_kernel kernel, const doub
 {
     const mc_stress_options opt = {kernel, NU, nz, depths, b,
                                    (p ? MC_TRACTION_P : 0) | (qx ? MC_TRACTION_QX : 0) |
-                                       (qy ? MC_TRACTION_QY : 0)};
+                                       (qy ? MC_TRACTION_QY : 0), 0};
     mc_error err;
     mc_stress_plan *plan = NULL;
     int rc = mc_stress_create(g, &opt, &plan, &err);
@@ -602,7 +602,7 @@ START_TEST(test_layer_matches_field)
     double *p = random_load(&g, 41), *qx = random_load(&g, 42);
     double **all = stress_run(&g, MC_STRESS_PATCH, z, 3, MC_BACKEND_FFT, p, qx, NULL);
     const mc_stress_options opt = {MC_STRESS_PATCH, NU, 3, z, MC_BACKEND_FFT,
-                                   MC_TRACTION_P | MC_TRACTION_QX | MC_TRACTION_QY};
+                                   MC_TRACTION_P | MC_TRACTION_QX | MC_TRACTION_QY, 0};
     mc_error err;
     mc_stress_plan *plan = NULL;
     ck_assert_int_eq(mc_stress_create(&g, &opt, &plan, &err), MC_OK);
@@ -855,7 +855,7 @@ START_TEST(test_bad_input)
     const double z[] = {0.0, 1.0}, zneg = -1.0;
     mc_error err;
     mc_stress_plan *plan = NULL;
-    mc_stress_options opt = {MC_STRESS_POINT, NU, 2, z, MC_BACKEND_FFT, MC_TRACTION_P};
+    mc_stress_options opt = {MC_STRESS_POINT, NU, 2, z, MC_BACKEND_FFT, MC_TRACTION_P, 0};
     ck_assert_int_eq(mc_stress_create(&g, &opt, &plan, &err), MC_ERR_INPUT); /* point at z = 0 */
     ck_assert_ptr_null(plan);
     opt.kernel = MC_STRESS_PATCH;
@@ -902,7 +902,7 @@ START_TEST(test_create_nomem)
     const mc_grid g = {6, 5, 1.0, 1.0, _i == 0, 0};
     const double z[] = {0.0, 1.0};
     const mc_stress_options opt = {MC_STRESS_PATCH, NU, 2, z, MC_BACKEND_FFT,
-                                   MC_TRACTION_P | MC_TRACTION_QY};
+                                   MC_TRACTION_P | MC_TRACTION_QY, 0};
     mc_error err;
     int failures = 0;
     for (long k = 1;; k++) {
@@ -1145,7 +1145,7 @@ static double **stress_run_tuned(const mc_grid *g, mc_stress_kernel kernel, cons
 {
     const mc_stress_options opt = {kernel, NU, nz, depths, b,
                                    (p ? MC_TRACTION_P : 0) | (qx ? MC_TRACTION_QX : 0) |
-                                       (qy ? MC_TRACTION_QY : 0)};
+                                       (qy ? MC_TRACTION_QY : 0), 0};
     mc_error err;
     mc_stress_plan *plan = NULL;
     int rc = mc_stress_create_tuned(g, &opt, tune, &plan, &err);
@@ -1346,7 +1346,7 @@ START_TEST(test_cost_model)
                                   &th);
     ck_assert_int_eq(t1.sparse_layers, 3);
     ck_assert_int_eq(th.sparse_layers, 0);
-    const mc_stress_options opt = {MC_STRESS_PATCH, NU, 3, z, MC_BACKEND_FFT, MC_TRACTION_P};
+    const mc_stress_options opt = {MC_STRESS_PATCH, NU, 3, z, MC_BACKEND_FFT, MC_TRACTION_P, 0};
     mc_error err;
     mc_stress_plan *plan = NULL;
     ck_assert_int_eq(mc_stress_create(&g, &opt, &plan, &err), MC_OK);
@@ -1363,12 +1363,54 @@ START_TEST(test_cost_model)
 }
 END_TEST
 
+/* The kernel spectra kept by a repeated plan (stress.h `repeated`): a second and third field
+ * from the kept spectra, with other loads, are the bits of a plan that rebuilds them, on free
+ * axes (the symmetric engine) and on a periodic grid; with friction (two loads, two cache
+ * slots). */
+START_TEST(test_repeated_cache)
+{
+    const mc_grid g = {24, 19, 1e-6, 1.2e-6, 0, _i};
+    const double z[3] = {0.3e-6, 1.1e-6, 2.5e-6};
+    const size_t n = mc_grid_cells(&g), nv = 3 * n;
+    mc_stress_options opt = {MC_STRESS_PATCH, NU, 3, z, MC_BACKEND_FFT,
+                             MC_TRACTION_P | MC_TRACTION_QX, 1};
+    mc_stress_plan *kept = NULL, *plain = NULL;
+    mc_error err;
+    ck_assert_int_eq(mc_stress_create(&g, &opt, &kept, &err), MC_OK);
+    opt.repeated = 0;
+    ck_assert_int_eq(mc_stress_create(&g, &opt, &plain, &err), MC_OK);
+    double *p = calloc(n, sizeof *p), *q = calloc(n, sizeof *q);
+    double *a = calloc(6 * nv, sizeof *a), *b = calloc(6 * nv, sizeof *b);
+    double *sa[6], *sb[6];
+    for (int c = 0; c < 6; c++) {
+        sa[c] = a + c * nv;
+        sb[c] = b + c * nv;
+    }
+    for (int pass = 0; pass < 3; pass++) {
+        for (size_t i = 0; i < n; i++) { /* a different dense load each pass */
+            p[i] = 1e9 * (0.5 + 0.5 * sin(0.37 * (double)i + pass));
+            q[i] = pass == 1 ? 0.0 : 0.1 * p[i] * cos(0.11 * (double)i);
+        }
+        ck_assert_int_eq(mc_stress_field(kept, p, pass == 1 ? NULL : q, NULL, sa, &err), MC_OK);
+        ck_assert_int_eq(mc_stress_field(plain, p, pass == 1 ? NULL : q, NULL, sb, &err), MC_OK);
+        ck_assert_msg(memcmp(a, b, 6 * nv * sizeof *a) == 0, "pass %d: kept spectra differ",
+                      pass);
+    }
+    mc_stress_destroy(&kept);
+    mc_stress_destroy(&plain);
+    free(p);
+    free(q);
+    free(a);
+    free(b);
+}
+END_TEST
+
 /* Bad switches are refused. */
 START_TEST(test_tuning_bad)
 {
     const mc_grid g = {6, 5, 1.0, 1.0, 0, 0};
     const double z = 1.0;
-    const mc_stress_options opt = {MC_STRESS_PATCH, NU, 1, &z, MC_BACKEND_FFT, MC_TRACTION_P};
+    const mc_stress_options opt = {MC_STRESS_PATCH, NU, 1, &z, MC_BACKEND_FFT, MC_TRACTION_P, 0};
     const mc_stress_tuning bad = {MC_STRESS_AUTO, (mc_stress_switch)7, MC_STRESS_AUTO};
     mc_error err;
     mc_stress_plan *plan = NULL;
@@ -1757,6 +1799,7 @@ Suite *suite_stress(void)
     tcase_add_loop_test(tc, test_stage, 0, 2);
     tcase_add_loop_test(tc, test_stage_nomem, 0, 2);
     tcase_add_test(tc, test_stage_bad);
+    tcase_add_loop_test(tc, test_repeated_cache, 0, 2);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -243,11 +243,17 @@ static void record_slope(eval_ctx *c)
     }
 }
 
-/* The root from a guess g with slope s (volume.h): V(g), then steps of 1.25 times the secant
- * correction -(V - V*) / s (a little beyond the root, to bracket it), doubled while V - V* keeps
- * its sign, clamped to [0, p_nominal]; a bracket goes to Brent. Reaching 0 with V(0) >= V* is the
+/* The root from a guess g with slope s (volume.h): V(g), then up to SECANT_STEPS secant steps
+ * -(V - V*) / s, s the guess's slope and then that of the two latest points (the elastic-plastic
+ * loop's consecutive equilibria are close and V nearly linear there: measured on the running-in
+ * step at 256 x 128, the first step left 1e-8..3e-2 of the guess's error, so most equilibria took
+ * 2 solves instead of the 3 of an overshooting first step); when they fall short, steps of 1.25
+ * times the correction (a little beyond the root, to bracket it), doubled while
+ * V - V* keeps its sign, all clamped to [0, p_nominal]; a bracket goes to Brent. Reaching 0 with V(0) >= V* is the
  * dry regime (as the cold start's first test). *done 0 leaves the cold start to the caller (the
  * outputs are then overwritten by it). */
+#define SECANT_STEPS 2
+
 static int from_guess(eval_ctx *c, double vstar, double tol, int cap, int *done, mc_error *err)
 {
     const mc_volume_problem *pr = c->prob;
@@ -266,7 +272,11 @@ static int from_guess(eval_ctx *c, double vstar, double tol, int cap, int *done,
         *done = 1;
         return MC_OK;
     }
-    double step = -1.25 * f0 / pr->slope_guess;
+    /* the first steps: secant steps (the guess's slope, then the two latest points'), which land
+     * within the tolerance or near the root; then steps of 1.25 times the correction (a little
+     * beyond the root, to bracket it), doubled */
+    double step = -f0 / pr->slope_guess, slope = pr->slope_guess;
+    int secants = SECANT_STEPS;
     while (res->solves < cap) {
         double x1 = fmin(fmax(x0 + step, 0.0), c->pnom), f1;
         if (x1 == x0)
@@ -303,9 +313,18 @@ static int from_guess(eval_ctx *c, double vstar, double tol, int cap, int *done,
             return x0 < x1 ? brent(c, x0, f0, x1, f1, vstar, tol, cap, err)
                            : brent(c, x1, f1, x0, f0, vstar, tol, cap, err);
         }
+        const double fresh = (f1 - f0) / (x1 - x0);
+        if (fresh > 0 && isfinite(fresh))
+            slope = fresh;
+        if (--secants > 0) { /* short of the root: a secant step from the two latest points */
+            step = -f1 / slope;
+        } else if (secants == 0) { /* from here bracket the root */
+            step = -1.25 * f1 / slope;
+        } else {
+            step *= 2.0;
+        }
         x0 = x1;
         f0 = f1;
-        step *= 2.0;
     }
     return MC_OK; /* the cap: the cold start reports it */
 }

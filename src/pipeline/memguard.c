@@ -125,8 +125,13 @@ double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_
     const double spec = 16 * ty * (tx / 2 + 1);
     const int loads = s->plasticity.friction > 0 ? 2 : 1;
     ops += loads * 7 * spec + 6 * 8 * tx * ty + 4 * cells;
-    const double cache = (double)v->nz * 3 * 6 * spec;
-    if ((g->periodic_x || g->periodic_y) && cache <= (double)MC_STRESS_CACHE_BYTES)
+    /* the kernel spectra of every layer, kept when they fit (stress.h `repeated`): 6 per layer
+     * and load, complex on a periodic grid, real quadrants of (m_x + 1)(m_y + 1) on free axes */
+    const int periodic = g->periodic_x || g->periodic_y;
+    const double quad = (mc_fftsize_good(g->nx < 2 ? 2 : g->nx) + 1.0) *
+                        (mc_fftsize_good(g->ny < 2 ? 2 : g->ny) + 1.0) * 8;
+    const double cache = (double)v->nz * loads * 6 * (periodic ? spec : quad);
+    if (cache <= (double)MC_STRESS_CACHE_BYTES)
         ops += cache;
     const double nvol = (double)v->nz * v->nx * v->ny;
     const double loop = mc_plastic_loop_bytes(g, v, PLASTIC_ANDERSON, s->plasticity.near_field,

@@ -121,7 +121,8 @@ int mc_plastic_ops_create(const mc_grid *g, const mc_eigen_volume *v, double nu,
                             .nlayers = v->nz,
                             .depths = depths,
                             .backend = b,
-                            .loads = MC_TRACTION_P | (friction ? MC_TRACTION_QX : 0)};
+                            .loads = MC_TRACTION_P | (friction ? MC_TRACTION_QX : 0),
+                            .repeated = 1};
     int rc = mc_stress_create(g, &so, &ops->elastic, err);
     mc_free(depths);
     if (rc == MC_OK)

@@ -65,12 +65,18 @@ struct mc_stress_plan {
     int *cells; /* loaded cells (indices into nx*ny) */
     long ncells;
     int sparse; /* 1: the sparse sum over the loaded cells */
-    /* kernel spectra of every (layer, load) once built, on the general engine of a grid with a
-     * periodic axis (its image sums make a table ~100x a free one's quadrant; a plan is applied
-     * to the same layers many times in the plastic loop: 85 % of a doubly periodic running-in
-     * step rebuilt them, measured); NULL when it would exceed MC_STRESS_CACHE_BYTES */
+    /* kernel spectra of every (layer, load) once built: a plan is applied to the same layers
+     * many times in the plastic loop (once per joint evaluation). On the general engine of a grid
+     * with a periodic axis the image sums make a table ~100x a free one's quadrant (85 % of a
+     * doubly periodic running-in step rebuilt them, measured); on the symmetric engine of free
+     * axes the quadrant tables and their transforms took 7.6 s of the 512 x 256 x 16 running-in
+     * step's 19 evaluations on one thread, 3.7 s with the cache (measured on a loaded machine),
+     * for 6 quadrant spectra per layer and load, ~48 bytes per volume cell and load. NULL when
+     * it would exceed MC_STRESS_CACHE_BYTES (the tables are then rebuilt per layer) */
     double *kcache;
     unsigned char *kcached; /* [layer * NLOADS + load] */
+    int slot[NLOADS];       /* the cache's index of each load the plan serves (-1: none) */
+    int nslots;
     size_t klen;
     mc_stress_timing timing;
 };
@@ -213,8 +219,10 @@ int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
         sp += llen;
     }
     /* the spectra cache (see the struct), where it fits; without it the tables are rebuilt */
-    const size_t ncache = (size_t)opt->nlayers * NLOADS * MC_NSTRESS * klen;
-    if (!plan->sym && (g->periodic_x || g->periodic_y) &&
+    for (int li = 0; li < NLOADS; li++)
+        plan->slot[li] = ((opt->loads >> li) & 1) ? plan->nslots++ : -1;
+    const size_t ncache = (size_t)opt->nlayers * plan->nslots * MC_NSTRESS * klen;
+    if ((opt->repeated || g->periodic_x || g->periodic_y) &&
         ncache <= MC_STRESS_CACHE_BYTES / sizeof(double)) {
         plan->kcache = mc_malloc(ncache * sizeof *plan->kcache);
         plan->kcached = mc_calloc((size_t)opt->nlayers * NLOADS, 1);
@@ -313,9 +321,10 @@ static const int load_bit[NLOADS] = {MC_TRACTION_P, MC_TRACTION_QX, MC_TRACTION_
 /* The six tables of load li at depth z into the plan's kernel arrays of that load (quadrants on the
  * symmetric path, full tables otherwise; for the transform path of the general engine into the
  * shared table arrays, transformed after). */
-static int build_tables(mc_stress_plan *plan, int li, double z, mc_error *err)
+static int build_tables(mc_stress_plan *plan, int li, double z, double *const *into,
+                        mc_error *err)
 {
-    double *const *dst = plan->sym || plan->sparse ? plan->kspec[li] : NULL;
+    double *const *dst = plan->sym || plan->sparse ? (into ? into : plan->kspec[li]) : NULL;
     double *const full[MC_NSTRESS] = {plan->tab[0].k, plan->tab[1].k, plan->tab[2].k,
                                       plan->tab[3].k, plan->tab[4].k, plan->tab[5].k};
     if (plan->sym)
@@ -331,13 +340,15 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
     for (int i = 0; i < ng; i++) {
         const int cache = plan->kcache && !plan->sparse;
         for (int c = 0; c < MC_NSTRESS; c++)
-            kuse[i][c] = cache ? plan->kcache + (((size_t)k * NLOADS + li[i]) * MC_NSTRESS + c) *
-                                                    plan->klen
+            kuse[i][c] = cache ? plan->kcache + (((size_t)k * plan->nslots + plan->slot[li[i]]) *
+                                                         MC_NSTRESS + c) * plan->klen
                                : plan->kspec[li[i]][c];
         if (cache && plan->kcached[(size_t)k * NLOADS + li[i]])
             continue;
         const double t0 = omp_get_wtime();
-        int rc = build_tables(plan, li[i], plan->depths[k], err);
+        /* the symmetric engine transforms its quadrants in place: straight into the cache */
+        int rc = build_tables(plan, li[i], plan->depths[k], cache && plan->sym ? kuse[i] : NULL,
+                              err);
         const double t1 = omp_get_wtime();
         plan->timing.tables += t1 - t0;
         if (rc)
@@ -347,7 +358,7 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
         for (int c = 0; c < MC_NSTRESS && rc == MC_OK; c++) {
             if (plan->sym)
                 mc_stress_sym_kernel(plan->sym, mc_stress_parity(load_bit[li[i]], c),
-                                     plan->kspec[li[i]][c]);
+                                     kuse[i][c]);
             else
                 rc = mc_conv_kernel(plan->conv, &plan->tab[c], kuse[i][c], err);
         }

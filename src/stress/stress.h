@@ -110,6 +110,10 @@ typedef struct {
     const double *depths;    /* nlayers finite depths z >= 0, m (copied); point kernel: z > 0 */
     mc_backend backend;
     int loads;               /* the load fields that will be given: MC_TRACTION_P | _QX | _QY */
+    int repeated;            /* 1: the plan will compute its layers many times (the plastic
+                              * loop): keep the kernel spectra of every layer once built when
+                              * they fit MC_STRESS_CACHE_BYTES (stress.c says what it saves); 0:
+                              * only where their tables are costly (a periodic axis) */
 } mc_stress_options;
 
 typedef struct mc_stress_plan mc_stress_plan;
