@@ -105,6 +105,19 @@ int mc_dist_gather_slab(const double *mine, double *whole, int r0, int nr, int n
 int mc_dist_gather_slab_u8(const unsigned char *mine, unsigned char *whole, int r0, int nr,
                            int nx);
 
+/* This rank's even share of n items split in order over the ranks: *first .. *first + *count - 1
+ * (rank r holds r n / P .. (r + 1) n / P - 1: ascending with the rank, sizes within one; a rank
+ * may hold none when n < P). Without a communicator: 0 and n. Not collective. */
+void mc_dist_share(int n, int *first, int *count);
+
+/* Every rank's rows r0 .. r0 + nr - 1 of each of nblocks blocks of ny rows of nx values (v holds
+ * the blocks one after the other, nblocks * ny * nx values; block b's row r at (b ny + r) nx) to
+ * every rank: v whole on each, in place, one collective call whatever nblocks (an MPI vector type
+ * picks the rank's rows out of every block). The split fields of the plastic loop: the six
+ * components x nz layers of an increment by rows of y (src/plastic/loop.c), the six components of
+ * the elastic stresses by layers (stress.h mc_stress_field_split). Collective. */
+int mc_dist_gather_blocks(double *v, int nblocks, int ny, int nx, int r0, int nr);
+
 /* The row-split calls return 1, or 0 (the totals NaN, nothing gathered) when the run has more
  * than MC_DIST_MAX_RANKS ranks or a count exceeds MPI's int counts (the front end refuses such
  * runs first). */
