@@ -5,7 +5,9 @@
  * over with mc_dist_set; the numerics ask for it here, never for the scene: today the elastic
  * operator's fft backend (operator/dfft.h) splits its transforms over the ranks, the contact
  * solvers' iterations keep to the operator's rows (contact_internal.h, the row-split calls
- * below), every other stage computes the same replicated arrays on every rank. Without MC_MPI,
+ * below), the plastic loop splits its elastic stress layers and its sweeps' return maps
+ * (mc_dist_share, mc_dist_gather_blocks), every other stage computes the same replicated arrays
+ * on every rank. Without MC_MPI,
  * and before mc_dist_set, there is one rank and nothing is distributed.
  *
  * Process-wide like the thread count (threads.h): set once by the front end, read by the plans;
