@@ -82,7 +82,7 @@ typedef struct {
     int sig_r_fresh;             /* 1: sig_r is S(eps_p + d_eps) of the current increment (the
                                     global sweep that follows needs no apply) */
     int row0, rows;              /* the window rows (y) whose cells this rank's sweep maps, in
-                                    every layer (sweep_split; 0, nwy on one process) */
+                                    every layer (sweep_split_join; 0, nwy on one process) */
 } loop_ctx;
 
 static void ctx_free(loop_ctx *c)
