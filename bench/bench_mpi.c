@@ -7,8 +7,8 @@
  * the time and memory of the paper's 10 mm x 1 mm gear flank at 0.8 um on N machines of this
  * size, from the measured per-cell cost, the all-to-all volume of FFTW-MPI's transposes and a
  * stated network. Beside it the elastic-plastic running-in step of the default scene on
- * 256 x 128 x 16 (plastic_step): the same runs, its eigenstrain operators distributed, its plastic
- * loop's per-cell work replicated, the MPI results checked against the serial one. */
+ * 256 x 128 x 16 (plastic_step): the same runs, its eigenstrain operators, elastic stress layers
+ * and the sweeps' return maps distributed, the MPI results checked against the serial one. */
 #include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
@@ -291,8 +291,10 @@ static void memory_per_rank(vf_ctx *ctx, const char *self, const char *mpi, int 
  * The running-in step of the default scene on 256 x 128 x 16 (one force, one speed: one
  * elastic-plastic run-down step and one elastic run-up step), serial and P = 1, 2, 3. The
  * eigenstrain operators are distributed (theory §8.4: their lateral transforms are mc_dfft
- * batches, each rank its columns' spectra); the plastic loop's volume arrays and its per-cell work
- * (return maps, Anderson) stay replicated on every rank. */
+ * batches, each rank its columns' spectra), so are the elastic stresses (each rank its block of
+ * layers) and the sweeps' return maps (each rank its rows of y in every layer, the increments
+ * gathered whole); the plastic loop's volume arrays, its whole-volume passes and Anderson's
+ * mixing stay replicated on every rank. */
 static const char *const plastic_sets[] = {
     "mesh.nx=256",          "mesh.ny=128",           "runin.forces=1086N",
     "runin.speeds=350rpm",  "lubrication.rpm=350rpm", "plasticity.dz=0.1875um",
@@ -429,10 +431,13 @@ static void plastic_step(vf_ctx *ctx, const char *self, const char *mpi, int qui
             "communication, so its share is of rank 0's CPU), rank 0's peak memory, the step's "
             "seconds and contact solves (runin.csv, the elastic-plastic row) and its outer "
             "iterations and plastic sweeps (plastic.csv). Distributed (docs/theory.md §8.4): "
-            "the contact solves and the eigenstrain operators (their lateral transforms are "
-            "mc_dfft batches, each rank keeps its columns' spectra); replicated on every rank: "
-            "the plastic loop's volume arrays and its per-cell work (return maps, Anderson "
-            "mixing), which bound the speed-up. The lead's bench and CI ran on the same 2 cores "
+            "the contact solves, the eigenstrain operators (their lateral transforms are "
+            "mc_dfft batches, each rank keeps its columns' spectra), the elastic stresses of "
+            "the pressure (each rank its block of layers, gathered whole) and the sweeps' "
+            "return maps (each rank its rows of y in every layer, the increments gathered "
+            "whole); replicated on every rank: the plastic loop's volume arrays and its "
+            "whole-volume passes (eps_p + increment, Anderson mixing, the changes of u_r), "
+            "which bound the speed-up. The lead's bench and CI ran on the same 2 cores "
             "meanwhile: the wall times are noisy, rank 0's CPU outside communication is the "
             "steadier figure.\n\n"
             "| run | wall (s) | CPU, all processes (s) | rank 0 CPU (s) | of it communication "
@@ -462,8 +467,8 @@ static void plastic_step(vf_ctx *ctx, const char *self, const char *mpi, int qui
         vf_close(ctx, f);
 
     /* The same answer: issue 22 item 2 asks <= 1e-10 relative in the plastic fields of P ranks
-     * against the serial run (the distributed transforms sum in another order; the replicated
-     * per-cell work is the serial code's). A bench row that measured a wrong answer would be
+     * against the serial run (the distributed transforms sum in another order; the split
+     * per-cell work is the serial code's, cell by cell). A bench row that measured a wrong answer would be
      * worthless, so the agreement is checked before any speed-up is read. */
     if (runs[0].ok) {
         for (int k = 1; k < nruns; k++) {
@@ -494,7 +499,7 @@ static void plastic_step(vf_ctx *ctx, const char *self, const char *mpi, int qui
                 "\nElastic-plastic step, 1 -> 2 processes: %.2fx in wall time (target %.1fx: %s); "
                 "rank 0's CPU outside communication %.2f s -> %.2f s, %.2fx; communication "
                 "%.0f %% of rank 0's CPU with two processes (%.0f %% with one: the local "
-                "transposes). The replicated per-cell work of the plastic loop does not divide: "
+                "transposes). The replicated volume passes of the plastic loop do not divide: "
                 "read by Amdahl's law, the work speed-up s gives f = 2/s - 1 = %.2f of rank 0's "
                 "work done whole on every rank, which bounds the speed-up at 1/f = %.1fx on any "
                 "number of ranks; and on this 2-core machine, shared with other jobs, a second "

@@ -33,6 +33,14 @@ void mc_dist_comm_end(mc_dist_mark m)
     comm_cpu += mc_dist_cpu_seconds() - m.cpu;
 }
 
+void mc_dist_share(int n, int *first, int *count)
+{
+    const long long p = mc_dist_size(), r = mc_dist_rank();
+    const int a = (int)(r * n / p), b = (int)((r + 1) * n / p);
+    *first = a;
+    *count = b - a;
+}
+
 #ifdef MC_MPI
 double mc_dist_clock(void) { return MPI_Wtime(); }
 
@@ -207,6 +215,36 @@ int mc_dist_gather_rows_u8(unsigned char *v, int r0, int nr, int nx)
     return gather_rows(v, MPI_UNSIGNED_CHAR, r0, nr, nx);
 }
 
+int mc_dist_gather_blocks(double *v, int nblocks, int ny, int nx, int r0, int nr)
+{
+    if (run_comm == MPI_COMM_NULL)
+        return 1;
+    int size;
+    MPI_Comm_size(run_comm, &size);
+    if (size > MC_DIST_MAX_RANKS)
+        return 0;
+    const mc_dist_mark t0 = mc_dist_comm_begin();
+    /* one "row" of the gather: row r of every block (nblocks runs of nx values, a block apart,
+     * hvector: the stride in bytes is no int count), resized to one row so that the rank's nr
+     * rows from r0 are nr elements at displacement r0 */
+    MPI_Datatype rows, row;
+    MPI_Type_create_hvector(nblocks, nx, (MPI_Aint)ny * nx * (MPI_Aint)sizeof *v, MPI_DOUBLE,
+                            &rows);
+    MPI_Type_create_resized(rows, 0, (MPI_Aint)nx * (MPI_Aint)sizeof *v, &row);
+    MPI_Type_commit(&row);
+    int mine[2] = {r0, nr};
+    MPI_Allgather(mine, 2, MPI_INT, layout_in, 2, MPI_INT, run_comm);
+    for (int p = 0; p < size; p++) {
+        displs[p] = layout_in[2 * p];
+        counts[p] = layout_in[2 * p + 1];
+    }
+    MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, v, counts, displs, row, run_comm);
+    MPI_Type_free(&row);
+    MPI_Type_free(&rows);
+    mc_dist_comm_end(t0);
+    return 1;
+}
+
 int mc_dist_row_totals(const double *part, int nr, int ny, int m, double *all, double *out)
 {
     const double *rows = part;
@@ -269,6 +307,17 @@ int mc_dist_row_totals(const double *part, int nr, int ny, int m, double *all, d
             s += part[(size_t)r * m + k];
         out[k] = s;
     }
+    return 1;
+}
+
+int mc_dist_gather_blocks(double *v, int nblocks, int ny, int nx, int r0, int nr)
+{
+    (void)v;
+    (void)nblocks;
+    (void)ny;
+    (void)nx;
+    (void)r0;
+    (void)nr;
     return 1;
 }
 

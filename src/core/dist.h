@@ -5,7 +5,9 @@
  * over with mc_dist_set; the numerics ask for it here, never for the scene: today the elastic
  * operator's fft backend (operator/dfft.h) splits its transforms over the ranks, the contact
  * solvers' iterations keep to the operator's rows (contact_internal.h, the row-split calls
- * below), every other stage computes the same replicated arrays on every rank. Without MC_MPI,
+ * below), the plastic loop splits its elastic stress layers and its sweeps' return maps
+ * (mc_dist_share, mc_dist_gather_blocks), every other stage computes the same replicated arrays
+ * on every rank. Without MC_MPI,
  * and before mc_dist_set, there is one rank and nothing is distributed.
  *
  * Process-wide like the thread count (threads.h): set once by the front end, read by the plans;
@@ -104,6 +106,19 @@ int mc_dist_gather_rows_u8(unsigned char *v, int r0, int nr, int nx);
 int mc_dist_gather_slab(const double *mine, double *whole, int r0, int nr, int nx);
 int mc_dist_gather_slab_u8(const unsigned char *mine, unsigned char *whole, int r0, int nr,
                            int nx);
+
+/* This rank's even share of n items split in order over the ranks: *first .. *first + *count - 1
+ * (rank r holds r n / P .. (r + 1) n / P - 1: ascending with the rank, sizes within one; a rank
+ * may hold none when n < P). Without a communicator: 0 and n. Not collective. */
+void mc_dist_share(int n, int *first, int *count);
+
+/* Every rank's rows r0 .. r0 + nr - 1 of each of nblocks blocks of ny rows of nx values (v holds
+ * the blocks one after the other, nblocks * ny * nx values; block b's row r at (b ny + r) nx) to
+ * every rank: v whole on each, in place, one collective call whatever nblocks (an MPI vector type
+ * picks the rank's rows out of every block). The split fields of the plastic loop: the six
+ * components x nz layers of an increment by rows of y (src/plastic/loop.c), the six components of
+ * the elastic stresses by layers (stress.h mc_stress_field_split). Collective. */
+int mc_dist_gather_blocks(double *v, int nblocks, int ny, int nx, int r0, int nr);
 
 /* The row-split calls return 1, or 0 (the totals NaN, nothing gathered) when the run has more
  * than MC_DIST_MAX_RANKS ranks or a count exceeds MPI's int counts (the front end refuses such

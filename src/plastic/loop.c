@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/dist.h"
 #include "kernels/invariants.h"
 #include "kernels/kernel.h"
 #include "plastic/anderson.h"
@@ -80,6 +81,8 @@ typedef struct {
     long local_sweeps, local_cells;
     int sig_r_fresh;             /* 1: sig_r is S(eps_p + d_eps) of the current increment (the
                                     global sweep that follows needs no apply) */
+    int row0, rows;              /* the window rows (y) whose cells this rank's sweep maps, in
+                                    every layer (sweep_split_join; 0, nwy on one process) */
 } loop_ctx;
 
 static void ctx_free(loop_ctx *c)
@@ -213,6 +216,10 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
              (c->u_r = mc_zeros(c->ncell)) && (c->u_new = mc_zeros(c->ncell)) &&
              (c->h_extra = mc_zeros(c->ncell)) && (c->w_ur = mc_zeros(c->ncell));
     c->d_new = c->tot;
+    mc_dist_share(c->nwy, &c->row0, &c->rows);
+    if (mc_dist_size() > MC_DIST_MAX_RANKS) /* (the split gathers cannot fail below this) */
+        return mc_fail(err, MC_ERR_LIMIT, "plastic loop: %d MPI processes, at most %d",
+                       mc_dist_size(), MC_DIST_MAX_RANKS);
     if (!ok)
         return mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for %ld volume cells",
                        c->nvol);
@@ -359,7 +366,7 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
         double *const s[6] = {c->sig_e,                 c->sig_e + c->nvol,
                               c->sig_e + 2 * c->nvol,   c->sig_e + 3 * c->nvol,
                               c->sig_e + 4 * c->nvol,   c->sig_e + 5 * c->nvol};
-        return mc_stress_field(c->elastic, p, qx, NULL, s, err);
+        return mc_stress_field_split(c->elastic, p, qx, NULL, s, err);
     }
     /* layer by layer through one grid-sized layer (the same computation per layer as
      * mc_stress_field: the same bits), cut to the window: nz grid-sized layers would cost
@@ -368,10 +375,14 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
     double *const s[6] = {c->s_layer,              c->s_layer + c->ncell,
                           c->s_layer + 2 * c->ncell, c->s_layer + 3 * c->ncell,
                           c->s_layer + 4 * c->ncell, c->s_layer + 5 * c->ncell};
-    for (int k = 0; k < pb->volume.nz; k++) {
-        int rc = mc_stress_layer(c->elastic, k, p, qx, NULL, s, err);
+    /* over MPI each rank its block of layers, then the window's layers to every rank (as
+     * mc_stress_field_split, which says why layers) */
+    int k0, nk, rc = MC_OK;
+    mc_dist_share(pb->volume.nz, &k0, &nk);
+    for (int k = k0; k < k0 + nk && rc == MC_OK; k++) {
+        rc = mc_stress_layer(c->elastic, k, p, qx, NULL, s, err);
         if (rc != MC_OK)
-            return rc;
+            break;
         for (int comp = 0; comp < 6; comp++)
             for (long j = 0; j < c->nwy; j++)
                 for (long i = 0; i < c->nwx; i++) {
@@ -379,6 +390,14 @@ static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
                     c->sig_e[comp * c->nvol + vidx(c, k, j, i)] = s[comp][src];
                 }
     }
+    if (!mc_dist_active())
+        return rc;
+    const int any = mc_dist_max_int(rc); /* all ranks fail alike before the collective gather */
+    if (any != MC_OK)
+        return rc != MC_OK ? rc
+                           : mc_fail(err, (mc_status)any,
+                                     "plastic loop: another MPI process failed (status %d)", any);
+    mc_dist_gather_blocks(c->sig_e, 6, pb->volume.nz, (int)(c->nwy * c->nwx), k0, nk);
     return MC_OK;
 }
 
@@ -454,6 +473,8 @@ static double surely_elastic_below(const mc_hardening *law)
  * strain: *any 0), the trial stresses sigma_e + sig_r + 2 G d_eps and their return maps into
  * d_new, dp_new; the largest change |d_new - d_eps| and magnitude |d_new| into *change, *size,
  * whether a cell yields into *plastic. Returns 1 when a return map failed (non-finite trial). */
+static void sweep_split_join(loop_ctx *c, double *change, double *size, int *plastic, int *bad);
+
 static int sweep(loop_ctx *c, const double *eps_p, const double *peq, double elastic_below,
                  double *change_out, double *size_out, int *plastic_out, int *any_out)
 {
@@ -471,9 +492,14 @@ static int sweep(loop_ctx *c, const double *eps_p, const double *peq, double ela
         memset(c->sig_r, 0, nv6 * sizeof *c->sig_r);
     int bad = 0, plastic = 0;
     double change = 0, size = 0;
+    /* this rank's rows of the window in every layer (all of them on one process): the cells
+     * are independent and the maxima order-free, so any split gives the same bits */
+    const long nrow = (long)c->rows, nlines = (long)pb->volume.nz * nrow;
 #pragma omp parallel for schedule(static) reduction(| : plastic, bad) \
-    reduction(max : change, size) if (c->nvol > 4096)
-    for (long v = 0; v < c->nvol; v++) {
+    reduction(max : change, size) if (nlines * c->nwx > 4096)
+    for (long line = 0; line < nlines; line++)
+    for (long v = vidx(c, (int)(line / nrow), c->row0 + line % nrow, 0),
+              vend = v + c->nwx; v < vend; v++) {
         double trial[6], out[6], de[6], dpv = 0.0;
         for (int q = 0; q < 6; q++)
             trial[q] = c->sig_e[q * c->nvol + v] + c->sig_r[q * c->nvol + v] +
@@ -499,11 +525,36 @@ static int sweep(loop_ctx *c, const double *eps_p, const double *peq, double ela
         c->dp_new[v] = dpv;
         plastic |= dpv > 0;
     }
+    if (mc_dist_active())
+        sweep_split_join(c, &change, &size, &plastic, &bad);
     *change_out = change;
     *size_out = size;
     *plastic_out = plastic;
     *any_out = any;
     return bad;
+}
+
+/* The sweep split over the ranks (issue 22): each rank has mapped the cells of its rows of the
+ * window (c->row0, c->rows: rows of y, in every layer). Rows rather than layers or a plain split
+ * of the cell index: the plastic zone lies in a few layers under the contact spots, so a split
+ * in depth would give one rank the return maps and the other the cheap elastic cells, while the
+ * spots spread over the rows. The maxima and flags are reduced (the same on every rank: maxima
+ * are order-free) and the new increments d_new (6 components x nz layers) and dp_new (nz
+ * layers) gathered whole, so that the loop goes on as on one process. Exchange per sweep: each
+ * rank receives (P - 1) / P x 7 doubles per volume cell (56 bytes), in two collective calls. */
+static void sweep_split_join(loop_ctx *c, double *change, double *size, int *plastic, int *bad)
+{
+    double red[4] = {*change, *size, *plastic, *bad};
+    const mc_dist_mark t0 = mc_dist_comm_begin();
+    mc_dist_max(red, 4);
+    mc_dist_comm_end(t0);
+    *change = red[0];
+    *size = red[1];
+    *plastic = red[2] != 0;
+    *bad = red[3] != 0;
+    const int nz = c->pb->volume.nz, nx = (int)c->nwx, ny = (int)c->nwy;
+    mc_dist_gather_blocks(c->d_new, 6 * nz, ny, nx, c->row0, c->rows);
+    mc_dist_gather_blocks(c->dp_new, nz, ny, nx, c->row0, c->rows);
 }
 
 static int plastic_fixed_point_lg(loop_ctx *c, const double *eps_p, const double *peq,

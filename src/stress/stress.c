@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/dist.h"
 #include "kernels/kernel.h"
 #include "stress/stress_internal.h"
 
@@ -423,6 +424,52 @@ int mc_stress_field(mc_stress_plan *plan, const double *p, const double *qx, con
         if ((rc = compute_layer(plan, k, loads, li, ng, out, err)))
             return rc;
     }
+    return MC_OK;
+}
+
+/* Layers split over the ranks in contiguous blocks (mc_dist_share), not rows of x: the plan's
+ * transforms are whole-grid ones (operator.h's engine or the symmetric one), so a layer is one
+ * rank's work without any exchange, and its bits are those of mc_stress_field whichever rank
+ * computes it (the same plan, the same loads, compute_layer). Every layer costs the same (the
+ * table build, 6 kernel and 6 inverse transforms, or the same sparse sum), so the blocks balance
+ * to within one layer. The load transforms (one per load) are repeated on every rank. The
+ * exchange: each rank receives the other ranks' layers, (P - 1) / P x 6 nlayers N doubles
+ * (48 bytes per volume cell at most), in one gather per component. */
+int mc_stress_field_split(mc_stress_plan *plan, const double *p, const double *qx,
+                          const double *qy, double *const s[6], mc_error *err)
+{
+    if (!mc_dist_active())
+        return mc_stress_field(plan, p, qx, qy, s, err);
+    const double *const loads[NLOADS] = {p, qx, qy};
+    int li[NLOADS], ng, k0, nk;
+    int rc = check_outputs(s, err);
+    if (rc == MC_OK)
+        rc = given_loads(plan, loads, li, &ng, err);
+    const size_t n = mc_grid_cells(&plan->g);
+    mc_dist_share(plan->nlayers, &k0, &nk);
+    if (rc == MC_OK && ng == 0)
+        for (int c = 0; c < MC_NSTRESS; c++)
+            memset(s[c] + (size_t)k0 * n, 0, sizeof(double) * n * (size_t)nk);
+    else if (rc == MC_OK) {
+        prepare_loads(plan, loads, li, ng);
+        for (int k = k0; k < k0 + nk && rc == MC_OK; k++) {
+            double *const out[MC_NSTRESS] = {s[0] + k * n, s[1] + k * n, s[2] + k * n,
+                                             s[3] + k * n, s[4] + k * n, s[5] + k * n};
+            rc = compute_layer(plan, k, loads, li, ng, out, err);
+        }
+    }
+    /* every rank goes on to the gather only if all succeeded (a collective call skipped by one
+     * rank would hang the others) */
+    const int any = mc_dist_max_int(rc);
+    if (any != MC_OK)
+        return rc != MC_OK ? rc
+                           : mc_fail(err, (mc_status)any,
+                                     "stress: another MPI process failed (status %d)", any);
+    for (int c = 0; c < MC_NSTRESS; c++)
+        if (!mc_dist_gather_rows(s[c], k0, nk, (int)n))
+            return mc_fail(err, MC_ERR_LIMIT,
+                           "stress: %d layers of %zu cells exceed MPI's int counts",
+                           plan->nlayers, n);
     return MC_OK;
 }
 

@@ -177,6 +177,15 @@ int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
 int mc_stress_field(mc_stress_plan *plan, const double *p, const double *qx, const double *qy,
                     double *const s[6], mc_error *err);
 
+/* mc_stress_field with its layers split over the ranks of the run (core/dist.h): each rank
+ * computes its contiguous block of layers (mc_dist_share) and receives the others', so that s is
+ * whole on every rank, the same bits as mc_stress_field's on one process. Collective: every rank
+ * calls it with the same plan and loads; a failure on one rank fails all (the others with a
+ * message naming the status). Without a communicator it is mc_stress_field. MC_ERR_LIMIT when
+ * the volume exceeds MPI's int counts. */
+int mc_stress_field_split(mc_stress_plan *plan, const double *p, const double *qx,
+                          const double *qy, double *const s[6], mc_error *err);
+
 /* One layer k (0 <= k < nlayers): s[c] are ny*nx arrays; loads as in mc_stress_field (transformed
  * on every call). */
 int mc_stress_layer(mc_stress_plan *plan, int k, const double *p, const double *qx,

@@ -13,8 +13,9 @@
 #     by row in row order over the ranks (contact_internal.h, core/dist.h). On the solver paths
 #     cg and pk, free and periodic grids, with a pressure cap (cg's nested solve) and with a
 #     lubricant (the volume equilibrium's repeated solves);
-#     The elastic-plastic stage and the running-in (their volume replicated on every rank, the
-#     contact solves inside distributed): the plastic fields and the plastic figures of
+#     The elastic-plastic stage and the running-in (their volume replicated on every rank; the
+#     contact solves, eigenstrain operators, elastic stress layers and return maps split): the
+#     plastic fields and the plastic figures of
 #     summary.json to the same 1e-12 and the same bits for P = 1, 2, 3; runin.csv the same text;
 #  2b. a running-in under mpirun stopped by a signal and resumed with --resume gives the files of
 #     an uninterrupted run: the signal to rank 0 alone (the ranks agree to stop at the same step),
@@ -24,7 +25,10 @@
 #     the same per-process limit, gives the serial answer, and stays within the guard's figure.
 #  1b. the eigenstrain operators' fft backends distributed (plastic/eigen_op.h): residual stress,
 #     p3 and residual u_z against the serial operators to <= 1e-12 on every grid type, with 1, 2
-#     and 3 processes, and the same bits (hashes) for every process count;
+#     and 3 processes, and the same bits (hashes) for every process count; and the plastic
+#     loop's split (the elastic stress layers bit for bit against the whole field; a yielding
+#     sphere, joint and nested, whole and windowed, against the same run built serially to
+#     1e-10, every rank's rows yielding, the same hashes for P = 1, 2, 3);
 #  5. the inputs are read on rank 0 alone (strace: no other rank opens the case, a surface, a data
 #     file or the checkpoint), and an input that cannot be read fails as the serial run does.
 #   tests/cli/mpi.sh PROGRAM MPI_PROGRAM MPI_OPERATOR_TEST NPY_COMPARE [MPI_EIGEN_TEST]
@@ -69,7 +73,7 @@ if [ -n "$EIGTEST" ]; then
     done
     for np in 2 3; do
         if [ -s "$T/ehash1" ] && cmp -s "$T/ehash1" "$T/ehash$np"; then
-            ok "distributed eigenstrain operators: $np processes give the bits of 1 ($(wc -l < "$T/ehash1") grids)"
+            ok "distributed eigenstrain operators and plastic loop: $np processes give the bits of 1 ($(wc -l < "$T/ehash1") cases)"
         else
             bad "distributed eigenstrain operators: $np processes do not give the bits of 1"; diff "$T/ehash1" "$T/ehash$np"
         fi
@@ -195,8 +199,8 @@ runcase cap cases/pressure_cap.ini
 # whose box-sized operator and solver are distributed over their own rows
 runcase box cases/hertz_point.ini --set mesh.nx=255 --set mesh.ny=200 --set mesh.dx=5um \
     --set stress.layers=2
-# the elastic-plastic stage (its volume whole on every rank, the contact solves inside
-# distributed): the rough sphere that yields at 24^2 (three load steps, 22 graded layers); and the
+# the elastic-plastic stage (its volume whole on every rank; the contact solves, eigenstrain
+# operators, elastic stress layers and return maps split): the rough sphere that yields at 24^2 (three load steps, 22 graded layers); and the
 # default running-in at 16^2 with two forces and two speeds (8 steps, 2 of them elastic-plastic:
 # the lubricant volume equilibrium's solves inside the plastic loop). Measured against serial:
 # 1.1e-14 in the pressure, 8e-15 in the plastic strain (44^2); the same bits for P = 1, 2, 3.

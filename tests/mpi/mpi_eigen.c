@@ -8,7 +8,16 @@
  * of a random eigenstrain through the distributed operators against the serial fft operators
  * built in the same process (mc_dist_set(MPI_COMM_NULL) around their creation). Rank 0 prints
  * one line per check and, per grid, hashes of the results' bits: the script requires the same
- * hashes for every process count. Closes with "N passed, N failed"; exit 1 on a failure. */
+ * hashes for every process count.
+ *
+ * The plastic loop's split (issue 22; plastic/loop.c sweep_split_join, stress.h
+ * mc_stress_field_split): the elastic stress layers of one plan split over the ranks give the
+ * bits of mc_stress_field; a whole elastic-plastic run (a sphere that yields over several rows
+ * of every rank, the joint iteration (Anderson) and the nested one (plain sweeps), the volume
+ * whole and a window) through the
+ * distributed operators, contact solve, stress layers and sweeps against the same run built
+ * serially in the same process, with hashes of its plastic fields for the script's same-bits
+ * test. Closes with "N passed, N failed"; exit 1 on a failure. */
 #include <fftw3-mpi.h>
 #include <math.h>
 #include <mpi.h>
@@ -19,8 +28,15 @@
 #include "core/alloc.h"
 #include "core/dist.h"
 #include "core/threads.h"
+#include "contact/contact.h"
+#include "kernels/kernel.h"
+#include "operator/operator.h"
 #include "plastic/eigen_internal.h"
 #include "plastic/eigen_op.h"
+#include "plastic/hardening.h"
+#include "plastic/loop.h"
+#include "stress/stress.h"
+#include "surface/surface.h"
 #include "mpi_check.h"
 
 /* Round-off tier: both sides evaluate the same sums over the same kernel spectra; they differ
@@ -135,6 +151,192 @@ static void one_case(const char *name, mc_grid g, mc_eigen_volume v, int depth)
     mc_free(us);
 }
 
+/* ---- the plastic loop split over the ranks ----------------------------------------------- */
+
+/* The elastic stresses of a random pressure (and friction traction) on a 17 x 13 grid with 7
+ * layers, split by layers over the ranks: the same bits as the whole field on one process (each
+ * layer is computed by one rank with the same plan and loads; the gather moves bits). */
+static void stress_split_case(void)
+{
+    const mc_grid g = {17, 13, 1e-6, 1.2e-6, 0, 0};
+    const int nl = 7;
+    const size_t n = mc_grid_cells(&g), nv = n * nl;
+    double depths[7], *p = mc_malloc(n * sizeof *p), *q = mc_malloc(n * sizeof *q);
+    double *sd = mc_malloc(6 * nv * sizeof *sd), *ss = mc_malloc(6 * nv * sizeof *ss);
+    for (int k = 0; k < nl; k++)
+        depths[k] = (0.25 + k) * 0.6e-6;
+    uint64_t r = 12345;
+    for (size_t i = 0; i < n; i++) {
+        r = r * 6364136223846793005ull + 1442695040888963407ull;
+        p[i] = 1e9 * (double)(r >> 11) / 9007199254740992.0;
+        q[i] = -0.2 * p[i];
+    }
+    const mc_stress_options so = {.kernel = MC_STRESS_PATCH, .nu = 0.3, .nlayers = nl,
+                                  .depths = depths, .backend = MC_BACKEND_FFT,
+                                  .loads = MC_TRACTION_P | MC_TRACTION_QX};
+    mc_stress_plan *plan = NULL;
+    mc_error err = {0};
+    int rc = mc_stress_create(&g, &so, &plan, &err);
+    double *const od[6] = {sd, sd + nv, sd + 2 * nv, sd + 3 * nv, sd + 4 * nv, sd + 5 * nv};
+    double *const os[6] = {ss, ss + nv, ss + 2 * nv, ss + 3 * nv, ss + 4 * nv, ss + 5 * nv};
+    for (size_t i = 0; i < 6 * nv; i++)
+        sd[i] = NAN; /* a layer the gather missed stays NaN and fails the comparison */
+    if (rc == MC_OK)
+        rc = mc_stress_field_split(plan, p, q, NULL, od, &err);
+    if (rc == MC_OK)
+        rc = mc_stress_field(plan, p, q, NULL, os, &err);
+    if (rc != MC_OK) {
+        failed++;
+        if (rank == 0)
+            printf("FAIL stress split: %s\n", err.msg);
+    } else {
+        double off = 0;
+        for (size_t i = 0; i < 6 * nv; i++)
+            off += !(sd[i] == ss[i]);
+        /* the same bits: a count of differing values, to be 0 */
+        check("elastic stress layers split over the ranks: values differing from the whole "
+              "field (count)", off, 0.0);
+        check("elastic stress layers split: the same on every rank", same_on_ranks(sd, 6 * nv),
+              0.0);
+        if (rank == 0)
+            printf("hash stress-split %016llx\n", (unsigned long long)hash_bits(sd, 6 * nv));
+    }
+    mc_stress_destroy(&plan);
+    mc_free(p);
+    mc_free(q);
+    mc_free(sd);
+    mc_free(ss);
+}
+
+/* Kogut-Etsion's sphere of tests/test_plastic_loop.c (R = 15 mm, E = 210 GPa, nu = 0.3,
+ * elastic-perfectly plastic Y = 1 GPa, P_c = 91.96 N) at 4 P_c in two load steps, on 20 x 18
+ * cells of 40 um with 6 layers: its plastic zone (a_c ~ 165 um, ~4 cells) spans about 8 rows
+ * of y, every rank's rows for P <= 3 (checked below). One run, built and solved with the
+ * communicator given (distributed) or none (serial); eps_p (6 nv), peq (nv), u_r and p out. */
+static int plastic_run(int distributed, mc_plastic_iteration it, int window, double *eps,
+                       double *peq, double *ur, double *p, int *steps)
+{
+    MPI_Comm saved = mc_dist_comm();
+    if (!distributed)
+        mc_dist_set(MPI_COMM_NULL);
+    const mc_grid g = {.nx = 20, .ny = 18, .dx = 40e-6, .dy = 40e-6};
+    const size_t n = mc_grid_cells(&g);
+    double *h = mc_zeros(n), *u = mc_zeros(n), *gap = mc_zeros(n);
+    mc_shape_spec shape = {.shape = MC_SHAPE_SPHERE, .radius = 15e-3};
+    mc_surface_shape(&g, &shape, h);
+    mc_error err = {0};
+    mc_operator *K = NULL;
+    mc_contact_solver *s = NULL;
+    mc_hardening law;
+    int rc = mc_hardening_perfect(1e9, &law, &err);
+    const double estar = mc_combined_modulus(210e9, 0.3, 0, 0, 1);
+    if (rc == MC_OK)
+        rc = mc_operator_plan_love(&g, estar, MC_BACKEND_FFT, &K, &err);
+    mc_contact_options o = {.method = MC_METHOD_CG, .tolerance = 1e-10, .max_iterations = 5000};
+    if (rc == MC_OK)
+        rc = mc_contact_create(K, &o, &s, &err);
+    mc_eigen_volume v = mc_eigen_volume_full(&g, 6, 40e-6);
+    if (window) /* 14 x 13 columns from (3, 2): the layer-by-layer elastic stresses */
+        v = (mc_eigen_volume){3, 2, 14, 13, 6, 40e-6, MC_EIG_CELL_AVERAGE, NULL};
+    const mc_plastic_problem pb = {.h = h, .load = 4 * 91.96, .load_steps = 2, .E = 210e9,
+                                   .nu = 0.3, .law = &law, .volume = v,
+                                   .backend = MC_BACKEND_FFT, .relaxation = 0.7,
+                                   .tol_outer = 1e-3, .max_outer = 30, .tol_plastic = 1e-4,
+                                   .max_plastic = 200, .iteration = it,
+                                   /* the joint iteration mixes (Anderson, as the scenes'
+                                    * default); the nested one here the plain relaxed sweeps */
+                                   .anderson = it == MC_PLASTIC_JOINT ? 4 : 0};
+    mc_plastic_result res;
+    memset(&res, 0, sizeof res);
+    mc_contact_summary cs;
+    if (rc == MC_OK)
+        rc = mc_plastic_run(&g, K, s, &pb, p, u, gap, &cs, &res, &err);
+    if (rc == MC_OK) {
+        memcpy(eps, res.eps_p, 6 * (size_t)res.nvol * sizeof *eps);
+        memcpy(peq, res.peq, (size_t)res.nvol * sizeof *peq);
+        memcpy(ur, res.u_r, n * sizeof *ur);
+        *steps = 0;
+        for (int k = 0; k < res.steps_done; k++)
+            *steps += res.steps[k].plastic_iterations;
+    } else if (rank == 0) {
+        printf("FAIL plastic run (%s): %s\n", distributed ? "distributed" : "serial", err.msg);
+    }
+    mc_plastic_result_free(&res);
+    mc_contact_destroy(&s);
+    mc_operator_destroy(&K);
+    mc_hardening_free(&law);
+    mc_free(h);
+    mc_free(u);
+    mc_free(gap);
+    mc_dist_set(saved);
+    return rc;
+}
+
+/* The plastic fields' tier of issue 22: 1e-10. The distributed run differs from the serial one
+ * by the round-off of the distributed transforms (operator, eigenstrain operators: 1e-15, the
+ * checks above) and the row-wise sums of the contact solve, carried through a fixed point whose
+ * iterates stop where their tests (tol_outer 1e-3, tol_plastic 1e-4) are first met: as long as
+ * the iteration counts are the same (checked) the difference stays at round-off times the
+ * iteration's amplification (measured 2e-15 on the CLI's 24^2 case); 1e-10 is the issue's
+ * bound, and a cell whose return map is lost is off by O(1). */
+#define TOL_PLASTIC 1e-10
+
+static void plastic_case(const char *name, mc_plastic_iteration it, int window, int size)
+{
+    const size_t n = 20 * 18, nv = window ? 14 * 13 * 6 : n * 6;
+    const int nwy = window ? 13 : 18;
+    double *ed = mc_malloc(6 * nv * sizeof *ed), *es = mc_malloc(6 * nv * sizeof *es);
+    double *qd = mc_malloc(nv * sizeof *qd), *qs = mc_malloc(nv * sizeof *qs);
+    double *ud = mc_malloc(n * sizeof *ud), *us = mc_malloc(n * sizeof *us);
+    double *pd = mc_malloc(n * sizeof *pd), *ps = mc_malloc(n * sizeof *ps);
+    int nd = 0, ns = 0;
+    char what[200];
+    if (plastic_run(1, it, window, ed, qd, ud, pd, &nd) ||
+        plastic_run(0, it, window, es, qs, us, ps, &ns)) {
+        failed++;
+    } else {
+        snprintf(what, sizeof what, "%s: plastic strain, distributed vs serial", name);
+        check(what, rel_diff(ed, es, 6 * nv), TOL_PLASTIC);
+        snprintf(what, sizeof what, "%s: equivalent plastic strain, distributed vs serial", name);
+        check(what, rel_diff(qd, qs, nv), TOL_PLASTIC);
+        snprintf(what, sizeof what, "%s: residual u_z, distributed vs serial", name);
+        check(what, rel_diff(ud, us, n), TOL_PLASTIC);
+        snprintf(what, sizeof what, "%s: pressure, distributed vs serial", name);
+        check(what, rel_diff(pd, ps, n), TOL_PLASTIC);
+        snprintf(what, sizeof what, "%s: sweeps %d distributed, %d serial (difference)", name,
+                 nd, ns);
+        check(what, fabs((double)(nd - ns)), 0.0);
+        snprintf(what, sizeof what, "%s: the same plastic fields on every rank", name);
+        check(what, same_on_ranks(ed, 6 * nv) + same_on_ranks(qd, nv), 0.0);
+        /* the split is exercised: every rank's rows (those of mc_dist_share, as the loop's)
+         * hold yielded cells */
+        int r0, nr, mine = 0;
+        mc_dist_share(nwy, &r0, &nr);
+        const size_t nwx = nv / 6 / (size_t)nwy;
+        for (int k = 0; k < 6; k++)
+            for (int j = r0; j < r0 + nr; j++)
+                for (size_t i = 0; i < nwx; i++)
+                    mine |= qd[((size_t)k * nwy + j) * nwx + i] > 0;
+        int ranks_yielding = mine;
+        MPI_Allreduce(MPI_IN_PLACE, &ranks_yielding, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+        snprintf(what, sizeof what, "%s: ranks without yielded cells in their rows (of %d)",
+                 name, size);
+        check(what, (double)(size - ranks_yielding), 0.0);
+        if (rank == 0)
+            printf("hash %s %016llx %016llx %016llx\n", name,
+                   (unsigned long long)hash_bits(ed, 6 * nv), (unsigned long long)hash_bits(qd, nv),
+                   (unsigned long long)hash_bits(ud, n));
+    }
+    mc_free(ed);
+    mc_free(es);
+    mc_free(qd);
+    mc_free(qs);
+    mc_free(ud);
+    mc_free(us);
+    mc_free(pd);
+    mc_free(ps);
+}
+
 int main(int argc, char **argv)
 {
     int size;
@@ -162,6 +364,10 @@ int main(int argc, char **argv)
     one_case("line 30x1 (bars)", line, vl, MC_EIG_DEPTH_AUTO);
     one_case("graded 20x14 (1,1,3,5) fine depth step", free_g, vg, MC_EIG_DEPTH_FINE);
     one_case("graded 20x14 (1,1,3,5) coarse depth step", free_g, vg, MC_EIG_DEPTH_COARSE);
+    stress_split_case();
+    plastic_case("plastic sphere 20x18x6, joint", MC_PLASTIC_JOINT, 0, size);
+    plastic_case("plastic sphere 20x18x6, nested", MC_PLASTIC_NESTED, 0, size);
+    plastic_case("plastic sphere, window 14x13x6 at (3,2), joint", MC_PLASTIC_JOINT, 1, size);
     if (rank == 0)
         printf("%d passed, %d failed\n", passed, failed);
     mc_dist_set(MPI_COMM_NULL);
