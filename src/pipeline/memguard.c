@@ -130,7 +130,10 @@ double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_
     const int periodic = g->periodic_x || g->periodic_y;
     const double quad = (mc_fftsize_good(g->nx < 2 ? 2 : g->nx) + 1.0) *
                         (mc_fftsize_good(g->ny < 2 ? 2 : g->ny) + 1.0) * 8;
-    const double cache = (double)v->nz * loads * 6 * (periodic ? spec : quad);
+    /* under mpirun each rank keeps the layers it computes (mc_dist_share: at most ceil(nz / P)) */
+    const int ranks = mc_dist_active() ? mc_dist_size() : 1;
+    const double kept = ceil((double)v->nz / ranks);
+    const double cache = kept * loads * 6 * (periodic ? spec : quad);
     if (cache <= (double)MC_STRESS_CACHE_BYTES)
         ops += cache;
     const double nvol = (double)v->nz * v->nx * v->ny;

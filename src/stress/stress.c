@@ -78,6 +78,8 @@ struct mc_stress_plan {
     unsigned char *kcached; /* [layer * NLOADS + load] */
     int slot[NLOADS];       /* the cache's index of each load the plan serves (-1: none) */
     int nslots;
+    int ck0, cnk;           /* the layers kept: all, or under MPI a repeated plan's own block
+                             * (mc_dist_share, the layers mc_stress_field_split computes here) */
     size_t klen;
     mc_stress_timing timing;
 };
@@ -222,11 +224,15 @@ int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
     /* the spectra cache (see the struct), where it fits; without it the tables are rebuilt */
     for (int li = 0; li < NLOADS; li++)
         plan->slot[li] = ((opt->loads >> li) & 1) ? plan->nslots++ : -1;
-    const size_t ncache = (size_t)opt->nlayers * plan->nslots * MC_NSTRESS * klen;
+    plan->ck0 = 0;
+    plan->cnk = opt->nlayers;
+    if (opt->repeated && mc_dist_active())
+        mc_dist_share(opt->nlayers, &plan->ck0, &plan->cnk);
+    const size_t ncache = (size_t)plan->cnk * plan->nslots * MC_NSTRESS * klen;
     if ((opt->repeated || g->periodic_x || g->periodic_y) &&
         ncache <= MC_STRESS_CACHE_BYTES / sizeof(double)) {
         plan->kcache = mc_malloc(ncache * sizeof *plan->kcache);
-        plan->kcached = mc_calloc((size_t)opt->nlayers * NLOADS, 1);
+        plan->kcached = mc_calloc((size_t)plan->cnk * NLOADS + 1, 1);
         plan->klen = klen;
         if (!plan->kcache || !plan->kcached) {
             mc_stress_destroy(&plan);
@@ -339,12 +345,13 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
 {
     double *kuse[NLOADS][MC_NSTRESS]; /* the kernel arrays of this layer, per load */
     for (int i = 0; i < ng; i++) {
-        const int cache = plan->kcache && !plan->sparse;
+        const int ck = k - plan->ck0; /* the layer's place in the cache */
+        const int cache = plan->kcache && !plan->sparse && ck >= 0 && ck < plan->cnk;
         for (int c = 0; c < MC_NSTRESS; c++)
-            kuse[i][c] = cache ? plan->kcache + (((size_t)k * plan->nslots + plan->slot[li[i]]) *
+            kuse[i][c] = cache ? plan->kcache + (((size_t)ck * plan->nslots + plan->slot[li[i]]) *
                                                          MC_NSTRESS + c) * plan->klen
                                : plan->kspec[li[i]][c];
-        if (cache && plan->kcached[(size_t)k * NLOADS + li[i]])
+        if (cache && plan->kcached[(size_t)ck * NLOADS + li[i]])
             continue;
         const double t0 = omp_get_wtime();
         /* the symmetric engine transforms its quadrants in place: straight into the cache */
@@ -367,7 +374,7 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
         if (rc)
             return rc;
         if (cache)
-            plan->kcached[(size_t)k * NLOADS + li[i]] = 1;
+            plan->kcached[(size_t)ck * NLOADS + li[i]] = 1;
     }
     const double t0 = omp_get_wtime();
     for (int c = 0; c < MC_NSTRESS; c++) {

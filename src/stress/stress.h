@@ -112,8 +112,10 @@ typedef struct {
     int loads;               /* the load fields that will be given: MC_TRACTION_P | _QX | _QY */
     int repeated;            /* 1: the plan will compute its layers many times (the plastic
                               * loop): keep the kernel spectra of every layer once built when
-                              * they fit MC_STRESS_CACHE_BYTES (stress.c says what it saves); 0:
-                              * only where their tables are costly (a periodic axis) */
+                              * they fit MC_STRESS_CACHE_BYTES (stress.c says what it saves),
+                              * under mpirun those of the rank's own block of layers (the ones
+                              * mc_stress_field_split computes there); 0: only where their
+                              * tables are costly (a periodic axis), every layer */
 } mc_stress_options;
 
 typedef struct mc_stress_plan mc_stress_plan;
