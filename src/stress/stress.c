@@ -75,7 +75,7 @@ struct mc_stress_plan {
      * for 6 quadrant spectra per layer and load, ~48 bytes per volume cell and load. NULL when
      * it would exceed MC_STRESS_CACHE_BYTES (the tables are then rebuilt per layer) */
     double *kcache;
-    unsigned char *kcached; /* [layer * NLOADS + load] */
+    unsigned char *kcached; /* [(layer - ck0) * nslots + slot]: built */
     int slot[NLOADS];       /* the cache's index of each load the plan serves (-1: none) */
     int nslots;
     int ck0, cnk;           /* the layers kept: all, or under MPI a repeated plan's own block
@@ -232,7 +232,7 @@ int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
     if ((opt->repeated || g->periodic_x || g->periodic_y) &&
         ncache <= MC_STRESS_CACHE_BYTES / sizeof(double)) {
         plan->kcache = mc_malloc(ncache * sizeof *plan->kcache);
-        plan->kcached = mc_calloc((size_t)plan->cnk * NLOADS + 1, 1);
+        plan->kcached = mc_calloc((size_t)plan->cnk * plan->nslots + 1, 1);
         plan->klen = klen;
         if (!plan->kcache || !plan->kcached) {
             mc_stress_destroy(&plan);
@@ -351,7 +351,7 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
             kuse[i][c] = cache ? plan->kcache + (((size_t)ck * plan->nslots + plan->slot[li[i]]) *
                                                          MC_NSTRESS + c) * plan->klen
                                : plan->kspec[li[i]][c];
-        if (cache && plan->kcached[(size_t)ck * NLOADS + li[i]])
+        if (cache && plan->kcached[(size_t)ck * plan->nslots + plan->slot[li[i]]])
             continue;
         const double t0 = omp_get_wtime();
         /* the symmetric engine transforms its quadrants in place: straight into the cache */
@@ -374,7 +374,7 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
         if (rc)
             return rc;
         if (cache)
-            plan->kcached[(size_t)ck * NLOADS + li[i]] = 1;
+            plan->kcached[(size_t)ck * plan->nslots + plan->slot[li[i]]] = 1;
     }
     const double t0 = omp_get_wtime();
     for (int c = 0; c < MC_NSTRESS; c++) {
@@ -410,10 +410,10 @@ static int check_outputs(double *const s[6], mc_error *err)
     return MC_OK;
 }
 
-int mc_stress_field(mc_stress_plan *plan, const double *p, const double *qx, const double *qy,
-                    double *const s[6], mc_error *err)
+/* Layers k0 .. k0 + nk - 1 of the field of the loads into s (mc_stress_field's contract). */
+static int field_block(mc_stress_plan *plan, const double *const loads[NLOADS], int k0, int nk,
+                       double *const s[6], mc_error *err)
 {
-    const double *const loads[NLOADS] = {p, qx, qy};
     int li[NLOADS], ng;
     int rc = check_outputs(s, err);
     if (rc || (rc = given_loads(plan, loads, li, &ng, err)))
@@ -421,17 +421,24 @@ int mc_stress_field(mc_stress_plan *plan, const double *p, const double *qx, con
     const size_t n = mc_grid_cells(&plan->g);
     if (ng == 0) { /* no load, no stress */
         for (int c = 0; c < MC_NSTRESS; c++)
-            memset(s[c], 0, sizeof(double) * n * (size_t)plan->nlayers);
+            memset(s[c] + (size_t)k0 * n, 0, sizeof(double) * n * (size_t)nk);
         return MC_OK;
     }
     prepare_loads(plan, loads, li, ng);
-    for (int k = 0; k < plan->nlayers; k++) {
+    for (int k = k0; k < k0 + nk; k++) {
         double *const out[MC_NSTRESS] = {s[0] + k * n, s[1] + k * n, s[2] + k * n,
                                          s[3] + k * n, s[4] + k * n, s[5] + k * n};
         if ((rc = compute_layer(plan, k, loads, li, ng, out, err)))
             return rc;
     }
     return MC_OK;
+}
+
+int mc_stress_field(mc_stress_plan *plan, const double *p, const double *qx, const double *qy,
+                    double *const s[6], mc_error *err)
+{
+    const double *const loads[NLOADS] = {p, qx, qy};
+    return field_block(plan, loads, 0, plan->nlayers, s, err);
 }
 
 /* Layers split over the ranks in contiguous blocks (mc_dist_share), not rows of x: the plan's
@@ -448,23 +455,10 @@ int mc_stress_field_split(mc_stress_plan *plan, const double *p, const double *q
     if (!mc_dist_active())
         return mc_stress_field(plan, p, qx, qy, s, err);
     const double *const loads[NLOADS] = {p, qx, qy};
-    int li[NLOADS], ng, k0, nk;
-    int rc = check_outputs(s, err);
-    if (rc == MC_OK)
-        rc = given_loads(plan, loads, li, &ng, err);
+    int k0, nk;
     const size_t n = mc_grid_cells(&plan->g);
     mc_dist_share(plan->nlayers, &k0, &nk);
-    if (rc == MC_OK && ng == 0)
-        for (int c = 0; c < MC_NSTRESS; c++)
-            memset(s[c] + (size_t)k0 * n, 0, sizeof(double) * n * (size_t)nk);
-    else if (rc == MC_OK) {
-        prepare_loads(plan, loads, li, ng);
-        for (int k = k0; k < k0 + nk && rc == MC_OK; k++) {
-            double *const out[MC_NSTRESS] = {s[0] + k * n, s[1] + k * n, s[2] + k * n,
-                                             s[3] + k * n, s[4] + k * n, s[5] + k * n};
-            rc = compute_layer(plan, k, loads, li, ng, out, err);
-        }
-    }
+    const int rc = field_block(plan, loads, k0, nk, s, err);
     /* every rank goes on to the gather only if all succeeded (a collective call skipped by one
      * rank would hang the others) */
     const int any = mc_dist_max_int(rc);
