@@ -86,7 +86,8 @@ static void section_default(vf_ctx *ctx, const mc_scene *sc)
             "run-down elastic-plastic where something yields, run-up elastic): %d steps in "
             "%.2f s (%d threads). A pair is one bare FFTW r2c + c2r of the padded %d x %d "
             "(%.3f ms, measured here). Per-step figures from runin.csv's rows (solves: contact "
-            "solves; roots: lubricant volume equilibria); the elastic-plastic loop's outer "
+            "solves; roots: lubricant volume equilibria, in the elastic-plastic loop a root or one "
+            "secant step of it, theory.md §9.8); the elastic-plastic loop's outer "
             "iterations and plastic sweeps (one residual stress application each, 6 nz pairs "
             "of the padded grid at most) from its step records.\n\n"
             "| steps | count | mean time (s) | mean time (pairs) | contact solves per step | "
@@ -101,7 +102,8 @@ static void section_default(vf_ctx *ctx, const mc_scene *sc)
                     sec[k] / cnt[k], sec[k] / cnt[k] / P, solves[k] / cnt[k],
                     roots[k] > 0 ? solves[k] / roots[k] : NAN);
     vf_text(ctx, "\nElastic-plastic steps: %d, %.1f outer iterations and %.1f plastic sweeps "
-                 "per step (each outer iteration one volume equilibrium, i.e. one p_lub root); "
+                 "per step (each outer iteration one volume equilibrium: a p_lub root, or one secant "
+                 "step of it with one contact solve); "
                  "one elastic-plastic step = %.0f FFT pairs of the padded grid in time.\n\n",
             eps, eps ? (double)outer / eps : NAN, eps ? (double)sweeps / eps : NAN,
             cnt[0] ? sec[0] / cnt[0] / P : NAN);
@@ -110,7 +112,7 @@ static void section_default(vf_ctx *ctx, const mc_scene *sc)
     vf_info(ctx, "runin_default_total_s", "default running-in scene: whole run, s", "", NAN,
             total);
     vf_regress(ctx, "runin_default_total_s", VF_TIER_NONE);
-    vf_info(ctx, "runin_solves_per_root", "default scene: contact solves per p_lub root", "",
+    vf_info(ctx, "runin_solves_per_root", "default scene: contact solves per p_lub root (or secant step)", "",
             NAN, tot_roots > 0 ? tot_solves / tot_roots : NAN);
     vf_regress(ctx, "runin_solves_per_root", VF_TIER_NONE);
     vf_info(ctx, "runin_outer_per_ep_step", "default scene: outer iterations per elastic-plastic "

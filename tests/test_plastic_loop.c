@@ -13,7 +13,9 @@
 #include "core/alloc.h"
 #include "core/threads.h"
 #include "kernels/kernel.h"
+#include "lube/volume.h"
 #include "operator/operator.h"
+#include "pipeline/stage_lube.h"
 #include "plastic/hardening.h"
 #include "plastic/loop.h"
 #include "surface/surface.h"
@@ -468,16 +470,105 @@ typedef struct {
     int calls;
 } failing_contact;
 
-static int contact_fails_third(void *ctx, const mc_contact_problem *cp, double *p, double *u,
-                               double *gap, mc_contact_summary *sum, double *p_lub, mc_error *err)
+static int contact_fails_third(void *ctx, const mc_contact_problem *cp, int inexact, double *p,
+                               double *u, double *gap, mc_contact_summary *sum, double *p_lub,
+                               int *settled, mc_error *err)
 {
     failing_contact *f = ctx;
+    (void)inexact;
+    *settled = 1;
     *p_lub = cp->p_lub;
     int rc = mc_contact_solve(f->s, cp, p, u, gap, sum, err);
     if (rc == MC_OK && ++f->calls == 3)
         rc = mc_fail(err, MC_NOT_CONVERGED, "test: contact not converged");
     return rc;
 }
+
+/* The lubricant volume equilibrium as the loop's contact step (pipeline/stage_lube.h), passing the
+ * loop's inexact flag on, or (exact) always asking for the settled root. */
+typedef struct {
+    mc_stage_lube_contact lc;
+    int exact;
+} lube_contact;
+
+static int lube_contact_step(void *ctx, const mc_contact_problem *cp, int inexact, double *p,
+                             double *u, double *gap, mc_contact_summary *sum, double *p_lub,
+                             int *settled, mc_error *err)
+{
+    lube_contact *w = ctx;
+    return mc_stage_lube_contact_step(&w->lc, cp, inexact && !w->exact, p, u, gap, sum, p_lub,
+                                      settled, err);
+}
+
+/* The joint iteration over a lubricant volume equilibrium (theory.md §9.8): one secant step of
+ * the root per evaluation (inexact contact steps) reaches the state of full roots in every
+ * evaluation, within STATE_TOL_FACTOR tol_outer, in fewer contact solves, and its accepted state
+ * meets the root's tolerance (the acceptance waits for a settled equilibrium). The sphere under a
+ * film between the dry and the onset volumes, in two load steps (the second step's first root
+ * from the first step's: another load, so a full root). */
+START_TEST(joint_inexact_lubricant)
+{
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    sphere t;
+    sphere_init(&t);
+    const size_t n = mc_grid_cells(&t.g);
+    const double a_nom = (double)n * t.g.dx * t.g.dy;
+    mc_volume_problem vp = {.h = t.h, .load = t.pb.load, .h_target = 0};
+    mc_volume_result vr;
+    mc_error err = {0};
+    ck_assert_msg(mc_volume_equilibrium(t.s, t.K, &vp, t.p, NULL, t.gap, &vr, &err) == MC_OK, "%s",
+                  err.msg);
+    const double h_target = (vr.v_dry + 0.3 * (vr.v_onset - vr.v_dry)) / a_nom;
+    double *p_ref = mc_zeros(n);
+    ck_assert(p_ref);
+    mc_plastic_result res[2];
+    lube_contact w[2];
+    for (int v = 0; v < 2; v++) {
+        w[v] = (lube_contact){.lc = {.solver = t.s, .K = t.K, .h_target = h_target,
+                                     .tolerance = MC_VOLUME_TOL_DEFAULT},
+                              .exact = v == 0};
+        mc_plastic_problem pb = t.pb;
+        pb.anderson = 4;
+        pb.iteration = MC_PLASTIC_JOINT;
+        pb.contact = lube_contact_step;
+        pb.contact_ctx = &w[v];
+        mc_contact_summary cs;
+        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &res[v], &err) ==
+                          MC_OK, "%s", err.msg);
+        ck_assert(res[v].converged && res[v].p_lub > 0);
+        for (int k = 0; k < res[v].steps_done; k++)
+            ck_assert_int_eq(res[v].steps[k].joint_fallback, 0);
+        /* the accepted state's own equilibrium: its pocket volume within the root's tolerance */
+        double vol = 0;
+        for (size_t i = 0; i < n; i++)
+            vol += t.gap[i] * t.g.dx * t.g.dy;
+        ck_assert_msg(fabs(vol - h_target * a_nom) <= MC_VOLUME_TOL_DEFAULT * h_target * a_nom,
+                      "%s: V = %.9g, V* = %.9g", v ? "inexact" : "exact", vol, h_target * a_nom);
+        if (v == 0)
+            memcpy(p_ref, t.p, n * sizeof *p_ref);
+    }
+    const size_t nv = (size_t)res[0].nvol;
+    ck_assert(maxabs(res[0].peq, nv) > 0);
+    const double tol = STATE_TOL_FACTOR * t.pb.tol_outer;
+    const double du = rel_diff(res[1].u_r, res[0].u_r, n);
+    const double deps = rel_diff(res[1].eps_p, res[0].eps_p, 6 * nv);
+    const double dp = rel_diff(t.p, p_ref, n);
+    const double dplub = fabs(res[1].p_lub - res[0].p_lub) / res[0].p_lub;
+    if (getenv("MC_TEST_VERBOSE"))
+        fprintf(stderr, "lubricated joint: %d contact solves exact, %d inexact; u_r %.2e, eps_p "
+                        "%.2e, p %.2e, p_lub %.2e apart\n",
+                w[0].lc.solves, w[1].lc.solves, du, deps, dp, dplub);
+    ck_assert_msg(du <= tol && deps <= tol && dp <= tol && dplub <= tol,
+                  "u_r %g, eps_p %g, p %g, p_lub %g apart (tolerance %g)", du, deps, dp, dplub, tol);
+    ck_assert_msg(w[1].lc.solves < w[0].lc.solves, "%d contact solves inexact, %d exact",
+                  w[1].lc.solves, w[0].lc.solves);
+    for (int v = 0; v < 2; v++)
+        mc_plastic_result_free(&res[v]);
+    mc_free(p_ref);
+    sphere_free(&t);
+}
+END_TEST
 
 /* A contact that does not converge ends the run with its iterate (the residual fields of the
  * state before it included), not with blank fields. */
@@ -658,6 +749,7 @@ Suite *suite_plastic_loop(void)
     tcase_add_test(t, shared_operators);
     tcase_add_test(t, stops_at_caps);
     tcase_add_test(t, stops_on_contact);
+    tcase_add_test(t, joint_inexact_lubricant);
     tcase_add_test(t, overload_ends_bounded);
     tcase_add_test(t, window_is_symmetric);
     tcase_add_test(t, local_global_matches_global);

@@ -114,6 +114,65 @@ START_TEST(guess_mixed)
 }
 END_TEST
 
+/* One solve at the guess (one_solve, the joint iteration's secant steps, theory.md §9.8): exactly
+ * one contact solve, the state at the guess whether or not it meets the tolerance (converged says
+ * which), and secant steps p - (V - V*) / s of one solve each from the last root of the unchanged
+ * problem reach the cold root of the changed one within ROOT_AGREE in a few steps; a guess outside
+ * (0, p_nominal) is refused. */
+START_TEST(one_solve_steps)
+{
+    patch pt;
+    make_patch(&pt);
+    mc_volume_problem prob = {.h = pt.h, .load = pt.load, .h_target = 0, .tolerance = ROOT_TOL};
+    mc_volume_result first, cold;
+    solve(&pt, &prob, &first);
+    const double a_nom = (double)pt.n * DX * DX;
+    prob.h_target = 0.5 * (first.v_dry + first.v_onset) / a_nom;
+    solve(&pt, &prob, &first);
+    ck_assert_int_eq(first.regime, MC_REGIME_MIXED);
+    prob.h_extra = pt.bump;
+    solve(&pt, &prob, &cold);
+    double *p = mc_zeros(pt.n), *gap = mc_zeros(pt.n);
+    ck_assert(p && gap);
+    mc_volume_problem one = prob;
+    one.one_solve = 1;
+    one.p_lub_guess = first.p_lub;
+    one.slope_guess = first.slope;
+    mc_error err = {0};
+    int settled_at = 0;
+    mc_volume_result r = {0};
+    for (int k = 1; k <= 6 && !settled_at; k++) {
+        ck_assert_msg(mc_volume_equilibrium(pt.s, pt.K, &one, p, NULL, gap, &r, &err) == MC_OK,
+                      "%s", err.msg);
+        ck_assert_int_eq(r.solves, 1);
+        ck_assert(r.p_lub == one.p_lub_guess);
+        ck_assert_int_eq(r.regime, MC_REGIME_MIXED);
+        double v = 0;
+        for (size_t i = 0; i < pt.n; i++)
+            v += gap[i] * DX * DX;
+        ck_assert(fabs(r.rel_error - fabs(v - r.v_target) / r.v_target) <= 1e-12);
+        ck_assert_int_eq(r.converged, r.rel_error <= ROOT_TOL);
+        if (r.converged)
+            settled_at = k;
+        one.p_lub_guess = r.p_lub - (r.volume - r.v_target) / first.slope;
+        one.p_start = p;
+    }
+    ck_assert_msg(settled_at >= 2 && settled_at <= 4, "settled after %d one-solve steps",
+                  settled_at);
+    const double dp = fabs(r.p_lub - cold.p_lub) * cold.slope / cold.v_target;
+    ck_assert_msg(dp <= ROOT_AGREE, "roots %.9g and %.9g Pa: %g V*", cold.p_lub, r.p_lub, dp);
+    one.p_lub_guess = 1.5 * r.p_nominal;
+    ck_assert_int_eq(mc_volume_equilibrium(pt.s, pt.K, &one, p, NULL, gap, &r, &err),
+                     MC_ERR_INPUT);
+    one.p_lub_guess = 0.0;
+    ck_assert_int_eq(mc_volume_equilibrium(pt.s, pt.K, &one, p, NULL, gap, &r, &err),
+                     MC_ERR_INPUT);
+    mc_free(p);
+    mc_free(gap);
+    free_patch(&pt);
+}
+END_TEST
+
 /* A film below V(0): dry from the cold start, and from a guess in the middle of the range. */
 START_TEST(guess_dry)
 {
@@ -143,6 +202,7 @@ Suite *suite_volume_guess(void)
     tcase_set_timeout(t, 60);
     tcase_add_test(t, guess_mixed);
     tcase_add_test(t, guess_dry);
+    tcase_add_test(t, one_solve_steps);
     suite_add_tcase(s, t);
     return s;
 }

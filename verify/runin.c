@@ -371,7 +371,10 @@ int vf_suite_runin(vf_ctx *ctx, int fast)
      * it), so it cannot fail here; volume_equilibrium recomputes V from the returned gap */
     vf_info(ctx, "root_error", "max |V - V*| / V* of the rows' equilibria",
             "by construction: the solver's stopping test, 1e-6", NAN, worst_root);
-    vf_info(ctx, "solves_per_root", "contact solves per volume equilibrium (mean)", "", NAN,
+    vf_info(ctx, "solves_per_root",
+            "contact solves per volume equilibrium (mean; in the elastic-plastic loop a root or "
+            "one secant step of it, theory.md §9.8)",
+            "", NAN,
             roots ? (double)solves / roots : NAN);
     vf_info(ctx, "plastic_steps", "elastic-plastic steps", "", NAN, plastic);
     vf_info(ctx, "seconds_per_plastic_step", "wall time per elastic-plastic step, s",

@@ -384,6 +384,24 @@ int mc_volume_equilibrium(mc_contact_solver *s, mc_operator *K, const mc_volume_
         mc_free(c.warm);
         return mc_fail(err, MC_ERR_NOMEM, "volume equilibrium: out of memory for %zu cells", c.n);
     }
+    if (prob->one_solve) { /* the guess alone (volume.h) */
+        double v;
+        rc = prob->p_lub_guess > 0 && prob->p_lub_guess < c.pnom
+                 ? eval_volume(&c, prob->p_lub_guess, &v, err)
+                 : mc_fail(err, MC_ERR_INPUT,
+                           "volume equilibrium: one solve at p_lub = %g Pa, outside (0, %g)",
+                           prob->p_lub_guess, c.pnom);
+        if (rc == MC_OK) {
+            res->regime = MC_REGIME_MIXED;
+            res->p_lub = prob->p_lub_guess;
+            res->volume = v;
+            res->rel_error = fabs(v - vstar) / vstar;
+            res->converged = res->rel_error <= tol;
+        }
+        mc_free(c.warm);
+        mc_free(c.plower);
+        return rc;
+    }
     if (prob->p_lub_guess > 0 && prob->p_lub_guess < c.pnom && prob->slope_guess > 0 &&
         isfinite(prob->slope_guess)) {
         int done = 0;

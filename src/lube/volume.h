@@ -63,6 +63,12 @@ typedef struct {
      * 0); otherwise (or when that finds no bracket) the cold start from V(0). Same regimes and
      * tolerance either way. Pa and m^3/Pa; 0 = none. */
     double p_lub_guess, slope_guess;
+    /* 1: the guess alone - one contact solve at p_lub_guess (which must lie in (0, p_nominal)),
+     * its state returned whether or not |V - V*| <= tolerance V*; res->converged says which,
+     * res->rel_error by how much. The elastic-plastic loop's joint iteration makes the root one
+     * secant step per evaluation this way and tests the tolerance at its acceptance (theory.md
+     * §9.8). 0: the root as above. */
+    int one_solve;
     /* The lubricant pressure profile w (ny*nx, >= 0, finite; NULL = 1 everywhere, the patch):
      * the lubricant pressure of cell i is p_lub w_i, the nominal area is the cells with
      * w_i > 0 (A_nom = dA |{w > 0}|) and V sums the gap over them alone. The whole contact of a

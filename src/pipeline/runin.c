@@ -237,8 +237,9 @@ static int yields(runin_ctx *c, const double *p, double p_lub, double f, int *an
 
 /* The elastic-plastic loop of a run-down step from the carried state, with the traction
  * coefficient f (signed; 0: none); the state is updated. */
-static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_stage_lube_contact *lc,
-                        int *conv, mc_error *err)
+static int plastic_step(runin_ctx *c, double f, const mc_volume_result *seed,
+                        mc_plastic_step *record, mc_stage_lube_contact *lc, int *conv,
+                        mc_error *err)
 {
     const mc_scene *sc = c->sc;
     mc_results *r = c->res;
@@ -256,7 +257,9 @@ static int plastic_step(runin_ctx *c, double f, mc_plastic_step *record, mc_stag
                             .K = c->K,
                             .h_target = r->lube.h_ehd,
                             .weight = r->lube_profile,
-                            .tolerance = sc->lubrication.tolerance};
+                            .tolerance = sc->lubrication.tolerance,
+                            .last = *seed, /* its pressure is still in r->pressure */
+                            .seeded = 1};
     mc_plastic_problem pb = {.h = c->h_base,
                              .load = r->lube.patch_load,
                              .p_lub = r->lube.p_lub,
@@ -347,7 +350,7 @@ static int run_step(runin_ctx *c, int s, mc_runin_row *row, mc_plastic_step *rec
         if (any) {
             int conv = 0;
             memset(record, 0, sizeof *record);
-            rc = plastic_step(c, fr, record, &lc, &conv, err);
+            rc = plastic_step(c, fr, &vr, record, &lc, &conv, err);
             if (rc != MC_OK && rc != MC_NOT_CONVERGED)
                 return rc;
             row->plastic = 1;

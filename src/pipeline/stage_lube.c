@@ -229,8 +229,9 @@ int mc_stage_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_res
     return MC_OK;
 }
 
-int mc_stage_lube_contact_step(void *ctx, const mc_contact_problem *cp, double *p, double *u,
-                         double *gap, mc_contact_summary *sum, double *p_lub, mc_error *err)
+int mc_stage_lube_contact_step(void *ctx, const mc_contact_problem *cp, int inexact, double *p,
+                               double *u, double *gap, mc_contact_summary *sum, double *p_lub,
+                               int *settled, mc_error *err)
 {
     mc_stage_lube_contact *lc = ctx;
     mc_volume_problem prob = {.h = cp->h,
@@ -240,14 +241,33 @@ int mc_stage_lube_contact_step(void *ctx, const mc_contact_problem *cp, double *
                               .tolerance = lc->tolerance,
                               .weight = lc->weight,
                               .p_start = cp->p_start};
-    if (lc->calls > 0 && lc->last.regime == MC_REGIME_MIXED) { /* the last root as the guess */
+    const int first = lc->calls == 0;
+    if (lc->seeded && first) {
+        lc->load = cp->load;
+        if (lc->last.slope > 0)
+            lc->slope = lc->last.slope;
+        if (!prob.p_start)
+            prob.p_start = p; /* the seed's pressure (stage_lube.h) */
+    }
+    const int have = (!first || lc->seeded) && lc->last.regime == MC_REGIME_MIXED;
+    if (have && lc->slope > 0) { /* the last root as the guess, or one secant step from it */
         prob.p_lub_guess = lc->last.p_lub;
-        prob.slope_guess = lc->last.slope;
+        prob.slope_guess = lc->slope;
+        const double next = lc->last.p_lub - (lc->last.volume - lc->last.v_target) / lc->slope;
+        if (inexact && !first && cp->load == lc->load && next > 0 && next < lc->last.p_nominal &&
+            isfinite(next)) {
+            prob.p_lub_guess = next;
+            prob.one_solve = 1;
+        }
     }
     int rc = mc_volume_equilibrium(lc->solver, lc->K, &prob, p, u, gap, &lc->last, err);
+    if (lc->last.slope > 0)
+        lc->slope = lc->last.slope;
+    lc->load = cp->load;
     lc->calls++;
     lc->solves += lc->last.solves;
     *sum = lc->last.contact;
     *p_lub = lc->last.p_lub;
+    *settled = lc->last.converged;
     return rc;
 }

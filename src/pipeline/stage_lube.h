@@ -58,18 +58,27 @@ int mc_stage_lube_outcome(const mc_scene *sc, const mc_volume_result *vr, mc_res
  * solver, K, h_target (h_EHD, m) and tolerance (relative on V; <= 0: the default), then pass
  * mc_stage_lube_contact_step with a pointer to this as the loop's contact (plastic/loop.h). Each call
  * solves the equilibrium of the loop's problem (h, h_extra, its load, its warm start; from the
- * second call on, the last root and slope as the guess of lube/volume.h) and keeps the figures of
- * the last one in `last`. */
+ * second call on, the last root and the last slope found as the guess of lube/volume.h) and keeps
+ * the figures of the last one in `last`. An inexact call (the joint iteration, theory.md §9.8)
+ * under the load of the call before makes one secant step of the root instead, one contact solve
+ * at p_lub - (V - V*) / slope from the last state, and says in *settled whether that state meets
+ * the tolerance. A seed (seeded 1, `last` the equilibrium of the same problem without plastic
+ * strain, whose pressure the caller's p array still holds) is the guess and the warm start of the
+ * first call: the running-in step solved it just before its plastic loop. */
 typedef struct {
     mc_contact_solver *solver;
     mc_operator *K;
     double h_target, tolerance;
     const double *weight;  /* the whole contact's profile (res->lube_profile), NULL: a patch */
-    mc_volume_result last; /* of the last call */
-    int calls, solves;     /* equilibria solved, contact solves in all */
+    mc_volume_result last; /* of the last call (or the seed) */
+    int seeded;            /* 1: `last` is the seed (see above) */
+    double slope;          /* the last positive dV/dp_lub found, m^3/Pa (0: none yet) */
+    double load;           /* the load of the last call, N */
+    int calls, solves;     /* equilibria solved (or secant steps made), contact solves in all */
 } mc_stage_lube_contact;
 
-int mc_stage_lube_contact_step(void *ctx, const mc_contact_problem *cp, double *p, double *u,
-                         double *gap, mc_contact_summary *sum, double *p_lub, mc_error *err);
+int mc_stage_lube_contact_step(void *ctx, const mc_contact_problem *cp, int inexact, double *p,
+                               double *u, double *gap, mc_contact_summary *sum, double *p_lub,
+                               int *settled, mc_error *err);
 
 #endif

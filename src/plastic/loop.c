@@ -895,10 +895,11 @@ const char *mc_plastic_stop_text(mc_plastic_stop why)
  * iteration counts. */
 
 /* Step (a) on the current u_r: the contact (with a lubricant, the volume equilibrium of the
- * problem's callback) under the load with h_extra = gap_factor u_r, warm from p when p_warm. */
+ * problem's callback) under the load with h_extra = gap_factor u_r, warm from p when p_warm;
+ * inexact and *settled as the callback's (loop.h; without a callback always settled). */
 static int contact_on_ur(loop_ctx *c, mc_contact_solver *solver, double load, int p_warm,
-                         double *p, double *u, double *gap, mc_contact_summary *sum,
-                         mc_plastic_step *st, mc_error *err)
+                         int inexact, double *p, double *u, double *gap, mc_contact_summary *sum,
+                         int *settled, mc_plastic_step *st, mc_error *err)
 {
     const mc_plastic_problem *pb = c->pb;
     const double gap_factor = pb->both ? 2.0 : 1.0;
@@ -913,8 +914,10 @@ static int contact_on_ur(loop_ctx *c, mc_contact_solver *solver, double load, in
                              .p_start = p_warm ? p : NULL};
     c->solves++;
     st->contact_solves++;
-    return pb->contact ? pb->contact(pb->contact_ctx, &cp, p, u, gap, sum, &c->p_lub, err)
-                       : mc_contact_solve(solver, &cp, p, u, gap, sum, err);
+    *settled = 1;
+    return pb->contact
+               ? pb->contact(pb->contact_ctx, &cp, inexact, p, u, gap, sum, &c->p_lub, settled, err)
+               : mc_contact_solve(solver, &cp, p, u, gap, sum, err);
 }
 
 /* The joint iteration (docs/theory.md §9.8): Anderson mixing of the plastic strain increment x
@@ -942,6 +945,7 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
     const double elastic_below = surely_elastic_below(pb->law);
     double least = INFINITY;
     int since_least = 0;
+    int exact = 0; /* 1: the next contact step settles the caller's equilibrium (not inexact) */
     *done = 0;
     *contact_failed = 0;
     mc_anderson_restart(c->aa);
@@ -960,7 +964,9 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
             residual_displacement(c, c->tot, c->u_r);
         else
             memset(c->u_r, 0, c->ncell * sizeof *c->u_r);
-        int rc = contact_on_ur(c, solver, load, warm || k > 1, p, u, gap, sum, st, err);
+        int settled;
+        int rc = contact_on_ur(c, solver, load, warm || k > 1, !exact, p, u, gap, sum, &settled,
+                               st, err);
         if (rc == MC_NOT_CONVERGED) {
             *contact_failed = 1;
             return MC_OK;
@@ -1002,12 +1008,13 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
                 uch = fmax(uch, fabs(c->u_new[i] - c->u_r[i]));
                 usz = fmax(usz, fabs(c->u_new[i]));
             }
-            if (uch <= pb->tol_outer * usz) {
+            if (uch <= pb->tol_outer * usz && settled) {
                 memcpy(c->u_r, c->u_new, c->ncell * sizeof *c->u_r);
                 res->inner_change = fmax(res->inner_change, rel);
                 *done = 1;
                 return MC_OK;
             }
+            exact |= !settled; /* the caller's equilibrium lags: settle it in the next step */
             continue; /* (the history keeps its pairs: the next one spans this step too) */
         }
         if (rel < least) {
@@ -1083,7 +1090,8 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
             break;
         }
         st->outer_iterations++;
-        rc = contact_on_ur(c, solver, load, warm || k > 1, p, u, gap, sum, st, err);
+        int settled;
+        rc = contact_on_ur(c, solver, load, warm || k > 1, 0, p, u, gap, sum, &settled, st, err);
         if (rc == MC_NOT_CONVERGED) { /* ends the run with the iterate before it (§9.5) */
             *why = MC_PLASTIC_STOP_CONTACT;
             rc = MC_OK;

@@ -71,10 +71,14 @@ void mc_plastic_ops_destroy(mc_plastic_ops *ops);
 /* Step (a) supplied by the caller: solve the contact problem cp (h, h_extra, load and warm start
  * as the loop sets them) into p, u, gap and sum as mc_contact_solve does, choosing the lubricant
  * pressure itself - e.g. by the lubricant volume equilibrium (lube/volume.h, which the plastic
- * layer does not see) - and return it in *p_lub (Pa, >= 0). Return codes as mc_contact_solve. */
-typedef int (*mc_plastic_contact_fn)(void *ctx, const mc_contact_problem *cp, double *p,
-                                     double *u, double *gap, mc_contact_summary *sum,
-                                     double *p_lub, mc_error *err);
+ * layer does not see) - and return it in *p_lub (Pa, >= 0). inexact 1 (the joint iteration,
+ * theory.md §9.8): the caller may return after one step of its own equilibrium (e.g. one secant
+ * step of the root, one contact solve), a state that need not meet its tolerance yet; *settled
+ * says whether the returned state meets it (1 always when inexact is 0 and MC_OK is returned).
+ * Return codes as mc_contact_solve. */
+typedef int (*mc_plastic_contact_fn)(void *ctx, const mc_contact_problem *cp, int inexact,
+                                     double *p, double *u, double *gap, mc_contact_summary *sum,
+                                     double *p_lub, int *settled, mc_error *err);
 
 /* The largest near_reach of mc_plastic_problem (the near field's blocks grow as its square). */
 #define MC_PLASTIC_NEAR_REACH_MAX 8
