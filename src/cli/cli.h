@@ -45,6 +45,12 @@ _Noreturn void mc_cli_signal_exit(int sig);
  * runtime reads it before main; wait_policy.c). Returns only when nothing was done or exec failed. */
 void mc_cli_wait_policy(char **argv);
 
+/* The default thread count of the run (thread_default.c): unless OMP_NUM_THREADS is set, the
+ * cores this process may use less the other tasks running now (at least 1). Call at the start of
+ * main, before any OpenMP region; the case's [solver] threads still decides when given. */
+void mc_cli_thread_default(void);
+int mc_cli_free_cores(void); /* that count */
+
 /* bin/microcontact-mpi (mpi.c; without -DMC_MPI these do nothing and return 0 / status):
  * mc_cli_mpi_start initialises MPI and FFTW-MPI, sets the run's communicator (core/dist.h) and
  * silences the output of every rank but 0 (0, or 3 when MPI cannot start); mc_cli_mpi_end

@@ -65,6 +65,7 @@ int main(int argc, char **argv)
     int rc = mc_cli_mpi_start(&argc, &argv); /* bin/microcontact-mpi only (mpi.c) */
     if (rc)
         return rc;
+    mc_cli_thread_default(); /* after the ranks started: they count as running tasks */
     if (argc >= 2 && (rc = mc_cli_mpi_command(argv[1])))
         return mc_cli_mpi_end(rc);
     return mc_cli_mpi_end(dispatch(argc, argv));
