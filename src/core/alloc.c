@@ -73,8 +73,20 @@ void *mc_calloc(size_t count, size_t size)
     if (!mc_size_mul(count, size, &bytes))
         return NULL;
     void *p = mc_malloc(bytes);
-    if (p)
+    if (!p)
+        return NULL;
+    if (bytes < HUGE_MIN) {
         memset(p, 0, bytes);
+        return p;
+    }
+    /* zeroed by the run's threads, a huge page each at a time: the first touch (the page faults,
+     * where the kernel clears the pages) is most of the cost and runs in parallel this way */
+    const long chunks = (long)((bytes + HUGE_PAGE - 1) / HUGE_PAGE);
+#pragma omp parallel for schedule(static)
+    for (long c = 0; c < chunks; c++) {
+        const size_t at = (size_t)c * HUGE_PAGE;
+        memset((char *)p + at, 0, bytes - at < HUGE_PAGE ? bytes - at : HUGE_PAGE);
+    }
     return p;
 }
 
