@@ -263,7 +263,9 @@ const case_key mc_keys[] = {
      .off = AT(solver.max_iterations),
      .doc = "Iteration limit; reaching it is reported as not converged."},
     {.section = "solver", .name = "threads", .kind = K_INT, .lo = 0, .hi = 1024, .def = "0",
-     .off = AT(solver.threads), .doc = "Threads for FFTW and OpenMP; 0 = all cores."},
+     .off = AT(solver.threads),
+     .doc = "Threads for FFTW and OpenMP; 0 = the cores free at the start of the run (all cores "
+            "less the other running tasks; OMP_NUM_THREADS decides when set)."},
     {.section = "solver", .name = "plans", .kind = K_ENUM, .choices = "estimate measure wisdom",
      .def = "estimate", .off = AT(solver.plans),
      .doc = "How FFTW plans the repeated transforms: estimate (no trial runs: the same plan and "
