@@ -202,6 +202,68 @@ static int love_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
     return MC_OK;
 }
 
+/* One job of the kernel tables: kind 0 the S1 family at fine depth offset idx (MC_EIG_NSYM
+ * tables), kind 1 p3's tables of layer idx (6), filled and transformed laterally into q. */
+static void table_job(const mc_eigen_stress *op, mc_eig_quad *quad, mc_eig_corners *cc,
+                      const int par[MC_EIG_NSYM], int kind, int idx, double *const *q)
+{
+    if (kind == 0) {
+        mc_eig_s1_fill(op, idx, cc, q);
+#pragma omp parallel for schedule(dynamic, 1)
+        for (int n = 0; n < MC_EIG_NSYM; n++)
+            mc_eig_quad_transform(quad, par[n], q[n]);
+    } else {
+        mc_eig_p3_fill(op, idx, cc, q);
+#pragma omp parallel for schedule(dynamic, 1)
+        for (int c = 0; c < 6; c++)
+            mc_eig_quad_transform(quad, mc_eig_par(c), q[c]);
+    }
+}
+
+/* The tables split over P > 1 ranks (issue 22: they were filled whole on every rank): the jobs
+ * of each kind in P contiguous blocks (consecutive depth offsets keep the corner lattice's
+ * planes in use), in rounds - in round i rank r makes its i-th job, then every job of the round
+ * is broadcast from its maker and each rank scatters its own frequencies. The same fills and
+ * transforms as on one rank: the same bits (tests/mpi/mpi_eigen.c: a wrong plane of the scatter
+ * is 1.6-2 of the largest stress off). Per round one job's tables are held twice (the own and
+ * the one received); every rank receives every job whole (P times its own share of V).
+ * Collective. */
+static int split_tables(const mc_eigen_stress *op, sfft *f, mc_eig_quad *quad, mc_eig_corners *cc,
+                        const int par[MC_EIG_NSYM], double *const *q, mc_error *err)
+{
+    const int P = mc_dist_size(), me = mc_dist_rank(), np = f->np * MC_EIG_NSYM;
+    const size_t ql = op->qlen;
+    double *rbuf = mc_malloc((size_t)MC_EIG_NSYM * ql * sizeof *rbuf);
+    if (mc_dist_max_int(rbuf ? MC_OK : MC_ERR_NOMEM) != MC_OK) {
+        mc_free(rbuf);
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for the shared tables");
+    }
+    double *r[MC_EIG_NSYM];
+    for (int n = 0; n < MC_EIG_NSYM; n++)
+        r[n] = rbuf + (size_t)n * ql;
+    for (int kind = 0; kind < 2; kind++) {
+        const int njobs = kind ? op->v.nz : 2 * op->nzf, ntab = kind ? 6 : MC_EIG_NSYM;
+        const int per = (njobs + P - 1) / P;
+        for (int i = 0; i < per; i++) {
+            if (me * per + i < njobs)
+                table_job(op, quad, cc, par, kind, me * per + i, q);
+            for (int src = 0; src < P; src++) {
+                const int job = src * per + i;
+                if (job >= njobs)
+                    continue;
+                double *const *t = src == me ? q : r;
+                mc_dist_bcast(t[0], (size_t)ntab * ql, src); /* the tables are contiguous */
+                if (kind == 0)
+                    scatter_blocks(op, f, t, ntab, job * MC_EIG_NSYM, np, f->V);
+                else
+                    scatter_blocks(op, f, t, ntab, 6 * job, 6 * op->v.nz, f->P3);
+            }
+        }
+    }
+    mc_free(rbuf);
+    return MC_OK;
+}
+
 /* The kernel spectra: lateral r2r of each table (quadrant by quadrant through a scratch of 21),
  * scattered into blocks (this rank's frequencies); then, block by block, the depth r2r of the S1
  * family and the folded signs. */
@@ -234,24 +296,23 @@ static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
             sign[n] = xysign(i, c) * zsign(i, c) * mc_eig_weight(i);
             signc[n] = xysign(i, c) * mc_eig_weight(i);
         }
-    /* the fine lattice's offsets; planes m >= 2 nzf stay zero (calloc) */
-    for (int m = 0; m < 2 * nzf; m++) {
-        mc_eig_s1_fill(op, m, &cc, q);
-#pragma omp parallel for schedule(dynamic, 1)
-        for (int n = 0; n < MC_EIG_NSYM; n++)
-            mc_eig_quad_transform(&quad, par[n], q[n]);
+    /* the fine lattice's offsets (planes m >= 2 nzf stay zero: calloc), then p3's layers; with
+     * several ranks each fills and transforms its share (split_tables) */
+    const int split = f->d && mc_dist_size() > 1;
+    rc = split ? split_tables(op, f, &quad, &cc, par, q, err) : MC_OK;
+    for (int m = 0; !split && m < 2 * nzf; m++) {
+        table_job(op, &quad, &cc, par, 0, m, q);
         scatter_blocks(op, f, q, MC_EIG_NSYM, m * MC_EIG_NSYM, np, f->V);
     }
-    for (int k = 0; k < nz; k++) {
-        mc_eig_p3_fill(op, k, &cc, q);
-#pragma omp parallel for schedule(dynamic, 1)
-        for (int c = 0; c < 6; c++)
-            mc_eig_quad_transform(&quad, mc_eig_par(c), q[c]);
+    for (int k = 0; !split && k < nz; k++) {
+        table_job(op, &quad, &cc, par, 1, k, q);
         scatter_blocks(op, f, q, 6, 6 * k, 6 * nz, f->P3);
     }
     mc_eig_corners_free(&cc);
     mc_eig_quad_destroy(&quad);
     mc_free(scr);
+    if (rc)
+        return rc;
     if (f->coarse) {
         /* the real tables at m dz times the lateral signs and w_min(i,c) (the same factors as
          * below, without the depth DFT's (-i) parities), summed: plane m holds
