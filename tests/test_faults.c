@@ -16,12 +16,14 @@
 #include <dirent.h>
 #include <jansson.h>
 #include <math.h>
+#include <malloc.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/threads.h"
 #include "case/case.h"
 #include "contact/contact.h"
 #include "io/npy.h"
@@ -604,6 +606,37 @@ START_TEST(test_alloc_alignment)
 }
 END_TEST
 
+START_TEST(test_calloc_zeroes_large)
+{
+    /* alloc.c: arrays of >= 4 MiB are zeroed by the run's threads a huge page at a time; every
+     * byte, the last partial page included. glibc hands large blocks out by mmap (zero already),
+     * so the heap is forced here (M_MMAP_MAX 0, and no trimming of its top): a freed dirty block
+     * comes back */
+    mc_threads_scope scope;
+    mc_threads_begin(2, &scope);
+    mallopt(M_MMAP_MAX, 0);
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+    const size_t sizes[] = {((size_t)4 << 20) + 8, ((size_t)9 << 20) + 24};
+    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
+        unsigned char *d = mc_malloc(sizes[k]);
+        ck_assert_ptr_nonnull(d);
+        memset(d, 0xFF, sizes[k]);
+        mc_free(d);
+        unsigned char *z = mc_calloc(1, sizes[k]);
+        ck_assert_ptr_nonnull(z);
+        size_t nonzero = 0;
+        for (size_t i = 0; i < sizes[k]; i++)
+            nonzero += z[i] != 0;
+        ck_assert_msg(nonzero == 0, "%zu of %zu bytes not zeroed (%s)", nonzero, sizes[k],
+                      z == d ? "the dirty block reused" : "another block");
+        mc_free(z);
+    }
+    mallopt(M_MMAP_MAX, 65536); /* glibc's defaults */
+    mallopt(M_TRIM_THRESHOLD, 128 * 1024);
+    mc_threads_end(&scope);
+}
+END_TEST
+
 Suite *suite_faults(void);
 Suite *suite_faults(void)
 {
@@ -619,6 +652,7 @@ Suite *suite_faults(void)
     tcase_add_test(reg, test_negative_pressure_map);
     tcase_add_test(reg, test_null_error_keeps_status);
     tcase_add_test(reg, test_alloc_alignment);
+    tcase_add_test(reg, test_calloc_zeroes_large);
     suite_add_tcase(s, reg);
     return s;
 }
