@@ -220,26 +220,29 @@ static void table_job(const mc_eigen_stress *op, mc_eig_quad *quad, mc_eig_corne
     }
 }
 
-/* The tables split over P > 1 ranks (issue 22: they were filled whole on every rank): the jobs
- * of each kind in P contiguous blocks (consecutive depth offsets keep the corner lattice's
- * planes in use), in rounds - in round i rank r makes its i-th job, then every job of the round
- * is broadcast from its maker and each rank scatters its own frequencies. The same fills and
- * transforms as on one rank: the same bits (tests/mpi/mpi_eigen.c: a wrong plane of the scatter
- * is 1.6-2 of the largest stress off). Per round one job's tables are held twice (the own and
- * the one received); every rank receives every job whole (P times its own share of V).
+/* The S1 family's planes and p3's layers into V and P3 (this rank's frequencies), job by job in
+ * q (a scratch of MC_EIG_NSYM tables). Over P > 1 ranks the jobs are split (issue 22: they were
+ * filled whole on every rank): the jobs of each kind in P contiguous blocks (consecutive depth
+ * offsets keep the corner lattice's planes in use), in rounds - in round i rank r makes its i-th
+ * job, then every job of the round is broadcast from its maker and each rank scatters its own
+ * frequencies. The same fills and transforms as on one rank: the same bits
+ * (tests/mpi/mpi_eigen.c: a wrong plane of the scatter is 1.6-2 of the largest stress off). Per
+ * round one job's tables are held twice (the own and the one received); every rank receives
+ * every job whole (P times its own share of V). With one rank: every job in order, no copy.
  * Collective. */
-static int split_tables(const mc_eigen_stress *op, sfft *f, mc_eig_quad *quad, mc_eig_corners *cc,
-                        const int par[MC_EIG_NSYM], double *const *q, mc_error *err)
+static int fill_tables(const mc_eigen_stress *op, sfft *f, mc_eig_quad *quad, mc_eig_corners *cc,
+                       const int par[MC_EIG_NSYM], double *const *q, mc_error *err)
 {
-    const int P = mc_dist_size(), me = mc_dist_rank(), np = f->np * MC_EIG_NSYM;
+    const int P = f->d ? mc_dist_size() : 1, me = P > 1 ? mc_dist_rank() : 0;
+    const int np = f->np * MC_EIG_NSYM;
     const size_t ql = op->qlen;
-    double *rbuf = mc_malloc((size_t)MC_EIG_NSYM * ql * sizeof *rbuf);
-    if (mc_dist_max_int(rbuf ? MC_OK : MC_ERR_NOMEM) != MC_OK) {
+    double *rbuf = P > 1 ? mc_malloc((size_t)MC_EIG_NSYM * ql * sizeof *rbuf) : NULL;
+    if (P > 1 && mc_dist_max_int(rbuf ? MC_OK : MC_ERR_NOMEM) != MC_OK) {
         mc_free(rbuf);
         return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for the shared tables");
     }
-    double *r[MC_EIG_NSYM];
-    for (int n = 0; n < MC_EIG_NSYM; n++)
+    double *r[MC_EIG_NSYM] = {NULL};
+    for (int n = 0; rbuf && n < MC_EIG_NSYM; n++)
         r[n] = rbuf + (size_t)n * ql;
     for (int kind = 0; kind < 2; kind++) {
         const int njobs = kind ? op->v.nz : 2 * op->nzf, ntab = kind ? 6 : MC_EIG_NSYM;
@@ -252,7 +255,8 @@ static int split_tables(const mc_eigen_stress *op, sfft *f, mc_eig_quad *quad, m
                 if (job >= njobs)
                     continue;
                 double *const *t = src == me ? q : r;
-                mc_dist_bcast(t[0], (size_t)ntab * ql, src); /* the tables are contiguous */
+                if (P > 1)
+                    mc_dist_bcast(t[0], (size_t)ntab * ql, src); /* the tables are contiguous */
                 if (kind == 0)
                     scatter_blocks(op, f, t, ntab, job * MC_EIG_NSYM, np, f->V);
                 else
@@ -269,7 +273,7 @@ static int split_tables(const mc_eigen_stress *op, sfft *f, mc_eig_quad *quad, m
  * family and the folded signs. */
 static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
 {
-    const int nz = op->v.nz, nzf = op->nzf, Nz = f->Nz, ch = f->ch, np = f->np * MC_EIG_NSYM;
+    const int Nz = f->Nz, ch = f->ch, np = f->np * MC_EIG_NSYM;
     const size_t ql = op->qlen, nblk = (size_t)op->qy * f->nch;
     mc_eig_quad quad;
     int rc = make_quad(op, &quad, err);
@@ -297,17 +301,8 @@ static int build_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
             signc[n] = xysign(i, c) * mc_eig_weight(i);
         }
     /* the fine lattice's offsets (planes m >= 2 nzf stay zero: calloc), then p3's layers; with
-     * several ranks each fills and transforms its share (split_tables) */
-    const int split = f->d && mc_dist_size() > 1;
-    rc = split ? split_tables(op, f, &quad, &cc, par, q, err) : MC_OK;
-    for (int m = 0; !split && m < 2 * nzf; m++) {
-        table_job(op, &quad, &cc, par, 0, m, q);
-        scatter_blocks(op, f, q, MC_EIG_NSYM, m * MC_EIG_NSYM, np, f->V);
-    }
-    for (int k = 0; !split && k < nz; k++) {
-        table_job(op, &quad, &cc, par, 1, k, q);
-        scatter_blocks(op, f, q, 6, 6 * k, 6 * nz, f->P3);
-    }
+     * several ranks each fills and transforms its share (fill_tables) */
+    rc = fill_tables(op, f, &quad, &cc, par, q, err);
     mc_eig_corners_free(&cc);
     mc_eig_quad_destroy(&quad);
     mc_free(scr);
