@@ -50,6 +50,12 @@ void mc_cli_wait_policy(char **argv);
  * main, before any OpenMP region; the case's [solver] threads still decides when given. */
 void mc_cli_thread_default(void);
 int mc_cli_free_cores(void); /* that count */
+/* The decision, without the machine: the count on procs cores from nsamples samples of the
+ * running tasks (running[k] as mc_cli_loadavg_running returns it); the least sample counts,
+ * every core when none was readable. */
+int mc_cli_free_cores_from(int procs, const int *running, int nsamples);
+/* The running tasks of a /proc/loadavg text (its fourth field "running/total"); -1 when malformed. */
+int mc_cli_loadavg_running(const char *text);
 
 /* bin/microcontact-mpi (mpi.c; without -DMC_MPI these do nothing and return 0 / status):
  * mc_cli_mpi_start initialises MPI and FFTW-MPI, sets the run's communicator (core/dist.h) and
