@@ -212,6 +212,13 @@ struct mc_eigen_stress {
                         * kernel at depth offset m dz (fine lattice) */
     double *p3k;       /* direct: nz x 6 quadrants [k * 6 + c], sigma_zz^(1+2)(z = 0) / 2G of
                         * source layer k (mc_eigen_surface_szz12) */
+    int nloads;        /* surface loads folded into the apply (mc_eigen_stress_loads): 0..2 */
+    int load_id[2];    /* MC_TRACTION_P or MC_TRACTION_QX (stress/stress.h) of each */
+    int load_par[2][6];/* their kernels' lateral parities per component (mc_stress_parity) */
+    double *lk;        /* nloads x nz x 6 quadrants [(l nz + k) 6 + c]: the stress at layer k's
+                        * centre per unit load on one cell, the stress module's patch tables
+                        * (centre values, images on periodic axes), or their spectra (fft, this
+                        * rank's columns in Love's layout) */
     double *p3;        /* window: p3 of the last apply, Pa */
     double *work;      /* window p3 / 2G */
     void *fft;         /* fft: spectra, transforms and workspaces (eigen_stress_fft.c) */
@@ -267,13 +274,18 @@ int mc_eig_stress_create_replicated(const mc_grid *g, const mc_eigen_volume *v, 
 /* The depth step an fft operator uses (MC_EIG_DEPTH_FINE or _COARSE; 0 for the direct backend). */
 int mc_eig_stress_fft_depth(const mc_eigen_stress *op);
 
-/* fft backend (eigen_stress_fft.c): sizes (qx, qy); spectra, plans and workspaces; apply; free
- * what prepare took (NULL-safe). */
+/* fft backend (eigen_stress_fft.c): sizes (qx, qy); spectra, plans and workspaces; apply (eps
+ * NULL: no eigenstrain; loads NULL or op->nloads surface fields, mc_eigen_stress_apply_loaded);
+ * the folded loads' tables op->lk into spectra; free what prepare took (NULL-safe). */
 void mc_eig_stress_fft_size(mc_eigen_stress *op);
 int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err);
 void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
-                             double *const sig[6]);
+                             const double *const *loads, double *const sig[6]);
+int mc_eig_stress_fft_loads(mc_eigen_stress *op, mc_error *err);
 void mc_eig_stress_fft_free(mc_eigen_stress *op);
+/* Bytes of the folded loads' spectra of nloads loads for op (its sizes set) with ranks as
+ * mc_eig_stress_fft_estimate. */
+size_t mc_eig_stress_fft_loads_bytes(const mc_eigen_stress *op, int ranks, int nloads);
 /* Add to parts the bytes prepare would take for op (its sizes qx, qy, nzf, depth set), without
  * taking them; ranks = 0 the serial operator, ranks >= 1 rank 0's share of the distributed one
  * (part 3, Love's spectra, replaced by that share). */

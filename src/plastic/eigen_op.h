@@ -229,6 +229,33 @@ int mc_eigen_stress_create(const mc_grid *g, const mc_eigen_volume *v, double nu
 void mc_eigen_stress_apply(mc_eigen_stress *op, const double *const eps[6], double G,
                            double *const sig[6]);
 
+/* Surface loads folded into the operator (theory.md §8.10). After mc_eigen_stress_loads(op,
+ * loads), loads = MC_TRACTION_P, optionally | MC_TRACTION_QX (stress/stress.h),
+ * mc_eigen_stress_apply_loaded adds to the residual stress the elastic stresses of those surface
+ * tractions at the cuboid centres: the stress module's patch kernel at the layers' centres
+ * (mc_eigen_layer_depth), i.e. what mc_stress_field of such a plan gives, to round-off, through
+ * the operator's own inverse transforms (one set for both fields instead of two). The plastic
+ * loop's elastic stresses go this way. Only for a volume under the whole grid (the loads live on
+ * the grid, the transforms on the volume's window): MC_ERR_INPUT for a smaller window, another
+ * load, or loads already folded; MC_ERR_NOMEM. Collective under mpirun. The tables cost 6 nz
+ * quadrants per load, as Love's (mc_eigen_stress_parts part 3 counts them). */
+int mc_eigen_stress_loads(mc_eigen_stress *op, int loads, mc_error *err);
+
+/* The loads folded into op (0: none). */
+int mc_eigen_stress_loads_of(const mc_eigen_stress *op);
+
+/* sig = S eps + the elastic stresses of the folded loads: eps NULL is a zero eigenstrain (the
+ * loads' stresses alone: no forward transform, p3 = 0); p and qx (grid ny * nx, Pa; NULL counts as
+ * zero, qx only when folded) are the pressure (positive pushing) and the shear traction along x, as
+ * mc_stress_field takes them. Collective under mpirun. */
+void mc_eigen_stress_apply_loaded(mc_eigen_stress *op, const double *const eps[6], double G,
+                                  const double *p, const double *qx, double *const sig[6]);
+
+/* Bytes that mc_eigen_stress_loads(op, loads) would add to the operator mc_eigen_stress_create(g,
+ * v, b) builds, ranks as mc_eigen_stress_estimate_ranks (the memory guard). */
+size_t mc_eigen_stress_loads_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
+                                      int ranks, int loads);
+
 /* p3 (Pa, window ny * nx) of the last mc_eigen_stress_apply: the surface normal traction of
  * S1 + S2 that S3 cancels (a tensile sigma_zz is a positive pushing pressure); zeros before the
  * first apply. Exposed for checks (the Boussinesq displacement of p3 is the residual u_z). */

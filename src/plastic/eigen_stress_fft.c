@@ -84,6 +84,7 @@ typedef struct {
     fftw_complex *E;      /* 6 nz spectra [c * nz + k]: eps, then the stresses / 2G; each ty rows
                            * of nk values [ky * nk + kx - k0] */
     fftw_complex *P;      /* p3 spectrum */
+    fftw_complex *PL;     /* the folded loads' spectra / 2G (op->nloads, E's layout; §8.10) */
     double *rows;         /* nthr x (wy x tx) (serial only) */
     fftw_complex *zb;     /* nthr x zlen: source and output (6 x L x cs each), planar scratch;
                            * coarse: the boundary jumps (2 x (nz + 1) x 12 cs doubles), output */
@@ -166,39 +167,79 @@ static int make_quad(const mc_eigen_stress *op, mc_eig_quad *quad, mc_error *err
     return rc;
 }
 
-/* Love's tables into their spectra, in place; distributed, then cut to this rank's columns
- * (rows of nk values, before the kernel spectra are allocated: the whole tables and V are never
- * held together). */
-static int love_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
+/* Quadrant tables *arr (ntab of op->qlen, parity par(op, t) each) into their spectra, in place;
+ * distributed, then cut to this rank's columns (rows of nk values, Love's layout f->lrow,
+ * f->lql; *arr replaced). */
+static int quad_spectra(mc_eigen_stress *op, sfft *f, double **arr, int ntab,
+                        int (*par)(const mc_eigen_stress *, int), mc_error *err)
 {
-    const int nz = op->v.nz;
     const size_t ql = op->qlen;
     mc_eig_quad quad;
     int rc = make_quad(op, &quad, err);
     if (rc)
         return rc;
+    double *a = *arr;
 #pragma omp parallel for schedule(dynamic, 1)
-    for (int t = 0; t < 6 * nz; t++)
-        mc_eig_quad_transform(&quad, mc_eig_par(t % 6), op->love + (size_t)t * ql);
+    for (int t = 0; t < ntab; t++)
+        mc_eig_quad_transform(&quad, par(op, t), a + (size_t)t * ql);
     mc_eig_quad_destroy(&quad);
-    f->lrow = op->qx;
-    f->lql = ql;
     if (!f->d)
         return MC_OK;
-    const size_t lql = ((size_t)op->qy * f->nk + 7) / 8 * 8;
-    double *mine = mc_malloc((6 * (size_t)nz * lql + 1) * sizeof *mine);
+    double *mine = mc_malloc(((size_t)ntab * f->lql + 1) * sizeof *mine);
     if (!mine)
-        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for Love's spectra");
-    for (int t = 0; t < 6 * nz; t++)
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for %d spectra", ntab);
+    for (int t = 0; t < ntab; t++)
         for (int ky = 0; ky < op->qy; ky++)
-            memcpy(mine + (size_t)t * lql + (size_t)ky * f->nk,
-                   op->love + (size_t)t * ql + (size_t)ky * op->qx + f->k0,
-                   (size_t)f->nk * sizeof *mine);
-    mc_free(op->love);
-    op->love = mine;
-    f->lrow = f->nk;
-    f->lql = lql;
-    op->part[3] = 6 * (size_t)nz * lql * sizeof(double);
+            memcpy(mine + (size_t)t * f->lql + (size_t)ky * f->nk,
+                   a + (size_t)t * ql + (size_t)ky * op->qx + f->k0, (size_t)f->nk * sizeof *mine);
+    mc_free(a);
+    *arr = mine;
+    return MC_OK;
+}
+
+/* the layout of the quadrant spectra: whole quadrants (serial), this rank's columns (distributed) */
+static void spectra_layout(const mc_eigen_stress *op, sfft *f, int dist)
+{
+    f->lrow = dist ? f->nk : op->qx;
+    f->lql = dist ? ((size_t)op->qy * f->nk + 7) / 8 * 8 : op->qlen;
+}
+
+static int love_par(const mc_eigen_stress *op, int t)
+{
+    (void)op;
+    return mc_eig_par(t % 6);
+}
+
+static int load_par(const mc_eigen_stress *op, int t)
+{
+    const int per = 6 * op->v.nz;
+    return op->load_par[t / per][t % 6];
+}
+
+/* Love's tables into their spectra (before the kernel spectra are allocated: the whole tables
+ * and V are never held together). */
+static int love_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
+{
+    spectra_layout(op, f, f->d != NULL);
+    int rc = quad_spectra(op, f, &op->love, 6 * op->v.nz, love_par, err);
+    if (rc == MC_OK && f->d)
+        op->part[3] = 6 * (size_t)op->v.nz * f->lql * sizeof(double);
+    return rc;
+}
+
+/* The folded loads (theory.md §8.10): their tables op->lk into spectra, and the loads' spectra. */
+int mc_eig_stress_fft_loads(mc_eigen_stress *op, mc_error *err)
+{
+    sfft *f = op->fft;
+    const int ntab = op->nloads * 6 * op->v.nz;
+    int rc = quad_spectra(op, f, &op->lk, ntab, load_par, err);
+    if (rc)
+        return rc;
+    const size_t sl = f->fft.speclen;
+    if (!(f->PL = mc_calloc((size_t)op->nloads * sl + 1, sizeof *f->PL)))
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for the loads' spectra");
+    op->part[3] += (size_t)ntab * f->lql * sizeof(double);
+    op->part[1] += (size_t)op->nloads * sl * sizeof(fftw_complex);
     return MC_OK;
 }
 
@@ -443,6 +484,15 @@ static size_t love_bytes(const mc_eigen_stress *op, const sfft *f)
     return 6 * (size_t)op->v.nz * (((size_t)op->qy * f->nk + 7) / 8 * 8) * sizeof(double);
 }
 
+size_t mc_eig_stress_fft_loads_bytes(const mc_eigen_stress *op, int ranks, int nloads)
+{
+    sfft f;
+    memset(&f, 0, sizeof f);
+    plan_sizes(op, &f, ranks, 0);
+    const size_t tabs = ranks > 0 ? love_bytes(op, &f) : 6 * (size_t)op->v.nz * op->qlen * sizeof(double);
+    return (size_t)nloads * (tabs + f.fft.speclen * sizeof(fftw_complex));
+}
+
 void mc_eig_stress_fft_estimate(const mc_eigen_stress *op, int ranks,
                                 size_t parts[MC_EIGEN_STRESS_PARTS])
 {
@@ -551,6 +601,7 @@ void mc_eig_stress_fft_free(mc_eigen_stress *op)
     mc_free(f->P3);
     mc_free(f->E);
     mc_free(f->P);
+    mc_free(f->PL);
     mc_free(f->rows);
     mc_free(f->zb);
     mc_free(f->tw);
@@ -847,23 +898,50 @@ static void depth_all(const mc_eigen_stress *op, const sfft *f, int me)
     }
 }
 
-/* S3 into the stress spectrum e (component i, layer k): Love's spectra times p3's. */
-static void love_add(const mc_eigen_stress *op, const sfft *f, int i, int k, fftw_complex *e)
+/* A quadrant spectrum L (Love's layout; lateral parity par) times the spectrum P, into e. */
+static void quad_add(const mc_eigen_stress *op, const sfft *f, const double *L, int par,
+                     const fftw_complex *P, fftw_complex *e)
 {
     const int ty = f->fft.ty, nk = f->nk, my = op->qy - 1;
-    const int rot = mc_eig_odd_x(i) + mc_eig_odd_y(i), oy = mc_eig_odd_y(i);
-    const double *L = op->love + (size_t)(k * 6 + i) * f->lql;
+    const int rot = (par & 1) + (par >> 1 & 1), oy = par >> 1 & 1;
     for (int ky = 0; ky < ty; ky++) {
         const int mirror = ky > my;
         const double s = (mirror && oy) ? -1.0 : 1.0;
         const double *l = L + (size_t)(mirror ? ty - ky : ky) * f->lrow;
         for (int kx = 0; kx < nk; kx++) {
             const size_t q = (size_t)ky * nk + kx;
-            double re = s * l[kx] * f->P[q][0], im = s * l[kx] * f->P[q][1];
+            double re = s * l[kx] * P[q][0], im = s * l[kx] * P[q][1];
             mc_eig_rot(&re, &im, rot);
             e[q][0] += re;
             e[q][1] += im;
         }
+    }
+}
+
+/* S3 into the stress spectrum e (component i, layer k): Love's spectra times p3's. */
+static void love_add(const mc_eigen_stress *op, const sfft *f, int i, int k, fftw_complex *e)
+{
+    quad_add(op, f, op->love + (size_t)(k * 6 + i) * f->lql, mc_eig_par(i), f->P, e);
+}
+
+/* The folded loads' stresses into e (component i, layer k; theory.md §8.10): with eps the
+ * spectrum holds S eps already, else it starts from zero. */
+static void loads_add(const mc_eigen_stress *op, const sfft *f, const double *const *loads,
+                      int i, int k, fftw_complex *e)
+{
+    const size_t sl = f->fft.speclen;
+    for (int l = 0; l < op->nloads; l++)
+        if (loads[l])
+            quad_add(op, f, op->lk + (size_t)((l * op->v.nz + k) * 6 + i) * f->lql,
+                     op->load_par[l][i], f->PL + (size_t)l * sl, e);
+}
+
+/* The load spectra / 2G (the stresses leave the apply times 2G, as S eps). */
+static void scale_spectrum(fftw_complex *P, size_t n, double w)
+{
+    for (size_t q = 0; q < n; q++) {
+        P[q][0] *= w;
+        P[q][1] *= w;
     }
 }
 
@@ -892,37 +970,52 @@ static void to_dfft(const sfft *f, const fftw_complex *e, fftw_complex *d)
  * then its columns), the depth step on this rank's frequencies, p3 and the stresses gathered
  * whole on every rank by the inverse transforms. Collective. */
 static void dist_apply(mc_eigen_stress *op, const double *const eps[6], double G,
-                       double *const sig[6])
+                       const double *const *loads, double *const sig[6])
 {
     sfft *f = op->fft;
     const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, bm = f->bm;
     const size_t sl = f->fft.speclen, wc = (size_t)wx * wy, dl = (size_t)f->nk * f->fft.ty;
     const double scale = 1.0 / ((double)f->fft.tx * f->fft.ty); /* FFTW does not normalise */
-    for (int c = 0; c < 6; c++) /* a component's layers are contiguous: batches of bm */
-        for (int k0 = 0; k0 < nz; k0 += bm) {
-            const int m = nz - k0 < bm ? nz - k0 : bm;
-            mc_dfft_forward_many(f->d, eps[c] + k0 * wc, wc, m, f->bs, dl);
-            for (int q = 0; q < m; q++)
-                from_dfft(f, f->bs + q * dl, f->E + (size_t)(c * nz + k0 + q) * sl);
+    for (int l = 0; loads && l < op->nloads; l++)
+        if (loads[l]) {
+            mc_dfft_forward_many(f->d, loads[l], wc, 1, f->bs, dl);
+            from_dfft(f, f->bs, f->PL + (size_t)l * sl);
+            scale_spectrum(f->PL + (size_t)l * sl, sl, 0.5 / G);
         }
+    if (eps) {
+        for (int c = 0; c < 6; c++) /* a component's layers are contiguous: batches of bm */
+            for (int k0 = 0; k0 < nz; k0 += bm) {
+                const int m = nz - k0 < bm ? nz - k0 : bm;
+                mc_dfft_forward_many(f->d, eps[c] + k0 * wc, wc, m, f->bs, dl);
+                for (int q = 0; q < m; q++)
+                    from_dfft(f, f->bs + q * dl, f->E + (size_t)(c * nz + k0 + q) * sl);
+            }
 #pragma omp parallel num_threads(f->nthr)
-    depth_all(op, f, omp_get_thread_num());
-    /* p3 on the window only: back to space (whole on every rank), cut, forward again */
-    to_dfft(f, f->P, f->bs);
-    mc_dfft_inverse_many(f->d, f->bs, dl, 1, op->work, wc);
-    for (size_t q = 0; q < wc; q++) {
-        const double p = scale * op->work[q];
-        op->work[q] = p;
-        op->p3[q] = 2.0 * G * p;
+        depth_all(op, f, omp_get_thread_num());
+        /* p3 on the window only: back to space (whole on every rank), cut, forward again */
+        to_dfft(f, f->P, f->bs);
+        mc_dfft_inverse_many(f->d, f->bs, dl, 1, op->work, wc);
+        for (size_t q = 0; q < wc; q++) {
+            const double p = scale * op->work[q];
+            op->work[q] = p;
+            op->p3[q] = 2.0 * G * p;
+        }
+        mc_dfft_forward_many(f->d, op->work, wc, 1, f->bs, dl);
+        from_dfft(f, f->bs, f->P);
+    } else {
+        memset(op->p3, 0, wc * sizeof *op->p3);
     }
-    mc_dfft_forward_many(f->d, op->work, wc, 1, f->bs, dl);
-    from_dfft(f, f->bs, f->P);
     for (int i = 0; i < 6; i++)
         for (int k0 = 0; k0 < nz; k0 += bm) {
             const int m = nz - k0 < bm ? nz - k0 : bm;
             for (int q = 0; q < m; q++) {
                 fftw_complex *e = f->E + (size_t)(i * nz + k0 + q) * sl;
-                love_add(op, f, i, k0 + q, e);
+                if (eps)
+                    love_add(op, f, i, k0 + q, e);
+                else
+                    memset(e, 0, sl * sizeof *e);
+                if (loads)
+                    loads_add(op, f, loads, i, k0 + q, e);
                 to_dfft(f, e, f->bs + q * dl);
             }
             double *out = sig[i] + k0 * wc;
@@ -933,48 +1026,68 @@ static void dist_apply(mc_eigen_stress *op, const double *const eps[6], double G
 }
 
 void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
-                             double *const sig[6])
+                             const double *const *loads, double *const sig[6])
 {
     sfft *f = op->fft;
     if (f->d) {
-        dist_apply(op, eps, G, sig);
+        dist_apply(op, eps, G, loads, sig);
         return;
     }
     const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, tx = f->fft.tx, ty = f->fft.ty;
+    const int nl = loads ? op->nloads : 0;
     const size_t sl = f->fft.speclen, wc = (size_t)wx * wy, rl = (size_t)wy * tx;
     const double scale = 1.0 / ((double)tx * ty); /* FFTW does not normalise */
 #pragma omp parallel num_threads(f->nthr)
     {
         const int me = omp_get_thread_num();
         double *rows = f->rows + (size_t)me * rl;
-        /* every layer and column forward */
+        /* every layer and column forward, and the folded loads */
 #pragma omp for schedule(dynamic, 1)
-        for (int t = 0; t < 6 * nz; t++) {
+        for (int t = 0; t < (eps ? 6 * nz : 0) + nl; t++) {
+            if (t >= (eps ? 6 * nz : 0)) {
+                const int l = t - (eps ? 6 * nz : 0);
+                if (!loads[l])
+                    continue;
+                mc_eig_fill_rows(rows, tx, loads[l], wx, wy, 0);
+                mc_eig_fft_forward(&f->fft, rows, f->PL + (size_t)l * sl);
+                scale_spectrum(f->PL + (size_t)l * sl, sl, 0.5 / G);
+                continue;
+            }
             const int c = t / nz, k = t % nz;
             mc_eig_fill_rows(rows, tx, eps[c] + k * wc, wx, wy, 0);
             mc_eig_fft_forward(&f->fft, rows, f->E + (size_t)t * sl);
         }
-        /* depth coupling, frequency by frequency */
-        depth_all(op, f, me);
+        if (eps) {
+            /* depth coupling, frequency by frequency */
+            depth_all(op, f, me);
 #pragma omp single
-        {
-            /* p3 on the window only: back to space, cut, forward again */
-            mc_eig_fft_inverse(&f->fft, f->P, rows);
-            for (int j = 0; j < wy; j++)
-                for (int i = 0; i < wx; i++) {
-                    const double p = scale * rows[(size_t)j * tx + i];
-                    op->work[(size_t)j * wx + i] = p;
-                    op->p3[(size_t)j * wx + i] = 2.0 * G * p;
-                }
-            mc_eig_fill_rows(rows, tx, op->work, wx, wy, 0);
-            mc_eig_fft_forward(&f->fft, rows, f->P);
+            {
+                /* p3 on the window only: back to space, cut, forward again */
+                mc_eig_fft_inverse(&f->fft, f->P, rows);
+                for (int j = 0; j < wy; j++)
+                    for (int i = 0; i < wx; i++) {
+                        const double p = scale * rows[(size_t)j * tx + i];
+                        op->work[(size_t)j * wx + i] = p;
+                        op->p3[(size_t)j * wx + i] = 2.0 * G * p;
+                    }
+                mc_eig_fill_rows(rows, tx, op->work, wx, wy, 0);
+                mc_eig_fft_forward(&f->fft, rows, f->P);
+            }
+        } else {
+#pragma omp single
+            memset(op->p3, 0, wc * sizeof *op->p3);
         }
-        /* S3 in, and every stress layer back */
+        /* S3 and the loads in, and every stress layer back */
 #pragma omp for schedule(dynamic, 1)
         for (int t = 0; t < 6 * nz; t++) {
             const int i = t / nz, k = t % nz;
             fftw_complex *e = f->E + (size_t)t * sl;
-            love_add(op, f, i, k, e);
+            if (eps)
+                love_add(op, f, i, k, e);
+            else
+                memset(e, 0, sl * sizeof *e);
+            if (nl)
+                loads_add(op, f, loads, i, k, e);
             mc_eig_fft_inverse(&f->fft, e, rows);
             double *out = sig[i] + k * wc;
             for (int j = 0; j < wy; j++)

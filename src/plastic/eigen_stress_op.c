@@ -417,44 +417,69 @@ static void love_average_periodic(mc_eigen_stress *op, int k, int ux, int uy)
         }
 }
 
-/* Love's stresses on a grid with periodic axes: the periodic tables of the stress module (images
- * and smeared strips, theory.md §3.5) over the window, cut to the quadrant, for every layer. */
-static int love_fill_periodic(mc_eigen_stress *op, mc_error *err)
+/* The stress module's patch tables of load (stress/stress.h) at every layer's centre, cut to the
+ * quadrants dst[(k * 6 + c) qlen] (offsets 0 .. n/2 of a periodic axis, 0 .. window - 1 of a
+ * free one, zero beyond): Love's stresses on a grid with periodic axes (images and smeared
+ * strips, theory.md §3.5) and the folded loads' kernels (§8.10) on any grid. The periodic tables
+ * are built whole and cut; on a grid with both axes free the quadrant is built directly
+ * (mc_stress_tables_quadrant, the same entries bit for bit). */
+static int stress_module_tables(const mc_eigen_stress *op, int load, double *dst, mc_error *err)
 {
     const mc_grid *g = &op->g;
     const mc_grid gw = {op->v.nx, op->v.ny, g->dx, g->dy, g->periodic_x, g->periodic_y};
+    const int quadrant = !gw.periodic_x && !gw.periodic_y;
     const int tx = gw.periodic_x ? gw.nx : 2 * gw.nx - 1 > 1 ? 2 * gw.nx - 1 : 1;
     const int ty = gw.periodic_y ? gw.ny : 2 * gw.ny - 1 > 1 ? 2 * gw.ny - 1 : 1;
     const int ux = gw.periodic_x ? gw.nx / 2 + 1 : gw.nx, uy = gw.periodic_y ? gw.ny / 2 + 1 : gw.ny;
     mc_stress_tables *tb = NULL;
-    double *tab = mc_malloc(6 * (size_t)tx * ty * sizeof *tab);
-    int rc = tab ? mc_stress_tables_create(&gw, tx, ty, MC_STRESS_PATCH, op->nu, 0, &tb, err)
-                 : mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for Love's tables");
+    double *tab = quadrant ? NULL : mc_malloc(6 * (size_t)tx * ty * sizeof *tab);
+    int rc = quadrant || tab
+                 ? mc_stress_tables_create(&gw, tx, ty, MC_STRESS_PATCH, op->nu, 0, &tb, err)
+                 : mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for the stress tables");
     for (int k = 0; rc == MC_OK && k < op->v.nz; k++) {
+        const double z = (op->centre[k] + 0.5) * op->v.dz;
+        double *q6[6];
+        for (int c = 0; c < 6; c++)
+            q6[c] = dst + (size_t)(k * 6 + c) * op->qlen;
+        if (quadrant) {
+            rc = mc_stress_tables_quadrant(tb, load, z, op->qx, op->qy, q6, err);
+            continue;
+        }
         double *t6[6];
         for (int c = 0; c < 6; c++)
             t6[c] = tab + (size_t)c * tx * ty;
-        rc = mc_stress_tables_build(tb, MC_TRACTION_P, (op->centre[k] + 0.5) * op->v.dz, t6, err);
+        rc = mc_stress_tables_build(tb, load, z, t6, err);
         for (int c = 0; rc == MC_OK && c < 6; c++) {
-            double *q = op->love + (size_t)(k * 6 + c) * op->qlen;
             /* exact zeros where the kernel is odd: offset 0, and n/2 of an even period (the
              * image sums there cancel only to round-off, which the fft path's real spectra
              * would drop and the direct sums keep) */
-            const int ox = mc_eig_odd_x(c), oy = mc_eig_odd_y(c);
+            const int par = mc_stress_parity(load, c), ox = par & 1, oy = par >> 1 & 1;
             for (int dj = 0; dj < op->qy; dj++)
                 for (int di = 0; di < op->qx; di++) {
                     const int zero = (ox && (di == 0 || (gw.periodic_x && 2 * di == gw.nx))) ||
                                      (oy && (dj == 0 || (gw.periodic_y && 2 * dj == gw.ny)));
-                    q[(size_t)dj * op->qx + di] =
+                    q6[c][(size_t)dj * op->qx + di] =
                         di < ux && dj < uy && !zero ? t6[c][(size_t)dj * tx + di] : 0.0;
                 }
         }
-        if (rc == MC_OK && op->v.stress_points == MC_EIG_CELL_AVERAGE)
-            love_average_periodic(op, k, ux, uy);
     }
     mc_stress_tables_destroy(&tb);
     mc_free(tab);
     return rc ? mc_error_prefix(err, "eigen stress: ") : MC_OK;
+}
+
+/* Love's stresses on a grid with periodic axes: the stress module's periodic tables, and the
+ * cell average near the source when asked. */
+static int love_fill_periodic(mc_eigen_stress *op, mc_error *err)
+{
+    int rc = stress_module_tables(op, MC_TRACTION_P, op->love, err);
+    const mc_grid *g = &op->g;
+    const int ux = g->periodic_x ? op->v.nx / 2 + 1 : op->v.nx;
+    const int uy = g->periodic_y ? op->v.ny / 2 + 1 : op->v.ny;
+    for (int k = 0; rc == MC_OK && k < op->v.nz; k++)
+        if (op->v.stress_points == MC_EIG_CELL_AVERAGE)
+            love_average_periodic(op, k, ux, uy);
+    return rc;
 }
 
 /* ---- direct: the O(N^2) reference ------------------------------------------------------------ */
@@ -491,13 +516,40 @@ static void direct_p3(const mc_eigen_stress *op, const double *const eps[6], dou
         }
 }
 
+/* The elastic stress component o of the folded loads at window cell (i, j) of layer k: the sum
+ * over the grid (the window) of each load's table times the load (theory.md §8.10). */
+static double direct_loads(const mc_eigen_stress *op, const double *const *loads, int k, int o,
+                           int i, int j)
+{
+    const int wx = op->v.nx, wy = op->v.ny, qx = op->qx;
+    const int px = mc_eig_per_x(&op->g), py = mc_eig_per_y(&op->g);
+    double s = 0.0;
+    for (int l = 0; l < op->nloads; l++) {
+        if (!loads[l])
+            continue;
+        const double *K = op->lk + (size_t)((l * op->v.nz + k) * 6 + o) * op->qlen;
+        const int par = op->load_par[l][o];
+        for (int js = 0; js < wy; js++)
+            for (int is = 0; is < wx; is++) {
+                const int di = mc_eig_wrap(i - is, wx, px), dj = mc_eig_wrap(j - js, wy, py);
+                s += par_sign(par, di, dj) *
+                     K[(size_t)(dj < 0 ? -dj : dj) * qx + (di < 0 ? -di : di)] *
+                     loads[l][(size_t)js * wx + is];
+            }
+    }
+    return s;
+}
+
 static void direct_apply(mc_eigen_stress *op, const double *const eps[6], double G,
-                         double *const sig[6])
+                         const double *const *loads, double *const sig[6])
 {
     const int wx = op->v.nx, wy = op->v.ny, nz = op->v.nz, qx = op->qx;
     const int px = mc_eig_per_x(&op->g), py = mc_eig_per_y(&op->g);
     const size_t wc = (size_t)wx * wy, ql = op->qlen;
-    direct_p3(op, eps, op->work);
+    if (eps)
+        direct_p3(op, eps, op->work);
+    else
+        memset(op->work, 0, wc * sizeof *op->work);
     for (size_t s = 0; s < wc; s++)
         op->p3[s] = 2.0 * G * op->work[s];
 #pragma omp parallel for schedule(dynamic, 1)
@@ -506,7 +558,7 @@ static void direct_apply(mc_eigen_stress *op, const double *const eps[6], double
         for (int i = 0; i < wx; i++) {
             double acc[6] = {0.0};
             const int kf = op->centre[k]; /* the observation's fine layer */
-            for (int kp = 0; kp < nz; kp++) {
+            for (int kp = 0; kp < nz && eps; kp++) {
                 const int f0 = op->first[kp], f1 = op->first[kp + 1]; /* the source's fine layers */
                 for (int js = 0; js < wy; js++)
                     for (int is = 0; is < wx; is++) {
@@ -553,7 +605,8 @@ static void direct_apply(mc_eigen_stress *op, const double *const eps[6], double
                               L[(size_t)(dj < 0 ? -dj : dj) * qx + (di < 0 ? -di : di)] *
                               op->work[(size_t)js * wx + is];
                     }
-                sig[o][(size_t)k * wc + (size_t)j * wx + i] = 2.0 * G * (acc[o] + s3);
+                sig[o][(size_t)k * wc + (size_t)j * wx + i] =
+                    2.0 * G * (acc[o] + s3) + (loads ? direct_loads(op, loads, k, o, i, j) : 0.0);
             }
         }
     }
@@ -567,7 +620,8 @@ struct mc_eig_stress_ops {
     void (*size)(mc_eigen_stress *op);                 /* qx, qy */
     int (*prepare)(mc_eigen_stress *op, mc_error *err); /* tables and workspaces */
     void (*apply)(mc_eigen_stress *op, const double *const eps[6], double G,
-                  double *const sig[6]);
+                  const double *const *loads, double *const sig[6]);
+    int (*loads)(mc_eigen_stress *op, mc_error *err);  /* op->lk's tables as the apply uses them */
     void (*release)(mc_eigen_stress *op);              /* what prepare took; NULL-safe */
 };
 
@@ -616,10 +670,19 @@ static void direct_release(mc_eigen_stress *op)
     op->s1 = op->p3k = NULL;
 }
 
+/* the direct backend sums the tables in space as they are */
+static int direct_loads_prepare(mc_eigen_stress *op, mc_error *err)
+{
+    (void)op;
+    (void)err;
+    return MC_OK;
+}
+
 static const struct mc_eig_stress_ops backends[] = {
     {"fft", MC_BACKEND_FFT, mc_eig_stress_fft_size, mc_eig_stress_fft_prepare,
-     mc_eig_stress_fft_apply, mc_eig_stress_fft_free},
-    {"direct", MC_BACKEND_DIRECT, direct_size, direct_prepare, direct_apply, direct_release},
+     mc_eig_stress_fft_apply, mc_eig_stress_fft_loads, mc_eig_stress_fft_free},
+    {"direct", MC_BACKEND_DIRECT, direct_size, direct_prepare, direct_apply, direct_loads_prepare,
+     direct_release},
 };
 
 void mc_eigen_stress_destroy(mc_eigen_stress **op)
@@ -629,6 +692,7 @@ void mc_eigen_stress_destroy(mc_eigen_stress **op)
     if ((*op)->ops)
         (*op)->ops->release(*op);
     mc_free((*op)->love);
+    mc_free((*op)->lk);
     mc_free((*op)->p3);
     mc_free((*op)->work);
     mc_free((*op)->group);
@@ -723,7 +787,75 @@ static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_back
 void mc_eigen_stress_apply(mc_eigen_stress *op, const double *const eps[6], double G,
                            double *const sig[6])
 {
-    op->ops->apply(op, eps, G, sig);
+    op->ops->apply(op, eps, G, NULL, sig);
+}
+
+/* ---- surface loads folded in (theory.md §8.10) ---------------------------------------------- */
+
+/* the loads that can be folded, in the order of op->lk */
+static const int FOLDABLE[2] = {MC_TRACTION_P, MC_TRACTION_QX};
+
+static int whole_window(const mc_eigen_stress *op)
+{
+    return op->v.i0 == 0 && op->v.j0 == 0 && op->v.nx == op->g.nx && op->v.ny == op->g.ny;
+}
+
+int mc_eigen_stress_loads(mc_eigen_stress *op, int loads, mc_error *err)
+{
+    if (op->nloads > 0)
+        return mc_fail(err, MC_ERR_INPUT, "eigen stress: surface loads are folded in already");
+    if (!(loads & MC_TRACTION_P) || (loads & ~(MC_TRACTION_P | MC_TRACTION_QX)))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "eigen stress: surface loads %d: the pressure, and at most q_x besides",
+                       loads);
+    if (!whole_window(op))
+        return mc_fail(err, MC_ERR_INPUT,
+                       "eigen stress: surface loads need the volume under the whole grid (window "
+                       "%d x %d at (%d, %d) of %d x %d)",
+                       op->v.nx, op->v.ny, op->v.i0, op->v.j0, op->g.nx, op->g.ny);
+    int n = 0;
+    for (int l = 0; l < 2; l++)
+        if (loads & FOLDABLE[l])
+            op->load_id[n++] = FOLDABLE[l];
+    const size_t nl = (size_t)n * 6 * op->v.nz * op->qlen;
+    if (!(op->lk = mc_malloc(nl * sizeof *op->lk)))
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for the loads' tables");
+    int rc = MC_OK;
+    for (int l = 0; l < n && rc == MC_OK; l++) {
+        for (int c = 0; c < 6; c++)
+            op->load_par[l][c] = mc_stress_parity(op->load_id[l], c);
+        rc = stress_module_tables(op, op->load_id[l], op->lk + (size_t)l * 6 * op->v.nz * op->qlen,
+                                  err);
+    }
+    op->nloads = n;
+    if (rc == MC_OK)
+        rc = op->ops->loads(op, err);
+    if (rc != MC_OK) {
+        mc_free(op->lk);
+        op->lk = NULL;
+        op->nloads = 0;
+        return rc;
+    }
+    if (op->ops->id == MC_BACKEND_DIRECT)
+        op->part[3] += nl * sizeof(double);
+    return MC_OK;
+}
+
+int mc_eigen_stress_loads_of(const mc_eigen_stress *op)
+{
+    int loads = 0;
+    for (int l = 0; l < op->nloads; l++)
+        loads |= op->load_id[l];
+    return loads;
+}
+
+void mc_eigen_stress_apply_loaded(mc_eigen_stress *op, const double *const eps[6], double G,
+                                  const double *p, const double *qx, double *const sig[6])
+{
+    const double *loads[2] = {NULL, NULL};
+    for (int l = 0; l < op->nloads; l++)
+        loads[l] = op->load_id[l] == MC_TRACTION_P ? p : qx;
+    op->ops->apply(op, eps, G, op->nloads ? loads : NULL, sig);
 }
 
 void mc_eigen_stress_p3(const mc_eigen_stress *op, double *p3)
@@ -750,26 +882,45 @@ void mc_eigen_stress_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_bac
     mc_eigen_stress_estimate_ranks(g, v, b, mc_dist_active() ? mc_dist_size() : 0, parts);
 }
 
+/* The shell that create fills before its allocations (sizes only); 0 for a volume or grid that
+ * create refuses. */
+static int shell(const mc_grid *g, const mc_eigen_volume *v, mc_backend b, mc_eigen_stress *op)
+{
+    mc_error err = {0};
+    if (mc_eig_check(g, v, 0.3, b, "eigen stress", &err) != MC_OK)
+        return 0;
+    memset(op, 0, sizeof *op);
+    op->g = *g;
+    op->v = *v;
+    op->depth = MC_EIG_DEPTH_AUTO;
+    for (int k = 0; k < v->nz; k++)
+        op->nzf += mc_eigen_layer_count(v, k);
+    for (size_t r = 0; r < sizeof backends / sizeof backends[0]; r++)
+        if (backends[r].id == b)
+            op->ops = &backends[r];
+    op->ops->size(op);
+    op->qlen = ((size_t)op->qx * op->qy + 7) / 8 * 8;
+    return 1;
+}
+
+size_t mc_eigen_stress_loads_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
+                                      int ranks, int loads)
+{
+    mc_eigen_stress op;
+    if (!(loads & MC_TRACTION_P) || !shell(g, v, b, &op) || !whole_window(&op))
+        return 0;
+    const int n = 1 + ((loads & MC_TRACTION_QX) != 0);
+    return b == MC_BACKEND_FFT ? mc_eig_stress_fft_loads_bytes(&op, ranks, n)
+                               : (size_t)n * 6 * v->nz * op.qlen * sizeof(double);
+}
+
 void mc_eigen_stress_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
                                     int ranks, size_t parts[MC_EIGEN_STRESS_PARTS])
 {
     memset(parts, 0, MC_EIGEN_STRESS_PARTS * sizeof *parts);
-    mc_error err = {0};
-    if (mc_eig_check(g, v, 0.3, b, "eigen stress", &err) != MC_OK)
-        return;
-    /* the shell create fills before its allocations: sizes only */
     mc_eigen_stress op;
-    memset(&op, 0, sizeof op);
-    op.g = *g;
-    op.v = *v;
-    op.depth = MC_EIG_DEPTH_AUTO;
-    for (int k = 0; k < v->nz; k++)
-        op.nzf += mc_eigen_layer_count(v, k);
-    for (size_t r = 0; r < sizeof backends / sizeof backends[0]; r++)
-        if (backends[r].id == b)
-            op.ops = &backends[r];
-    op.ops->size(&op);
-    op.qlen = ((size_t)op.qx * op.qy + 7) / 8 * 8;
+    if (!shell(g, v, b, &op))
+        return;
     const size_t wc = (size_t)v->nx * v->ny, nl = 6 * (size_t)v->nz * op.qlen;
     parts[3] = nl * sizeof(double);
     parts[4] = sizeof op + 2 * wc * sizeof(double) + (2 * (size_t)v->nz + 1) * sizeof(int);

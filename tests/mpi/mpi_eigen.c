@@ -151,6 +151,95 @@ static void one_case(const char *name, mc_grid g, mc_eigen_volume v, int depth)
     mc_free(us);
 }
 
+/* ---- surface loads folded into the residual stress operator (theory.md §8.10) ------------- */
+
+/* S eps + the stresses of p and q_x, and the loads alone, through one operator built serially or
+ * distributed; *bytes_bad (distributed) 1 when the bytes the folding took differ from
+ * mc_eigen_stress_loads_estimate on rank 0 or exceed it on another rank. */
+static int apply_loaded(const mc_grid *g, const mc_eigen_volume *v, int distributed,
+                        const double *eps, const double *p, const double *qx, double *sig,
+                        double *alone, double *bytes_bad)
+{
+    MPI_Comm saved = mc_dist_comm();
+    if (!distributed)
+        mc_dist_set(MPI_COMM_NULL);
+    mc_eigen_stress *s = NULL;
+    mc_error err = {0};
+    const int loads = MC_TRACTION_P | MC_TRACTION_QX;
+    int rc = mc_eigen_stress_create(g, v, 0.3, MC_BACKEND_FFT, &s, &err);
+    const size_t b0 = rc == MC_OK ? mc_eigen_stress_bytes(s) : 0;
+    if (rc == MC_OK)
+        rc = mc_eigen_stress_loads(s, loads, &err);
+    if (rc == MC_OK && distributed) {
+        const size_t took = mc_eigen_stress_bytes(s) - b0;
+        const size_t est = mc_eigen_stress_loads_estimate(g, v, MC_BACKEND_FFT, mc_dist_size(), loads);
+        *bytes_bad = rank == 0 ? took != est : took > est;
+        MPI_Allreduce(MPI_IN_PLACE, bytes_bad, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    }
+    if (rc == MC_OK) {
+        const size_t nv = (size_t)v->nz * v->ny * v->nx;
+        const double *e[6];
+        double *o[6], *a[6];
+        for (int c = 0; c < 6; c++) {
+            e[c] = eps + c * nv;
+            o[c] = sig + c * nv;
+            a[c] = alone + c * nv;
+        }
+        mc_eigen_stress_apply_loaded(s, e, 80e9, p, qx, o);
+        mc_eigen_stress_apply_loaded(s, NULL, 80e9, p, qx, a);
+    } else if (rank == 0) {
+        printf("FAIL create or fold: %s\n", err.msg);
+    }
+    mc_eigen_stress_destroy(&s);
+    mc_dist_set(saved);
+    return rc;
+}
+
+static void loads_case(const char *name, mc_grid g, mc_eigen_volume v)
+{
+    const size_t nv = (size_t)v.nz * v.ny * v.nx, ng = mc_grid_cells(&g);
+    double *eps = mc_malloc(6 * nv * sizeof *eps), *p = mc_malloc(ng * sizeof *p);
+    double *qx = mc_malloc(ng * sizeof *qx);
+    double *sd = mc_malloc(6 * nv * sizeof *sd), *ss = mc_malloc(6 * nv * sizeof *ss);
+    double *ad = mc_malloc(6 * nv * sizeof *ad), *as = mc_malloc(6 * nv * sizeof *as);
+    uint64_t r = 123456789; /* the same fields on every rank */
+    for (size_t i = 0; i < 6 * nv + 2 * ng; i++) {
+        r = r * 6364136223846793005ull + 1442695040888963407ull;
+        const double u = (double)(r >> 11) / 9007199254740992.0;
+        if (i < 6 * nv)
+            eps[i] = 1e-3 * (u - 0.3);
+        else if (i < 6 * nv + ng)
+            p[i - 6 * nv] = 1e9 * u;
+        else
+            qx[i - 6 * nv - ng] = 1e8 * (u - 0.5);
+    }
+    double bytes_bad = 0.0;
+    char what[160];
+    if (apply_loaded(&g, &v, 1, eps, p, qx, sd, ad, &bytes_bad) ||
+        apply_loaded(&g, &v, 0, eps, p, qx, ss, as, &bytes_bad)) {
+        failed++;
+    } else {
+        snprintf(what, sizeof what, "%s: S eps + folded loads, distributed vs serial fft", name);
+        check(what, rel_diff(sd, ss, 6 * nv), TOL_ROUNDOFF);
+        snprintf(what, sizeof what, "%s: folded loads alone, distributed vs serial fft", name);
+        check(what, rel_diff(ad, as, 6 * nv), TOL_ROUNDOFF);
+        snprintf(what, sizeof what, "%s: bytes of the folded loads = estimate", name);
+        check(what, bytes_bad, 0.0);
+        snprintf(what, sizeof what, "%s: the same folded stresses on every rank", name);
+        check(what, same_on_ranks(sd, 6 * nv) + same_on_ranks(ad, 6 * nv), 0.0);
+        if (rank == 0)
+            printf("hash %s %016llx %016llx\n", name, (unsigned long long)hash_bits(sd, 6 * nv),
+                   (unsigned long long)hash_bits(ad, 6 * nv));
+    }
+    mc_free(eps);
+    mc_free(p);
+    mc_free(qx);
+    mc_free(sd);
+    mc_free(ss);
+    mc_free(ad);
+    mc_free(as);
+}
+
 /* ---- the plastic loop split over the ranks ----------------------------------------------- */
 
 /* The elastic stresses of a random pressure (and friction traction) on a 17 x 13 grid with 7
@@ -364,6 +453,11 @@ int main(int argc, char **argv)
     one_case("line 30x1 (bars)", line, vl, MC_EIG_DEPTH_AUTO);
     one_case("graded 20x14 (1,1,3,5) fine depth step", free_g, vg, MC_EIG_DEPTH_FINE);
     one_case("graded 20x14 (1,1,3,5) coarse depth step", free_g, vg, MC_EIG_DEPTH_COARSE);
+    loads_case("loads: free 20x14x4", free_g, vf);
+    loads_case("loads: strip 18x12x3", strip, mc_eigen_volume_full(&strip, 3, 0.5 * d));
+    loads_case("loads: doubly periodic 15x11x3", per, vp);
+    loads_case("loads: line 30x1", line, vl);
+    loads_case("loads: graded 20x14 (1,1,3,5)", free_g, vg);
     stress_split_case();
     plastic_case("plastic sphere 20x18x6, joint", MC_PLASTIC_JOINT, 0, size);
     plastic_case("plastic sphere 20x18x6, nested", MC_PLASTIC_NESTED, 0, size);
