@@ -1,5 +1,5 @@
 /* test_eigen_loads.c - surface loads folded into the residual stress operator
- * (mc_eigen_stress_loads, mc_eigen_stress_apply_loaded; docs/theory.md §8.10): on free, graded,
+ * (mc_eigen_stress_loads, mc_eigen_stress_apply_loaded; docs/theory.md §8.9): on free, graded,
  * strip, doubly periodic and line grids, with both backends,
  *   - S eps + the folded loads' stresses equals mc_eigen_stress_apply plus mc_stress_field of the
  *     stress module's plan at the layers' centres (the loop's former elastic stresses);

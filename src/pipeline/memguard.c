@@ -134,7 +134,15 @@ double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_
     const int ranks = mc_dist_active() ? mc_dist_size() : 1;
     const double kept = ceil((double)v->nz / ranks);
     const double cache = kept * loads * 6 * (periodic ? spec : quad);
-    if (cache <= (double)MC_STRESS_CACHE_BYTES)
+    /* a volume under the whole grid folds the loads into the residual stress operator
+     * (plastic/loop.h mc_plastic_ops_fold, theory §8.9): their tables beside Love's, and the
+     * plan above is kept only where a periodic axis makes it cache anyway */
+    const int fold = mc_plastic_ops_fold(g, v);
+    if (fold)
+        ops += (double)mc_eigen_stress_loads_estimate(
+            g, v, b, mc_dist_active() ? mc_dist_size() : 0,
+            MC_TRACTION_P | (loads > 1 ? MC_TRACTION_QX : 0));
+    if (cache <= (double)MC_STRESS_CACHE_BYTES && (!fold || periodic))
         ops += cache;
     const double nvol = (double)v->nz * v->nx * v->ny;
     const double loop = mc_plastic_loop_bytes(g, v, PLASTIC_ANDERSON, s->plasticity.near_field,

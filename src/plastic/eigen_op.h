@@ -229,7 +229,7 @@ int mc_eigen_stress_create(const mc_grid *g, const mc_eigen_volume *v, double nu
 void mc_eigen_stress_apply(mc_eigen_stress *op, const double *const eps[6], double G,
                            double *const sig[6]);
 
-/* Surface loads folded into the operator (theory.md §8.10). After mc_eigen_stress_loads(op,
+/* Surface loads folded into the operator (theory.md §8.9). After mc_eigen_stress_loads(op,
  * loads), loads = MC_TRACTION_P, optionally | MC_TRACTION_QX (stress/stress.h),
  * mc_eigen_stress_apply_loaded adds to the residual stress the elastic stresses of those surface
  * tractions at the cuboid centres: the stress module's patch kernel at the layers' centres

@@ -84,7 +84,7 @@ typedef struct {
     fftw_complex *E;      /* 6 nz spectra [c * nz + k]: eps, then the stresses / 2G; each ty rows
                            * of nk values [ky * nk + kx - k0] */
     fftw_complex *P;      /* p3 spectrum */
-    fftw_complex *PL;     /* the folded loads' spectra / 2G (op->nloads, E's layout; §8.10) */
+    fftw_complex *PL;     /* the folded loads' spectra / 2G (op->nloads, E's layout; §8.9) */
     double *rows;         /* nthr x (wy x tx) (serial only) */
     fftw_complex *zb;     /* nthr x zlen: source and output (6 x L x cs each), planar scratch;
                            * coarse: the boundary jumps (2 x (nz + 1) x 12 cs doubles), output */
@@ -227,7 +227,7 @@ static int love_spectra(mc_eigen_stress *op, sfft *f, mc_error *err)
     return rc;
 }
 
-/* The folded loads (theory.md §8.10): their tables op->lk into spectra, and the loads' spectra. */
+/* The folded loads (theory.md §8.9): their tables op->lk into spectra, and the loads' spectra. */
 int mc_eig_stress_fft_loads(mc_eigen_stress *op, mc_error *err)
 {
     sfft *f = op->fft;
@@ -924,7 +924,7 @@ static void love_add(const mc_eigen_stress *op, const sfft *f, int i, int k, fft
     quad_add(op, f, op->love + (size_t)(k * 6 + i) * f->lql, mc_eig_par(i), f->P, e);
 }
 
-/* The folded loads' stresses into e (component i, layer k; theory.md §8.10): with eps the
+/* The folded loads' stresses into e (component i, layer k; theory.md §8.9): with eps the
  * spectrum holds S eps already, else it starts from zero. */
 static void loads_add(const mc_eigen_stress *op, const sfft *f, const double *const *loads,
                       int i, int k, fftw_complex *e)

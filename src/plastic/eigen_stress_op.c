@@ -420,7 +420,7 @@ static void love_average_periodic(mc_eigen_stress *op, int k, int ux, int uy)
 /* The stress module's patch tables of load (stress/stress.h) at every layer's centre, cut to the
  * quadrants dst[(k * 6 + c) qlen] (offsets 0 .. n/2 of a periodic axis, 0 .. window - 1 of a
  * free one, zero beyond): Love's stresses on a grid with periodic axes (images and smeared
- * strips, theory.md §3.5) and the folded loads' kernels (§8.10) on any grid. The periodic tables
+ * strips, theory.md §3.5) and the folded loads' kernels (§8.9) on any grid. The periodic tables
  * are built whole and cut; on a grid with both axes free the quadrant is built directly
  * (mc_stress_tables_quadrant, the same entries bit for bit). */
 static int stress_module_tables(const mc_eigen_stress *op, int load, double *dst, mc_error *err)
@@ -517,7 +517,7 @@ static void direct_p3(const mc_eigen_stress *op, const double *const eps[6], dou
 }
 
 /* The elastic stress component o of the folded loads at window cell (i, j) of layer k: the sum
- * over the grid (the window) of each load's table times the load (theory.md §8.10). */
+ * over the grid (the window) of each load's table times the load (theory.md §8.9). */
 static double direct_loads(const mc_eigen_stress *op, const double *const *loads, int k, int o,
                            int i, int j)
 {
@@ -790,7 +790,7 @@ void mc_eigen_stress_apply(mc_eigen_stress *op, const double *const eps[6], doub
     op->ops->apply(op, eps, G, NULL, sig);
 }
 
-/* ---- surface loads folded in (theory.md §8.10) ---------------------------------------------- */
+/* ---- surface loads folded in (theory.md §8.9) ---------------------------------------------- */
 
 /* the loads that can be folded, in the order of op->lk */
 static const int FOLDABLE[2] = {MC_TRACTION_P, MC_TRACTION_QX};

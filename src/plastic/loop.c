@@ -44,6 +44,10 @@ typedef struct {
     double *depths;              /* nz cuboid-centre depths */
     int whole;                   /* 1: the window is the whole grid (the elastic stresses go
                                     straight into sig_e) */
+    int folded;                  /* 1: the residual stress operator carries the surface loads
+                                    (mc_eigen_stress_loads; theory §8.9): the elastic stresses
+                                    come from it, and the joint iteration's sweep takes both
+                                    fields from one apply into sig_r */
     double *s_layer;             /* 6 ny*nx: one layer of elastic stresses on the whole grid
                                     (a window smaller than the grid; NULL when whole) */
     double *qx;                  /* friction traction, ny*nx */
@@ -125,13 +129,19 @@ int mc_plastic_ops_create(const mc_grid *g, const mc_eigen_volume *v, double nu,
                             .depths = depths,
                             .backend = b,
                             .loads = MC_TRACTION_P | (friction ? MC_TRACTION_QX : 0),
-                            .repeated = 1};
+                            /* folded: the loop never uses this plan (theory §8.9) */
+                            .repeated = !mc_plastic_ops_fold(g, v)};
     int rc = mc_stress_create(g, &so, &ops->elastic, err);
     mc_free(depths);
     if (rc == MC_OK)
         rc = mc_eigen_disp_create(g, v, nu, b, &ops->disp, err);
     if (rc == MC_OK)
         rc = mc_eigen_stress_create(g, v, nu, b, &ops->resid, err);
+    /* a volume under the whole grid takes the elastic stresses from the residual stress
+     * operator's inverse transforms (theory §8.9): one set of transforms for both fields */
+    if (rc == MC_OK && mc_plastic_ops_fold(g, v))
+        rc = mc_eigen_stress_loads(ops->resid, MC_TRACTION_P | (friction ? MC_TRACTION_QX : 0),
+                                   err);
     if (rc != MC_OK) {
         mc_plastic_ops_destroy(ops);
         return rc;
@@ -244,6 +254,7 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
     c->elastic = ops->elastic;
     c->disp = ops->disp;
     c->resid = ops->resid;
+    c->folded = c->whole && mc_eigen_stress_loads_of(c->resid) != 0;
     const int reach = pb->near_reach;
     if (rc == MC_OK && reach > 0) { /* made once per operators (the running-in's steps
                                                 share it) */
@@ -354,13 +365,27 @@ static void residual_displacement(loop_ctx *c, const double *eps, double *uz)
 static long vidx(const loop_ctx *c, int k, long j, long i) { return ((long)k * c->nwy + j) * c->nwx + i; }
 
 /* The elastic stresses of pressure p (and its friction traction) on the window's cuboids. */
+/* The friction traction of pressure p into c->qx (NULL without friction). */
+static const double *friction_traction(loop_ctx *c, const double *p)
+{
+    const mc_plastic_problem *pb = c->pb;
+    if (pb->friction == 0)
+        return NULL;
+    /* signed: the sign is the sliding direction (loop.h) */
+    mc_traction_friction(p, c->p_lub, pb->lube_shape, pb->friction, c->ncell, c->qx);
+    return c->qx;
+}
+
 static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
 {
     const mc_plastic_problem *pb = c->pb;
-    const double *qx = NULL;
-    if (pb->friction != 0) { /* signed: the sign is the sliding direction (loop.h) */
-        mc_traction_friction(p, c->p_lub, pb->lube_shape, pb->friction, c->ncell, c->qx);
-        qx = c->qx;
+    const double *qx = friction_traction(c, p);
+    if (c->folded) { /* the residual stress operator's loads alone (theory §8.9) */
+        double *s[6];
+        for (int q = 0; q < 6; q++)
+            s[q] = c->sig_e + (size_t)q * (size_t)c->nvol;
+        mc_eigen_stress_apply_loaded(c->resid, NULL, c->G, p, qx, s);
+        return MC_OK;
     }
     if (c->whole) { /* the volume layout is the stress plan's: straight into sig_e */
         double *const s[6] = {c->sig_e,                 c->sig_e + c->nvol,
@@ -472,11 +497,15 @@ static double surely_elastic_below(const mc_hardening *law)
 /* One global sweep of the plastic fixed point: sig_r = S(eps_p + d_eps) (zero without plastic
  * strain: *any 0), the trial stresses sigma_e + sig_r + 2 G d_eps and their return maps into
  * d_new, dp_new; the largest change |d_new - d_eps| and magnitude |d_new| into *change, *size,
- * whether a cell yields into *plastic. Returns 1 when a return map failed (non-finite trial). */
+ * whether a cell yields into *plastic. Returns 1 when a return map failed (non-finite trial).
+ * p != NULL (folded operators, the joint iteration): sig_r receives sigma_e of the pressure p
+ * (and its friction traction) plus S(eps_p + d_eps) from one apply (theory §8.9), and sig_e is
+ * neither written nor read. */
 static void sweep_split_join(loop_ctx *c, double *change, double *size, int *plastic, int *bad);
 
-static int sweep(loop_ctx *c, const double *eps_p, const double *peq, double elastic_below,
-                 double *change_out, double *size_out, int *plastic_out, int *any_out)
+static int sweep(loop_ctx *c, const double *eps_p, const double *peq, const double *p,
+                 double elastic_below, double *change_out, double *size_out, int *plastic_out,
+                 int *any_out)
 {
     const mc_plastic_problem *pb = c->pb;
     const size_t nv6 = 6 * (size_t)c->nvol;
@@ -485,7 +514,15 @@ static int sweep(loop_ctx *c, const double *eps_p, const double *peq, double ela
         c->tot[i] = eps_p[i] + c->d_eps[i];
         any |= c->tot[i] != 0.0;
     }
-    if (any) {
+    if (p) { /* both fields from one apply */
+        const double *qx = friction_traction(c, p), *e[6];
+        double *sg[6];
+        split6(c, c->tot, e);
+        for (int q = 0; q < 6; q++)
+            sg[q] = c->sig_r + (size_t)q * (size_t)c->nvol;
+        mc_eigen_stress_apply_loaded(c->resid, any ? e : NULL, c->G, p, qx, sg);
+        c->stress_applies += any;
+    } else if (any) {
         residual_stress(c, c->tot);
         c->stress_applies++;
     } else
@@ -501,9 +538,11 @@ static int sweep(loop_ctx *c, const double *eps_p, const double *peq, double ela
     for (long v = vidx(c, (int)(line / nrow), c->row0 + line % nrow, 0),
               vend = v + c->nwx; v < vend; v++) {
         double trial[6], out[6], de[6], dpv = 0.0;
-        for (int q = 0; q < 6; q++)
-            trial[q] = c->sig_e[q * c->nvol + v] + c->sig_r[q * c->nvol + v] +
-                       2.0 * c->G * c->d_eps[q * c->nvol + v];
+        for (int q = 0; q < 6; q++) {
+            const double s = p ? c->sig_r[q * c->nvol + v]
+                               : c->sig_e[q * c->nvol + v] + c->sig_r[q * c->nvol + v];
+            trial[q] = s + 2.0 * c->G * c->d_eps[q * c->nvol + v];
+        }
         if (mc_von_mises(trial) < elastic_below) { /* mc_return_map's elastic branch */
             for (int q = 0; q < 6; q++)
                 de[q] = 0.0;
@@ -583,7 +622,7 @@ static int plastic_fixed_point(loop_ctx *c, const double *eps_p, const double *p
         *sweeps = m;
         int any = 0, plastic = 0;
         double change = 0, size = 0; /* sweep_change's maxima, taken in the same pass */
-        if (sweep(c, eps_p, peq, elastic_below, &change, &size, &plastic, &any)) {
+        if (sweep(c, eps_p, peq, NULL, elastic_below, &change, &size, &plastic, &any)) {
             *diverged = 1;
             return MC_OK;
         }
@@ -973,12 +1012,12 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
         }
         if (rc != MC_OK)
             return rc;
-        if ((rc = elastic_stresses(c, p, err)) != MC_OK)
+        if (!c->folded && (rc = elastic_stresses(c, p, err)) != MC_OK)
             return rc;
         int plastic = 0, had = 0;
         double change = 0, size = 0;
-        const int bad = sweep(c, res->eps_p, res->peq, elastic_below, &change, &size, &plastic,
-                              &had);
+        const int bad = sweep(c, res->eps_p, res->peq, c->folded ? p : NULL, elastic_below,
+                              &change, &size, &plastic, &had);
         if (bad || !(size <= DIVERGED_STRAIN)) { /* blew up: the nested loop starts cold */
             memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
             memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);

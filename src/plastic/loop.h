@@ -59,6 +59,16 @@ typedef struct {
     int near_reach;            /* the lateral reach it was made with */
 } mc_plastic_ops;
 
+/* 1 when the operators of volume v on grid g fold the surface loads into the residual stress
+ * operator (eigen_op.h mc_eigen_stress_loads; theory §8.9): a volume under the whole grid. The
+ * loop then takes the elastic stresses from resid (one set of inverse transforms for both fields
+ * in the joint iteration's sweep), and elastic serves only the caller (the running-in's yield
+ * check); its tables cost 6 nz quadrants per load beside Love's (the memory guard counts them). */
+static inline int mc_plastic_ops_fold(const mc_grid *g, const mc_eigen_volume *v)
+{
+    return v->i0 == 0 && v->j0 == 0 && v->nx == g->nx && v->ny == g->ny;
+}
+
 /* Build the operators for grid g, volume v, Poisson ratio nu, backend b, with the friction
  * traction when friction != 0. *ops is zeroed on failure. MC_OK, MC_ERR_INPUT, MC_ERR_NOMEM or
  * the operators' own errors (stress.h, eigen_op.h). */

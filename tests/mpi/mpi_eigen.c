@@ -151,7 +151,7 @@ static void one_case(const char *name, mc_grid g, mc_eigen_volume v, int depth)
     mc_free(us);
 }
 
-/* ---- surface loads folded into the residual stress operator (theory.md §8.10) ------------- */
+/* ---- surface loads folded into the residual stress operator (theory.md §8.9) ------------- */
 
 /* S eps + the stresses of p and q_x, and the loads alone, through one operator built serially or
  * distributed; *bytes_bad (distributed) 1 when the bytes the folding took differ from
