@@ -6,6 +6,8 @@
  *   - the loads alone (eps NULL) equal mc_stress_field, and p3 is zero;
  *   - the fft and direct backends agree;
  *   - the plain apply is untouched by the folding, and the bytes grow by the estimate;
+ * the forward transforms shared with the displacement operator (mc_eigen_stress_forward,
+ * mc_eigen_disp_apply_shared, mc_eigen_stress_apply_forwarded);
  * and the refusals (a window smaller than the grid, q_x without p, folding twice). */
 #include <check.h>
 #include <math.h>
@@ -176,6 +178,62 @@ START_TEST(test_backends)
 }
 END_TEST
 
+/* The forward transforms shared by both operators: u_z from the stress operator's layer spectra
+ * against the displacement operator's own transforms (the same transforms, the layers summed in
+ * the stress operator's order: round-off, measured 2-3.5e-16; bound 1e-13), and the forwarded stress apply
+ * against the plain one (the same spectra: the same bits). _i = 2 case + backend; the direct
+ * backend shares nothing and falls back to the plain applies (the same bits). */
+#define TOL_SHARED 1e-13
+START_TEST(test_shared_forward)
+{
+    const lcase *lc = &cases[_i / 2];
+    const mc_backend b = (_i & 1) ? MC_BACKEND_DIRECT : MC_BACKEND_FFT;
+    const mc_grid g = grid_of(lc);
+    const mc_eigen_volume v = vol_of(lc);
+    const size_t ns = mc_grid_cells(&g), n = ns * v.nz;
+    double *eps[6], *s1[6], *s2[6];
+    double *be = eig_fields(n, eps), *b1 = eig_fields(n, s1), *b2 = eig_fields(n, s2);
+    double *p = malloc(ns * sizeof *p), *u1 = malloc(ns * sizeof *u1), *u2 = malloc(ns * sizeof *u2);
+    test_random_field(be, 6 * n, 3 + (unsigned)_i);
+    test_random_field(p, ns, 13 + (unsigned)_i);
+    for (size_t i = 0; i < 6 * n; i++)
+        be[i] *= 1e-3;
+    for (size_t i = 0; i < ns; i++)
+        p[i] *= 1e9;
+    mc_eigen_stress *so = eig_stress_op(&g, &v, NU, b);
+    mc_eigen_disp *dop = eig_disp_op(&g, &v, NU, b);
+    mc_error err;
+    ck_assert(mc_eigen_stress_loads(so, MC_TRACTION_P, &err) == MC_OK);
+    ck_assert_int_eq(mc_eigen_disp_shares(dop, so), b == MC_BACKEND_FFT);
+    const double *const *e = (const double *const *)eps;
+    mc_eigen_disp_apply(dop, e, u1);
+    mc_eigen_stress_apply_loaded(so, e, G_MOD, p, NULL, s1);
+    mc_eigen_disp_apply_shared(dop, so, e, u2);
+    ck_assert(mc_eigen_stress_forwarded(so));
+    mc_eigen_stress_apply_forwarded(so, G_MOD, p, NULL, s2);
+    ck_assert(!mc_eigen_stress_forwarded(so));
+    const double eu = test_rel_maxdiff(u2, u1, ns);
+    if (getenv("MC_TEST_VERBOSE"))
+        fprintf(stderr, "shared forward case %d (%s): u_z %.3g\n", _i / 2,
+                b == MC_BACKEND_FFT ? "fft" : "direct", eu);
+    ck_assert_msg(eu <= TOL_SHARED, "case %d: u_z from the shared spectra %.3g", _i, eu);
+    if (b == MC_BACKEND_DIRECT)
+        ck_assert(memcmp(u1, u2, ns * sizeof *u1) == 0);
+    ck_assert_msg(memcmp(b1, b2, 6 * n * sizeof *b1) == 0, "case %d: forwarded apply differs", _i);
+    ck_assert(eig_max_abs(u1, ns) > 0.0);
+    /* another apply forgets the forward: apply_forwarded gives the loads alone */
+    mc_eigen_stress_forward(so, e);
+    mc_eigen_stress_apply(so, e, G_MOD, s2);
+    ck_assert(!mc_eigen_stress_forwarded(so));
+    mc_eigen_stress_apply_forwarded(so, G_MOD, p, NULL, s2);
+    mc_eigen_stress_apply_loaded(so, NULL, G_MOD, p, NULL, s1);
+    ck_assert(memcmp(b1, b2, 6 * n * sizeof *b1) == 0);
+    mc_eigen_stress_destroy(&so);
+    mc_eigen_disp_destroy(&dop);
+    free(p), free(u1), free(u2), free(be), free(b1), free(b2);
+}
+END_TEST
+
 START_TEST(test_refused)
 {
     const mc_grid g = {9, 7, 1e-6, 1e-6, 0, 0};
@@ -195,6 +253,9 @@ START_TEST(test_refused)
     ck_assert_int_eq(mc_eigen_stress_loads(op, MC_TRACTION_P, &err), MC_ERR_INPUT);
     ck_assert_msg(strstr(err.msg, "whole grid") != NULL, "%s", err.msg);
     ck_assert_int_eq(mc_eigen_stress_loads_estimate(&g, &v, MC_BACKEND_FFT, 0, MC_TRACTION_P), 0);
+    mc_eigen_disp *dop = eig_disp_op(&g, &v, NU, MC_BACKEND_FFT);
+    ck_assert_int_eq(mc_eigen_disp_shares(dop, op), 0); /* a window: its own transforms */
+    mc_eigen_disp_destroy(&dop);
     mc_eigen_stress_destroy(&op);
 }
 END_TEST
@@ -207,6 +268,7 @@ Suite *suite_eigen_loads(void)
     tcase_set_timeout(tc, 120);
     tcase_add_loop_test(tc, test_folded, 0, 2 * N_CASES);
     tcase_add_loop_test(tc, test_backends, 0, N_CASES);
+    tcase_add_loop_test(tc, test_shared_forward, 0, 2 * N_CASES);
     tcase_add_test(tc, test_refused);
     suite_add_tcase(s, tc);
     return s;

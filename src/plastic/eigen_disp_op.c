@@ -476,6 +476,94 @@ void mc_eigen_disp_apply(mc_eigen_disp *op, const double *const eps[6], double *
     op->ops->apply(op, eps, uz);
 }
 
+/* ---- u_z from the stress operator's layer spectra (theory.md §8.9) --------------------------- */
+
+int mc_eigen_disp_shares(const mc_eigen_disp *dop, const mc_eigen_stress *sop)
+{
+    const mc_eigen_volume *v = &dop->v;
+    if (dop->ops->id != MC_BACKEND_FFT || !sop->fft || !mc_eigen_volume_equal(v, &sop->v) ||
+        v->i0 != 0 || v->j0 != 0 || v->nx != dop->g.nx || v->ny != dop->g.ny ||
+        dop->g.nx != sop->g.nx || dop->g.ny != sop->g.ny ||
+        dop->g.periodic_x != sop->g.periodic_x || dop->g.periodic_y != sop->g.periodic_y)
+        return 0;
+    mc_eig_layer_spectra S;
+    mc_eig_stress_fft_spectra(sop, &S);
+    if (S.tx != dop->fft.tx || S.ty != dop->fft.ty || S.dist != (dop->d != NULL))
+        return 0;
+    return S.dist ? S.k0 == dop->k0 && S.nk == dop->nk : S.k0 == 0 && S.nk == dop->fft.hx;
+}
+
+/* The stress operator's forward shows each layer spectrum E_kc as it is made (while it is in the
+ * cache): serial, thread `thread` adds T_kc E_kc to its own sum (the threads' sums are added in a
+ * fixed order afterwards, as fft_apply does); distributed (thread -1), the sum on this rank's
+ * columns, threads over kx. */
+static void visit_layer(void *ctx, int thread, int k, int c, const fftw_complex *E)
+{
+    mc_eigen_disp *op = ctx;
+    const double *R = op->tab + (size_t)(k * 6 + c) * (op->d ? op->tlen : op->qlen);
+    if (thread >= 0) {
+        fft_accumulate(op, R, c, E, op->spec + (size_t)thread * 2 * op->fft.speclen +
+                                        op->fft.speclen);
+        return;
+    }
+    const int ty = op->fft.ty, my = op->qy - 1, nk = op->nk;
+    const int rot = mc_eig_odd_x(c) + mc_eig_odd_y(c), oy = mc_eig_odd_y(c);
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+    for (int kx = 0; kx < nk; kx++) {
+        const double *r = R + (size_t)kx * op->qy;
+        fftw_complex *a = op->acc + (size_t)kx * ty;
+        for (int ky = 0; ky < ty; ky++) {
+            const int mirror = ky > my;
+            const double s = (mirror && oy) ? -1.0 : 1.0, v = r[mirror ? ty - ky : ky];
+            const fftw_complex *e = E + (size_t)ky * nk + kx;
+            double re = s * v * (*e)[0], im = s * v * (*e)[1];
+            mc_eig_rot(&re, &im, rot);
+            a[ky][0] += re;
+            a[ky][1] += im;
+        }
+    }
+}
+
+void mc_eigen_disp_apply_shared(mc_eigen_disp *dop, mc_eigen_stress *sop,
+                                const double *const eps[6], double *uz)
+{
+    if (!mc_eigen_disp_shares(dop, sop)) {
+        mc_eigen_stress_forward(sop, eps);
+        mc_eigen_disp_apply(dop, eps, uz);
+        return;
+    }
+    const int nx = dop->g.nx, ny = dop->g.ny, tx = dop->fft.tx, ty = dop->fft.ty;
+    const double scale = 1.0 / ((double)tx * ty); /* FFTW does not normalise */
+    const mc_eig_forward_visit visit = {visit_layer, dop, dop->d ? 1 : dop->nthr};
+    if (dop->d) {
+        const size_t al = (size_t)dop->nk * ty, cells = (size_t)nx * ny;
+        memset(dop->acc, 0, al * sizeof *dop->acc);
+        mc_eig_stress_forward_visit(sop, eps, &visit);
+        memcpy(dop->bs, dop->acc, al * sizeof *dop->acc);
+        mc_dfft_inverse_many(dop->d, dop->bs, al, 1, uz, cells);
+        for (size_t q = 0; q < cells; q++)
+            uz[q] *= scale;
+        return;
+    }
+    const size_t sl = dop->fft.speclen;
+    for (int t = 0; t < dop->nthr; t++)
+        memset(dop->spec + (size_t)t * 2 * sl + sl, 0, sl * sizeof *dop->spec);
+    mc_eig_stress_forward_visit(sop, eps, &visit);
+    /* the threads' sums into thread 0's, in a fixed order (an idle thread's sum is zero) */
+    fftw_complex *acc0 = dop->spec + sl;
+    const long n = (long)((size_t)ty * dop->fft.hx);
+#pragma omp parallel for schedule(static) num_threads(dop->nthr)
+    for (long q = 0; q < n; q++)
+        for (int t = 1; t < dop->nthr; t++) {
+            acc0[q][0] += dop->spec[(size_t)t * 2 * sl + sl + q][0];
+            acc0[q][1] += dop->spec[(size_t)t * 2 * sl + sl + q][1];
+        }
+    mc_eig_fft_inverse(&dop->fft, acc0, dop->rows);
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            uz[(size_t)j * nx + i] = scale * dop->rows[(size_t)j * tx + i];
+}
+
 size_t mc_eigen_disp_bytes(const mc_eigen_disp *op) { return op->bytes; }
 
 size_t mc_eigen_disp_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)

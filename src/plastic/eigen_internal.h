@@ -219,6 +219,9 @@ struct mc_eigen_stress {
                         * centre per unit load on one cell, the stress module's patch tables
                         * (centre values, images on periodic axes), or their spectra (fft, this
                         * rank's columns in Love's layout) */
+    const double *const *fwd; /* eps of mc_eigen_stress_forward (its layer spectra in E, fft),
+                        * consumed by mc_eigen_stress_apply_forwarded; NULL otherwise */
+    const double *fwd_eps[6];
     double *p3;        /* window: p3 of the last apply, Pa */
     double *work;      /* window p3 / 2G */
     void *fft;         /* fft: spectra, transforms and workspaces (eigen_stress_fft.c) */
@@ -282,6 +285,30 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err);
 void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
                              const double *const *loads, double *const sig[6]);
 int mc_eig_stress_fft_loads(mc_eigen_stress *op, mc_error *err);
+/* The layer spectra of eps into E (mc_eigen_stress_forward); the apply that follows with
+ * op->fwd set skips its forward transforms. With visit, visit->layer(ctx, thread, k, c, E_kc)
+ * sees each spectrum as soon as it is made (serial: on the thread that made it, thread <
+ * visit->nthr, each thread its layers in a fixed order for a given thread count; distributed:
+ * thread -1, one call at a time, in a fixed order: the visitor may run its own threads). E_kc
+ * has E's layout (mc_eig_layer_spectra). Collective when distributed. */
+typedef struct {
+    void (*layer)(void *ctx, int thread, int k, int c, const fftw_complex *E);
+    void *ctx;
+    int nthr;
+} mc_eig_forward_visit;
+void mc_eig_stress_fft_forward(mc_eigen_stress *op, const double *const eps[6],
+                               const mc_eig_forward_visit *visit);
+/* mc_eigen_stress_forward with a visitor (fft backend; the direct backend ignores visit). */
+void mc_eig_stress_forward_visit(mc_eigen_stress *op, const double *const eps[6],
+                                 const mc_eig_forward_visit *visit);
+/* Where E is, for the displacement operator (eigen_disp_op.c mc_eigen_disp_apply_shared):
+ * spectrum c * nz + k at E + (c nz + k) speclen, rows of nk values [ky nk + kx - k0], ty rows. */
+typedef struct {
+    const fftw_complex *E;
+    size_t speclen;
+    int tx, ty, k0, nk, dist;
+} mc_eig_layer_spectra;
+void mc_eig_stress_fft_spectra(const mc_eigen_stress *op, mc_eig_layer_spectra *out);
 void mc_eig_stress_fft_free(mc_eigen_stress *op);
 /* Bytes of the folded loads' spectra of nloads loads for op (its sizes set) with ranks as
  * mc_eig_stress_fft_estimate. */

@@ -251,6 +251,30 @@ int mc_eigen_stress_loads_of(const mc_eigen_stress *op);
 void mc_eigen_stress_apply_loaded(mc_eigen_stress *op, const double *const eps[6], double G,
                                   const double *p, const double *qx, double *const sig[6]);
 
+/* The forward transforms of one strain field shared by both operators (theory.md §8.9): the
+ * joint iteration needs u_z and the stresses of the same eps in one evaluation, with the contact
+ * solve between them. mc_eigen_stress_forward(op, eps) transforms eps into the stress operator's
+ * layer spectra (the direct backend only remembers eps); mc_eigen_disp_apply_shared makes that
+ * forward and takes u_z from the spectra as they are made, and mc_eigen_stress_apply_forwarded(op, G, p, qx, sig) finishes the
+ * stress of that eps (as mc_eigen_stress_apply_loaded, without its forward transforms). eps must
+ * not change in between; any other apply of op forgets the forward (mc_eigen_stress_forwarded
+ * then 0, and apply_forwarded gives the loads' stresses alone). Collective under mpirun. */
+void mc_eigen_stress_forward(mc_eigen_stress *op, const double *const eps[6]);
+int mc_eigen_stress_forwarded(const mc_eigen_stress *op);
+void mc_eigen_stress_apply_forwarded(mc_eigen_stress *op, double G, const double *p,
+                                     const double *qx, double *const sig[6]);
+
+/* 1 when dop can read the layer spectra of sop's forward (fft backends of one volume under the
+ * whole grid, the same transform sizes and, distributed, the same columns). */
+int mc_eigen_disp_shares(const mc_eigen_disp *dop, const mc_eigen_stress *sop);
+
+/* u_z of eps as mc_eigen_disp_apply, and mc_eigen_stress_forward(sop, eps): when dop shares
+ * sop's transforms, u_z is summed from sop's layer spectra as sop's forward makes them (no
+ * transform of its own; the same values to round-off), else by dop's own transforms. Either way
+ * mc_eigen_stress_apply_forwarded(sop, ...) may follow. Collective under mpirun. */
+void mc_eigen_disp_apply_shared(mc_eigen_disp *dop, mc_eigen_stress *sop,
+                                const double *const eps[6], double *uz);
+
 /* Bytes that mc_eigen_stress_loads(op, loads) would add to the operator mc_eigen_stress_create(g,
  * v, b) builds, ranks as mc_eigen_stress_estimate_ranks (the memory guard). */
 size_t mc_eigen_stress_loads_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,

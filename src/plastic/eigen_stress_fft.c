@@ -966,6 +966,75 @@ static void to_dfft(const sfft *f, const fftw_complex *e, fftw_complex *d)
         }
 }
 
+/* Every layer and component forward by the distributed transforms, into E (and shown to visit,
+ * when given). Collective. */
+static void dist_forward(const mc_eigen_stress *op, sfft *f, const double *const eps[6],
+                         const mc_eig_forward_visit *visit)
+{
+    const int nz = op->v.nz, bm = f->bm;
+    const size_t sl = f->fft.speclen, wc = (size_t)op->v.nx * op->v.ny;
+    const size_t dl = (size_t)f->nk * f->fft.ty;
+    for (int c = 0; c < 6; c++) /* a component's layers are contiguous: batches of bm */
+        for (int k0 = 0; k0 < nz; k0 += bm) {
+            const int m = nz - k0 < bm ? nz - k0 : bm;
+            mc_dfft_forward_many(f->d, eps[c] + k0 * wc, wc, m, f->bs, dl);
+            for (int q = 0; q < m; q++) {
+                fftw_complex *e = f->E + (size_t)(c * nz + k0 + q) * sl;
+                from_dfft(f, f->bs + q * dl, e);
+                if (visit)
+                    visit->layer(visit->ctx, -1, k0 + q, c, e);
+            }
+        }
+}
+
+/* Every layer and component forward into E (serial: threads over the layers; with a visitor a
+ * static schedule, so that each thread visits the same layers in the same order on every run). */
+static void serial_forward(const mc_eigen_stress *op, sfft *f, const double *const eps[6],
+                           const mc_eig_forward_visit *visit)
+{
+    const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, tx = f->fft.tx;
+    const size_t sl = f->fft.speclen, wc = (size_t)wx * wy, rl = (size_t)wy * tx;
+    const int nthr = visit && visit->nthr < f->nthr ? visit->nthr : f->nthr;
+#pragma omp parallel num_threads(nthr)
+    {
+        const int me = omp_get_thread_num();
+        double *rows = f->rows + (size_t)me * rl;
+        if (visit) {
+#pragma omp for schedule(static)
+            for (int t = 0; t < 6 * nz; t++) {
+                const int c = t / nz, k = t % nz;
+                mc_eig_fill_rows(rows, tx, eps[c] + k * wc, wx, wy, 0);
+                mc_eig_fft_forward(&f->fft, rows, f->E + (size_t)t * sl);
+                visit->layer(visit->ctx, me, k, c, f->E + (size_t)t * sl);
+            }
+        } else {
+#pragma omp for schedule(dynamic, 1)
+            for (int t = 0; t < 6 * nz; t++) {
+                const int c = t / nz, k = t % nz;
+                mc_eig_fill_rows(rows, tx, eps[c] + k * wc, wx, wy, 0);
+                mc_eig_fft_forward(&f->fft, rows, f->E + (size_t)t * sl);
+            }
+        }
+    }
+}
+
+void mc_eig_stress_fft_forward(mc_eigen_stress *op, const double *const eps[6],
+                               const mc_eig_forward_visit *visit)
+{
+    sfft *f = op->fft;
+    if (f->d)
+        dist_forward(op, f, eps, visit);
+    else
+        serial_forward(op, f, eps, visit);
+}
+
+void mc_eig_stress_fft_spectra(const mc_eigen_stress *op, mc_eig_layer_spectra *out)
+{
+    const sfft *f = op->fft;
+    *out = (mc_eig_layer_spectra){f->E, f->fft.speclen, f->fft.tx, f->fft.ty, f->k0, f->nk,
+                                  f->d != NULL};
+}
+
 /* The distributed apply (theory.md §8.4): the lateral transforms by mc_dfft (each rank its rows,
  * then its columns), the depth step on this rank's frequencies, p3 and the stresses gathered
  * whole on every rank by the inverse transforms. Collective. */
@@ -983,13 +1052,8 @@ static void dist_apply(mc_eigen_stress *op, const double *const eps[6], double G
             scale_spectrum(f->PL + (size_t)l * sl, sl, 0.5 / G);
         }
     if (eps) {
-        for (int c = 0; c < 6; c++) /* a component's layers are contiguous: batches of bm */
-            for (int k0 = 0; k0 < nz; k0 += bm) {
-                const int m = nz - k0 < bm ? nz - k0 : bm;
-                mc_dfft_forward_many(f->d, eps[c] + k0 * wc, wc, m, f->bs, dl);
-                for (int q = 0; q < m; q++)
-                    from_dfft(f, f->bs + q * dl, f->E + (size_t)(c * nz + k0 + q) * sl);
-            }
+        if (!op->fwd) /* (else E holds them: mc_eigen_stress_forward) */
+            dist_forward(op, f, eps, NULL);
 #pragma omp parallel num_threads(f->nthr)
         depth_all(op, f, omp_get_thread_num());
         /* p3 on the window only: back to space (whole on every rank), cut, forward again */
@@ -1035,6 +1099,7 @@ void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], do
     }
     const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, tx = f->fft.tx, ty = f->fft.ty;
     const int nl = loads ? op->nloads : 0;
+    const int nf = eps && !op->fwd ? 6 * nz : 0; /* forward transforms (none: E holds them) */
     const size_t sl = f->fft.speclen, wc = (size_t)wx * wy, rl = (size_t)wy * tx;
     const double scale = 1.0 / ((double)tx * ty); /* FFTW does not normalise */
 #pragma omp parallel num_threads(f->nthr)
@@ -1043,9 +1108,9 @@ void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], do
         double *rows = f->rows + (size_t)me * rl;
         /* every layer and column forward, and the folded loads */
 #pragma omp for schedule(dynamic, 1)
-        for (int t = 0; t < (eps ? 6 * nz : 0) + nl; t++) {
-            if (t >= (eps ? 6 * nz : 0)) {
-                const int l = t - (eps ? 6 * nz : 0);
+        for (int t = 0; t < nf + nl; t++) {
+            if (t >= nf) {
+                const int l = t - nf;
                 if (!loads[l])
                     continue;
                 mc_eig_fill_rows(rows, tx, loads[l], wx, wy, 0);

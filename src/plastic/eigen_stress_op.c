@@ -787,8 +787,28 @@ static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_back
 void mc_eigen_stress_apply(mc_eigen_stress *op, const double *const eps[6], double G,
                            double *const sig[6])
 {
+    op->fwd = NULL;
     op->ops->apply(op, eps, G, NULL, sig);
 }
+
+/* ---- the forward transforms shared with the displacement operator ---------------------------- */
+
+void mc_eig_stress_forward_visit(mc_eigen_stress *op, const double *const eps[6],
+                                 const mc_eig_forward_visit *visit)
+{
+    for (int c = 0; c < 6; c++)
+        op->fwd_eps[c] = eps[c];
+    op->fwd = op->fwd_eps;
+    if (op->ops->id == MC_BACKEND_FFT)
+        mc_eig_stress_fft_forward(op, eps, visit);
+}
+
+void mc_eigen_stress_forward(mc_eigen_stress *op, const double *const eps[6])
+{
+    mc_eig_stress_forward_visit(op, eps, NULL);
+}
+
+int mc_eigen_stress_forwarded(const mc_eigen_stress *op) { return op->fwd != NULL; }
 
 /* ---- surface loads folded in (theory.md §8.9) ---------------------------------------------- */
 
@@ -849,13 +869,27 @@ int mc_eigen_stress_loads_of(const mc_eigen_stress *op)
     return loads;
 }
 
-void mc_eigen_stress_apply_loaded(mc_eigen_stress *op, const double *const eps[6], double G,
-                                  const double *p, const double *qx, double *const sig[6])
+static void apply_loads(mc_eigen_stress *op, const double *const eps[6], double G,
+                        const double *p, const double *qx, double *const sig[6])
 {
     const double *loads[2] = {NULL, NULL};
     for (int l = 0; l < op->nloads; l++)
         loads[l] = op->load_id[l] == MC_TRACTION_P ? p : qx;
     op->ops->apply(op, eps, G, op->nloads ? loads : NULL, sig);
+    op->fwd = NULL;
+}
+
+void mc_eigen_stress_apply_loaded(mc_eigen_stress *op, const double *const eps[6], double G,
+                                  const double *p, const double *qx, double *const sig[6])
+{
+    op->fwd = NULL;
+    apply_loads(op, eps, G, p, qx, sig);
+}
+
+void mc_eigen_stress_apply_forwarded(mc_eigen_stress *op, double G, const double *p,
+                                     const double *qx, double *const sig[6])
+{
+    apply_loads(op, op->fwd, G, p, qx, sig); /* fwd NULL: the loads alone */
 }
 
 void mc_eigen_stress_p3(const mc_eigen_stress *op, double *p3)

@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <string.h>
+#include <stdlib.h>
 
 #include "core/alloc.h"
 #include "core/dist.h"
@@ -48,6 +49,9 @@ typedef struct {
                                     (mc_eigen_stress_loads; theory §8.9): the elastic stresses
                                     come from it, and the joint iteration's sweep takes both
                                     fields from one apply into sig_r */
+    int shared;                  /* 1: folded, and the displacement operator reads the stress
+                                    operator's forward transforms of the same strain (one
+                                    forward per joint evaluation; theory §8.9) */
     double *s_layer;             /* 6 ny*nx: one layer of elastic stresses on the whole grid
                                     (a window smaller than the grid; NULL when whole) */
     double *qx;                  /* friction traction, ny*nx */
@@ -255,6 +259,7 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
     c->disp = ops->disp;
     c->resid = ops->resid;
     c->folded = c->whole && mc_eigen_stress_loads_of(c->resid) != 0;
+    c->shared = c->folded && mc_eigen_disp_shares(c->disp, c->resid);
     const int reach = pb->near_reach;
     if (rc == MC_OK && reach > 0) { /* made once per operators (the running-in's steps
                                                 share it) */
@@ -500,12 +505,13 @@ static double surely_elastic_below(const mc_hardening *law)
  * whether a cell yields into *plastic. Returns 1 when a return map failed (non-finite trial).
  * p != NULL (folded operators, the joint iteration): sig_r receives sigma_e of the pressure p
  * (and its friction traction) plus S(eps_p + d_eps) from one apply (theory §8.9), and sig_e is
- * neither written nor read. */
+ * neither written nor read; forwarded: the forward transforms of eps_p + d_eps were made already
+ * (mc_eigen_stress_forward, for u_r) and are not made again. */
 static void sweep_split_join(loop_ctx *c, double *change, double *size, int *plastic, int *bad);
 
 static int sweep(loop_ctx *c, const double *eps_p, const double *peq, const double *p,
-                 double elastic_below, double *change_out, double *size_out, int *plastic_out,
-                 int *any_out)
+                 int forwarded, double elastic_below, double *change_out, double *size_out,
+                 int *plastic_out, int *any_out)
 {
     const mc_plastic_problem *pb = c->pb;
     const size_t nv6 = 6 * (size_t)c->nvol;
@@ -520,7 +526,10 @@ static int sweep(loop_ctx *c, const double *eps_p, const double *peq, const doub
         split6(c, c->tot, e);
         for (int q = 0; q < 6; q++)
             sg[q] = c->sig_r + (size_t)q * (size_t)c->nvol;
-        mc_eigen_stress_apply_loaded(c->resid, any ? e : NULL, c->G, p, qx, sg);
+        if (forwarded && any) /* the forward of this eps was made for u_r (joint_iteration) */
+            mc_eigen_stress_apply_forwarded(c->resid, c->G, p, qx, sg);
+        else
+            mc_eigen_stress_apply_loaded(c->resid, any ? e : NULL, c->G, p, qx, sg);
         c->stress_applies += any;
     } else if (any) {
         residual_stress(c, c->tot);
@@ -622,7 +631,7 @@ static int plastic_fixed_point(loop_ctx *c, const double *eps_p, const double *p
         *sweeps = m;
         int any = 0, plastic = 0;
         double change = 0, size = 0; /* sweep_change's maxima, taken in the same pass */
-        if (sweep(c, eps_p, peq, NULL, elastic_below, &change, &size, &plastic, &any)) {
+        if (sweep(c, eps_p, peq, NULL, 0, elastic_below, &change, &size, &plastic, &any)) {
             *diverged = 1;
             return MC_OK;
         }
@@ -999,10 +1008,15 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
             c->tot[i] = res->eps_p[i] + c->d_eps[i];
             any |= c->tot[i] != 0.0;
         }
-        if (any)
+        if (any && c->shared) { /* one forward transform of tot for u_r and the sweep */
+            const double *e[6];
+            split6(c, c->tot, e);
+            mc_eigen_disp_apply_shared(c->disp, c->resid, e, c->u_r);
+        } else if (any) {
             residual_displacement(c, c->tot, c->u_r);
-        else
+        } else {
             memset(c->u_r, 0, c->ncell * sizeof *c->u_r);
+        }
         int settled;
         int rc = contact_on_ur(c, solver, load, warm || k > 1, !exact, p, u, gap, sum, &settled,
                                st, err);
@@ -1016,8 +1030,8 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
             return rc;
         int plastic = 0, had = 0;
         double change = 0, size = 0;
-        const int bad = sweep(c, res->eps_p, res->peq, c->folded ? p : NULL, elastic_below,
-                              &change, &size, &plastic, &had);
+        const int bad = sweep(c, res->eps_p, res->peq, c->folded ? p : NULL, c->shared,
+                              elastic_below, &change, &size, &plastic, &had);
         if (bad || !(size <= DIVERGED_STRAIN)) { /* blew up: the nested loop starts cold */
             memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
             memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);

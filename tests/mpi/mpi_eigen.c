@@ -156,6 +156,9 @@ static void one_case(const char *name, mc_grid g, mc_eigen_volume v, int depth)
 /* S eps + the stresses of p and q_x, and the loads alone, through one operator built serially or
  * distributed; *bytes_bad (distributed) 1 when the bytes the folding took differ from
  * mc_eigen_stress_loads_estimate on rank 0 or exceed it on another rank. */
+static double shared_off; /* the last apply_loaded's shared forward against the plain applies */
+static int shared_used;   /* and whether the operators shared it */
+
 static int apply_loaded(const mc_grid *g, const mc_eigen_volume *v, int distributed,
                         const double *eps, const double *p, const double *qx, double *sig,
                         double *alone, double *bytes_bad)
@@ -187,6 +190,29 @@ static int apply_loaded(const mc_grid *g, const mc_eigen_volume *v, int distribu
         }
         mc_eigen_stress_apply_loaded(s, e, 80e9, p, qx, o);
         mc_eigen_stress_apply_loaded(s, NULL, 80e9, p, qx, a);
+        /* the forward shared with the displacement operator: u_z as its own, the stresses the
+         * same bits */
+        mc_eigen_disp *d = NULL;
+        const size_t ng = mc_grid_cells(g);
+        double *u1 = mc_malloc(ng * sizeof *u1), *u2 = mc_malloc(ng * sizeof *u2);
+        double *s2 = mc_malloc(6 * nv * sizeof *s2);
+        if (mc_eigen_disp_create(g, v, 0.3, MC_BACKEND_FFT, &d, &err) == MC_OK && u1 && u2 && s2) {
+            double *o2[6];
+            for (int c = 0; c < 6; c++)
+                o2[c] = s2 + c * nv;
+            mc_eigen_disp_apply(d, e, u1);
+            mc_eigen_disp_apply_shared(d, s, e, u2);
+            mc_eigen_stress_apply_forwarded(s, 80e9, p, qx, o2);
+            shared_off = fmax(rel_diff(u2, u1, ng), memcmp(s2, sig, 6 * nv * sizeof *s2) != 0);
+            shared_used = mc_eigen_disp_shares(d, s);
+            MPI_Allreduce(MPI_IN_PLACE, &shared_off, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+        } else {
+            shared_off = 1.0;
+        }
+        mc_eigen_disp_destroy(&d);
+        mc_free(u1);
+        mc_free(u2);
+        mc_free(s2);
     } else if (rank == 0) {
         printf("FAIL create or fold: %s\n", err.msg);
     }
@@ -215,14 +241,19 @@ static void loads_case(const char *name, mc_grid g, mc_eigen_volume v)
     }
     double bytes_bad = 0.0;
     char what[160];
-    if (apply_loaded(&g, &v, 1, eps, p, qx, sd, ad, &bytes_bad) ||
-        apply_loaded(&g, &v, 0, eps, p, qx, ss, as, &bytes_bad)) {
+    /* (the distributed one last: shared_off and shared_used are its) */
+    if (apply_loaded(&g, &v, 0, eps, p, qx, ss, as, &bytes_bad) ||
+        apply_loaded(&g, &v, 1, eps, p, qx, sd, ad, &bytes_bad)) {
         failed++;
     } else {
         snprintf(what, sizeof what, "%s: S eps + folded loads, distributed vs serial fft", name);
         check(what, rel_diff(sd, ss, 6 * nv), TOL_ROUNDOFF);
         snprintf(what, sizeof what, "%s: folded loads alone, distributed vs serial fft", name);
         check(what, rel_diff(ad, as, 6 * nv), TOL_ROUNDOFF);
+        snprintf(what, sizeof what, "%s: shared forward: u_z and the stresses as the plain applies", name);
+        check(what, shared_off, TOL_ROUNDOFF);
+        snprintf(what, sizeof what, "%s: the displacement operator shares the forward", name);
+        check(what, shared_used ? 0.0 : 1.0, 0.0);
         snprintf(what, sizeof what, "%s: bytes of the folded loads = estimate", name);
         check(what, bytes_bad, 0.0);
         snprintf(what, sizeof what, "%s: the same folded stresses on every rank", name);
