@@ -100,6 +100,26 @@ double mc_memory_estimate_ranks(const mc_scene *s, int ranks)
  * than the guard counted */
 #define PLASTIC_YIELDING 0.1
 
+/* The kernel spectra that a stress plan of the volume's layers keeps (stress.h: every layer when
+ * they fit MC_STRESS_CACHE_BYTES, for a plan made `repeated` or on a periodic grid): 6 per layer
+ * and load, complex on a periodic grid, real quadrants of (m_x + 1)(m_y + 1) on free axes; under
+ * mpirun a repeated plan keeps its rank's layers (mc_dist_share: at most ceil(nz / P)). */
+static double stress_cache(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
+                           int repeated)
+{
+    const int periodic = g->periodic_x || g->periodic_y;
+    if (!repeated && !periodic)
+        return 0.0;
+    const double tx = axis_len(g->nx, g->periodic_x), ty = axis_len(g->ny, g->periodic_y);
+    const double spec = 16 * ty * (tx / 2 + 1);
+    const double quad = (mc_fftsize_good(g->nx < 2 ? 2 : g->nx) + 1.0) *
+                        (mc_fftsize_good(g->ny < 2 ? 2 : g->ny) + 1.0) * 8;
+    const int ranks = repeated && mc_dist_active() ? mc_dist_size() : 1;
+    const int loads = s->plasticity.friction > 0 ? 2 : 1;
+    const double cache = ceil((double)v->nz / ranks) * loads * 6 * (periodic ? spec : quad);
+    return cache <= (double)MC_STRESS_CACHE_BYTES ? cache : 0.0;
+}
+
 double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
                                   int shortcut)
 {
@@ -125,25 +145,16 @@ double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_
     const double spec = 16 * ty * (tx / 2 + 1);
     const int loads = s->plasticity.friction > 0 ? 2 : 1;
     ops += loads * 7 * spec + 6 * 8 * tx * ty + 4 * cells;
-    /* the kernel spectra of every layer, kept when they fit (stress.h `repeated`): 6 per layer
-     * and load, complex on a periodic grid, real quadrants of (m_x + 1)(m_y + 1) on free axes */
-    const int periodic = g->periodic_x || g->periodic_y;
-    const double quad = (mc_fftsize_good(g->nx < 2 ? 2 : g->nx) + 1.0) *
-                        (mc_fftsize_good(g->ny < 2 ? 2 : g->ny) + 1.0) * 8;
-    /* under mpirun each rank keeps the layers it computes (mc_dist_share: at most ceil(nz / P)) */
-    const int ranks = mc_dist_active() ? mc_dist_size() : 1;
-    const double kept = ceil((double)v->nz / ranks);
-    const double cache = kept * loads * 6 * (periodic ? spec : quad);
     /* a volume under the whole grid folds the loads into the residual stress operator
      * (plastic/loop.h mc_plastic_ops_fold, theory §8.9): their tables beside Love's, and the
-     * plan above is kept only where a periodic axis makes it cache anyway */
+     * loop never uses the plan above (its spectra, if it keeps any, are never touched) */
     const int fold = mc_plastic_ops_fold(g, v);
     if (fold)
         ops += (double)mc_eigen_stress_loads_estimate(
             g, v, b, mc_dist_active() ? mc_dist_size() : 0,
             MC_TRACTION_P | (loads > 1 ? MC_TRACTION_QX : 0));
-    if (cache <= (double)MC_STRESS_CACHE_BYTES && (!fold || periodic))
-        ops += cache;
+    else
+        ops += stress_cache(s, g, v, 1);
     const double nvol = (double)v->nz * v->nx * v->ny;
     const double loop = mc_plastic_loop_bytes(g, v, PLASTIC_ANDERSON, s->plasticity.near_field,
                                               PLASTIC_YIELDING * nvol);
@@ -185,7 +196,10 @@ double mc_memory_estimate_runin(const mc_scene *s, const mc_grid *g, const mc_ei
      * its surface arrays (h_base, h_extra, z, u_r, qx, the bowl, the shape, the lubricant
      * profile, the residual displacement and final topography of each body: 12 per cell). */
     const double cells = (double)g->nx * g->ny;
-    return mc_memory_estimate_plastic(s, g, v, 0) + 12 * 8 * cells;
+    /* with the loads folded, the yield check's plan is not the loop's stresses but still
+     * computes every step: on a periodic grid its spectra are kept and used */
+    const double check = mc_plastic_ops_fold(g, v) ? stress_cache(s, g, v, 0) : 0.0;
+    return mc_memory_estimate_plastic(s, g, v, 0) + check + 12 * 8 * cells;
 }
 
 int mc_memory_check_runin(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
