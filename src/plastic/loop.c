@@ -3,7 +3,6 @@
 
 #include <math.h>
 #include <string.h>
-#include <stdlib.h>
 
 #include "core/alloc.h"
 #include "core/dist.h"
@@ -369,7 +368,6 @@ static void residual_displacement(loop_ctx *c, const double *eps, double *uz)
 /* Volume index of window cell (i, j) (window-relative) in layer k. */
 static long vidx(const loop_ctx *c, int k, long j, long i) { return ((long)k * c->nwy + j) * c->nwx + i; }
 
-/* The elastic stresses of pressure p (and its friction traction) on the window's cuboids. */
 /* The friction traction of pressure p into c->qx (NULL without friction). */
 static const double *friction_traction(loop_ctx *c, const double *p)
 {
@@ -381,6 +379,7 @@ static const double *friction_traction(loop_ctx *c, const double *p)
     return c->qx;
 }
 
+/* The elastic stresses of pressure p (and its friction traction) on the window's cuboids. */
 static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
 {
     const mc_plastic_problem *pb = c->pb;
@@ -506,7 +505,7 @@ static double surely_elastic_below(const mc_hardening *law)
  * p != NULL (folded operators, the joint iteration): sig_r receives sigma_e of the pressure p
  * (and its friction traction) plus S(eps_p + d_eps) from one apply (theory §8.9), and sig_e is
  * neither written nor read; forwarded: the forward transforms of eps_p + d_eps were made already
- * (mc_eigen_stress_forward, for u_r) and are not made again. */
+ * (mc_eigen_disp_apply_shared, for u_r) and are not made again. */
 static void sweep_split_join(loop_ctx *c, double *change, double *size, int *plastic, int *bad);
 
 static int sweep(loop_ctx *c, const double *eps_p, const double *peq, const double *p,
