@@ -73,3 +73,10 @@ void mc_cli_thread_default(void)
         return;
     omp_set_num_threads(mc_cli_free_cores());
 }
+
+void mc_cli_thread_all(void)
+{
+    if (getenv("OMP_NUM_THREADS"))
+        return;
+    omp_set_num_threads(omp_get_num_procs());
+}

@@ -221,7 +221,10 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
     c->whole = pb->volume.i0 == 0 && pb->volume.j0 == 0 && c->nwx == g->nx && c->nwy == g->ny;
     int ok = (c->depths = mc_zeros((size_t)pb->volume.nz)) && (c->qx = mc_zeros(c->ncell)) &&
              (c->whole || (c->s_layer = mc_zeros(6 * c->ncell))) &&
-             (c->sig_e = pb->work_sig_e ? pb->work_sig_e : mc_zeros(nv6)) &&
+             /* a whole-grid volume's elastic stresses are made on first need (elastic_stresses):
+              * the joint iteration with folded operators never needs them (theory §8.9) */
+             (c->sig_e = pb->work_sig_e ? pb->work_sig_e : c->whole ? NULL : mc_zeros(nv6),
+              c->sig_e || c->whole) &&
              (c->sig_r = pb->state_sig_r ? pb->state_sig_r : mc_zeros(nv6)) &&
              (c->d_eps = mc_zeros(nv6)) && (c->tot = mc_zeros(nv6)) &&
              (c->dp = mc_zeros((size_t)c->nvol)) &&
@@ -383,6 +386,14 @@ static const double *friction_traction(loop_ctx *c, const double *p)
 static int elastic_stresses(loop_ctx *c, const double *p, mc_error *err)
 {
     const mc_plastic_problem *pb = c->pb;
+    if (!c->sig_e) { /* first need (ctx_init); every rank alike before the collectives below */
+        c->sig_e = mc_zeros(6 * (size_t)c->nvol);
+        if (mc_dist_max_int(c->sig_e ? MC_OK : MC_ERR_NOMEM) != MC_OK)
+            return mc_fail(err, MC_ERR_NOMEM,
+                           "plastic loop: out of memory for the elastic stresses of %ld volume "
+                           "cells",
+                           c->nvol);
+    }
     const double *qx = friction_traction(c, p);
     if (c->folded) { /* the residual stress operator's loads alone (theory §8.9) */
         double *s[6];

@@ -274,7 +274,10 @@ void mc_plastic_result_free(mc_plastic_result *res);
  * bytes per yielding cell) counted for `yielding` cells. The arrays a problem lends
  * (state_eps_p, state_peq, state_sig_r, work_sig_e: 152 bytes per volume cell) are counted too:
  * the caller holds them instead of the loop. A split load step's copy of the state
- * (56 bytes per volume cell, taken only when a step diverges) is not counted. */
+ * (56 bytes per volume cell, taken only when a step diverges) is not counted. The elastic
+ * stresses of a volume under the whole grid (48 bytes per volume cell) are made on first need,
+ * which the joint iteration with folded operators (mc_plastic_ops_fold) never has unless it
+ * falls back to the nested loop: counted, so that the guard holds for the fallback too. */
 double mc_plastic_loop_bytes(const mc_grid *g, const mc_eigen_volume *v, int anderson,
                              int near_reach, double yielding);
 
