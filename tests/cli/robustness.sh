@@ -732,16 +732,17 @@ plastic_stop plastic_stop_flat_overload 30 flat_overload.ini
   printf '[plasticity]\nhardening = swift\nswift_B = 50 MPa\nswift_C = 1e9\nswift_n = 0.095\n'
   printf 'load_steps = 3\nmax_outer = 2\n'; } > swift_c1e9.ini
 plastic_stop plastic_stop_swift_c1e9 30 swift_c1e9.ini
-# the running-in of cases/default.ini on 32 x 32, perfectly plastic at 50 MPa: the fixed point
+# the running-in of cases/default.ini on 32 x 32, perfectly plastic at 40 MPa: the fixed point
 # stalls at its cap (before: 3000 sweeps in every elastic-plastic step, 18 of them). The row keeps
-# the scene it was made on, the 10 mm track (p_H 447 MPa) with 3 um of 0.4 um layers: it stalls
-# at the 5th step (3.7 s of CPU); at the paper's pressures of the default it stalls only at the
-# 18th (29 s)
-sed -e 's/^n\([xy]\) = 64/n\1 = 32/' -e 's/^hardening = swift/hardening = perfect\nyield_stress = 50 MPa/' \
+# the scene it was made on, the 10 mm track (p_H 447 MPa) with 3 um of 0.4 um layers, at 50 MPa
+# until the elastic stresses were folded into the residual stress operator (theory §8.9): that
+# moved the round-off of this ill-posed scene, and at 50 MPa it stalled at the 18th step instead
+# of the 6th (15.7 s; 36 s under the sanitizers). At 40 MPa it stalls at the 5th step (1.6 s)
+sed -e 's/^n\([xy]\) = 64/n\1 = 32/' -e 's/^hardening = swift/hardening = perfect\nyield_stress = 40 MPa/' \
     -e '/^swift_/d' -e '/^dir = /d' -e 's/^width = .*/width = 10 mm/' -e 's/^dz = .*/dz = 0.4 um/' \
-    -e 's/^depth = .*/depth = 3 um/' "$REPO/cases/default.ini" > runin_y50.ini
-printf '[solver]\nthreads = 1\n' >> runin_y50.ini
-plastic_stop plastic_stop_runin_y50 30 runin_y50.ini surface_final
+    -e 's/^depth = .*/depth = 3 um/' "$REPO/cases/default.ini" > runin_y40.ini
+printf '[solver]\nthreads = 1\n' >> runin_y40.ini
+plastic_stop plastic_stop_runin_y40 30 runin_y40.ini surface_final
 
 echo "robustness: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
