@@ -51,7 +51,7 @@ void mc_cli_wait_policy(char **argv);
 void mc_cli_thread_default(void);
 int mc_cli_free_cores(void); /* that count */
 /* The thread count of `verify`: every core unless OMP_NUM_THREADS is set (the count its
- * baselines were blessed with; the results depend on it in the last bits). */
+ * baselines were blessed with; a few results depend on it in the last bits). */
 void mc_cli_thread_all(void);
 /* The decision, without the machine: the count on procs cores from nsamples samples of the
  * running tasks (running[k] as mc_cli_loadavg_running returns it); the least sample counts,

@@ -8,9 +8,9 @@
  * (/proc/loadavg, fourth field "running/total", this process included) says how many cores are
  * taken now; the least of a few samples 2 ms apart ignores a task that only passes by. A user's
  * OMP_NUM_THREADS, or [solver] threads / --set solver.threads=N in the case, decide instead; a
- * contact solve gives the same bits on any thread count (tests/test_thread_count.c), an
- * elastic-plastic run differs in the last bits, so `verify` takes every core
- * (mc_cli_thread_all; docs/architecture.md "Threads").
+ * contact solve and an elastic-plastic run give the same bits on any thread count
+ * (tests/test_thread_count.c, tests/test_eigen_threads.c), a few verification results do not, so
+ * `verify` takes every core (mc_cli_thread_all; docs/architecture.md "Threads").
  *
  * The decision is split from the reading so that it can be tested without a loaded machine:
  * mc_cli_loadavg_running parses one /proc/loadavg text, mc_cli_free_cores_from turns the samples

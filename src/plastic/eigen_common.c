@@ -107,6 +107,12 @@ int mc_eig_threads(size_t work)
     return n > 1 && work >= MC_THREADS_MIN_CELLS ? n : 1;
 }
 
+#define SUM_BLOCKS_MAX 8 /* eigen_internal.h: the threads that can share a blocked sum */
+
+int mc_eig_sum_blocks(int nz) { return 6 * nz < SUM_BLOCKS_MAX ? 6 * nz : SUM_BLOCKS_MAX; }
+
+int mc_eig_block_first(int b, int nb, int nz) { return (int)((long)b * 6 * nz / nb); }
+
 /* ---- quadrant tables ------------------------------------------------------------------------- */
 
 void mc_eig_fill(int qx, int qy, int ux, int uy, int ncomp, const int *par, mc_eig_kfn fn,

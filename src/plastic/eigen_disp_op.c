@@ -32,7 +32,9 @@ struct mc_eigen_disp {
     mc_eig_fft fft;  /* 2 mx x 2 my, forward rows j0 .. j0 + wy - 1, inverse rows 0 .. ny - 1 */
     int nthr;        /* workspaces */
     double *rows;    /* nthr x (ny * tx) */
-    fftw_complex *spec; /* nthr x 2 spectra: the transformed layer and the thread's sum */
+    fftw_complex *spec; /* nthr spectra: each thread's transformed layer */
+    int nb;          /* sum blocks (mc_eig_sum_blocks) */
+    fftw_complex *sums; /* nb spectra: each block's sum */
     int *group;      /* the object's copy of v.group (NULL: uniform) */
     /* fft distributed (under mpirun, mc_dist_active at create; theory.md §8.4) */
     mc_dfft *d;      /* the grid's lateral transforms, the window embedded at (i0, j0) */
@@ -178,12 +180,14 @@ static int fft_create(mc_eigen_disp *op, mc_error *err)
     if (rc)
         return rc;
     op->nthr = mc_eig_threads(6 * (size_t)op->v.nz * (size_t)op->fft.tx * (size_t)op->fft.ty);
+    op->nb = mc_eig_sum_blocks(op->v.nz);
     const size_t rlen = (size_t)op->g.ny * op->fft.tx;
     if (!(op->rows = mc_malloc((size_t)op->nthr * rlen * sizeof *op->rows)) ||
-        !(op->spec = mc_malloc((size_t)op->nthr * 2 * op->fft.speclen * sizeof *op->spec)))
+        !(op->spec = mc_malloc((size_t)op->nthr * op->fft.speclen * sizeof *op->spec)) ||
+        !(op->sums = mc_malloc((size_t)op->nb * op->fft.speclen * sizeof *op->sums)))
         return mc_fail(err, MC_ERR_NOMEM, "eigen displacement: out of memory for workspaces");
-    op->bytes += (size_t)op->nthr * (rlen * sizeof *op->rows +
-                                     2 * op->fft.speclen * sizeof *op->spec);
+    op->bytes += (size_t)op->nthr * (rlen * sizeof *op->rows + op->fft.speclen * sizeof *op->spec) +
+                 (size_t)op->nb * op->fft.speclen * sizeof *op->sums;
     return MC_OK;
 }
 
@@ -338,48 +342,57 @@ static void fft_accumulate(const mc_eigen_disp *op, const double *R, int c,
     }
 }
 
+/* The block sums into block 0's, per frequency in block order, then u_z = the inverse of it. */
+static void finish_sums(mc_eigen_disp *op, double *uz)
+{
+    const size_t sl = op->fft.speclen;
+    const long n = (long)((size_t)op->fft.ty * op->fft.hx);
+    const int nx = op->g.nx, ny = op->g.ny, tx = op->fft.tx;
+    fftw_complex *acc0 = op->sums;
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+    for (long q = 0; q < n; q++)
+        for (int b = 1; b < op->nb; b++) {
+            acc0[q][0] += op->sums[(size_t)b * sl + q][0];
+            acc0[q][1] += op->sums[(size_t)b * sl + q][1];
+        }
+    mc_eig_fft_inverse(&op->fft, acc0, op->rows);
+    const double scale = 1.0 / ((double)tx * op->fft.ty); /* FFTW does not normalise */
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            uz[(size_t)j * nx + i] = scale * op->rows[(size_t)j * tx + i];
+}
+
+/* The 6 nz layer products in the sum blocks of mc_eig_sum_blocks: each block by one thread, its
+ * layers in order into its own sum; then the blocks' sums in block order. Every addition's order
+ * is fixed by the sizes: the same bits on any number of threads (theory.md §8.4). */
 static void fft_apply(mc_eigen_disp *op, const double *const eps[6], double *uz)
 {
     if (op->d) {
         dist_apply(op, eps, uz);
         return;
     }
-    const int nz = op->v.nz, tx = op->fft.tx, ty = op->fft.ty, nx = op->g.nx, ny = op->g.ny;
-    const size_t sl = op->fft.speclen, rlen = (size_t)ny * tx;
+    const int nz = op->v.nz, tx = op->fft.tx, nb = op->nb;
+    const size_t sl = op->fft.speclen, rlen = (size_t)op->g.ny * tx;
     const size_t wcells = (size_t)op->v.nx * op->v.ny;
-    int team = 1;
 #pragma omp parallel num_threads(op->nthr)
     {
         const int me = omp_get_thread_num();
         double *rows = op->rows + (size_t)me * rlen;
-        fftw_complex *E = op->spec + (size_t)me * 2 * sl, *acc = E + sl;
-        memset(acc, 0, sl * sizeof *acc);
-#pragma omp single
-        team = omp_get_num_threads();
-        /* static: each thread sums the same tasks in the same order on every run (a dynamic
-         * schedule made the sums, and so the bits, change from run to run) */
-#pragma omp for schedule(static)
-        for (int t = 0; t < 6 * nz; t++) {
-            const int k = t / 6, c = t % 6;
-            mc_eig_fill_rows(rows, tx, eps[c] + k * wcells, op->v.nx, op->v.ny, op->v.i0);
-            mc_eig_fft_forward(&op->fft, rows, E);
-            fft_accumulate(op, op->tab + (size_t)t * op->qlen, c, E, acc);
+        fftw_complex *E = op->spec + (size_t)me * sl;
+#pragma omp for schedule(dynamic, 1)
+        for (int b = 0; b < nb; b++) {
+            fftw_complex *acc = op->sums + (size_t)b * sl;
+            memset(acc, 0, sl * sizeof *acc);
+            for (int t = mc_eig_block_first(b, nb, nz); t < mc_eig_block_first(b + 1, nb, nz);
+                 t++) {
+                const int c = t / nz, k = t % nz; /* component-major, as the stress operator's */
+                mc_eig_fill_rows(rows, tx, eps[c] + k * wcells, op->v.nx, op->v.ny, op->v.i0);
+                mc_eig_fft_forward(&op->fft, rows, E);
+                fft_accumulate(op, op->tab + (size_t)(k * 6 + c) * op->qlen, c, E, acc);
+            }
         }
     }
-    /* the threads' sums into thread 0's, in a fixed order */
-    fftw_complex *acc0 = op->spec + sl;
-    const long n = (long)((size_t)ty * op->fft.hx);
-#pragma omp parallel for schedule(static) num_threads(op->nthr)
-    for (long q = 0; q < n; q++)
-        for (int t = 1; t < team; t++) {
-            acc0[q][0] += op->spec[(size_t)t * 2 * sl + sl + q][0];
-            acc0[q][1] += op->spec[(size_t)t * 2 * sl + sl + q][1];
-        }
-    mc_eig_fft_inverse(&op->fft, acc0, op->rows);
-    const double scale = 1.0 / ((double)tx * ty); /* FFTW does not normalise */
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++)
-            uz[(size_t)j * nx + i] = scale * op->rows[(size_t)j * tx + i];
+    finish_sums(op, uz);
 }
 
 /* ---- the backend table and the object -------------------------------------------------------- */
@@ -401,6 +414,7 @@ void mc_eigen_disp_destroy(mc_eigen_disp **op)
     mc_free((*op)->tab);
     mc_free((*op)->rows);
     mc_free((*op)->spec);
+    mc_free((*op)->sums);
     mc_free((*op)->group);
     mc_free(*op);
     *op = NULL;
@@ -494,16 +508,15 @@ int mc_eigen_disp_shares(const mc_eigen_disp *dop, const mc_eigen_stress *sop)
 }
 
 /* The stress operator's forward shows each layer spectrum E_kc as it is made (while it is in the
- * cache): serial, thread `thread` adds T_kc E_kc to its own sum (the threads' sums are added in a
- * fixed order afterwards, as fft_apply does); distributed (thread -1), the sum on this rank's
- * columns, threads over kx. */
-static void visit_layer(void *ctx, int thread, int k, int c, const fftw_complex *E)
+ * cache): serial, sum block `block` (mc_eig_sum_blocks) adds T_kc E_kc to its own sum, its layers
+ * in order (the blocks' sums are added in block order afterwards, as fft_apply does); distributed
+ * (block -1), the sum on this rank's columns, threads over kx. */
+static void visit_layer(void *ctx, int block, int k, int c, const fftw_complex *E)
 {
     mc_eigen_disp *op = ctx;
     const double *R = op->tab + (size_t)(k * 6 + c) * (op->d ? op->tlen : op->qlen);
-    if (thread >= 0) {
-        fft_accumulate(op, R, c, E, op->spec + (size_t)thread * 2 * op->fft.speclen +
-                                        op->fft.speclen);
+    if (block >= 0) {
+        fft_accumulate(op, R, c, E, op->sums + (size_t)block * op->fft.speclen);
         return;
     }
     const int ty = op->fft.ty, my = op->qy - 1, nk = op->nk;
@@ -534,7 +547,7 @@ void mc_eigen_disp_apply_shared(mc_eigen_disp *dop, mc_eigen_stress *sop,
     }
     const int nx = dop->g.nx, ny = dop->g.ny, tx = dop->fft.tx, ty = dop->fft.ty;
     const double scale = 1.0 / ((double)tx * ty); /* FFTW does not normalise */
-    const mc_eig_forward_visit visit = {visit_layer, dop, dop->d ? 1 : dop->nthr};
+    const mc_eig_forward_visit visit = {visit_layer, dop, dop->d ? 1 : dop->nb};
     if (dop->d) {
         const size_t al = (size_t)dop->nk * ty, cells = (size_t)nx * ny;
         memset(dop->acc, 0, al * sizeof *dop->acc);
@@ -545,23 +558,9 @@ void mc_eigen_disp_apply_shared(mc_eigen_disp *dop, mc_eigen_stress *sop,
             uz[q] *= scale;
         return;
     }
-    const size_t sl = dop->fft.speclen;
-    for (int t = 0; t < dop->nthr; t++)
-        memset(dop->spec + (size_t)t * 2 * sl + sl, 0, sl * sizeof *dop->spec);
+    memset(dop->sums, 0, (size_t)dop->nb * dop->fft.speclen * sizeof *dop->sums);
     mc_eig_stress_forward_visit(sop, eps, &visit);
-    /* the threads' sums into thread 0's, in a fixed order (an idle thread's sum is zero) */
-    fftw_complex *acc0 = dop->spec + sl;
-    const long n = (long)((size_t)ty * dop->fft.hx);
-#pragma omp parallel for schedule(static) num_threads(dop->nthr)
-    for (long q = 0; q < n; q++)
-        for (int t = 1; t < dop->nthr; t++) {
-            acc0[q][0] += dop->spec[(size_t)t * 2 * sl + sl + q][0];
-            acc0[q][1] += dop->spec[(size_t)t * 2 * sl + sl + q][1];
-        }
-    mc_eig_fft_inverse(&dop->fft, acc0, dop->rows);
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++)
-            uz[(size_t)j * nx + i] = scale * dop->rows[(size_t)j * tx + i];
+    finish_sums(dop, uz);
 }
 
 size_t mc_eigen_disp_bytes(const mc_eigen_disp *op) { return op->bytes; }
@@ -605,7 +604,8 @@ size_t mc_eigen_disp_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, 
                    mc_dfft_estimate_many(g->nx, g->ny, (int)tx, (int)ty, bm, ranks, 0);
         }
         bytes += (size_t)nthr * ((size_t)g->ny * tx * sizeof(double) +
-                                 2 * speclen * sizeof(fftw_complex));
+                                 speclen * sizeof(fftw_complex)) +
+                 (size_t)mc_eig_sum_blocks(v->nz) * speclen * sizeof(fftw_complex);
     }
     return bytes + 6 * (size_t)v->nz * ((qx * qy + 7) / 8 * 8) * sizeof(double);
 }

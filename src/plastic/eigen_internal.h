@@ -285,16 +285,23 @@ int mc_eig_stress_fft_prepare(mc_eigen_stress *op, mc_error *err);
 void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,
                              const double *const *loads, double *const sig[6]);
 int mc_eig_stress_fft_loads(mc_eigen_stress *op, mc_error *err);
+/* Sums over the 6 nz layer spectra that must not depend on the thread count go in sum blocks:
+ * the tasks t = c nz + k (component-major) split into mc_eig_sum_blocks(nz) contiguous blocks,
+ * block b holding t = mc_eig_block_first(b) .. mc_eig_block_first(b + 1) - 1, each block summed
+ * by one thread in task order into its own sum, the blocks' sums added in block order. The
+ * count is fixed by nz alone (at most 8: the threads that can share the work). */
+int mc_eig_sum_blocks(int nz);
+int mc_eig_block_first(int b, int nb, int nz);
 /* The layer spectra of eps into E (mc_eigen_stress_forward); the apply that follows with
- * op->fwd set skips its forward transforms. With visit, visit->layer(ctx, thread, k, c, E_kc)
- * sees each spectrum as soon as it is made (serial: on the thread that made it, thread <
- * visit->nthr, each thread its layers in a fixed order for a given thread count; distributed:
- * thread -1, one call at a time, in a fixed order: the visitor may run its own threads). E_kc
+ * op->fwd set skips its forward transforms. With visit, visit->layer(ctx, block, k, c, E_kc)
+ * sees each spectrum as soon as it is made (serial: the sum blocks above, visit->blocks of them,
+ * each block's layers in task order on one thread, one thread per block at a time; distributed:
+ * block -1, one call at a time, in a fixed order: the visitor may run its own threads). E_kc
  * has E's layout (mc_eig_layer_spectra). Collective when distributed. */
 typedef struct {
-    void (*layer)(void *ctx, int thread, int k, int c, const fftw_complex *E);
+    void (*layer)(void *ctx, int block, int k, int c, const fftw_complex *E);
     void *ctx;
-    int nthr;
+    int blocks;
 } mc_eig_forward_visit;
 void mc_eig_stress_fft_forward(mc_eigen_stress *op, const double *const eps[6],
                                const mc_eig_forward_visit *visit);

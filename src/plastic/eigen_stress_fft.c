@@ -987,26 +987,28 @@ static void dist_forward(const mc_eigen_stress *op, sfft *f, const double *const
         }
 }
 
-/* Every layer and component forward into E (serial: threads over the layers; with a visitor a
- * static schedule, so that each thread visits the same layers in the same order on every run). */
+/* Every layer and component forward into E (serial: threads over the layers; with a visitor
+ * over its sum blocks, each block's layers in task order on one thread: eigen_internal.h). */
 static void serial_forward(const mc_eigen_stress *op, sfft *f, const double *const eps[6],
                            const mc_eig_forward_visit *visit)
 {
     const int nz = op->v.nz, wx = op->v.nx, wy = op->v.ny, tx = f->fft.tx;
     const size_t sl = f->fft.speclen, wc = (size_t)wx * wy, rl = (size_t)wy * tx;
-    const int nthr = visit && visit->nthr < f->nthr ? visit->nthr : f->nthr;
-#pragma omp parallel num_threads(nthr)
+#pragma omp parallel num_threads(f->nthr)
     {
         const int me = omp_get_thread_num();
         double *rows = f->rows + (size_t)me * rl;
         if (visit) {
-#pragma omp for schedule(static)
-            for (int t = 0; t < 6 * nz; t++) {
-                const int c = t / nz, k = t % nz;
-                mc_eig_fill_rows(rows, tx, eps[c] + k * wc, wx, wy, 0);
-                mc_eig_fft_forward(&f->fft, rows, f->E + (size_t)t * sl);
-                visit->layer(visit->ctx, me, k, c, f->E + (size_t)t * sl);
-            }
+            const int nb = visit->blocks;
+#pragma omp for schedule(dynamic, 1)
+            for (int b = 0; b < nb; b++)
+                for (int t = mc_eig_block_first(b, nb, nz); t < mc_eig_block_first(b + 1, nb, nz);
+                     t++) {
+                    const int c = t / nz, k = t % nz;
+                    mc_eig_fill_rows(rows, tx, eps[c] + k * wc, wx, wy, 0);
+                    mc_eig_fft_forward(&f->fft, rows, f->E + (size_t)t * sl);
+                    visit->layer(visit->ctx, b, k, c, f->E + (size_t)t * sl);
+                }
         } else {
 #pragma omp for schedule(dynamic, 1)
             for (int t = 0; t < 6 * nz; t++) {
