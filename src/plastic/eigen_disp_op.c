@@ -206,10 +206,55 @@ static int make_quad(const mc_eigen_disp *op, mc_eig_quad *quad, mc_error *err)
 /* layers per batch of the distributed transforms (dfft.h batches: fewer collectives) */
 #define DIST_BATCH 8
 
+/* Layer k's six quadrant tables, filled and transformed (the same bits on every rank). */
+static void layer_spectra(mc_eigen_disp *op, mc_eig_quad *quad, int k, double *const q[6])
+{
+    build_layer(op, k, q);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int c = 0; c < 6; c++)
+        mc_eig_quad_transform(quad, mc_eig_par(c), q[c]);
+}
+
+/* This rank's columns of layer k's six quadrant spectra q into tab. */
+static void keep_columns(mc_eigen_disp *op, int k, double *const q[6])
+{
+    for (int c = 0; c < 6; c++) {
+        double *t = op->tab + (size_t)(k * 6 + c) * op->tlen;
+        for (int kx = 0; kx < op->nk; kx++)
+            for (int ky = 0; ky < op->qy; ky++)
+                t[(size_t)kx * op->qy + ky] = q[c][(size_t)ky * op->qx + op->k0 + kx];
+    }
+}
+
+/* Every layer's spectra, this rank's columns kept. The layers are split over the P ranks in
+ * contiguous blocks, in rounds: in round i rank r makes its i-th layer, then every layer of the
+ * round is broadcast from its maker (six quadrants) and each rank keeps its columns - as the
+ * stress operator's fill_tables (eigen_stress_fft.c; theory.md §8.4). The same fills and
+ * transforms as on one rank: the same bits. q: 12 quadrants of scratch (the own and the
+ * received). Collective. */
+static void dist_tables(mc_eigen_disp *op, mc_eig_quad *quad, double *const q[12])
+{
+    const int P = mc_dist_size(), me = mc_dist_rank(), nz = op->v.nz;
+    const int per = (nz + P - 1) / P;
+    for (int i = 0; i < per; i++) {
+        if (me * per + i < nz)
+            layer_spectra(op, quad, me * per + i, q);
+        for (int src = 0; src < P; src++) {
+            const int k = src * per + i;
+            if (k >= nz)
+                continue;
+            double *const *t = src == me ? q : q + 6;
+            if (P > 1)
+                mc_dist_bcast(t[0], 6 * op->qlen, src); /* the six are contiguous */
+            keep_columns(op, k, t);
+        }
+    }
+}
+
 /* The distributed fft backend (theory.md §8.4): the grid's transforms by mc_dfft, the window
  * embedded in a grid-sized field at (i0, j0) as the serial rows place it; this rank's columns of
- * the quadrant spectra, built layer by layer through a scratch of six whole quadrants (never the
- * whole tables). */
+ * the quadrant spectra, built layer by layer through a scratch of twelve whole quadrants (never
+ * the whole tables), the layers split over the ranks (dist_tables). */
 static int dist_create(mc_eigen_disp *op, mc_error *err)
 {
     const int px = mc_eig_per_x(&op->g), py = mc_eig_per_y(&op->g), nz = op->v.nz;
@@ -224,13 +269,18 @@ static int dist_create(mc_eigen_disp *op, mc_error *err)
     mc_dfft_columns(op->d, &op->k0, &op->nk);
     op->tlen = ((size_t)op->nk * op->qy + 7) / 8 * 8;
     const size_t cells = (size_t)op->g.nx * op->g.ny, al = (size_t)op->nk * ty;
+    const int nscr = mc_dist_size() > 1 ? 12 : 6; /* the received layer's six too */
     double *scr = NULL;
-    if (!(op->whole = mc_zeros((size_t)op->bm * cells)) ||
-        !(op->acc = mc_malloc((al + 1) * sizeof *op->acc)) ||
-        !(op->bs = mc_malloc(((size_t)op->bm * al + 1) * sizeof *op->bs)) ||
-        !(op->tab = mc_malloc((6 * (size_t)nz * op->tlen + 1) * sizeof *op->tab)) ||
-        !(scr = mc_malloc(6 * op->qlen * sizeof *scr)))
+    const int ok = (op->whole = mc_zeros((size_t)op->bm * cells)) &&
+                   (op->acc = mc_malloc((al + 1) * sizeof *op->acc)) &&
+                   (op->bs = mc_malloc(((size_t)op->bm * al + 1) * sizeof *op->bs)) &&
+                   (op->tab = mc_malloc((6 * (size_t)nz * op->tlen + 1) * sizeof *op->tab)) &&
+                   (scr = mc_malloc((size_t)nscr * op->qlen * sizeof *scr));
+    /* every rank or none goes on to the collective fill */
+    if (mc_dist_max_int(ok ? MC_OK : MC_ERR_NOMEM) != MC_OK) {
+        mc_free(scr);
         return mc_fail(err, MC_ERR_NOMEM, "eigen displacement: out of memory");
+    }
     op->bytes += (size_t)op->bm * cells * sizeof(double) + (op->bm + 1) * al * sizeof *op->acc +
                  6 * (size_t)nz * op->tlen * sizeof *op->tab + mc_dfft_bytes(op->d);
     mc_eig_quad quad;
@@ -238,21 +288,10 @@ static int dist_create(mc_eigen_disp *op, mc_error *err)
         mc_free(scr);
         return rc;
     }
-    double *q[6];
-    for (int c = 0; c < 6; c++)
+    double *q[12];
+    for (int c = 0; c < nscr; c++)
         q[c] = scr + (size_t)c * op->qlen;
-    for (int k = 0; k < nz; k++) {
-        build_layer(op, k, q);
-#pragma omp parallel for schedule(dynamic, 1)
-        for (int c = 0; c < 6; c++)
-            mc_eig_quad_transform(&quad, mc_eig_par(c), q[c]);
-        for (int c = 0; c < 6; c++) {
-            double *t = op->tab + (size_t)(k * 6 + c) * op->tlen;
-            for (int kx = 0; kx < op->nk; kx++)
-                for (int ky = 0; ky < op->qy; ky++)
-                    t[(size_t)kx * op->qy + ky] = q[c][(size_t)ky * op->qx + op->k0 + kx];
-        }
-    }
+    dist_tables(op, &quad, q);
     mc_eig_quad_destroy(&quad);
     mc_free(scr);
     return MC_OK;
