@@ -136,8 +136,8 @@ static void kkt_check(const scene_t *sc, const mc_grid *g, const double *h,
     double hmin = INFINITY, hmax = -INFINITY, umax = 0;
     for (size_t i = 0; i < n; i++) {
         hmin = fmin(hmin, ht[i]);
-        hmax = fmax(hmax, ht[i]);
-        umax = fmax(umax, fabs(Kp[i]));
+        hmax = test_worst(hmax, ht[i]);
+        umax = test_worst(umax, fabs(Kp[i]));
     }
     double sg = delta - hmin, fl = fmax(1e-6 * (hmax - hmin), 1e-12 * fmax(fabs(hmin), fabs(hmax)));
     if (!(sg > fl))
@@ -148,7 +148,7 @@ static void kkt_check(const scene_t *sc, const mc_grid *g, const double *h,
 
     double sum = 0, pmax = 0;
     for (size_t i = 0; i < n; i++)
-        pmax = fmax(pmax, out->p[i]);
+        pmax = test_worst(pmax, out->p[i]);
     for (size_t i = 0; i < n; i++) {
         double p = out->p[i], gp = h[i] + Kp[i] - delta;
         ck_assert_msg(p >= lo - BOUND_SLACK * pmax && p <= cap + BOUND_SLACK * pmax,
@@ -225,7 +225,7 @@ static double max_abs_diff(const double *a, const double *b, size_t n)
 {
     double m = 0;
     for (size_t i = 0; i < n; i++)
-        m = fmax(m, fabs(a[i] - b[i]));
+        m = test_worst(m, fabs(a[i] - b[i]));
     return m;
 }
 

@@ -44,7 +44,7 @@ static double maxabs66(double S[6][6])
     double m = 0.0;
     for (int i = 0; i < 6; i++)
         for (int c = 0; c < 6; c++)
-            m = fmax(m, fabs(S[i][c]));
+            m = test_worst(m, fabs(S[i][c]));
     return m;
 }
 
@@ -53,7 +53,7 @@ static double diff66(double A[6][6], double B[6][6])
     double m = 0.0;
     for (int i = 0; i < 6; i++)
         for (int c = 0; c < 6; c++)
-            m = fmax(m, fabs(A[i][c] - B[i][c]));
+            m = test_worst(m, fabs(A[i][c] - B[i][c]));
     return m;
 }
 
@@ -61,7 +61,7 @@ static double diff6(const double *a, const double *b)
 {
     double m = 0.0;
     for (int c = 0; c < 6; c++)
-        m = fmax(m, fabs(a[c] - b[c]));
+        m = test_worst(m, fabs(a[c] - b[c]));
     return m;
 }
 
@@ -69,7 +69,7 @@ static double maxabs6(const double *a)
 {
     double m = 0.0;
     for (int c = 0; c < 6; c++)
-        m = fmax(m, fabs(a[c]));
+        m = test_worst(m, fabs(a[c]));
     return m;
 }
 

@@ -79,7 +79,7 @@ static double maxabs6x6(double S[6][6])
     double m = 0.0;
     for (int i = 0; i < 6; i++)
         for (int c = 0; c < 6; c++)
-            m = fmax(m, fabs(S[i][c]));
+            m = test_worst(m, fabs(S[i][c]));
     return m;
 }
 
@@ -173,7 +173,7 @@ START_TEST(test_D_brute_force)
     brute_D(lo, hi, R);
     double scale = 0.0;
     for (int c = 0; c < 6; c++)
-        scale = fmax(scale, fabs(R[c]));
+        scale = test_worst(scale, fabs(R[c]));
     for (int c = 0; c < 6; c++)
         ck_assert_msg(fabs(D[c] - R[c]) <= TOL_GAUSS * scale + TOL_ROUND,
                       "box %d comp %d: closed form %.15g, quadrature %.15g", _i, c, D[c], R[c]);
@@ -190,7 +190,7 @@ START_TEST(test_D_tiny_far_box)
     const double V = TINY_H * TINY_H * TINY_H;
     double scale = 0.0;
     for (int k = 0; k < 6; k++)
-        scale = fmax(scale, fabs(s[k]) * V);
+        scale = test_worst(scale, fabs(s[k]) * V);
     for (int k = 0; k < 6; k++) {
         const double ref = (k < 3 ? 1.0 : 2.0) * V * s[k];
         ck_assert_msg(fabs(D[k] - ref) <= TOL_TINY * scale, "comp %d: %.10g vs %.10g", k, D[k],
@@ -420,7 +420,7 @@ START_TEST(test_S12_equilibrium)
             fd_grad(pts[p][0], pts[p][1], pts[p][2], a, hx, hy, z1, z2, G[a]);
         double scale = 0.0;
         for (int a = 0; a < 3; a++)
-            scale = fmax(scale, maxabs6x6(G[a]));
+            scale = test_worst(scale, maxabs6x6(G[a]));
         for (int c = 0; c < 6; c++)
             for (int i = 0; i < 3; i++) {
                 double div = 0.0;
@@ -569,7 +569,7 @@ static void ts_integrate(vec1_fn f, void *par, double a, double b, double tol, d
         double err = 0.0, cur[6];
         for (int c = 0; c < 6; c++) {
             cur[c] = sum[c] * h;
-            err = fmax(err, fabs(cur[c] - prev[c]));
+            err = test_worst(err, fabs(cur[c] - prev[c]));
             prev[c] = cur[c];
         }
         if (level >= 3 && err <= tol)

@@ -140,7 +140,7 @@ START_TEST(test_uniform_closed_form)
                                 -2.0 * G_MOD * (e[k][1] + a * (e[k][0] + e[k][1])), 0.0,
                                 -2.0 * G_MOD * e[k][3], 0.0, 0.0};
         for (int c = 0; c < 6; c++) {
-            smax = fmax(smax, fabs(want[c]));
+            smax = test_worst(smax, fabs(want[c]));
             for (size_t s = 0; s < nw; s++) {
                 const double d = fabs(sig[c][k * nw + s] - want[c]);
                 worst = d > worst || isnan(d) ? d : worst;

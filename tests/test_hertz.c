@@ -100,7 +100,7 @@ static double maxabs_diff6(const double a[6], const double b[6])
 {
     double m = 0.0;
     for (int c = 0; c < 6; c++)
-        m = fmax(m, fabs(a[c] - b[c]));
+        m = test_worst(m, fabs(a[c] - b[c]));
     return m;
 }
 
@@ -1087,9 +1087,9 @@ START_TEST(test_ellipse)
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++)
             if (p[(size_t)j * nx + i] > 0) {
-                xmax = fmax(xmax, fabs(mc_grid_x(&g, i)));
-                ymax = fmax(ymax, fabs(mc_grid_y(&g, j)));
-                pmax = fmax(pmax, p[(size_t)j * nx + i]);
+                xmax = test_worst(xmax, fabs(mc_grid_x(&g, i)));
+                ymax = test_worst(ymax, fabs(mc_grid_y(&g, j)));
+                pmax = test_worst(pmax, p[(size_t)j * nx + i]);
             }
     if (getenv("MC_TEST_VERBOSE"))
         printf("ellipse: p_max/p0 %.5f, x extent/ax %.4f, y extent/ay %.4f, approach/delta %.5f\n",

@@ -68,10 +68,10 @@ START_TEST(blocks_match_operator)
                         double near[6];
                         mc_plastic_local_apply(N, f, d0, active, G, k, cj + dj, ci + di, near);
                         for (int c = 0; c < 6; c++) {
-                            largest = fmax(largest, fabs(s[c][t]));
-                            worst_t = fmax(worst_t, fabs(G * corr[6 * t + c] - near[c]));
+                            largest = test_worst(largest, fabs(s[c][t]));
+                            worst_t = test_worst(worst_t, fabs(G * corr[6 * t + c] - near[c]));
                             if (abs(k - ks) <= reach_z)
-                                worst = fmax(worst, fabs(near[c] - s[c][t]));
+                                worst = test_worst(worst, fabs(near[c] - s[c][t]));
                             else /* beyond the depth reach: nothing */
                                 ck_assert(near[c] == 0.0);
                         }

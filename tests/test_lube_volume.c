@@ -80,7 +80,7 @@ static double gap_scale(const patch *pt)
     double lo = INFINITY, hi = -INFINITY;
     for (size_t i = 0; i < pt->n; i++) {
         lo = fmin(lo, pt->h[i]);
-        hi = fmax(hi, pt->h[i]);
+        hi = test_worst(hi, pt->h[i]);
     }
     return hi - lo;
 }
@@ -200,8 +200,8 @@ START_TEST(mixed_root)
                       err.msg);
         double pmax = 0, d = 0;
         for (size_t i = 0; i < pt.n; i++) {
-            pmax = fmax(pmax, p2[i]);
-            d = fmax(d, fabs(p[i] - p2[i]));
+            pmax = test_worst(pmax, p2[i]);
+            d = test_worst(d, fabs(p[i] - p2[i]));
         }
         ck_assert_msg(d <= TOL_METHODS * pmax, "cg vs active set at the root: %.3e of p_max",
                       d / pmax);
@@ -424,9 +424,6 @@ START_TEST(friction_hand_values)
 }
 END_TEST
 
-/* max(a, b) that keeps a NaN (fmax drops it): a NaN deviation must fail the bound it meets */
-static double max_keep_nan(double a, double b) { return isnan(a) || isnan(b) ? NAN : fmax(a, b); }
-
 /* ---- the whole contact: a lubricant pressure profile over the Hertz band (theory.md §11.4) -- */
 
 /* A smooth cylinder R on a line grid (ny = 1, periodic y: plane strain), nx cells of dx; the band
@@ -497,9 +494,9 @@ START_TEST(whole_band_dry_is_hertz)
     for (size_t i = 0; i < lb.n; i++) {
         const double t = mc_grid_x(&lb.g, (int)i) / lb.b;
         const double ph = fabs(t) < 1 ? p0 * sqrt(1 - t * t) : 0.0;
-        worst = max_keep_nan(worst, fabs(lb.p[i] - ph) / p0);
+        worst = test_worst(worst, fabs(lb.p[i] - ph) / p0);
         if (fabs(t) < 0.5)
-            centre = max_keep_nan(centre, fabs(lb.p[i] - ph) / p0);
+            centre = test_worst(centre, fabs(lb.p[i] - ph) / p0);
     }
     if (getenv("MC_TEST_VERBOSE"))
         printf("whole band dry: |p - p_Hertz| / p0 max %.3g, |x| < b/2 %.3g\n", worst, centre);
@@ -550,8 +547,8 @@ START_TEST(whole_band_full_film_closed_form)
     double worst = 0, gmax = 0, vref = 0;
     for (size_t i = 0; i < lb.n; i++) {
         ref[i] += res.separation - lo;
-        gmax = fmax(gmax, ref[i]);
-        worst = max_keep_nan(worst, fabs(lb.gap[i] - ref[i]));
+        gmax = test_worst(gmax, ref[i]);
+        worst = test_worst(worst, fabs(lb.gap[i] - ref[i]));
         if (lb.w[i] > 0)
             vref += ref[i] * lb.dx * ly;
         ck_assert_double_eq_tol(lb.p[i], lb.w[i] > 0 ? pf : 0.0, 1e-14 * pf);
@@ -596,7 +593,7 @@ START_TEST(whole_band_mixed_rough)
     ck_assert_int_eq(res.regime, MC_REGIME_MIXED);
     double vband = 0, gscale = 0;
     for (size_t i = 0; i < lb.n; i++)
-        gscale = fmax(gscale, fabs(lb.h[i]));
+        gscale = test_worst(gscale, fabs(lb.h[i]));
     for (size_t i = 0; i < lb.n; i++) {
         const double lo = res.p_lub * lb.w[i];
         ck_assert_double_ge(lb.p[i], lo - 1e-9 * res.p_nominal);

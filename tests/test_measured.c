@@ -99,7 +99,7 @@ START_TEST(prepare_the_map)
                        rawp = 1e-6 + 2e-3 * (i + 1) * 1e-6 - 1e-3 * j * 1e-6 +
                               0.2e-6 * sin(2 * M_PI * (i + 1) / 8.0);
                 double dm = rawm - m.z[j * 32 + i - 1], d0 = raw - r, dp = rawp - m.z[j * 32 + i + 1];
-                d2 = fmax(d2, fabs(dp - 2 * d0 + dm));
+                d2 = test_worst(d2, fabs(dp - 2 * d0 + dm));
             }
         }
     ck_assert_msg(fabs(s1) < 1e-18 && fabs(sx) < 1e-16 && fabs(sy) < 1e-16, "%g %g %g", s1, sx, sy);

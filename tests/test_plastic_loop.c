@@ -83,7 +83,7 @@ static double maxabs(const double *a, size_t n)
 {
     double m = 0;
     for (size_t i = 0; i < n; i++)
-        m = fmax(m, fabs(a[i]));
+        m = test_worst(m, fabs(a[i]));
     return m;
 }
 
@@ -92,10 +92,26 @@ static double rel_diff(const double *a, const double *b, size_t n)
 {
     double d = 0;
     for (size_t i = 0; i < n; i++)
-        d = fmax(d, fabs(a[i] - b[i]));
+        d = test_worst(d, fabs(a[i] - b[i]));
     const double s = maxabs(b, n);
     return s > 0 ? d / s : d;
 }
+
+/* How far the state of result a (pressure pa) lies from that of b (pressure pb): rel_diff of the
+ * residual displacement, the equivalent plastic strain, the plastic strain and the pressure. */
+typedef struct {
+    double u, peq, eps, p;
+} apart;
+
+static apart states_apart(const mc_plastic_result *a, const double *pa, const mc_plastic_result *b,
+                          const double *pb, size_t n)
+{
+    const size_t nv = (size_t)b->nvol;
+    return (apart){rel_diff(a->u_r, b->u_r, n), rel_diff(a->peq, b->peq, nv),
+                   rel_diff(a->eps_p, b->eps_p, 6 * nv), rel_diff(pa, pb, n)};
+}
+
+static int within(apart d, double tol) { return d.u <= tol && d.peq <= tol && d.eps <= tol && d.p <= tol; }
 
 /* Both states are fixed points of the outer map to within its stopping rule: the last change of
  * u_r was at most tol_outer max|u_r| with the relaxed update (omega = 0.7). With the outer map
@@ -139,13 +155,9 @@ START_TEST(inexact_matches_tight)
         const size_t nv = (size_t)tight.nvol;
         ck_assert(maxabs(tight.peq, nv) > 0); /* it did yield */
         const double tol = STATE_TOL_FACTOR * pb.tol_outer;
-        const double du = rel_diff(loose.u_r, tight.u_r, n);
-        const double dpeq = rel_diff(loose.peq, tight.peq, nv);
-        const double deps = rel_diff(loose.eps_p, tight.eps_p, 6 * nv);
-        const double dp = rel_diff(t.p, p_tight, n);
-        ck_assert_msg(du <= tol && dpeq <= tol && deps <= tol && dp <= tol,
-                      "anderson %d: u_r %g, peq %g, eps_p %g, p %g apart (tolerance %g)", aa, du,
-                      dpeq, deps, dp, tol);
+        const apart d = states_apart(&loose, t.p, &tight, p_tight, n);
+        ck_assert_msg(within(d, tol), "anderson %d: u_r %g, peq %g, eps_p %g, p %g apart "
+                      "(tolerance %g)", aa, d.u, d.peq, d.eps, d.p, tol);
         const int st = sweeps(&tight), sl = sweeps(&loose);
         ck_assert_msg(sl < st, "anderson %d: %d sweeps inexact, %d tight", aa, sl, st);
         mc_plastic_result_free(&tight);
@@ -192,13 +204,9 @@ START_TEST(warm_matches_cold)
         const size_t nv = (size_t)cold.nvol;
         ck_assert(maxabs(cold.peq, nv) > 0);
         const double tol = STATE_TOL_FACTOR * pb.tol_outer;
-        const double du = rel_diff(warm.u_r, cold.u_r, n);
-        const double dpeq = rel_diff(warm.peq, cold.peq, nv);
-        const double deps = rel_diff(warm.eps_p, cold.eps_p, 6 * nv);
-        const double dp = rel_diff(t.p, p_cold, n);
-        ck_assert_msg(du <= tol && dpeq <= tol && deps <= tol && dp <= tol,
-                      "anderson %d: u_r %g, peq %g, eps_p %g, p %g apart (tolerance %g)", aa, du,
-                      dpeq, deps, dp, tol);
+        const apart d = states_apart(&warm, t.p, &cold, p_cold, n);
+        ck_assert_msg(within(d, tol), "anderson %d: u_r %g, peq %g, eps_p %g, p %g apart "
+                      "(tolerance %g)", aa, d.u, d.peq, d.eps, d.p, tol);
         /* the warm start seeds the volume (its compact store of the yielding cells), not only
          * u_r: after the first step that yields (the sphere yields from its second step), none
          * cold */
@@ -225,7 +233,7 @@ START_TEST(warm_matches_cold)
         }
         if (getenv("MC_TEST_VERBOSE"))
             fprintf(stderr, "warm start, anderson %d: %d -> %d sweeps, u_r %.2e, peq %.2e apart\n",
-                    aa, sc, sw, du, dpeq);
+                    aa, sc, sw, d.u, d.peq);
         mc_plastic_result_free(&cold);
         mc_plastic_result_free(&warm);
     }
@@ -275,10 +283,7 @@ START_TEST(joint_matches_nested)
         const size_t nv = (size_t)ref.nvol;
         ck_assert(maxabs(ref.peq, nv) > 0);
         const double tol = STATE_TOL_FACTOR * pb.tol_outer;
-        const double du = rel_diff(joint.u_r, ref.u_r, n);
-        const double dpeq = rel_diff(joint.peq, ref.peq, nv);
-        const double deps = rel_diff(joint.eps_p, ref.eps_p, 6 * nv);
-        const double dp = rel_diff(t.p, p_ref, n);
+        const apart d = states_apart(&joint, t.p, &ref, p_ref, n);
         int applies_ref = 0, applies = 0, evals = 0;
         for (int k = 0; k < ref.steps_done; k++)
             applies_ref += ref.steps[k].stress_applies;
@@ -295,10 +300,9 @@ START_TEST(joint_matches_nested)
         if (getenv("MC_TEST_VERBOSE"))
             fprintf(stderr, "joint, %d steps: %d evaluations, applies %d (nested tight %d); u_r "
                             "%.2e, peq %.2e, eps_p %.2e, p %.2e apart\n",
-                    steps, evals, applies, applies_ref, du, dpeq, deps, dp);
-        ck_assert_msg(du <= tol && dpeq <= tol && deps <= tol && dp <= tol,
-                      "%d steps: u_r %g, peq %g, eps_p %g, p %g apart (tolerance %g)", steps, du,
-                      dpeq, deps, dp, tol);
+                    steps, evals, applies, applies_ref, d.u, d.peq, d.eps, d.p);
+        ck_assert_msg(within(d, tol), "%d steps: u_r %g, peq %g, eps_p %g, p %g apart "
+                      "(tolerance %g)", steps, d.u, d.peq, d.eps, d.p, tol);
         ck_assert_msg(applies < applies_ref, "%d steps: %d applications joint, %d nested",
                       steps, applies, applies_ref);
         /* two evaluations too few for the joint iteration (one step): the nested one finishes
@@ -740,8 +744,8 @@ START_TEST(window_is_symmetric)
         for (int j = 0; j < ny; j++)
             for (int i = 0; i < nx; i++) {
                 const double v = r.peq[((size_t)k * ny + j) * nx + i];
-                dev = fmax(dev, fabs(v - r.peq[((size_t)k * ny + j) * nx + (nx - 1 - i)]));
-                dev = fmax(dev, fabs(v - r.peq[((size_t)k * ny + (ny - 1 - j)) * nx + i]));
+                dev = test_worst(dev, fabs(v - r.peq[((size_t)k * ny + j) * nx + (nx - 1 - i)]));
+                dev = test_worst(dev, fabs(v - r.peq[((size_t)k * ny + (ny - 1 - j)) * nx + i]));
             }
     if (getenv("MC_TEST_VERBOSE"))
         printf("window symmetry: %.3g of the largest plastic strain %.3g\n", dev / top, top);
@@ -794,10 +798,7 @@ START_TEST(local_global_matches_global)
     const size_t nv = (size_t)ref.nvol;
     ck_assert(maxabs(ref.peq, nv) > 0);
     const double tol = STATE_TOL_FACTOR * pb.tol_outer;
-    const double du = rel_diff(lg.u_r, ref.u_r, n);
-    const double dpeq = rel_diff(lg.peq, ref.peq, nv);
-    const double deps = rel_diff(lg.eps_p, ref.eps_p, 6 * nv);
-    const double dp = rel_diff(t.p, p_ref, n);
+    const apart d = states_apart(&lg, t.p, &ref, p_ref, n);
     int a_ref = 0, a_lg = 0, local = 0;
     for (int k = 0; k < ref.steps_done; k++)
         a_ref += ref.steps[k].stress_applies;
@@ -805,9 +806,10 @@ START_TEST(local_global_matches_global)
         a_lg += lg.steps[k].stress_applies, local += lg.steps[k].local_sweeps;
     if (getenv("MC_TEST_VERBOSE"))
         fprintf(stderr, "local-global: applies %d -> %d (%d near-field sweeps); u_r %.2e, peq "
-                        "%.2e, eps_p %.2e, p %.2e apart\n", a_ref, a_lg, local, du, dpeq, deps, dp);
-    ck_assert_msg(du <= tol && dpeq <= tol && deps <= tol && dp <= tol,
-                  "u_r %g, peq %g, eps_p %g, p %g apart (tolerance %g)", du, dpeq, deps, dp, tol);
+                        "%.2e, eps_p %.2e, p %.2e apart\n", a_ref, a_lg, local, d.u, d.peq, d.eps,
+                d.p);
+    ck_assert_msg(within(d, tol), "u_r %g, peq %g, eps_p %g, p %g apart (tolerance %g)", d.u,
+                  d.peq, d.eps, d.p, tol);
     ck_assert_msg(a_lg < a_ref && local > 0, "applies %d local-global, %d global; %d local",
                   a_lg, a_ref, local);
     mc_plastic_result_free(&ref);

@@ -265,7 +265,7 @@ START_TEST(loop_carries_state)
     const size_t nv = (size_t)a.nvol;
     double peq_a = 0;
     for (size_t v = 0; v < nv; v++)
-        peq_a = fmax(peq_a, a.peq[v]);
+        peq_a = test_worst(peq_a, a.peq[v]);
     ck_assert(peq_a > 0);
     mc_plastic_problem again = pb;
     again.load = 0.6 * pb.load;
@@ -328,7 +328,7 @@ START_TEST(loop_carries_state)
                   err.msg);
     double peq_c = 0;
     for (size_t v = 0; v < nv; v++)
-        peq_c = fmax(peq_c, c.peq[v]);
+        peq_c = test_worst(peq_c, c.peq[v]);
     ck_assert_msg(peq_c < peq_a, "virgin at 0.6 load: %g, at the full load %g", peq_c, peq_a);
     mc_plastic_result_free(&a);
     mc_plastic_result_free(&b);
@@ -459,7 +459,7 @@ START_TEST(running_in)
         ck_assert_double_eq(r->surface_final[i],
                             -(r->topography[i] + 2.0 * r->residual_displacement[i]));
         ck_assert_double_eq(r->surface_initial[i], -r->topography[i]);
-        umax = fmax(umax, r->residual_displacement[i]);
+        umax = test_worst(umax, r->residual_displacement[i]);
     }
     ck_assert_double_eq(umax, r->plastic.residual_max);
     ck_assert(r->plastic.peq_max > 0 && isfinite(ri->hysteresis[0]));
@@ -680,7 +680,7 @@ START_TEST(iso_columns)
             mean += z[k][i];
         mean /= nx * ny;
         for (int i = 0; i < nx * ny; i++)
-            hi = fmax(hi, z[k][i] - mean);
+            hi = test_worst(hi, z[k][i] - mean);
         ck_assert_double_eq_tol(p[k].Sp, hi, TOL_ROUNDOFF * p[k].Sq);
     }
     ck_assert_msg(p[1].Sp < p[0].Sp && p[1].Spk < p[0].Spk, "the peaks did not fall: Sp %g -> %g",
@@ -1099,7 +1099,7 @@ START_TEST(friction_step_mu)
     const size_t n = mc_grid_cells(&a.grid);
     double d = 0;
     for (size_t i = 0; i < n; i++)
-        d = fmax(d, fabs(a.residual_displacement[i] - c.residual_displacement[i]));
+        d = test_worst(d, fabs(a.residual_displacement[i] - c.residual_displacement[i]));
     ck_assert_msg(d > 1e-3 * a.plastic.residual_max, "the traction changed u_r by only %g of %g",
                   d, a.plastic.residual_max);
     mc_results_free(&a);
@@ -1163,9 +1163,9 @@ START_TEST(friction_sign)
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++) {
             const size_t a = (size_t)j * nx + i, m = (size_t)j * nx + (nx - 1 - i);
-            d_dir = fmax(d_dir, fabs(r[0].residual_displacement[a] -
+            d_dir = test_worst(d_dir, fabs(r[0].residual_displacement[a] -
                                      r[1].residual_displacement[a]));
-            d_mirror = fmax(d_mirror, fabs(r[0].residual_displacement[a] -
+            d_mirror = test_worst(d_mirror, fabs(r[0].residual_displacement[a] -
                                            r[2].residual_displacement[m]));
         }
     if (getenv("MC_TEST_VERBOSE"))

@@ -100,8 +100,8 @@ static double rel_diff6(double *const a[6], double *const b[6], size_t n)
     double md = 0.0, mb = 0.0;
     for (int c = 0; c < MC_NSTRESS; c++)
         for (size_t i = 0; i < n; i++) {
-            md = fmax(md, fabs(a[c][i] - b[c][i]));
-            mb = fmax(mb, fabs(b[c][i]));
+            md = test_worst(md, fabs(a[c][i] - b[c][i]));
+            mb = test_worst(mb, fabs(b[c][i]));
         }
     return mb > 0.0 ? md / mb : md;
 }
@@ -288,8 +288,8 @@ START_TEST(test_table_free_is_rectangle)
                     const double v = k[c][(size_t)jt * tx + it];
                     if (!(ux && uy))
                         ck_assert_msg(v == 0.0, "padding slot (%d,%d) holds %g", it, jt, v);
-                    md = fmax(md, fabs(v - s[c]));
-                    mb = fmax(mb, fabs(s[c]));
+                    md = test_worst(md, fabs(v - s[c]));
+                    mb = test_worst(mb, fabs(s[c]));
                 }
             }
         ck_assert_msg(md <= TOL_TABLE * mb, "load %d: %.3g", li, md / mb);
@@ -385,8 +385,8 @@ START_TEST(test_strip_exact)
             double s[MC_NSTRESS];
             mc_flamant_strip_uniform(ox * g.dx, zs[iz], 0.5 * g.dx, NU, s);
             for (int c = 0; c < MC_NSTRESS; c++) {
-                md = fmax(md, fabs(k[c][it] - s[c]));
-                mb = fmax(mb, fabs(s[c]));
+                md = test_worst(md, fabs(k[c][it] - s[c]));
+                mb = test_worst(mb, fabs(s[c]));
             }
         }
         ck_assert_msg(md <= TOL_STRIP * mb, "z=%g: strip error %.3g", zs[iz], md / mb);
@@ -547,8 +547,8 @@ START_TEST(test_impulse_response)
             double r[MC_NSTRESS];
             rect_fns[li]((i - i0) * g.dx, (j - j0) * g.dy, z, 0.5 * g.dx, 0.5 * g.dy, NU, r);
             for (int c = 0; c < MC_NSTRESS; c++) {
-                md = fmax(md, fabs(s[c][(size_t)j * g.nx + i] - r[c]));
-                mb = fmax(mb, fabs(r[c]));
+                md = test_worst(md, fabs(s[c][(size_t)j * g.nx + i] - r[c]));
+                mb = test_worst(mb, fabs(r[c]));
             }
         }
     ck_assert_msg(md <= TOL_BACKEND * mb, "load %d: impulse response vs rectangle %.3g", li,
@@ -731,7 +731,7 @@ static double hertz_vm_error(int r, double mu)
             mc_hertz_point_sliding(mc_grid_x(&g, i), mc_grid_y(&g, j), z, NU, mu, ref);
             for (int c = 0; c < MC_NSTRESS; c++)
                 t[c] = s[c][(size_t)j * g.nx + i];
-            e = fmax(e, fabs(mc_von_mises(t) - mc_von_mises(ref)));
+            e = test_worst(e, fabs(mc_von_mises(t) - mc_von_mises(ref)));
         }
     vols_free(s, 6);
     free(p);
@@ -790,7 +790,7 @@ static double hertz_line_error(int r, int averaged)
         double ref[MC_NSTRESS];
         mc_mcewen_normal(0.0, z[k], NU, ref);
         for (int c = 0; c < 3; c++)
-            e = fmax(e, fabs(s[c][(size_t)k * g.nx + ic] - ref[c]));
+            e = test_worst(e, fabs(s[c][(size_t)k * g.nx + ic] - ref[c]));
     }
     vols_free(s, 6);
     free(p);
@@ -966,7 +966,7 @@ static double max_of(const double *v, size_t n)
 {
     double m = v[0];
     for (size_t i = 1; i < n; i++)
-        m = fmax(m, v[i]);
+        m = test_worst(m, v[i]);
     return m;
 }
 
@@ -1129,8 +1129,8 @@ static void check_each_component(double *const a[6], double *const b[6], size_t 
     for (int c = 0; c < MC_NSTRESS; c++) {
         double md = 0.0, mb = 0.0;
         for (size_t i = 0; i < n; i++) {
-            md = fmax(md, fabs(a[c][i] - b[c][i]));
-            mb = fmax(mb, fabs(b[c][i]));
+            md = test_worst(md, fabs(a[c][i] - b[c][i]));
+            mb = test_worst(mb, fabs(b[c][i]));
         }
         ck_assert_msg(md <= tol * mb, "%s, %s: %.3g relative", what, mc_component_name(c),
                       mb > 0 ? md / mb : md);
@@ -1208,7 +1208,7 @@ static void check_quadrant(const grid_case *gc, mc_stress_kernel kernel)
                 const int par = mc_stress_parity(load_bits[li], c);
                 double mk = 0.0;
                 for (size_t t = 0; t < (size_t)tx * ty; t++)
-                    mk = fmax(mk, fabs(k[c][t]));
+                    mk = test_worst(mk, fabs(k[c][t]));
                 for (int j = 0; j < qy; j++)
                     for (int i = 0; i < qx; i++) {
                         const double v = q[c][(size_t)j * qx + i];
@@ -1492,9 +1492,9 @@ START_TEST(test_window)
             const size_t at = (size_t)k * n;
             double smax = 0.0, vmax = 0.0;
             for (size_t i = 0; i < n; i++) {
-                vmax = fmax(vmax, full.von_mises[at + i]);
+                vmax = test_worst(vmax, full.von_mises[at + i]);
                 for (int c = 0; c < MC_NSTRESS; c++)
-                    smax = fmax(smax, fabs(full.stress[c][at + i]));
+                    smax = test_worst(smax, fabs(full.stress[c][at + i]));
             }
             for (int j = 0; j < sc.grid.ny; j++)
                 for (int i = 0; i < sc.grid.nx; i++) {
@@ -1510,11 +1510,11 @@ START_TEST(test_window)
                         else
                             ck_assert_msg(win.stress[c][q] == 0.0, "outside holds %g",
                                           win.stress[c][q]);
-                        cmax = fmax(cmax, fabs(full.stress[c][q]));
+                        cmax = test_worst(cmax, fabs(full.stress[c][q]));
                     }
                     if (!inside) {
-                        worst_vm = fmax(worst_vm, full.von_mises[q] / vmax);
-                        worst_c = fmax(worst_c, cmax / vmax);
+                        worst_vm = test_worst(worst_vm, full.von_mises[q] / vmax);
+                        worst_c = test_worst(worst_c, cmax / vmax);
                     }
                 }
         }
@@ -1574,7 +1574,7 @@ START_TEST(test_window_not_applied)
     mc_results_free(&res);
     sc.grid.periodic_y = 0;
     for (size_t i = 0; i < mc_grid_cells(&sc.grid); i++)
-        q[i] = fmax(q[i], 0.02); /* a lubricant film */
+        q[i] = test_worst(q[i], 0.02); /* a lubricant film */
     run_stage(&sc, q, NULL, &res);
     ck_assert_int_eq(res.stress_layout.windowed, 0);
     ck_assert_int_eq(res.stress_layout.loaded_cells, (long)mc_grid_cells(&sc.grid));
@@ -1601,7 +1601,7 @@ START_TEST(test_depth_auto_hertz)
     if (_i == 1) { /* a solved contact in a lubricant film */
         sc.load.lubricant_pressure = p_lub;
         for (size_t i = 0; i < n; i++)
-            p[i] = fmax(p[i], p_lub);
+            p[i] = test_worst(p[i], p_lub);
     }
     mc_results res;
     memset(&res, 0, sizeof res);

@@ -60,15 +60,14 @@ int test_read_csv(const char *name, double **data, int *cols, char header[][32],
     return rows;
 }
 
+double test_worst(double worst, double v) { return isnan(worst) || isnan(v) ? NAN : fmax(worst, v); }
+
 double test_rel_maxdiff(const double *a, const double *b, size_t n)
 {
     double md = 0, mb = 0;
     for (size_t i = 0; i < n; i++) {
-        double d = fabs(a[i] - b[i]);
-        if (d > md)
-            md = d;
-        if (fabs(b[i]) > mb)
-            mb = fabs(b[i]);
+        md = test_worst(md, fabs(a[i] - b[i]));
+        mb = test_worst(mb, fabs(b[i]));
     }
     return mb > 0 ? md / mb : md;
 }

@@ -22,8 +22,12 @@ const char *test_physics_dir(void);
  * *cols; data is malloc'ed row-major (caller frees). Fails the test on any error. */
 int test_read_csv(const char *name, double **data, int *cols, char header[][32], int max_cols);
 
-/* max |a-b| / max |b| over n values (0/0 -> 0). */
+/* max |a-b| / max |b| over n values (0/0 -> 0); NaN when any difference is NaN. */
 double test_rel_maxdiff(const double *a, const double *b, size_t n);
+
+/* The larger of worst and v, NaN once either is NaN: the running worst error of a check (fmax
+ * drops a NaN, and a check fed by it could not fail on one). */
+double test_worst(double worst, double v);
 
 /* Deterministic pseudo-random values in [-1, 1) (splitmix64), for property tests. */
 void test_random_field(double *f, size_t n, unsigned long long seed);
