@@ -304,12 +304,12 @@ static void op_agree(double *dev_s, double *dev_d)
         double ms = 0, ds = 0, md = 0, dd = 0;
         for (int k = 0; k < 6; k++)
             for (size_t i = 0; i < nv; i++) {
-                ms = fmax(ms, fabs(s[0][k][i]));
-                ds = fmax(ds, fabs(s[1][k][i] - s[0][k][i]));
+                ms = vf_worst(ms, fabs(s[0][k][i]));
+                ds = vf_worst(ds, fabs(s[1][k][i] - s[0][k][i]));
             }
         for (size_t i = 0; i < ns; i++) {
-            md = fmax(md, fabs(uz[0][i]));
-            dd = fmax(dd, fabs(uz[1][i] - uz[0][i]));
+            md = vf_worst(md, fabs(uz[0][i]));
+            dd = vf_worst(dd, fabs(uz[1][i] - uz[0][i]));
         }
         *dev_s = ds / ms;
         *dev_d = dd / md;
