@@ -156,9 +156,14 @@ static double hertz_p(int i, int j, int n, double a)
  * scale-free: stress per unit pressure). */
 static double direct_szz(const double *p, int n, double cx, double cy, double z, int patch)
 {
-    double sum = 0;
-#pragma omp parallel for reduction(+ : sum) schedule(static)
-    for (int j = 0; j < n; j++)
+    /* a sum per row, the rows added in order: the same bits on any thread count (an OpenMP
+     * reduction's grouping follows the threads) */
+    double *row = malloc((size_t)n * sizeof *row);
+    if (!row)
+        return NAN;
+#pragma omp parallel for schedule(static)
+    for (int j = 0; j < n; j++) {
+        double sum = 0;
         for (int i = 0; i < n; i++) {
             double pk = p[(size_t)j * n + i];
             if (pk == 0)
@@ -170,6 +175,12 @@ static double direct_szz(const double *p, int n, double cx, double cy, double z,
                 mc_point_stress_p(ox, oy, z, NU, s); /* per unit force: force = pk * dx^2 = pk */
             sum += pk * s[MC_SZZ];
         }
+        row[j] = sum;
+    }
+    double sum = 0;
+    for (int j = 0; j < n; j++)
+        sum += row[j];
+    free(row);
     return sum;
 }
 

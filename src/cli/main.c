@@ -66,9 +66,9 @@ int main(int argc, char **argv)
     if (rc)
         return rc;
     /* after the ranks started: they count as running tasks. verify gates on baselines at the
-     * last bits, and a few results still depend on the thread count there (min_eval_depth's
-     * stresses, lubricant_bc on 3 threads: docs/architecture.md "Threads"): it runs on every
-     * core, as `make bless` did, whatever the load */
+     * last bits, and FFTW's threaded transforms differ in them on some thread counts
+     * (lubricant_bc on 3 threads: docs/architecture.md "Threads"): it runs on every core, as
+     * `make bless` did, whatever the load */
     if (argc >= 2 && !strcmp(argv[1], "verify"))
         mc_cli_thread_all();
     else

@@ -7,9 +7,9 @@
  * another job makes every barrier wait for it. The kernel's count of runnable tasks
  * (/proc/loadavg, fourth field "running/total", this process included) says how many cores are
  * taken now; the least of a few samples 2 ms apart ignores a task that only passes by. A user's
- * OMP_NUM_THREADS, or [solver] threads / --set solver.threads=N in the case, decide instead; a
- * contact solve and an elastic-plastic run give the same bits on any thread count
- * (tests/test_thread_count.c, tests/test_eigen_threads.c), a few verification results do not, so
+ * OMP_NUM_THREADS, or [solver] threads / --set solver.threads=N in the case, decide instead.
+ * Our own sums give the same bits on any thread count (tests/test_thread_count.c,
+ * tests/test_eigen_threads.c), FFTW's threaded transforms not on every count (3 threads), so
  * `verify` takes every core (mc_cli_thread_all; docs/architecture.md "Threads").
  *
  * The decision is split from the reading so that it can be tested without a loaded machine:
