@@ -165,6 +165,14 @@ int mc_stage_lube_profile(const mc_scene *sc, mc_results *res, mc_error *err)
 int mc_stage_lube(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, const double *h_extra,
                   const double *p_start, mc_results *res, mc_error *err)
 {
+    mc_volume_result vr;
+    return mc_stage_lube_seed(sc, K, s, h_extra, p_start, res, &vr, err);
+}
+
+int mc_stage_lube_seed(const mc_scene *sc, mc_operator *K, mc_contact_solver *s,
+                       const double *h_extra, const double *p_start, mc_results *res,
+                       mc_volume_result *out, mc_error *err)
+{
     mc_stage_lube_summary *lube = &res->lube;
     int rc = mc_stage_lube_macro(sc, &res->grid, lube, err);
     if (rc == MC_OK)
@@ -182,6 +190,7 @@ int mc_stage_lube(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, cons
     rc = mc_volume_equilibrium(s, K, &prob, res->pressure, res->displacement, res->gap, &vr, err);
     if (rc != MC_OK && rc != MC_NOT_CONVERGED)
         return rc;
+    *out = vr;
     mc_error oerr = {0};
     int orc = mc_stage_lube_outcome(sc, &vr, res, &oerr);
     if (orc != MC_OK) {

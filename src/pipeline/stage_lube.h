@@ -46,6 +46,11 @@ double mc_stage_lube_nominal_shape(const mc_stage_lube_summary *lube, double x, 
  * error. */
 int mc_stage_lube(const mc_scene *sc, mc_operator *K, mc_contact_solver *s, const double *h_extra,
                   const double *p_start, mc_results *res, mc_error *err);
+/* mc_stage_lube that also gives the equilibrium's own figures (root, slope, volumes) in *vr:
+ * the seed of a later contact step of the same problem (mc_stage_lube_contact below). */
+int mc_stage_lube_seed(const mc_scene *sc, mc_operator *K, mc_contact_solver *s,
+                       const double *h_extra, const double *p_start, mc_results *res,
+                       mc_volume_result *vr, mc_error *err);
 
 /* The outcome of an equilibrium vr whose state is in res (pressure, gap): res->contact and the
  * lubrication figures of res->lube (p_lub, regime, volumes, solves, the load and area ratios,

@@ -263,8 +263,9 @@ int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
      * lubricated, the volume equilibrium sets p_lub, at every contact of the loop too */
     const int lubricated = sc->load.lubricant_pressure == MC_LUBRICANT_AUTO;
     double p_lub = fmax(sc->load.lubricant_pressure, 0.0);
+    mc_volume_result seed = {0}; /* the loop's first equilibrium starts from this one's root */
     if (lubricated) {
-        rc = mc_stage_lube(sc, K, solver, NULL, NULL, res, err);
+        rc = mc_stage_lube_seed(sc, K, solver, NULL, NULL, res, &seed, err);
         p_lub = res->lube.p_lub;
     } else {
         mc_contact_problem prob = {.h = res->topography,
@@ -297,11 +298,16 @@ int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
         mc_hardening_free(&law);
         return MC_OK;
     }
+    /* seeded as the running-in's step is (pipeline/runin.c): the equilibrium just solved is the
+     * same problem without plastic strain, and its pressure is still in res->pressure, which
+     * the loop starts from */
     mc_stage_lube_contact lc = {.solver = solver,
                           .K = K,
                           .h_target = res->lube.h_ehd,
                           .weight = res->lube_profile,
-                          .tolerance = sc->lubrication.tolerance};
+                          .tolerance = sc->lubrication.tolerance,
+                          .last = seed,
+                          .seeded = lubricated};
     mc_plastic_problem pb = {.h = res->topography,
                              .load = lubricated ? res->lube.patch_load : stage_load(sc, &res->grid),
                              .contact = lubricated ? mc_stage_lube_contact_step : NULL,
