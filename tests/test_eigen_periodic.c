@@ -119,48 +119,9 @@ START_TEST(test_uniform_closed_form)
     const mc_backend b = (_i & 1) ? MC_BACKEND_DIRECT : MC_BACKEND_FFT;
     const mc_grid g = grid_of(pc);
     const mc_eigen_volume v = vol_of(pc);
-    const size_t nw = (size_t)v.nx * v.ny, n = nw * v.nz;
-    double e[64][6];
-    test_random_field(&e[0][0], (size_t)v.nz * 6, 5 + (unsigned)_i);
-    double *eps[6], *sig[6], *b1 = eig_fields(n, eps), *b2 = eig_fields(n, sig);
-    for (int k = 0; k < v.nz; k++)
-        for (int c = 0; c < 6; c++)
-            for (size_t s = 0; s < nw; s++)
-                eps[c][k * nw + s] = e[k][c];
-    double *u = malloc(nw * sizeof *u);
-    mc_eigen_disp *od = eig_disp_op(&g, &v, NU, b);
-    mc_eigen_stress *os = eig_stress_op(&g, &v, NU, b);
-    mc_eigen_disp_apply(od, (const double *const *)eps, u);
-    mc_eigen_stress_apply(os, (const double *const *)eps, G_MOD, sig);
-    const double a = NU / (1.0 - NU);
-    double uref = 0.0, smax = 0.0, worst = 0.0;
-    for (int k = 0; k < v.nz; k++) {
-        uref -= v.dz * (e[k][2] + a * (e[k][0] + e[k][1]));
-        const double want[6] = {-2.0 * G_MOD * (e[k][0] + a * (e[k][0] + e[k][1])),
-                                -2.0 * G_MOD * (e[k][1] + a * (e[k][0] + e[k][1])), 0.0,
-                                -2.0 * G_MOD * e[k][3], 0.0, 0.0};
-        for (int c = 0; c < 6; c++) {
-            smax = test_worst(smax, fabs(want[c]));
-            for (size_t s = 0; s < nw; s++) {
-                const double d = fabs(sig[c][k * nw + s] - want[c]);
-                worst = d > worst || isnan(d) ? d : worst;
-            }
-        }
-    }
-    double uworst = 0.0;
-    for (size_t s = 0; s < nw; s++) {
-        const double d = fabs(u[s] - uref);
-        uworst = d > uworst || isnan(d) ? d : uworst;
-    }
-    if (getenv("MC_TEST_VERBOSE"))
-        fprintf(stderr, "uniform %d: stress %.3g, u_z %.3g (relative)\n", _i, worst / smax,
-                uworst / fabs(uref));
-    ck_assert_msg(worst <= TOL_MEAN * smax, "stress off the closed form by %.3g of %.3g", worst,
-                  smax);
-    ck_assert_msg(uworst <= TOL_MEAN * fabs(uref), "u_z off %.6g by %.3g", uref, uworst);
-    mc_eigen_disp_destroy(&od);
-    mc_eigen_stress_destroy(&os);
-    free(u), free(b1), free(b2);
+    char label[40];
+    snprintf(label, sizeof label, "uniform %d", _i);
+    eig_check_uniform(&g, &v, b, NU, G_MOD, 5 + (unsigned)_i, TOL_MEAN, label);
 }
 END_TEST
 
