@@ -118,28 +118,6 @@ static char *snapshot(const char *dir)
     return out;
 }
 
-/* Remove dir and everything below it (the tests leave no temporary directory behind). */
-static void rm_tree(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (d) {
-        struct dirent *e;
-        while ((e = readdir(d)) != NULL) {
-            if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
-                continue;
-            char p[1024];
-            struct stat sb;
-            snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
-            if (lstat(p, &sb) == 0 && S_ISDIR(sb.st_mode))
-                rm_tree(p);
-            else
-                unlink(p);
-        }
-        closedir(d);
-    }
-    rmdir(dir);
-}
-
 /* ---- exit codes ---------------------------------------------------------------------------- */
 
 START_TEST(test_exit_codes)
@@ -187,7 +165,7 @@ START_TEST(test_created_on_commit)
     ck_assert(exists(path_in(tmp, "a/b/c/summary.json")));
     ck_assert(exists(path_in(tmp, "a/b/c/pressure.npy")));
     mc_results_free(&r);
-    rm_tree(tmp);
+    test_rm_tree(tmp);
 }
 END_TEST
 
@@ -218,7 +196,7 @@ START_TEST(test_rollback_on_failure)
     ck_assert_int_gt(failures, 0);
     ck_assert(exists(path_in(dir, "summary.json")));
     mc_results_free(&r);
-    rm_tree(tmp);
+    test_rm_tree(tmp);
 }
 END_TEST
 
@@ -280,7 +258,7 @@ START_TEST(test_disk_full)
     free(before);
     free(after);
     mc_results_free(&r);
-    rm_tree(tmp);
+    test_rm_tree(tmp);
 }
 END_TEST
 
@@ -329,7 +307,7 @@ START_TEST(test_lock)
     mc_output_close(&c);
     free(before);
     mc_results_free(&r);
-    rm_tree(tmp);
+    test_rm_tree(tmp);
 }
 END_TEST
 
@@ -366,7 +344,7 @@ START_TEST(test_sweep)
     ck_assert(exists(path_in(dir, ".staging-Zz9Zz9")));
     ck_assert(exists(path_in(dir, ".staging-Ln9Ln9")));
     mc_results_free(&r);
-    rm_tree(dir);
+    test_rm_tree(dir);
 }
 END_TEST
 
@@ -392,7 +370,7 @@ START_TEST(test_interrupt_before)
     ck_assert_int_eq(mc_output_interrupt(0), 0);
     ck_assert_int_eq(mc_output_write(dir, &s, &r, &err), MC_OK);
     mc_results_free(&r);
-    rm_tree(tmp);
+    test_rm_tree(tmp);
 }
 END_TEST
 
@@ -445,7 +423,7 @@ START_TEST(test_interrupt_during)
     free(before);
     mc_results_free(&r);
     mc_results_free(&old);
-    rm_tree(dir);
+    test_rm_tree(dir);
 }
 END_TEST
 
@@ -488,7 +466,7 @@ START_TEST(test_links)
     ck_assert_int_eq(mc_output_prepare(file, &err), MC_ERR_ENV);
     ck_assert_int_eq(mc_output_prepare("", &err), MC_ERR_INPUT);
     mc_results_free(&r);
-    rm_tree(tmp);
+    test_rm_tree(tmp);
 }
 END_TEST
 

@@ -118,28 +118,6 @@ static char *listing(const char *dir)
     return out;
 }
 
-/* Remove a test directory and what is in it (one level of subdirectories is all tests make). */
-static void rm_dir(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (d) {
-        struct dirent *e;
-        while ((e = readdir(d)) != NULL) {
-            if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
-                continue;
-            char p[1024];
-            struct stat sb;
-            snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
-            if (lstat(p, &sb) == 0 && S_ISDIR(sb.st_mode))
-                rm_dir(p);
-            else
-                unlink(p);
-        }
-        closedir(d);
-    }
-    rmdir(dir);
-}
-
 /* Listing plus an FNV-1a hash of every file's bytes: any change to DIR shows. */
 static char *snapshot(const char *dir)
 {
@@ -577,7 +555,7 @@ START_TEST(test_write_all_combinations)
             ck_assert_msg(mc_output_write(dir, &s, &r, &err) == MC_OK, "%s", err.msg);
             check_all(dir, &s, &r);
             mc_results_free(&r);
-            rm_dir(dir);
+            test_rm_tree(dir);
         }
 }
 END_TEST
@@ -604,7 +582,7 @@ START_TEST(test_stale_files_removed)
     ck_assert_int_eq(unlink(path_in(dir, "notes.txt")), 0);
     check_all(dir, &s, &r); /* also: the listing equals the summary's file list */
     mc_results_free(&r);
-    rm_dir(dir);
+    test_rm_tree(dir);
 }
 END_TEST
 
@@ -630,7 +608,7 @@ START_TEST(test_prepare)
     ck_assert(stat(path_in(tmp, "a/b/c"), &sb) == 0 && S_ISDIR(sb.st_mode));
     ck_assert_msg(mc_output_prepare(dir, &err) == MC_OK, "%s", err.msg); /* existing now */
     mc_results_free(&r);
-    rm_dir(tmp);
+    test_rm_tree(tmp);
 }
 END_TEST
 
@@ -660,7 +638,7 @@ START_TEST(test_unwritable)
     struct stat sb;
     ck_assert(stat(file, &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size == 5);
     mc_results_free(&r);
-    rm_dir(tmp);
+    test_rm_tree(tmp);
 }
 END_TEST
 
@@ -686,7 +664,7 @@ START_TEST(test_target_is_directory)
     free(before);
     free(after);
     mc_results_free(&r);
-    rm_dir(dir);
+    test_rm_tree(dir);
 }
 END_TEST
 
@@ -736,7 +714,7 @@ START_TEST(test_fault_injection)
     check_npy2(dir, "pressure.npy", r.pressure);
     mc_results_free(&old);
     mc_results_free(&r);
-    rm_dir(dir);
+    test_rm_tree(dir);
 }
 END_TEST
 
@@ -762,7 +740,7 @@ START_TEST(test_strings_and_seed)
     ck_assert_double_eq(jreal(jobj(root, "load"), "pressure_cap"), 2e9);
     json_decref(root);
     mc_results_free(&r);
-    rm_dir(dir);
+    test_rm_tree(dir);
 }
 END_TEST
 
@@ -787,7 +765,7 @@ START_TEST(test_profile_ties)
     }
     free_lines(l, n);
     mc_results_free(&r);
-    rm_dir(dir);
+    test_rm_tree(dir);
 }
 END_TEST
 
@@ -809,7 +787,7 @@ START_TEST(test_bad_results)
     ck_assert_str_eq(l, "");
     free(l);
     mc_results_free(&r);
-    rm_dir(dir);
+    test_rm_tree(dir);
 }
 END_TEST
 

@@ -29,6 +29,9 @@ double test_rel_maxdiff(const double *a, const double *b, size_t n);
  * drops a NaN, and a check fed by it could not fail on one). */
 double test_worst(double worst, double v);
 
+/* Remove dir and everything below it (the tests leave no temporary directory behind). */
+void test_rm_tree(const char *dir);
+
 /* Deterministic pseudo-random values in [-1, 1) (splitmix64), for property tests. */
 void test_random_field(double *f, size_t n, unsigned long long seed);
 
