@@ -7,7 +7,6 @@
  * reader accepts and inputs it refuses.
  */
 #include <check.h>
-#include <dirent.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -72,52 +71,18 @@ static const struct {
     {"fuzz_npy_any", "npy", fuzz_npy_any_one},
 };
 
-/* Replay every file of dir through target t; counts accepted and refused inputs. Returns the
- * number of files, -1 if dir does not exist. */
-static int replay_dir(int t, const char *dir, int *accepted, int *refused)
+/* One input through target *ctx: run, then whether it is accepted (test_util.h). */
+static int replay_one(void *ctx, const uint8_t *in, size_t n)
 {
-    DIR *d = opendir(dir);
-    if (!d)
-        return -1;
-    int files = 0;
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL) {
-        if (e->d_name[0] == '.')
-            continue;
-        char path[1024];
-        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-        FILE *f = fopen(path, "rb");
-        ck_assert_msg(f != NULL, "cannot open %s", path);
-        static uint8_t buf[1 << 17];
-        size_t n = fread(buf, 1, sizeof buf, f);
-        ck_assert_msg(feof(f), "%s: larger than %zu bytes; seeds are small", path, sizeof buf);
-        fclose(f);
-        uint8_t *in = malloc(n ? n : 1); /* exactly n bytes, as libFuzzer passes them */
-        ck_assert_ptr_nonnull(in);
-        memcpy(in, buf, n);
-        targets[t].run(in, n);
-        if (accepts(targets[t].format, in, n))
-            (*accepted)++;
-        else
-            (*refused)++;
-        free(in);
-        files++;
-    }
-    closedir(d);
-    return files;
+    const int t = *(const int *)ctx;
+    targets[t].run(in, n);
+    return accepts(targets[t].format, in, n);
 }
 
 START_TEST(test_replay)
 {
-    char dir[512];
-    int accepted = 0, refused = 0;
-    snprintf(dir, sizeof dir, "tests/fuzz/corpus/%s", targets[_i].name);
-    int seeds = replay_dir(_i, dir, &accepted, &refused);
-    ck_assert_msg(seeds > 0, "%s: no seed corpus", dir);
-    ck_assert_msg(accepted > 0 && refused > 0, "%s: %d accepted, %d refused", dir, accepted,
-                  refused);
-    snprintf(dir, sizeof dir, "tests/fuzz/regressions/%s", targets[_i].name);
-    replay_dir(_i, dir, &accepted, &refused); /* optional: absent until a crash is found */
+    int t = _i;
+    test_replay_target(targets[t].name, replay_one, &t);
     mc_alloc_fail_at(0);
 }
 END_TEST

@@ -180,3 +180,53 @@ void test_rm_tree(const char *dir)
     }
     rmdir(dir);
 }
+
+/* Every file of dir through one; counts accepted and refused inputs. Returns the number of files,
+ * -1 if dir does not exist. */
+static int replay_dir(const char *dir, int (*one)(void *, const uint8_t *, size_t), void *ctx,
+                      int *accepted, int *refused)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return -1;
+    int files = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (e->d_name[0] == '.')
+            continue;
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        FILE *f = fopen(path, "rb");
+        ck_assert_msg(f != NULL, "cannot open %s", path);
+        static uint8_t buf[1 << 17];
+        size_t n = fread(buf, 1, sizeof buf, f);
+        ck_assert_msg(feof(f), "%s: larger than %zu bytes; seeds are small", path, sizeof buf);
+        fclose(f);
+        uint8_t *in = malloc(n ? n : 1);
+        ck_assert_ptr_nonnull(in);
+        memcpy(in, buf, n);
+        if (one(ctx, in, n))
+            (*accepted)++;
+        else
+            (*refused)++;
+        free(in);
+        files++;
+    }
+    closedir(d);
+    return files;
+}
+
+void test_replay_target(const char *name, int (*one)(void *ctx, const uint8_t *in, size_t n),
+                        void *ctx)
+{
+    char dir[512];
+    int accepted = 0, refused = 0;
+    snprintf(dir, sizeof dir, "tests/fuzz/corpus/%s", name);
+    int seeds = replay_dir(dir, one, ctx, &accepted, &refused);
+    ck_assert_msg(seeds > 0, "%s: no seed corpus", dir);
+    /* a seed set that is all good or all bad would not exercise both paths */
+    ck_assert_msg(accepted > 0 && refused > 0, "%s: %d accepted, %d refused", dir, accepted,
+                  refused);
+    snprintf(dir, sizeof dir, "tests/fuzz/regressions/%s", name);
+    replay_dir(dir, one, ctx, &accepted, &refused); /* optional: absent until a crash is found */
+}

@@ -11,6 +11,7 @@
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #define TOL_ROUNDOFF 1e-12 /* dual backends, identities: a few hundred eps on O(1e4) terms */
 #define TOL_TIGHT 1e-14    /* closed forms evaluated two ways */
@@ -28,6 +29,14 @@ double test_rel_maxdiff(const double *a, const double *b, size_t n);
 /* The larger of worst and v, NaN once either is NaN: the running worst error of a check (fmax
  * drops a NaN, and a check fed by it could not fail on one). */
 double test_worst(double worst, double v);
+
+/* Replay the fuzz target `name`'s inputs (tests/fuzz/corpus/<name>, then the optional
+ * tests/fuzz/regressions/<name>): each file as exactly its bytes on the heap, so that ASan sees a
+ * read past the input as libFuzzer would, through one(ctx, in, n), which runs the target (a
+ * broken contract aborts: the test errors, naming the file) and says whether the input is
+ * accepted. The seed corpus must exist and hold both accepted and refused inputs. */
+void test_replay_target(const char *name, int (*one)(void *ctx, const uint8_t *in, size_t n),
+                        void *ctx);
 
 /* Remove dir and everything below it (the tests leave no temporary directory behind). */
 void test_rm_tree(const char *dir);
