@@ -71,6 +71,15 @@ static void sphere_free(sphere *t)
     mc_free(t->gap);
 }
 
+/* Run the loop on the sphere with problem pb, asserting MC_OK (the error's message if not). */
+static void sphere_run(sphere *t, const mc_plastic_problem *pb, mc_contact_summary *cs,
+                       mc_plastic_result *r)
+{
+    mc_error err = {0};
+    ck_assert_msg(mc_plastic_run(&t->g, t->K, t->s, pb, t->p, t->u, t->gap, cs, r, &err) == MC_OK,
+                  "%s", err.msg);
+}
+
 static int sweeps(const mc_plastic_result *r)
 {
     int n = 0;
@@ -140,14 +149,11 @@ START_TEST(inexact_matches_tight)
         pb.iteration = MC_PLASTIC_NESTED; /* the inexact scheme of the nested iteration */
         mc_plastic_result tight, loose;
         mc_contact_summary cs;
-        mc_error err = {0};
         pb.tight_inner = 1;
-        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &tight, &err) ==
-                          MC_OK, "%s", err.msg);
+        sphere_run(&t, &pb, &cs, &tight);
         memcpy(p_tight, t.p, n * sizeof *p_tight);
         pb.tight_inner = 0;
-        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &loose, &err) ==
-                          MC_OK, "%s", err.msg);
+        sphere_run(&t, &pb, &cs, &loose);
         ck_assert(tight.converged && loose.converged);
         ck_assert_msg(tight.inner_change <= pb.tol_plastic && loose.inner_change <= pb.tol_plastic,
                       "accepted fixed points: %g, %g > tol_plastic %g", tight.inner_change,
@@ -192,14 +198,11 @@ START_TEST(warm_matches_cold)
                                              iteration's do not (joint_matches_nested) */
         mc_plastic_result cold, warm;
         mc_contact_summary cs;
-        mc_error err = {0};
         pb.cold_start = 1;
-        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &cold, &err) ==
-                          MC_OK, "%s", err.msg);
+        sphere_run(&t, &pb, &cs, &cold);
         memcpy(p_cold, t.p, n * sizeof *p_cold);
         pb.cold_start = 0;
-        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &warm, &err) ==
-                          MC_OK, "%s", err.msg);
+        sphere_run(&t, &pb, &cs, &warm);
         ck_assert(cold.converged && warm.converged);
         const size_t nv = (size_t)cold.nvol;
         ck_assert(maxabs(cold.peq, nv) > 0);
@@ -270,13 +273,11 @@ START_TEST(joint_matches_nested)
         mc_error err = {0};
         pb.iteration = MC_PLASTIC_NESTED;
         pb.tight_inner = 1;
-        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &ref, &err) ==
-                          MC_OK, "%s", err.msg);
+        sphere_run(&t, &pb, &cs, &ref);
         memcpy(p_ref, t.p, n * sizeof *p_ref);
         pb.iteration = MC_PLASTIC_JOINT;
         pb.tight_inner = 0;
-        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &joint, &err) ==
-                          MC_OK, "%s", err.msg);
+        sphere_run(&t, &pb, &cs, &joint);
         ck_assert(ref.converged && joint.converged);
         ck_assert_msg(joint.inner_change <= pb.tol_plastic, "accepted at %g > tol_plastic %g",
                       joint.inner_change, pb.tol_plastic);
@@ -344,9 +345,7 @@ START_TEST(accepts_only_tight)
     pb.max_plastic = 1000;
     mc_plastic_result r;
     mc_contact_summary cs;
-    mc_error err = {0};
-    ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &r, &err) == MC_OK,
-                  "%s", err.msg);
+    sphere_run(&t, &pb, &cs, &r);
     ck_assert(r.converged);
     ck_assert_msg(r.inner_change <= pb.tol_plastic, "accepted on a fixed point at %g > %g",
                   r.inner_change, pb.tol_plastic);
@@ -377,8 +376,7 @@ START_TEST(shared_operators)
     double *p[3];
     for (int k = 0; k < 3; k++) {
         pb.ops = k < 2 ? &ops : NULL; /* lent twice, then built by the run */
-        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &r[k], &err) ==
-                          MC_OK, "%s", err.msg);
+        sphere_run(&t, &pb, &cs, &r[k]);
         ck_assert(p[k] = mc_malloc(n * sizeof *p[k]));
         memcpy(p[k], t.p, n * sizeof *p[k]);
     }
@@ -539,8 +537,7 @@ START_TEST(joint_inexact_lubricant)
         pb.contact = lube_contact_step;
         pb.contact_ctx = &w[v];
         mc_contact_summary cs;
-        ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &res[v], &err) ==
-                          MC_OK, "%s", err.msg);
+        sphere_run(&t, &pb, &cs, &res[v]);
         ck_assert(res[v].converged && res[v].p_lub > 0);
         for (int k = 0; k < res[v].steps_done; k++)
             ck_assert_int_eq(res[v].steps[k].joint_fallback, 0);
@@ -623,8 +620,7 @@ START_TEST(folded_matches_separate)
         for (int v = 0; v < 2; v++) {
             pb.iteration = its[i];
             pb.ops = v == 0 ? &folded : &separate;
-            ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &r[v], &err) ==
-                              MC_OK, "%s", err.msg);
+            sphere_run(&t, &pb, &cs, &r[v]);
             ck_assert(r[v].converged);
             ck_assert(p[v] = mc_malloc(n * sizeof *p[v]));
             memcpy(p[v], t.p, n * sizeof *p[v]);
@@ -787,13 +783,10 @@ START_TEST(local_global_matches_global)
     pb.tight_inner = 1;
     mc_plastic_result ref, lg;
     mc_contact_summary cs;
-    mc_error err = {0};
-    ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &ref, &err) == MC_OK,
-                  "%s", err.msg);
+    sphere_run(&t, &pb, &cs, &ref);
     memcpy(p_ref, t.p, n * sizeof *p_ref);
     pb.near_reach = 1;
-    ck_assert_msg(mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &lg, &err) == MC_OK,
-                  "%s", err.msg);
+    sphere_run(&t, &pb, &cs, &lg);
     ck_assert(ref.converged && lg.converged);
     const size_t nv = (size_t)ref.nvol;
     ck_assert(maxabs(ref.peq, nv) > 0);
