@@ -35,10 +35,11 @@ typedef struct {
     mc_plastic_problem pb;
 } sphere;
 
-static void sphere_init(sphere *t)
+/* The sphere on n x n cells of dx with nz layers of dx. */
+static void sphere_init_size(sphere *t, int n_side, double dx, int nz)
 {
     memset(t, 0, sizeof *t);
-    t->g = (mc_grid){.nx = 16, .ny = 16, .dx = 40e-6, .dy = 40e-6};
+    t->g = (mc_grid){.nx = n_side, .ny = n_side, .dx = dx, .dy = dx};
     const size_t n = mc_grid_cells(&t->g);
     t->h = mc_zeros(n);
     t->p = mc_zeros(n);
@@ -55,10 +56,12 @@ static void sphere_init(sphere *t)
     ck_assert_int_eq(mc_hardening_perfect(1e9, &t->law, &err), MC_OK);
     t->pb = (mc_plastic_problem){.h = t->h, .load = 4 * 91.96, .load_steps = 2, .E = 210e9,
                                  .nu = 0.3, .law = &t->law,
-                                 .volume = mc_eigen_volume_full(&t->g, 6, 40e-6),
+                                 .volume = mc_eigen_volume_full(&t->g, nz, dx),
                                  .backend = MC_BACKEND_FFT, .relaxation = 0.7, .tol_outer = 1e-3,
                                  .max_outer = 30, .tol_plastic = 1e-4, .max_plastic = 200};
 }
+
+static void sphere_init(sphere *t) { sphere_init_size(t, 16, 40e-6, 6); }
 
 static void sphere_free(sphere *t)
 {
@@ -813,6 +816,58 @@ START_TEST(local_global_matches_global)
 }
 END_TEST
 
+/* A whole run gives the same bits on 1, 2 and 3 threads (docs/architecture.md "Threads"): the
+ * sphere on 32 x 32 cells of 20 um with 12 layers, where both eigenstrain operators run threaded
+ * (6 nz (2n)^2 >= MC_THREADS_MIN_CELLS) and so do the sweeps; everything built inside each
+ * thread count's scope. The displacement operator's sum blocks (mc_eig_sum_blocks) and the
+ * blocked sums of core/psum.h make it so; per-thread partial sums of u_z made 1 and 2 threads
+ * differ. */
+START_TEST(same_bits_on_any_thread_count)
+{
+    ck_assert(6L * 12 * 64 * 64 >= MC_THREADS_MIN_CELLS);
+    double *ref[4] = {NULL};
+    size_t len[4] = {0};
+    int sweeps_ref = -1;
+    for (int nt = 1; nt <= 3; nt++) {
+        mc_threads_scope scope;
+        mc_threads_begin(nt, &scope);
+        sphere t;
+        sphere_init_size(&t, 32, 20e-6, 12);
+        t.pb.load_steps = 1;
+        mc_plastic_result r;
+        mc_contact_summary cs;
+        sphere_run(&t, &t.pb, &cs, &r);
+        ck_assert(r.converged);
+        const size_t n = mc_grid_cells(&t.g), nv = (size_t)r.nvol;
+        ck_assert(maxabs(r.peq, nv) > 0);
+        const double *out[4] = {r.eps_p, r.peq, r.u_r, t.p};
+        const size_t sz[4] = {6 * nv, nv, n, n};
+        for (int a = 0; a < 4; a++) {
+            if (nt == 1) {
+                ref[a] = malloc(sz[a] * sizeof *ref[a]);
+                ck_assert(ref[a]);
+                memcpy(ref[a], out[a], sz[a] * sizeof *ref[a]);
+                len[a] = sz[a];
+            } else {
+                ck_assert_uint_eq(sz[a], len[a]);
+                ck_assert_msg(memcmp(ref[a], out[a], sz[a] * sizeof *ref[a]) == 0,
+                              "%d threads: array %d differs by %.3g", nt, a,
+                              rel_diff(out[a], ref[a], sz[a]));
+            }
+        }
+        if (nt == 1)
+            sweeps_ref = sweeps(&r);
+        else
+            ck_assert_int_eq(sweeps(&r), sweeps_ref);
+        mc_plastic_result_free(&r);
+        sphere_free(&t);
+        mc_threads_end(&scope);
+    }
+    for (int a = 0; a < 4; a++)
+        free(ref[a]);
+}
+END_TEST
+
 Suite *suite_plastic_loop(void);
 Suite *suite_plastic_loop(void)
 {
@@ -831,6 +886,7 @@ Suite *suite_plastic_loop(void)
     tcase_add_test(t, overload_ends_bounded);
     tcase_add_test(t, window_is_symmetric);
     tcase_add_test(t, local_global_matches_global);
+    tcase_add_test(t, same_bits_on_any_thread_count);
     suite_add_tcase(s, t);
     return s;
 }
