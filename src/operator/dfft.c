@@ -251,8 +251,9 @@ void mc_dfft_forward_many(mc_dfft *d, const double *fields, size_t stride, int m
         }
 }
 
-void mc_dfft_inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m, double *out,
-                          size_t stride)
+/* mc_dfft_inverse_many (gather = 1) and mc_dfft_inverse_many_rows (gather = 0). */
+static void inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m, double *out,
+                         size_t stride, int gather)
 {
     const int M = d->m;
     fftw_complex *rows = (fftw_complex *)d->rows, *cols = (fftw_complex *)d->cols;
@@ -275,8 +276,9 @@ void mc_dfft_inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m,
     mc_dist_mark t0 = mc_dist_comm_begin();
     fftw_execute(d->tr_bwd);
     mc_dist_comm_end(t0);
-    /* this rank's rows of each field, packed [r][f][x] for the gather (m = 1: in place) */
-    double *pack = M > 1 ? d->pack : out + (size_t)d->r0 * d->nx;
+    /* this rank's rows of each field, packed [r][f][x] for the gather (m = 1: in place), or
+     * (no gather) straight into their places in out */
+    double *pack = M > 1 && gather ? d->pack : out + (size_t)d->r0 * d->nx;
     for (ptrdiff_t r = 0; r < d->nr; r++)
         for (int f = 0; f < m; f++) {
             const fftw_complex *src = rows + ((size_t)r * d->hx) * M + f;
@@ -285,8 +287,12 @@ void mc_dfft_inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m,
                 d->cline[k][1] = src[(size_t)k * M][1];
             }
             fftw_execute_dft_c2r(d->c2r, d->cline, d->line);
-            memcpy(pack + ((size_t)r * m + f) * d->nx, d->line, (size_t)d->nx * sizeof *pack);
+            double *dst = M > 1 && gather ? pack + ((size_t)r * m + f) * d->nx
+                                          : pack + f * stride + (size_t)r * d->nx;
+            memcpy(dst, d->line, (size_t)d->nx * sizeof *pack);
         }
+    if (!gather)
+        return;
     t0 = mc_dist_comm_begin();
     if (M == 1) {
         MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, out, d->counts, d->displs, MPI_DOUBLE,
@@ -304,6 +310,18 @@ void mc_dfft_inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m,
         MPI_Type_free(&vec);
     }
     mc_dist_comm_end(t0);
+}
+
+void mc_dfft_inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m, double *out,
+                          size_t stride)
+{
+    inverse_many(d, spec, sstride, m, out, stride, 1);
+}
+
+void mc_dfft_inverse_many_rows(mc_dfft *d, fftw_complex *spec, size_t sstride, int m,
+                               double *out, size_t stride)
+{
+    inverse_many(d, spec, sstride, m, out, stride, 0);
 }
 
 void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)
@@ -498,6 +516,12 @@ void mc_dfft_inverse(mc_dfft *d, double *out, int local)
     (void)d;
     (void)out;
     (void)local;
+}
+
+void mc_dfft_inverse_many_rows(mc_dfft *d, fftw_complex *spec, size_t sstride, int m,
+                               double *out, size_t stride)
+{
+    mc_dfft_inverse_many(d, spec, sstride, m, out, stride);
 }
 
 void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)

@@ -80,6 +80,12 @@ void mc_dfft_forward_many(mc_dfft *d, const double *fields, size_t stride, int m
 void mc_dfft_inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m, double *out,
                           size_t stride);
 
+/* The same without the gather: only this rank's rows (mc_dfft_rows) of each field are written,
+ * at their places in out + f * stride; the other rows of out are not touched (a loop that keeps
+ * to its rows, plastic/loop.c). Collective (the transposes). */
+void mc_dfft_inverse_many_rows(mc_dfft *d, fftw_complex *spec, size_t sstride, int m,
+                               double *out, size_t stride);
+
 /* What mc_dfft_bytes gives for an engine of m fields (mc_dfft_estimate is m = 1). */
 size_t mc_dfft_estimate_many(int nx, int ny, int tx, int ty, int m, int p, int r);
 

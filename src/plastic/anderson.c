@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/dist.h"
 #include "core/psum.h"
 
 struct mc_anderson {
@@ -16,7 +17,15 @@ struct mc_anderson {
     double *f[MC_ANDERSON_MAX_DEPTH + 1], *g[MC_ANDERSON_MAX_DEPTH + 1]; /* width * cap each */
     int count;    /* stored iterates (<= depth + 1) */
     int head;     /* ring position of the next one */
+    /* rows mode (mc_anderson_rows): cells nb x ny x nx, this rank's rows r0 .. r0 + nr - 1 of
+     * every block; the dots' per-row partial sums (part: nr nb rows, all: ny nb rows, of up to
+     * NPAIRS values each) */
+    int nb, ny, nx, r0, nr; /* nr < 0: the whole field */
+    double *part, *all;
 };
+
+/* dot products of the history: (depth + 1)(depth + 2) / 2 at most */
+#define NPAIRS ((MC_ANDERSON_MAX_DEPTH + 1) * (MC_ANDERSON_MAX_DEPTH + 2) / 2)
 
 int mc_anderson_create(long ncells, int width, int depth, mc_anderson **out, mc_error *err)
 {
@@ -33,6 +42,7 @@ int mc_anderson_create(long ncells, int width, int depth, mc_anderson **out, mc_
     a->ncells = ncells;
     a->width = width;
     a->depth = depth;
+    a->nr = -1;
     for (long v = 0; v < ncells; v++)
         a->map[v] = -1;
     *out = a;
@@ -50,6 +60,72 @@ void mc_anderson_restart(mc_anderson *a)
 
 long mc_anderson_active(const mc_anderson *a) { return a->nact; }
 
+int mc_anderson_rows(mc_anderson *a, int nblocks, int ny, int nx, int r0, int nr)
+{
+    mc_anderson_restart(a);
+    mc_free(a->part);
+    mc_free(a->all);
+    a->part = a->all = NULL;
+    a->nr = -1;
+    if (nr < 0)
+        return 1;
+    if ((long)nblocks * ny * nx != a->ncells || r0 < 0 || r0 + nr > ny)
+        return 0;
+    const size_t np = (size_t)nr * nblocks * NPAIRS, na = (size_t)ny * nblocks * NPAIRS;
+    if (!(a->part = mc_malloc((np ? np : 1) * sizeof *a->part)) ||
+        !(a->all = mc_malloc(na * sizeof *a->all))) {
+        mc_free(a->part);
+        a->part = NULL;
+        return 0;
+    }
+    a->nb = nblocks;
+    a->ny = ny;
+    a->nx = nx;
+    a->r0 = r0;
+    a->nr = nr;
+    return 1;
+}
+
+/* Rows mode: ff[i][j] = f_ring[i] . f_ring[j] (i, j <= m) over the whole field, from this rank's
+ * per-row partial sums (each row's cells in order, their components in order) added row by row in
+ * a fixed order over the ranks (rows j-major: (j, b) for j = 0 .. ny - 1, b = 0 .. nb - 1; the
+ * ranks' rows ascend with the rank), so that any number of ranks gives the same bits. */
+static void row_dots(mc_anderson *a, const int *ring, int m,
+                     double ff[][MC_ANDERSON_MAX_DEPTH + 1])
+{
+    const int w = a->width, nb = a->nb, D = (m + 1) * (m + 2) / 2;
+    const long nrows = (long)a->nr * nb;
+#pragma omp parallel for schedule(static) if (nrows * a->nx > 4096)
+    for (long row = 0; row < nrows; row++) {
+        const long jl = row / nb, b = row % nb;
+        double *ps = a->part + (size_t)row * D;
+        for (int d = 0; d < D; d++)
+            ps[d] = 0.0;
+        const long v0 = ((long)b * a->ny + a->r0 + jl) * a->nx;
+        for (long i = 0; i < a->nx; i++) {
+            const long s = a->map[v0 + i];
+            if (s < 0)
+                continue;
+            int d = 0;
+            for (int p = 0; p <= m; p++)
+                for (int q = 0; q <= p; q++, d++) {
+                    const double *fp = a->f[ring[p]] + (size_t)s * w,
+                                 *fq = a->f[ring[q]] + (size_t)s * w;
+                    double t = 0.0;
+                    for (int c = 0; c < w; c++)
+                        t += fp[c] * fq[c];
+                    ps[d] += t;
+                }
+        }
+    }
+    double tot[NPAIRS];
+    mc_dist_row_totals(a->part, (int)nrows, a->ny * nb, D, a->all, tot);
+    int d = 0;
+    for (int p = 0; p <= m; p++)
+        for (int q = 0; q <= p; q++, d++)
+            ff[p][q] = ff[q][p] = tot[d];
+}
+
 void mc_anderson_destroy(mc_anderson **pa)
 {
     mc_anderson *a = pa ? *pa : NULL;
@@ -61,6 +137,8 @@ void mc_anderson_destroy(mc_anderson **pa)
     }
     mc_free(a->map);
     mc_free(a->cells);
+    mc_free(a->part);
+    mc_free(a->all);
     mc_free(a);
     *pa = NULL;
 }
@@ -143,9 +221,12 @@ int mc_anderson_step(mc_anderson *a, double *x, const double *gx, mc_error *err)
 {
     const long N = a->ncells;
     const int w = a->width;
-    /* cells that turned non-zero join the active set */
+    /* cells that turned non-zero join the active set (rows mode: of this rank's rows) */
     long need = a->nact;
-    for (long v = 0; v < N; v++) {
+    const long nrun = a->nr < 0 ? 1 : a->nb, run = a->nr < 0 ? N : (long)a->nx * a->nr;
+    for (long r = 0; r < nrun; r++)
+    for (long v = a->nr < 0 ? 0 : ((long)r * a->ny + a->r0) * a->nx, vend = v + run; v < vend;
+         v++) {
         if (a->map[v] >= 0)
             continue;
         int nz = 0;
@@ -191,9 +272,12 @@ int mc_anderson_step(mc_anderson *a, double *x, const double *gx, mc_error *err)
         /* dF_j = f_{ring[j+1]} - f_{ring[j]}; normal equations dF' dF gamma = dF' f_k */
         double A[MC_ANDERSON_MAX_DEPTH][MC_ANDERSON_MAX_DEPTH], b[MC_ANDERSON_MAX_DEPTH];
         double ff[MC_ANDERSON_MAX_DEPTH + 1][MC_ANDERSON_MAX_DEPTH + 1];
-        for (int i = 0; i <= m; i++)
-            for (int j = 0; j <= i; j++)
-                ff[i][j] = ff[j][i] = dot(a->f[ring[i]], a->f[ring[j]], len);
+        if (a->nr >= 0)
+            row_dots(a, ring, m, ff);
+        else
+            for (int i = 0; i <= m; i++)
+                for (int j = 0; j <= i; j++)
+                    ff[i][j] = ff[j][i] = dot(a->f[ring[i]], a->f[ring[j]], len);
         double trace = 0;
         for (int i = 0; i < m; i++) {
             for (int j = 0; j < m; j++)

@@ -38,6 +38,16 @@ void mc_anderson_restart(mc_anderson *a);
  * the history is dropped: the iteration goes on unaccelerated). */
 int mc_anderson_step(mc_anderson *a, double *x, const double *gx, mc_error *err);
 
+/* Distributed runs (core/dist.h): the field's cells are nblocks x ny x nx (cell (b, j, i) at
+ * (b ny + j) nx + i) and this rank keeps rows r0 .. r0 + nr - 1 of every block. The steps that
+ * follow read and write those cells alone (the others of x are left as they are) and sum the dot
+ * products row by row over the ranks in a fixed order: every rank mixes with the same
+ * coefficients, and any number of ranks gives the same bits (not those of the whole field's
+ * steps, whose sums run over the active cells). nr < 0: the whole field again (the default).
+ * Restarts. Returns 0 (the whole field kept) when the shape does not fit or memory is short.
+ * Every rank calls it alike; steps in rows mode are collective. */
+int mc_anderson_rows(mc_anderson *a, int nblocks, int ny, int nx, int r0, int nr);
+
 /* Active cells since the last restart. */
 long mc_anderson_active(const mc_anderson *a);
 

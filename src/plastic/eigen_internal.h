@@ -225,6 +225,8 @@ struct mc_eigen_stress {
     double *p3;        /* window: p3 of the last apply, Pa */
     double *work;      /* window p3 / 2G */
     void *fft;         /* fft: spectra, transforms and workspaces (eigen_stress_fft.c) */
+    int keep_rows;     /* distributed fft: 1 = the stresses are written on this rank's rows only,
+                        * not gathered (mc_eigen_stress_keep_rows) */
     size_t part[MC_EIGEN_STRESS_PARTS]; /* bytes held, by part (mc_eigen_stress_parts) */
 };
 
@@ -316,6 +318,9 @@ typedef struct {
     int tx, ty, k0, nk, dist;
 } mc_eig_layer_spectra;
 void mc_eig_stress_fft_spectra(const mc_eigen_stress *op, mc_eig_layer_spectra *out);
+/* 1 when the operator is distributed: this rank's window rows *r0 .. *r0 + *nr - 1 (those its
+ * forward transforms read); 0 otherwise (*r0 = 0, *nr = v.ny). */
+int mc_eig_stress_fft_rows(const mc_eigen_stress *op, int *r0, int *nr);
 void mc_eig_stress_fft_free(mc_eigen_stress *op);
 /* Bytes of the folded loads' spectra of nloads loads for op (its sizes set) with ranks as
  * mc_eig_stress_fft_estimate. */

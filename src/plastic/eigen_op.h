@@ -261,6 +261,14 @@ void mc_eigen_stress_apply_loaded(mc_eigen_stress *op, const double *const eps[6
  * then 0, and apply_forwarded gives the loads' stresses alone). Collective under mpirun. */
 void mc_eigen_stress_forward(mc_eigen_stress *op, const double *const eps[6]);
 int mc_eigen_stress_forwarded(const mc_eigen_stress *op);
+
+/* Distributed operators (the fft backend under mpirun, theory.md §8.4): on = 1 makes the applies
+ * that follow write the stresses on this rank's rows of the window alone (*r0 .. *r0 + *nr - 1
+ * of v.ny, in every layer: the rows its forward transforms read), without gathering them, and
+ * leave the other rows of sig untouched; on = 0 (the default) gathers them whole on every rank.
+ * Returns 1 when the operator is distributed; 0 when it is not (nothing is set; *r0 = 0,
+ * *nr = v.ny). p3 (mc_eigen_stress_p3) stays whole. */
+int mc_eigen_stress_keep_rows(mc_eigen_stress *op, int on, int *r0, int *nr);
 void mc_eigen_stress_apply_forwarded(mc_eigen_stress *op, double G, const double *p,
                                      const double *qx, double *const sig[6]);
 

@@ -1085,10 +1085,31 @@ static void dist_apply(mc_eigen_stress *op, const double *const eps[6], double G
                 to_dfft(f, e, f->bs + q * dl);
             }
             double *out = sig[i] + k0 * wc;
-            mc_dfft_inverse_many(f->d, f->bs, dl, m, out, wc);
-            for (size_t q = 0; q < (size_t)m * wc; q++)
-                out[q] *= 2.0 * G * scale;
+            if (!op->keep_rows) {
+                mc_dfft_inverse_many(f->d, f->bs, dl, m, out, wc);
+                for (size_t q = 0; q < (size_t)m * wc; q++)
+                    out[q] *= 2.0 * G * scale;
+                continue;
+            }
+            /* this rank's rows alone (mc_eigen_stress_keep_rows): no gather */
+            int r0, nr;
+            mc_dfft_rows(f->d, &r0, &nr);
+            mc_dfft_inverse_many_rows(f->d, f->bs, dl, m, out, wc);
+            for (int q = 0; q < m; q++)
+                for (size_t x = (size_t)r0 * wx; x < (size_t)(r0 + nr) * wx; x++)
+                    out[q * wc + x] *= 2.0 * G * scale;
         }
+}
+
+int mc_eig_stress_fft_rows(const mc_eigen_stress *op, int *r0, int *nr)
+{
+    const sfft *f = op->fft;
+    *r0 = 0;
+    *nr = op->v.ny;
+    if (!f || !f->d)
+        return 0;
+    mc_dfft_rows(f->d, r0, nr);
+    return 1;
 }
 
 void mc_eig_stress_fft_apply(mc_eigen_stress *op, const double *const eps[6], double G,

@@ -810,6 +810,17 @@ void mc_eigen_stress_forward(mc_eigen_stress *op, const double *const eps[6])
 
 int mc_eigen_stress_forwarded(const mc_eigen_stress *op) { return op->fwd != NULL; }
 
+int mc_eigen_stress_keep_rows(mc_eigen_stress *op, int on, int *r0, int *nr)
+{
+    const int dist = op->ops->id == MC_BACKEND_FFT && mc_eig_stress_fft_rows(op, r0, nr);
+    if (!dist) {
+        *r0 = 0;
+        *nr = op->v.ny;
+    }
+    op->keep_rows = dist && on;
+    return dist;
+}
+
 /* ---- surface loads folded in (theory.md §8.9) ---------------------------------------------- */
 
 /* the loads that can be folded, in the order of op->lk */

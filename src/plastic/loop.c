@@ -90,6 +90,11 @@ typedef struct {
                                     global sweep that follows needs no apply) */
     int row0, rows;              /* the window rows (y) whose cells this rank's sweep maps, in
                                     every layer (sweep_split_join; 0, nwy on one process) */
+    int rows_ok;                 /* 1: the joint iteration may keep to this rank's rows (kept) */
+    int kept;                    /* 1: in the joint iteration, the volume arrays' passes, the
+                                    residual stress and Anderson's mixing keep to this rank's
+                                    rows (theory §8.4); the other rows of d_eps, dp, d_new,
+                                    dp_new and sig_r are stale until joint_iteration gathers */
 } loop_ctx;
 
 static void ctx_free(loop_ctx *c)
@@ -262,6 +267,15 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
     c->resid = ops->resid;
     c->folded = c->whole && mc_eigen_stress_loads_of(c->resid) != 0;
     c->shared = c->folded && mc_eigen_disp_shares(c->disp, c->resid);
+    /* distributed: the sweep maps the rows the residual stress operator's transforms read, and
+     * with one forward for u_r and the sweep (shared: the displacement operator's transforms on
+     * the same whole grid read the same rows) the joint iteration keeps to them */
+    int r0, nr;
+    if (rc == MC_OK && mc_dist_active() && mc_eigen_stress_keep_rows(c->resid, 0, &r0, &nr)) {
+        c->row0 = r0;
+        c->rows = nr;
+        c->rows_ok = c->shared;
+    }
     const int reach = pb->near_reach;
     if (rc == MC_OK && reach > 0) { /* made once per operators (the running-in's steps
                                                 share it) */
@@ -519,17 +533,54 @@ static double surely_elastic_below(const mc_hardening *law)
  * (mc_eigen_disp_apply_shared, for u_r) and are not made again. */
 static void sweep_split_join(loop_ctx *c, double *change, double *size, int *plastic, int *bad);
 
+/* The cells a pass over ncomp component blocks of the window visits: this rank's rows of every
+ * layer when kept (nblk runs of rows nwx values), else all of them (one run). */
+typedef struct {
+    long nblk;
+    size_t run;
+} kept_span;
+
+static kept_span span_of(const loop_ctx *c, int ncomp)
+{
+    if (!c->kept)
+        return (kept_span){1, (size_t)ncomp * (size_t)c->nvol};
+    return (kept_span){(long)ncomp * c->pb->volume.nz, (size_t)c->rows * (size_t)c->nwx};
+}
+
+static size_t span_at(const loop_ctx *c, long b)
+{
+    return c->kept ? ((size_t)b * (size_t)c->nwy + (size_t)c->row0) * (size_t)c->nwx : 0;
+}
+
+/* dst = a + b over ncomp component blocks on the cells this rank keeps; 1 when a value is not
+ * zero there (on any rank, when kept: collective then). */
+static int sum_kept(const loop_ctx *c, int ncomp, const double *a, const double *b, double *dst)
+{
+    const kept_span sp = span_of(c, ncomp);
+    int any = 0;
+    for (long k = 0; k < sp.nblk; k++)
+        for (size_t i = span_at(c, k), end = i + sp.run; i < end; i++) {
+            dst[i] = a[i] + b[i];
+            any |= dst[i] != 0.0;
+        }
+    return c->kept ? mc_dist_max_int(any) : any;
+}
+
+/* dst = src over ncomp component blocks on the cells this rank keeps. */
+static void copy_kept(const loop_ctx *c, int ncomp, double *dst, const double *src)
+{
+    const kept_span sp = span_of(c, ncomp);
+    for (long k = 0; k < sp.nblk; k++)
+        memcpy(dst + span_at(c, k), src + span_at(c, k), sp.run * sizeof *dst);
+}
+
 static int sweep(loop_ctx *c, const double *eps_p, const double *peq, const double *p,
                  int forwarded, double elastic_below, double *change_out, double *size_out,
                  int *plastic_out, int *any_out)
 {
     const mc_plastic_problem *pb = c->pb;
     const size_t nv6 = 6 * (size_t)c->nvol;
-    int any = 0;
-    for (size_t i = 0; i < nv6; i++) {
-        c->tot[i] = eps_p[i] + c->d_eps[i];
-        any |= c->tot[i] != 0.0;
-    }
+    const int any = sum_kept(c, 6, eps_p, c->d_eps, c->tot);
     if (p) { /* both fields from one apply */
         const double *qx = friction_traction(c, p), *e[6];
         double *sg[6];
@@ -610,6 +661,8 @@ static void sweep_split_join(loop_ctx *c, double *change, double *size, int *pla
     *size = red[1];
     *plastic = red[2] != 0;
     *bad = red[3] != 0;
+    if (c->kept) /* the joint iteration goes on with this rank's rows */
+        return;
     const int nz = c->pb->volume.nz, nx = (int)c->nwx, ny = (int)c->nwy;
     mc_dist_gather_blocks(c->d_new, 6 * nz, ny, nx, c->row0, c->rows);
     mc_dist_gather_blocks(c->dp_new, nz, ny, nx, c->row0, c->rows);
@@ -993,10 +1046,10 @@ static int contact_on_ur(loop_ctx *c, mc_contact_solver *solver, double load, in
  * converge (the run stops, §9.5). */
 #define JOINT_PATIENCE 6
 
-static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, int warm,
-                           double *p, double *u, double *gap, mc_contact_summary *sum,
-                           mc_plastic_result *res, mc_plastic_step *st, int *done,
-                           int *contact_failed, mc_error *err)
+static int joint_body(loop_ctx *c, mc_contact_solver *solver, double load, int warm,
+                      double *p, double *u, double *gap, mc_contact_summary *sum,
+                      mc_plastic_result *res, mc_plastic_step *st, int *done,
+                      int *contact_failed, mc_error *err)
 {
     const mc_plastic_problem *pb = c->pb;
     const size_t nv6 = 6 * (size_t)c->nvol;
@@ -1013,11 +1066,7 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
         st->joint_evaluations++;
         st->outer_iterations++;
         st->plastic_iterations++;
-        int any = 0;
-        for (size_t i = 0; i < nv6; i++) {
-            c->tot[i] = res->eps_p[i] + c->d_eps[i];
-            any |= c->tot[i] != 0.0;
-        }
+        const int any = sum_kept(c, 6, res->eps_p, c->d_eps, c->tot);
         if (any && c->shared) { /* one forward transform of tot for u_r and the sweep */
             const double *e[6];
             split6(c, c->tot, e);
@@ -1061,11 +1110,10 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
              * outer test compares its residual displacement with u_r. d_new shares its array
              * with tot (ctx_init), so eps_p + d_new is formed in d_eps, which the image then
              * overwrites. */
-            for (size_t i = 0; i < nv6; i++)
-                c->d_eps[i] = res->eps_p[i] + c->d_new[i];
+            (void)sum_kept(c, 6, res->eps_p, c->d_new, c->d_eps);
             residual_displacement(c, c->d_eps, c->u_new);
-            memcpy(c->d_eps, c->d_new, nv6 * sizeof *c->d_eps);
-            memcpy(c->dp, c->dp_new, (size_t)c->nvol * sizeof *c->dp);
+            copy_kept(c, 6, c->d_eps, c->d_new);
+            copy_kept(c, 1, c->dp, c->dp_new);
             double uch = 0, usz = 0;
             for (size_t i = 0; i < c->ncell; i++) {
                 uch = fmax(uch, fabs(c->u_new[i] - c->u_r[i]));
@@ -1090,10 +1138,39 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
             mc_anderson_destroy(&c->aa); /* no memory to mix: the nested loop, unaccelerated */
             break;
         }
-        memcpy(c->dp, c->dp_new, (size_t)c->nvol * sizeof *c->dp);
+        copy_kept(c, 1, c->dp, c->dp_new);
     }
     st->joint_fallback = 1;
     return MC_OK;
+}
+
+/* joint_body, distributed with one forward for u_r and the sweep (rows_ok): each rank keeps to
+ * its rows of the volume (theory §8.4) - the sums eps_p + x, the residual stress (not gathered),
+ * the sweep (its increments not gathered) and Anderson's mixing (its dot products summed row by
+ * row over the ranks) - and the increment x and dp are gathered whole once at the end, instead of
+ * the stresses and the increments at every evaluation. */
+static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, int warm,
+                           double *p, double *u, double *gap, mc_contact_summary *sum,
+                           mc_plastic_result *res, mc_plastic_step *st, int *done,
+                           int *contact_failed, mc_error *err)
+{
+    const int nz = c->pb->volume.nz;
+    int r0, nr;
+    c->kept = c->rows_ok && mc_anderson_rows(c->aa, nz, (int)c->nwy, (int)c->nwx, c->row0,
+                                               c->rows);
+    if (c->kept)
+        mc_eigen_stress_keep_rows(c->resid, 1, &r0, &nr);
+    const int rc = joint_body(c, solver, load, warm, p, u, gap, sum, res, st, done,
+                              contact_failed, err);
+    if (!c->kept)
+        return rc;
+    c->kept = 0;
+    mc_eigen_stress_keep_rows(c->resid, 0, &r0, &nr);
+    if (c->aa)
+        mc_anderson_rows(c->aa, 0, 0, 0, 0, -1);
+    mc_dist_gather_blocks(c->d_eps, 6 * nz, (int)c->nwy, (int)c->nwx, c->row0, c->rows);
+    mc_dist_gather_blocks(c->dp, nz, (int)c->nwy, (int)c->nwx, c->row0, c->rows);
+    return rc;
 }
 
 static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double dload,

@@ -344,6 +344,12 @@ static int plastic_run(int distributed, mc_plastic_iteration it, int window, dou
     double *h = mc_zeros(n), *u = mc_zeros(n), *gap = mc_zeros(n);
     mc_shape_spec shape = {.shape = MC_SHAPE_SPHERE, .radius = 15e-3};
     mc_surface_shape(&g, &shape, h);
+    /* tilted along y, so that the contact spot lies off the grid's centre by about a cell: two
+     * ranks' rows then do not hold mirror images of each other, whose sums (Anderson's dot
+     * products in rows mode, plastic/anderson.h) would be equal halves of the whole */
+    for (int j = 0; j < g.ny; j++)
+        for (int i = 0; i < g.nx; i++)
+            h[(size_t)j * g.nx + i] += 2.5e-3 * (j - 0.5 * (g.ny - 1)) * g.dy;
     mc_error err = {0};
     mc_operator *K = NULL;
     mc_contact_solver *s = NULL;
