@@ -155,12 +155,23 @@ size_t mc_dfft_spectrum_len(const mc_dfft *d) { return 2 * (size_t)d->nk * (size
 
 fftw_complex *mc_dfft_spectrum(mc_dfft *d) { return d->spec; }
 
+/* 1 when the one-line plans, made on d->cline, may run on the complex line at p instead (FFTW's
+ * new-array execute: the same alignment; the same plan, hence the same bits): one copy saved. */
+static int plan_fits(const mc_dfft *d, fftw_complex *p)
+{
+    return fftw_alignment_of((double *)p) == fftw_alignment_of((double *)d->cline);
+}
+
 /* Row j of a real array of rows of w values, zero-padded to tx, into the row spectrum dst (hx
  * complex values). */
 static void row_forward(mc_dfft *d, const double *src, int w, fftw_complex *dst)
 {
     memcpy(d->line, src, (size_t)w * sizeof *d->line);
     memset(d->line + w, 0, (size_t)(d->tx - w) * sizeof *d->line);
+    if (plan_fits(d, dst)) {
+        fftw_execute_dft_r2c(d->r2c, d->line, dst);
+        return;
+    }
     fftw_execute_dft_r2c(d->r2c, d->line, d->cline);
     memcpy(dst, d->cline, (size_t)d->hx * sizeof *dst);
 }
@@ -168,10 +179,12 @@ static void row_forward(mc_dfft *d, const double *src, int w, fftw_complex *dst)
 /* A column of m <= ty values, zero-padded to ty, forward into dst (ty values). */
 static void col_forward(mc_dfft *d, const fftw_complex *src, int m, fftw_complex *dst)
 {
-    memcpy(d->cline, src, (size_t)m * sizeof *d->cline);
-    memset(d->cline + m, 0, (size_t)(d->ty - m) * sizeof *d->cline);
-    fftw_execute_dft(d->fwd, d->cline, d->cline);
-    memcpy(dst, d->cline, (size_t)d->ty * sizeof *dst);
+    fftw_complex *at = plan_fits(d, dst) ? dst : d->cline; /* in place in dst when it fits */
+    memcpy(at, src, (size_t)m * sizeof *at);
+    memset(at + m, 0, (size_t)(d->ty - m) * sizeof *at);
+    fftw_execute_dft(d->fwd, at, at);
+    if (at != dst)
+        memcpy(dst, at, (size_t)d->ty * sizeof *dst);
 }
 
 void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec, int local)
@@ -192,16 +205,24 @@ void mc_dfft_inverse(mc_dfft *d, double *out, int local)
     const ptrdiff_t first = local ? 0 : d->r0;
     fftw_complex *rows = (fftw_complex *)d->rows, *cols = (fftw_complex *)d->cols;
     for (ptrdiff_t k = 0; k < d->nk; k++) { /* only the ny data rows are kept */
-        memcpy(d->cline, d->spec + (size_t)k * d->ty, (size_t)d->ty * sizeof *d->cline);
-        fftw_execute_dft(d->bwd, d->cline, d->cline);
-        memcpy(cols + (size_t)k * d->ny, d->cline, (size_t)d->ny * sizeof *cols);
+        fftw_complex *at = d->spec + (size_t)k * d->ty; /* (the spectrum is destroyed) */
+        if (!plan_fits(d, at)) {
+            memcpy(d->cline, at, (size_t)d->ty * sizeof *d->cline);
+            at = d->cline;
+        }
+        fftw_execute_dft(d->bwd, at, at);
+        memcpy(cols + (size_t)k * d->ny, at, (size_t)d->ny * sizeof *cols);
     }
     mc_dist_mark t0 = mc_dist_comm_begin();
     fftw_execute(d->tr_bwd); /* hx x ny by columns -> ny x hx by rows */
     mc_dist_comm_end(t0);
     for (ptrdiff_t r = 0; r < d->nr; r++) {
-        memcpy(d->cline, rows + (size_t)r * d->hx, (size_t)d->hx * sizeof *d->cline);
-        fftw_execute_dft_c2r(d->c2r, d->cline, d->line);
+        fftw_complex *at = rows + (size_t)r * d->hx; /* (a c2r destroys its input: scratch) */
+        if (!plan_fits(d, at)) {
+            memcpy(d->cline, at, (size_t)d->hx * sizeof *d->cline);
+            at = d->cline;
+        }
+        fftw_execute_dft_c2r(d->c2r, at, d->line);
         memcpy(out + (size_t)(first + r) * d->nx, d->line, (size_t)d->nx * sizeof *out);
     }
     if (local)
@@ -240,14 +261,16 @@ void mc_dfft_forward_many(mc_dfft *d, const double *fields, size_t stride, int m
     for (int f = 0; f < m; f++)
         for (ptrdiff_t k = 0; k < d->nk; k++) {
             const fftw_complex *src = cols + ((size_t)k * d->ny) * M + f;
+            fftw_complex *dst = spec + f * sstride + (size_t)k * d->ty;
+            fftw_complex *at = plan_fits(d, dst) ? dst : d->cline; /* in place when it fits */
             for (int j = 0; j < d->ny; j++) {
-                d->cline[j][0] = src[(size_t)j * M][0];
-                d->cline[j][1] = src[(size_t)j * M][1];
+                at[j][0] = src[(size_t)j * M][0];
+                at[j][1] = src[(size_t)j * M][1];
             }
-            memset(d->cline + d->ny, 0, (size_t)(d->ty - d->ny) * sizeof *d->cline);
-            fftw_execute_dft(d->fwd, d->cline, d->cline);
-            memcpy(spec + f * sstride + (size_t)k * d->ty, d->cline,
-                   (size_t)d->ty * sizeof *spec);
+            memset(at + d->ny, 0, (size_t)(d->ty - d->ny) * sizeof *at);
+            fftw_execute_dft(d->fwd, at, at);
+            if (at != dst)
+                memcpy(dst, at, (size_t)d->ty * sizeof *spec);
         }
 }
 
@@ -265,12 +288,15 @@ static void inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m, 
                     dst[(size_t)j * M][0] = dst[(size_t)j * M][1] = 0.0;
                 continue;
             }
-            memcpy(d->cline, spec + f * sstride + (size_t)k * d->ty,
-                   (size_t)d->ty * sizeof *d->cline);
-            fftw_execute_dft(d->bwd, d->cline, d->cline);
+            fftw_complex *at = spec + f * sstride + (size_t)k * d->ty; /* (destroyed) */
+            if (!plan_fits(d, at)) {
+                memcpy(d->cline, at, (size_t)d->ty * sizeof *d->cline);
+                at = d->cline;
+            }
+            fftw_execute_dft(d->bwd, at, at);
             for (int j = 0; j < d->ny; j++) {
-                dst[(size_t)j * M][0] = d->cline[j][0];
-                dst[(size_t)j * M][1] = d->cline[j][1];
+                dst[(size_t)j * M][0] = at[j][0];
+                dst[(size_t)j * M][1] = at[j][1];
             }
         }
     mc_dist_mark t0 = mc_dist_comm_begin();
