@@ -1156,8 +1156,12 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
 {
     const int nz = c->pb->volume.nz;
     int r0, nr;
-    c->kept = c->rows_ok && mc_anderson_rows(c->aa, nz, (int)c->nwy, (int)c->nwx, c->row0,
-                                               c->rows);
+    if (c->rows_ok) { /* every rank alike: one that lacks the memory keeps them all whole */
+        const int ok = mc_anderson_rows(c->aa, nz, (int)c->nwy, (int)c->nwx, c->row0, c->rows);
+        c->kept = !mc_dist_max_int(!ok);
+        if (ok && !c->kept)
+            mc_anderson_rows(c->aa, 0, 0, 0, 0, -1);
+    }
     if (c->kept)
         mc_eigen_stress_keep_rows(c->resid, 1, &r0, &nr);
     const int rc = joint_body(c, solver, load, warm, p, u, gap, sum, res, st, done,
