@@ -1405,6 +1405,61 @@ START_TEST(test_repeated_cache)
 }
 END_TEST
 
+/* mc_stress_field_layers hands over each layer in order with the bits of mc_stress_field's (the
+ * running-in's yield check streams the layers through it, pipeline/runin.c); a visitor's non-zero
+ * return stops the sweep there. */
+typedef struct {
+    const double *whole; /* mc_stress_field's volume: component c of layer k at c nv + k n */
+    size_t n, nv;
+    int next, differ;
+} layer_seen;
+
+static int see_layer(void *ctx, int k, double *const s[6])
+{
+    layer_seen *ls = ctx;
+    if (k != ls->next++)
+        ls->differ++;
+    for (int c = 0; c < 6; c++)
+        ls->differ += memcmp(s[c], ls->whole + (size_t)c * ls->nv + (size_t)k * ls->n,
+                             ls->n * sizeof *s[c]) != 0;
+    return k == 1 && ls->nv == 0 ? 7 : MC_OK; /* (nv = 0: stop after layer 1) */
+}
+
+START_TEST(test_field_layers)
+{
+    const mc_grid g = {21, 17, 1e-6, 1.1e-6, 0, _i};
+    const double z[3] = {0.4e-6, 1.3e-6, 3.0e-6};
+    const size_t n = mc_grid_cells(&g), nv = 3 * n;
+    mc_stress_options opt = {MC_STRESS_PATCH, NU, 3, z, MC_BACKEND_FFT,
+                             MC_TRACTION_P | MC_TRACTION_QX, 1};
+    mc_stress_plan *plan = NULL;
+    mc_error err;
+    ck_assert_int_eq(mc_stress_create(&g, &opt, &plan, &err), MC_OK);
+    double *p = calloc(n, sizeof *p), *q = calloc(n, sizeof *q);
+    double *a = calloc(6 * nv, sizeof *a), *l = calloc(6 * n, sizeof *l), *sa[6], *sl[6];
+    for (int c = 0; c < 6; c++) {
+        sa[c] = a + c * nv;
+        sl[c] = l + c * n;
+    }
+    for (size_t i = 0; i < n; i++) {
+        p[i] = 1e9 * (0.5 + 0.5 * sin(0.29 * (double)i));
+        q[i] = 0.2 * p[i] * cos(0.13 * (double)i);
+    }
+    ck_assert_int_eq(mc_stress_field(plan, p, q, NULL, sa, &err), MC_OK);
+    layer_seen ls = {a, n, nv, 0, 0};
+    ck_assert_int_eq(mc_stress_field_layers(plan, p, q, NULL, sl, see_layer, &ls, &err), MC_OK);
+    ck_assert_msg(ls.next == 3 && ls.differ == 0, "%d layers seen, %d differ", ls.next, ls.differ);
+    layer_seen stop = {a, n, 0, 0, 0}; /* the visitor stops the sweep after layer 1 */
+    ck_assert_int_eq(mc_stress_field_layers(plan, p, q, NULL, sl, see_layer, &stop, &err), 7);
+    ck_assert_int_eq(stop.next, 2);
+    mc_stress_destroy(&plan);
+    free(p);
+    free(q);
+    free(a);
+    free(l);
+}
+END_TEST
+
 /* Bad switches are refused. */
 START_TEST(test_tuning_bad)
 {
@@ -1800,6 +1855,7 @@ Suite *suite_stress(void)
     tcase_add_loop_test(tc, test_stage_nomem, 0, 2);
     tcase_add_test(tc, test_stage_bad);
     tcase_add_loop_test(tc, test_repeated_cache, 0, 2);
+    tcase_add_loop_test(tc, test_field_layers, 0, 2);
     suite_add_tcase(s, tc);
     return s;
 }

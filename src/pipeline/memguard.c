@@ -188,18 +188,19 @@ int mc_memory_check_plastic(const mc_scene *s, const mc_grid *g, const mc_eigen_
 
 double mc_memory_estimate_runin(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v)
 {
-    /* the state it carries (eps_p, peq, sig_r) and the yield check's elastic stresses are lent
-     * to the loop (its result arrays, residual and elastic stress arrays: counted in
-     * mc_plastic_loop_bytes), and the yield check's stress plan becomes the operators' (counted
-     * in the stage's estimate); at the end the operators are still held beside the state and the
-     * output fields (168 bytes per volume cell, fewer than the loop's dense arrays). Besides:
-     * its surface arrays (h_base, h_extra, z, u_r, qx, the bowl, the shape, the lubricant
-     * profile, the residual displacement and final topography of each body: 12 per cell). */
+    /* the state it carries (eps_p, peq, sig_r) is lent to the loop (its result and residual
+     * stress arrays: counted in mc_plastic_loop_bytes, which also counts the elastic stresses
+     * the loop makes only for a nested iteration), and the yield check's stress plan becomes the
+     * operators' (counted in the stage's estimate); at the end the operators are still held
+     * beside the state and the output fields (168 bytes per volume cell, fewer than the loop's
+     * dense arrays). Besides: its surface arrays (h_base, h_extra, z, u_r, qx, the bowl, the
+     * shape, the lubricant profile, the residual displacement and final topography of each body,
+     * and the yield check's layer of six stresses: 18 per cell). */
     const double cells = (double)g->nx * g->ny;
     /* with the loads folded, the yield check's plan is not the loop's stresses but still
      * computes every step: on a periodic grid its spectra are kept and used */
     const double check = mc_plastic_ops_fold(g, v) ? stress_cache(s, g, v, 0) : 0.0;
-    return mc_memory_estimate_plastic(s, g, v, 0) + check + 12 * 8 * cells;
+    return mc_memory_estimate_plastic(s, g, v, 0) + check + 18 * 8 * cells;
 }
 
 int mc_memory_check_runin(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,

@@ -110,9 +110,10 @@ typedef struct {
                                  the first plastic step on the operators' own (ops.elastic) */
     mc_plastic_ops ops;       /* the loop's operators, built at the first plastic step and kept
                                  for the others (plastic/loop.h) */
-    double *s_block;          /* 6 nvol: the yield check's elastic stresses, s_full[q] its
-                                 components; the loop's elastic stress array (lent) */
-    double *s_full[6], *qx;
+    double *s_layer;          /* 6 ny nx: one layer of the yield check's elastic stresses,
+                                 s_lay[q] its components (the volume's are never held: the
+                                 loop makes its own only if its nested iteration needs them) */
+    double *s_lay[6], *qx;
     int qx_loads;             /* the yield check and the loop's operators take q_x too */
     double slide;             /* friction_in_yield: +1 (-1) when disc 2 slides in +x (-x)
                                  against disc 1, the sign of the traction on body 1; else 0 */
@@ -130,7 +131,7 @@ static void ctx_free(runin_ctx *c)
     mc_contact_destroy(&c->solver);
     mc_operator_destroy(&c->K);
     double *a[] = {c->bowl, c->h_base, c->h_extra, c->z,     c->eps_p,  c->peq,
-                   c->sig_r, c->u_r,   c->qx,      c->shape, c->s_block};
+                   c->sig_r, c->u_r,   c->qx,      c->shape, c->s_layer};
     mc_free(c->rmask);
     mc_free(c->group);
     for (size_t k = 0; k < sizeof a / sizeof a[0]; k++)
@@ -210,28 +211,48 @@ static int equilibrium(runin_ctx *c, mc_volume_result *vr, mc_error *err)
  * contact's profile) and the traction q_x = f (p - p_l) in solid contact (f signed, 0: none;
  * stress/traction.h) with the residual stress and hardening
  * of the state? The loop's first sweep (plastic/loop.c) from a zero increment. */
-static int yields(runin_ctx *c, const double *p, double p_lub, double f, int *any, mc_error *err)
+/* One layer of the yield check: does a cell of layer k yield (hit), is a trial stress not finite
+ * (bad)? */
+typedef struct {
+    runin_ctx *c;
+    int hit, bad;
+} yield_scan;
+
+static int yield_layer(void *ctx, int k, double *const s[6])
 {
-    if (f != 0)
-        mc_traction_friction(p, p_lub, c->res->lube_profile, f, c->n, c->qx);
-    int rc = mc_stress_field(c->splan, p, f != 0 ? c->qx : NULL, NULL, c->s_full, err);
-    if (rc != MC_OK)
-        return rc;
+    yield_scan *y = ctx;
+    const runin_ctx *c = y->c;
+    const long n = (long)c->n, v0 = (long)k * n;
     int hit = 0, bad = 0;
-#pragma omp parallel for schedule(static) reduction(| : hit, bad) if (c->nvol > 4096)
-    for (long v = 0; v < c->nvol; v++) {
+#pragma omp parallel for schedule(static) reduction(| : hit, bad) if (n > 4096)
+    for (long i = 0; i < n; i++) {
         double trial[6], out[6], de[6], dp;
         for (int q = 0; q < 6; q++)
-            trial[q] = c->s_full[q][v] + c->sig_r[(size_t)q * (size_t)c->nvol + (size_t)v];
+            trial[q] = s[q][i] + c->sig_r[(size_t)q * (size_t)c->nvol + (size_t)(v0 + i)];
         mc_error e1;
-        if (mc_return_map(trial, c->peq[v], &c->law, c->G, out, de, &dp, &e1) != MC_OK)
+        if (mc_return_map(trial, c->peq[v0 + i], &c->law, c->G, out, de, &dp, &e1) != MC_OK)
             bad = 1;
         else
             hit |= dp > 0;
     }
-    if (bad)
+    y->hit |= hit;
+    y->bad |= bad;
+    return MC_OK;
+}
+
+static int yields(runin_ctx *c, const double *p, double p_lub, double f, int *any, mc_error *err)
+{
+    if (f != 0)
+        mc_traction_friction(p, p_lub, c->res->lube_profile, f, c->n, c->qx);
+    /* layer by layer: the volume's elastic stresses (48 bytes per volume cell) are never held */
+    yield_scan y = {c, 0, 0};
+    int rc = mc_stress_field_layers(c->splan, p, f != 0 ? c->qx : NULL, NULL, c->s_lay,
+                                    yield_layer, &y, err);
+    if (rc != MC_OK)
+        return rc;
+    if (y.bad)
         return mc_fail(err, MC_ERR_NUMERIC, "running-in: non-finite stress in the yield check");
-    *any = hit;
+    *any = y.hit;
     return MC_OK;
 }
 
@@ -283,7 +304,6 @@ static int plastic_step(runin_ctx *c, double f, const mc_volume_result *seed,
                              .state_eps_p = c->eps_p, /* lent: the totals come back in them */
                              .state_peq = c->peq,
                              .state_sig_r = c->sig_r,
-                             .work_sig_e = c->s_block,
                              .contact = mc_stage_lube_contact_step,
                              .contact_ctx = lc,
                              .ops = &c->ops,
@@ -567,11 +587,11 @@ static int setup(runin_ctx *c, mc_error *err)
         const size_t nv = (size_t)c->nvol;
         if (rc == MC_OK && (!(c->eps_p = mc_zeros(6 * nv)) || !(c->peq = mc_zeros(nv)) ||
                             !(c->sig_r = mc_zeros(6 * nv)) || !(c->qx = mc_zeros(c->n)) ||
-                            !(c->s_block = mc_zeros(6 * nv))))
+                            !(c->s_layer = mc_zeros(6 * c->n))))
             rc = mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory for %ld volume cells",
                          c->nvol);
         for (int q = 0; rc == MC_OK && q < 6; q++)
-            c->s_full[q] = c->s_block + (size_t)q * nv;
+            c->s_lay[q] = c->s_layer + (size_t)q * c->n;
         double *depths = rc == MC_OK ? mc_zeros((size_t)c->vol.nz) : NULL;
         if (rc == MC_OK && !depths)
             rc = mc_fail(err, MC_ERR_NOMEM, "running-in: out of memory");

@@ -441,6 +441,30 @@ int mc_stress_field(mc_stress_plan *plan, const double *p, const double *qx, con
     return field_block(plan, loads, 0, plan->nlayers, s, err);
 }
 
+int mc_stress_field_layers(mc_stress_plan *plan, const double *p, const double *qx,
+                           const double *qy, double *const s[6],
+                           int (*visit)(void *ctx, int k, double *const s[6]), void *ctx,
+                           mc_error *err)
+{
+    const double *const loads[NLOADS] = {p, qx, qy};
+    int li[NLOADS], ng;
+    int rc = check_outputs(s, err);
+    if (rc || (rc = given_loads(plan, loads, li, &ng, err)))
+        return rc;
+    if (ng > 0)
+        prepare_loads(plan, loads, li, ng);
+    for (int k = 0; k < plan->nlayers; k++) {
+        if (ng == 0) /* no load, no stress */
+            for (int c = 0; c < MC_NSTRESS; c++)
+                memset(s[c], 0, sizeof(double) * mc_grid_cells(&plan->g));
+        else if ((rc = compute_layer(plan, k, loads, li, ng, s, err)))
+            return rc;
+        if ((rc = visit(ctx, k, s)))
+            return rc;
+    }
+    return MC_OK;
+}
+
 /* Layers split over the ranks in contiguous blocks (mc_dist_share), not rows of x: the plan's
  * transforms are whole-grid ones (operator.h's engine or the symmetric one), so a layer is one
  * rank's work without any exchange, and its bits are those of mc_stress_field whichever rank

@@ -179,6 +179,15 @@ int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
 int mc_stress_field(mc_stress_plan *plan, const double *p, const double *qx, const double *qy,
                     double *const s[6], mc_error *err);
 
+/* mc_stress_field one layer at a time, for a caller that needs each layer once and not the
+ * volume: layer k (k = 0 .. nlayers - 1 in order) is computed into s[c] (ny*nx values each) and
+ * handed to visit(ctx, k, s), whose non-zero return stops the sweep and is returned. The same
+ * bits as mc_stress_field's layer k (the loads prepared once, the same compute). */
+int mc_stress_field_layers(mc_stress_plan *plan, const double *p, const double *qx,
+                           const double *qy, double *const s[6],
+                           int (*visit)(void *ctx, int k, double *const s[6]), void *ctx,
+                           mc_error *err);
+
 /* mc_stress_field with its layers split over the ranks of the run (core/dist.h): each rank
  * computes its contiguous block of layers (mc_dist_share) and receives the others', so that s is
  * whole on every rank, the same bits as mc_stress_field's on one process. Collective: every rank
