@@ -7,6 +7,9 @@
 #include "core/dist.h"
 #include "core/threads.h"
 
+/* 0: FFTW-MPI's transposes even on one node (mc_dfft_shared_transposes) */
+static int use_shared = 1;
+
 #ifdef MC_MPI
 #include <fftw3-mpi.h>
 
@@ -26,7 +29,21 @@ struct mc_dfft {
     int m;                        /* fields per batch (mc_dfft_create_many; 1: mc_dfft_create) */
     double *pack;                 /* batches: this rank's output rows, [r][f][x] */
     int *rcounts, *rdispls;       /* batches: the gather's rows per rank and first rows */
+    /* all ranks on one node: rows and cols live in shared windows and the transposes copy
+     * straight from the other ranks' buffers (shared_transpose); else FFTW-MPI's */
+    int shared;
+    MPI_Win win_rows, win_cols;
+    double **peer_rows, **peer_cols; /* every rank's rows and cols, mapped here */
+    int *lay;                        /* every rank's r0, nr, k0, nk */
 };
+
+
+int mc_dfft_shared_transposes(int on)
+{
+    const int was = use_shared;
+    use_shared = on != 0;
+    return was;
+}
 
 void mc_dfft_destroy(mc_dfft **pd)
 {
@@ -37,8 +54,6 @@ void mc_dfft_destroy(mc_dfft **pd)
     for (size_t k = 0; k < sizeof plans / sizeof plans[0]; k++)
         if (plans[k])
             fftw_destroy_plan(plans[k]);
-    mc_free(d->rows);
-    mc_free(d->cols);
     mc_free(d->spec);
     mc_free(d->line);
     mc_free(d->cline);
@@ -47,11 +62,140 @@ void mc_dfft_destroy(mc_dfft **pd)
     mc_free(d->pack);
     mc_free(d->rcounts);
     mc_free(d->rdispls);
+    if (d->shared) { /* (collective, as the create) */
+        MPI_Win_unlock_all(d->win_rows);
+        MPI_Win_unlock_all(d->win_cols);
+        MPI_Win_free(&d->win_rows);
+        MPI_Win_free(&d->win_cols);
+    } else {
+        mc_free(d->rows);
+        mc_free(d->cols);
+    }
+    mc_free(d->peer_rows);
+    mc_free(d->peer_cols);
+    mc_free(d->lay);
     mc_free(d);
     *pd = NULL;
 }
 
 static void *alloc_doubles(size_t n) { return mc_malloc((n ? n : 1) * sizeof(double)); }
+
+/* The transposes' buffers, nbuf doubles each: in shared windows when every rank of the
+ * communicator is on this node (MPI_COMM_TYPE_SHARED), with every rank's base addresses and
+ * layout; else private. Collective; every rank takes the same branch. 0 or MC_ERR_NOMEM. */
+static int alloc_transpose_buffers(mc_dfft *d, size_t nbuf)
+{
+    int size, nsize;
+    MPI_Comm_size(d->comm, &size);
+    MPI_Comm node;
+    MPI_Comm_split_type(d->comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+    MPI_Comm_size(node, &nsize);
+    MPI_Comm_free(&node);
+    int shared = use_shared && nsize == size;
+    MPI_Allreduce(MPI_IN_PLACE, &shared, 1, MPI_INT, MPI_MIN, d->comm);
+    if (!shared) {
+        d->rows = alloc_doubles(nbuf);
+        d->cols = alloc_doubles(nbuf);
+        return d->rows && d->cols ? 0 : MC_ERR_NOMEM;
+    }
+    MPI_Info info;
+    MPI_Info_create(&info);
+    MPI_Info_set(info, "alloc_shared_noncontig", "true"); /* each rank's pages its own */
+    const MPI_Aint bytes = (MPI_Aint)((nbuf ? nbuf : 1) * sizeof(double));
+    MPI_Win_allocate_shared(bytes, sizeof(double), info, d->comm, &d->rows, &d->win_rows);
+    MPI_Win_allocate_shared(bytes, sizeof(double), info, d->comm, &d->cols, &d->win_cols);
+    MPI_Info_free(&info);
+    d->shared = 1;
+    MPI_Win_lock_all(MPI_MODE_NOCHECK, d->win_rows); /* passive epochs for the run's loads */
+    MPI_Win_lock_all(MPI_MODE_NOCHECK, d->win_cols);
+    d->peer_rows = mc_calloc((size_t)size, sizeof *d->peer_rows);
+    d->peer_cols = mc_calloc((size_t)size, sizeof *d->peer_cols);
+    d->lay = mc_calloc(4 * (size_t)size, sizeof *d->lay);
+    int bad = !d->peer_rows || !d->peer_cols || !d->lay;
+    MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, d->comm);
+    if (bad)
+        return MC_ERR_NOMEM;
+    for (int p = 0; p < size; p++) {
+        MPI_Aint sz;
+        int du;
+        MPI_Win_shared_query(d->win_rows, p, &sz, &du, &d->peer_rows[p]);
+        MPI_Win_shared_query(d->win_cols, p, &sz, &du, &d->peer_cols[p]);
+    }
+    const int mine[4] = {(int)d->r0, (int)d->nr, (int)d->k0, (int)d->nk};
+    MPI_Allgather(mine, 4, MPI_INT, d->lay, 4, MPI_INT, d->comm);
+    return 0;
+}
+
+/* bad on any rank, once the buffers are shared (their release is collective: every rank must
+ * then fail alike); else this rank's bad. */
+static int failed_anywhere(mc_dfft *d, int bad)
+{
+    if (d->shared)
+        MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, d->comm);
+    return bad;
+}
+
+/* Between the writers and the readers of the shared buffers: each rank's stores visible, and
+ * no rank past this point before all have reached it. */
+static void shared_fence(mc_dfft *d)
+{
+    MPI_Win_sync(d->win_rows);
+    MPI_Win_sync(d->win_cols);
+    MPI_Barrier(d->comm);
+    MPI_Win_sync(d->win_rows);
+    MPI_Win_sync(d->win_cols);
+}
+
+/* The transposes on one node, as FFTW-MPI's (the same values moved: the same bits), each
+ * element copied once, straight from the rank that holds it: forward, every rank's rows
+ * [r][kx] (elements of 2 m doubles) into this rank's columns [kx - k0][r0_p + r]; inverse, every
+ * rank's columns into this rank's rows. Tiles keep both sides in the cache. */
+enum { TILE = 32 };
+
+static void shared_transpose(mc_dfft *d, int inverse)
+{
+    int size;
+    MPI_Comm_size(d->comm, &size);
+    const size_t e = 2 * (size_t)d->m; /* doubles per element */
+    const size_t ny = (size_t)d->ny, hx = (size_t)d->hx;
+    shared_fence(d);
+    for (int p = 0; p < size; p++) {
+        const int *lp = d->lay + 4 * p;
+        /* forward: rows r < nr_p of rank p, columns k of this rank; inverse: rows r < nr of this
+         * rank, columns k < nk_p of rank p */
+        const size_t nr = (size_t)(inverse ? d->nr : lp[1]), nk = (size_t)(inverse ? lp[3] : d->nk);
+        const size_t row0 = (size_t)(inverse ? d->r0 : lp[0]), col0 = (size_t)(inverse ? lp[2] : d->k0);
+        const double *src = inverse ? d->peer_cols[p] : d->peer_rows[p];
+        double *dst = inverse ? d->rows : d->cols;
+        for (size_t kb = 0; kb < nk; kb += TILE)
+            for (size_t rb = 0; rb < nr; rb += TILE) {
+                const size_t ke = kb + TILE < nk ? kb + TILE : nk,
+                             re = rb + TILE < nr ? rb + TILE : nr;
+                for (size_t k = kb; k < ke; k++)
+                    for (size_t r = rb; r < re; r++) {
+                        /* rows [r][col0 + k], columns [k][row0 + r] */
+                        const size_t at_row = (r * hx + col0 + k) * e,
+                                     at_col = (k * ny + row0 + r) * e;
+                        const double *s = src + (inverse ? at_col : at_row);
+                        double *t = dst + (inverse ? at_row : at_col);
+                        for (size_t c = 0; c < e; c++)
+                            t[c] = s[c];
+                    }
+            }
+    }
+    shared_fence(d);
+}
+
+/* The forward (rows -> columns) or inverse transpose of the batch in rows / cols. */
+static void transpose(mc_dfft *d, int inverse)
+{
+    const mc_dist_mark t0 = mc_dist_comm_begin();
+    if (d->shared)
+        shared_transpose(d, inverse);
+    else
+        fftw_execute(inverse ? d->tr_bwd : d->tr_fwd);
+    mc_dist_comm_end(t0);
+}
 
 int mc_dfft_create(int nx, int ny, int tx, int ty, mc_dfft **out, mc_error *err)
 {
@@ -94,18 +238,19 @@ int mc_dfft_create_many(int nx, int ny, int tx, int ty, int m, mc_dfft **out, mc
     int size;
     MPI_Comm_size(d->comm, &size);
     const size_t cl = (size_t)(d->hx > ty ? d->hx : ty);
-    if (!(d->rows = alloc_doubles(nbuf)) || !(d->cols = alloc_doubles(nbuf)) ||
+    if (failed_anywhere(d, alloc_transpose_buffers(d, nbuf) ||
         !(d->spec = alloc_doubles(2 * (size_t)d->nk * (size_t)ty)) ||
         !(d->line = alloc_doubles((size_t)tx)) || !(d->cline = alloc_doubles(2 * cl)) ||
         !(d->counts = mc_calloc((size_t)size, sizeof *d->counts)) ||
-        !(d->displs = mc_calloc((size_t)size, sizeof *d->displs))) {
+        !(d->displs = mc_calloc((size_t)size, sizeof *d->displs)))) {
         mc_dfft_destroy(&d);
         return mc_fail(err, MC_ERR_NOMEM, "distributed FFT %d x %d: out of memory", tx, ty);
     }
     /* who holds which output rows: the gather's counts and offsets */
     int mine[2] = {(int)d->nr * nx, (int)d->r0 * nx};
     int *all = mc_malloc(2 * (size_t)size * sizeof *all);
-    if (!all) {
+    if (failed_anywhere(d, !all)) {
+        mc_free(all);
         mc_dfft_destroy(&d);
         return mc_fail(err, MC_ERR_NOMEM, "distributed FFT: out of memory");
     }
@@ -115,9 +260,9 @@ int mc_dfft_create_many(int nx, int ny, int tx, int ty, int m, mc_dfft **out, mc
         d->displs[p] = all[2 * p + 1];
     }
     if (m > 1) { /* the batches' gather: whole rows (m fields each) per rank */
-        if (!(d->pack = alloc_doubles((size_t)d->nr * m * nx)) ||
+        if (failed_anywhere(d, !(d->pack = alloc_doubles((size_t)d->nr * m * nx)) ||
             !(d->rcounts = mc_calloc((size_t)size, sizeof *d->rcounts)) ||
-            !(d->rdispls = mc_calloc((size_t)size, sizeof *d->rdispls))) {
+            !(d->rdispls = mc_calloc((size_t)size, sizeof *d->rdispls)))) {
             mc_free(all);
             mc_dfft_destroy(&d);
             return mc_fail(err, MC_ERR_NOMEM, "distributed FFT: out of memory");
@@ -135,14 +280,17 @@ int mc_dfft_create_many(int nx, int ny, int tx, int ty, int m, mc_dfft **out, mc
     d->c2r = fftw_plan_dft_c2r_1d(tx, d->cline, d->line, FFTW_ESTIMATE);
     d->fwd = fftw_plan_dft_1d(ty, d->cline, d->cline, FFTW_FORWARD, FFTW_ESTIMATE);
     d->bwd = fftw_plan_dft_1d(ty, d->cline, d->cline, FFTW_BACKWARD, FFTW_ESTIMATE);
+    if (!d->shared) {
     d->tr_fwd = fftw_mpi_plan_many_transpose(ny, d->hx, 2 * m, FFTW_MPI_DEFAULT_BLOCK,
                                              FFTW_MPI_DEFAULT_BLOCK, d->rows, d->cols, d->comm,
                                              FFTW_ESTIMATE);
     d->tr_bwd = fftw_mpi_plan_many_transpose(d->hx, ny, 2 * m, FFTW_MPI_DEFAULT_BLOCK,
                                              FFTW_MPI_DEFAULT_BLOCK, d->cols, d->rows, d->comm,
                                              FFTW_ESTIMATE);
+    }
     fftw_plan_with_nthreads(mc_threads_count());
-    if (!d->r2c || !d->c2r || !d->fwd || !d->bwd || !d->tr_fwd || !d->tr_bwd) {
+    if (!d->r2c || !d->c2r || !d->fwd || !d->bwd ||
+        (!d->shared && (!d->tr_fwd || !d->tr_bwd))) {
         mc_dfft_destroy(&d);
         return mc_fail(err, MC_ERR_NOMEM, "FFTW-MPI could not plan the %d x %d transforms", tx,
                        ty);
@@ -193,9 +341,7 @@ void mc_dfft_forward(mc_dfft *d, const double *field, fftw_complex *spec, int lo
     const ptrdiff_t first = local ? 0 : d->r0; /* the row of field that holds data row r0 */
     for (ptrdiff_t r = 0; r < d->nr; r++)
         row_forward(d, field + (size_t)(first + r) * d->nx, d->nx, rows + (size_t)r * d->hx);
-    const mc_dist_mark t0 = mc_dist_comm_begin();
-    fftw_execute(d->tr_fwd); /* ny x hx by rows -> hx x ny by columns */
-    mc_dist_comm_end(t0);
+    transpose(d, 0); /* ny x hx by rows -> hx x ny by columns */
     for (ptrdiff_t k = 0; k < d->nk; k++)
         col_forward(d, cols + (size_t)k * d->ny, d->ny, spec + (size_t)k * d->ty);
 }
@@ -213,9 +359,7 @@ void mc_dfft_inverse(mc_dfft *d, double *out, int local)
         fftw_execute_dft(d->bwd, at, at);
         memcpy(cols + (size_t)k * d->ny, at, (size_t)d->ny * sizeof *cols);
     }
-    mc_dist_mark t0 = mc_dist_comm_begin();
-    fftw_execute(d->tr_bwd); /* hx x ny by columns -> ny x hx by rows */
-    mc_dist_comm_end(t0);
+    transpose(d, 1); /* hx x ny by columns -> ny x hx by rows */
     for (ptrdiff_t r = 0; r < d->nr; r++) {
         fftw_complex *at = rows + (size_t)r * d->hx; /* (a c2r destroys its input: scratch) */
         if (!plan_fits(d, at)) {
@@ -227,7 +371,7 @@ void mc_dfft_inverse(mc_dfft *d, double *out, int local)
     }
     if (local)
         return;
-    t0 = mc_dist_comm_begin();
+    const mc_dist_mark t0 = mc_dist_comm_begin();
     MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, out, d->counts, d->displs, MPI_DOUBLE,
                    d->comm);
     mc_dist_comm_end(t0);
@@ -255,9 +399,7 @@ void mc_dfft_forward_many(mc_dfft *d, const double *fields, size_t stride, int m
                 dst[(size_t)k * M][1] = d->cline[k][1];
             }
         }
-    const mc_dist_mark t0 = mc_dist_comm_begin();
-    fftw_execute(d->tr_fwd); /* one transpose for the batch */
-    mc_dist_comm_end(t0);
+    transpose(d, 0); /* one transpose for the batch */
     for (int f = 0; f < m; f++)
         for (ptrdiff_t k = 0; k < d->nk; k++) {
             const fftw_complex *src = cols + ((size_t)k * d->ny) * M + f;
@@ -299,9 +441,7 @@ static void inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m, 
                 dst[(size_t)j * M][1] = at[j][1];
             }
         }
-    mc_dist_mark t0 = mc_dist_comm_begin();
-    fftw_execute(d->tr_bwd);
-    mc_dist_comm_end(t0);
+    transpose(d, 1);
     /* this rank's rows of each field, packed [r][f][x] for the gather (m = 1: in place), or
      * (no gather) straight into their places in out */
     double *pack = M > 1 && gather ? d->pack : out + (size_t)d->r0 * d->nx;
@@ -319,7 +459,7 @@ static void inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m, 
         }
     if (!gather)
         return;
-    t0 = mc_dist_comm_begin();
+    const mc_dist_mark t0 = mc_dist_comm_begin();
     if (M == 1) {
         MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, out, d->counts, d->displs, MPI_DOUBLE,
                        d->comm);
@@ -461,6 +601,12 @@ int mc_dfft_table_rows(mc_dfft *d, double *rows, fftw_complex *spec)
 
 #else /* no MPI: the engine is never made */
 
+int mc_dfft_shared_transposes(int on)
+{
+    (void)on;
+    return 0;
+}
+
 void mc_dfft_columns(const mc_dfft *d, int *k0, int *nk)
 {
     (void)d;
@@ -590,6 +736,32 @@ size_t mc_dfft_estimate(int nx, int ny, int tx, int ty, int p, int r)
     return mc_dfft_estimate_many(nx, ny, tx, ty, 1, p, r);
 }
 
+/* Of each peer's rows, this rank's columns of every row; of each peer's columns, this rank's
+ * rows of every column; a partly read page counts whole. */
+size_t mc_dfft_peer_bytes(int ny, int tx, int m, int p, int r)
+{
+    const int hx = tx / 2 + 1;
+    if (!use_shared || p < 2)
+        return 0;
+    const size_t e = 16 * (size_t)m, page = 4096; /* bytes per element */
+    int r0, nr, k0, nk;
+    mc_dfft_split(ny, p, r, &r0, &nr);
+    mc_dfft_split(hx, p, r, &k0, &nk);
+    size_t bytes = 0;
+    for (int q = 0; q < p; q++) {
+        if (q == r)
+            continue;
+        int q0, nrq, c0, nkq;
+        mc_dfft_split(ny, p, q, &q0, &nrq);
+        mc_dfft_split(hx, p, q, &c0, &nkq);
+        const size_t rows = (size_t)nrq * (size_t)hx * e, cols = (size_t)nkq * (size_t)ny * e;
+        const size_t from_rows = nk ? (size_t)nrq * ((size_t)nk * e + page) : 0,
+                     from_cols = nr ? (size_t)nkq * ((size_t)nr * e + page) : 0;
+        bytes += (from_rows < rows ? from_rows : rows) + (from_cols < cols ? from_cols : cols);
+    }
+    return bytes;
+}
+
 size_t mc_dfft_estimate_many(int nx, int ny, int tx, int ty, int m, int p, int r)
 {
     const int hx = tx / 2 + 1;
@@ -602,5 +774,5 @@ size_t mc_dfft_estimate_many(int nx, int ny, int tx, int ty, int m, int p, int r
     const size_t pack = m > 1 ? (size_t)nr * m * nx : 0;
     return (2 * nbuf + 2 * (size_t)nk * (size_t)ty + (size_t)tx + 2 * cl + pack) *
                sizeof(double) +
-           (m > 1 ? 4 : 2) * (size_t)p * sizeof(int);
+           (m > 1 ? 4 : 2) * (size_t)p * sizeof(int) + mc_dfft_peer_bytes(ny, tx, m, p, r);
 }

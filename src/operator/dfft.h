@@ -34,6 +34,16 @@
 
 typedef struct mc_dfft mc_dfft;
 
+/* The transposes of the engines made from now on. When every rank of the communicator shares
+ * one node's memory (MPI_COMM_TYPE_SHARED) the row and column buffers live in MPI shared windows
+ * and each rank copies its part of the transpose straight out of the other ranks' buffers: one
+ * copy per element and two barriers, instead of FFTW-MPI's local rearrangements around an
+ * all-to-all (which on this 2-core machine cost as much with two ranks as the whole local
+ * transpose with one; theory.md §3.8). Across nodes, or after mc_dfft_shared_transposes(0),
+ * FFTW-MPI's transposes. Both move the same values: the same bits. Returns the previous
+ * setting (1 by default); call it on every rank alike. Without MC_MPI: 0, no effect. */
+int mc_dfft_shared_transposes(int on);
+
 /* Plan for an nx x ny field padded to tx x ty (tx >= nx, ty >= ny) over the run's communicator.
  * *out is NULL on failure. MC_OK, MC_ERR_NOMEM (allocation or planning) or MC_ERR_INTERNAL (no
  * MPI build or no communicator, FFTW threads). Collective. */
@@ -86,8 +96,15 @@ void mc_dfft_inverse_many(mc_dfft *d, fftw_complex *spec, size_t sstride, int m,
 void mc_dfft_inverse_many_rows(mc_dfft *d, fftw_complex *spec, size_t sstride, int m,
                                double *out, size_t stride);
 
-/* What mc_dfft_bytes gives for an engine of m fields (mc_dfft_estimate is m = 1). */
+/* What mc_dfft_bytes gives for an engine of m fields (mc_dfft_estimate is m = 1), the pages of
+ * mc_dfft_peer_bytes included. */
 size_t mc_dfft_estimate_many(int nx, int ny, int tx, int ty, int m, int p, int r);
+
+/* The other ranks' buffer pages that rank r of p reads in the shared transposes (resident in its
+ * process too, so its peak counts them: (p - 1) / p^2 of the two buffers of the whole transform
+ * and a page per line); 0 with FFTW-MPI's transposes (mc_dfft_shared_transposes(0)) or p < 2.
+ * For the memory guard's models of the engines it does not build (pipeline/memguard.c). */
+size_t mc_dfft_peer_bytes(int ny, int tx, int m, int p, int r);
 
 /* This rank's data rows r0 .. r0 + nr - 1 (of ny): the rows mc_dfft_forward reads. */
 void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr);

@@ -9,6 +9,7 @@
 
 #include "contact/contact.h"
 #include "core/dist.h"
+#include "operator/dfft.h"
 #include "core/fftsize.h"
 #include "plastic/loop.h"
 #include "stress/stress.h"
@@ -24,7 +25,8 @@ static double axis_len(int n, int periodic) { return periodic ? n : mc_fftsize_g
  * table's wrap-around rows reading every offset), then those rows and the exchange's columns
  * (8 tx ty / P more), all three counted together (the guard errs high: rank 0's measured peak
  * with 3 processes at 768^2 came within 6 % of the figure without that); a periodic axis builds
- * the whole table on every rank. */
+ * the whole table on every rank. The shared transposes read the other ranks' pages
+ * (mc_dfft_peer_bytes). */
 static double operator_bytes(int nx, int ny, int px, int py, mc_backend b, int ranks)
 {
     double tx = axis_len(nx, px), ty = axis_len(ny, py), half = ty * (tx / 2 + 1);
@@ -33,7 +35,8 @@ static double operator_bytes(int nx, int ny, int px, int py, mc_backend b, int r
     if (ranks > 1) {
         const double table =
             px || py ? 8 * tx * ty : 16 * tx * ty / ranks + 8 * (double)nx * (double)ny;
-        return (16 * half * 2 + 2 * 16 * (double)ny * (tx / 2 + 1)) / ranks + table;
+        return (16 * half * 2 + 2 * 16 * (double)ny * (tx / 2 + 1)) / ranks + table +
+               (double)mc_dfft_peer_bytes(ny, (int)tx, 1, ranks, 0);
     }
     return 16 * half * 2 + 8 * tx * ty + 8 * tx * ty;
 }
@@ -43,16 +46,17 @@ static double operator_bytes(int nx, int ny, int px, int py, mc_backend b, int r
  * preconditioner's box buffers: serially a real and a half complex array of the grid (16 bytes a
  * cell); over P > 1 processes its transform engine over the box (the box at most the grid:
  * transposes, spectrum, rows, symbol, about 52 bytes a cell) and its exchange's slab (8), all
- * divided by P (precond.h). The active set is whole on every rank. Measured per rank (Hertz
+ * divided by P (precond.h), and the peers' pages its shared transposes read (dfft.h). The active set is whole on every rank. Measured per rank (Hertz
  * 2048^2, P = 2, 3: reports/bench, mpi section): the peak divides as R + S/P (R: the surface
  * fields of pipeline.h, the coarse start's whole arrays, the process); this model errs high
  * (the kernel table counted beside the solver). */
-static double solver_bytes(double cells, mc_contact_method m, int ranks)
+static double solver_bytes(int nx, int ny, mc_contact_method m, int ranks)
 {
+    const double cells = (double)nx * (double)ny;
     const double work = (10 * 8 + 2) * cells, precond = 16 * cells;
     if (ranks <= 1 || m == MC_METHOD_ACTIVE_SET)
         return work + precond;
-    return (work + 60 * cells) / ranks;
+    return (work + 60 * cells) / ranks + (double)mc_dfft_peer_bytes(ny, nx, 1, ranks, 0);
 }
 
 double mc_memory_estimate(const mc_scene *s) { return mc_memory_estimate_ranks(s, mc_dist_size()); }
@@ -68,7 +72,7 @@ double mc_memory_estimate_ranks(const mc_scene *s, int ranks)
         bytes += 8 * cells; /* the map as read */
     bytes += operator_bytes(g->nx, g->ny, g->periodic_x, g->periodic_y, s->solver.backend, ranks);
     if (s->load.kind != MC_LOAD_PRESSURE_FILE) {
-        double solver = solver_bytes(cells, s->solver.method, ranks);
+        double solver = solver_bytes(g->nx, g->ny, s->solver.method, ranks);
         if (s->solver.method == MC_METHOD_ACTIVE_SET)
             solver += 2 * 8 * cells * cells;
         /* nested start: each coarse level a quarter of the one above (operator and solver) */
