@@ -13,6 +13,7 @@
 #include "case/case.h"
 #include "cli/cli.h"
 #include "core/dist.h"
+#include "operator/dfft.h"
 #include "pipeline/checkpoint.h"
 #include "pipeline/output.h"
 #include "pipeline/pipeline.h"
@@ -149,13 +150,19 @@ static void print_solve(const mc_results *r)
     printf("  time %.3f s (setup %.3f, contact %.3f, stress %.3f), peak memory %.0f MiB\n",
            r->timing.total_s, r->timing.setup_s, r->timing.contact_s, r->timing.stress_s,
            peak_memory_mib());
-    if (mc_dist_active()) /* bin/microcontact-mpi: rank 0's share (README "Running on a cluster") */
+    if (mc_dist_active()) { /* bin/microcontact-mpi: rank 0's share (README "Running on a cluster") */
+        const int tr = mc_dfft_transposes_used();
         printf("  MPI: %d process%s; rank 0 spent %.3f s communicating (its peak memory "
                "above); its CPU %.3f s, %.3f s of it in communication; contact stage CPU "
-               "%.3f s, %.3f s of it in communication\n",
+               "%.3f s, %.3f s of it in communication; transposes %s\n",
                mc_dist_size(), mc_dist_size() > 1 ? "es" : "", r->timing.comm_s,
                mc_dist_cpu_seconds(), mc_dist_comm_cpu_seconds(), r->timing.contact_cpu_s,
-               r->timing.contact_comm_cpu_s);
+               r->timing.contact_comm_cpu_s,
+               tr == MC_DFFT_TRANSPOSES_SHARED ? "through shared memory"
+               : tr == MC_DFFT_TRANSPOSES_FFTW ? "by FFTW-MPI (no shared memory across the ranks)"
+               : tr ? "through shared memory and by FFTW-MPI"
+                    : "none");
+    }
 }
 
 /* ---- running-in -------------------------------------------------------------------------- */

@@ -9,9 +9,22 @@
 
 /* 0: FFTW-MPI's transposes even on one node (mc_dfft_shared_transposes) */
 static int use_shared = 1;
+/* the transposes the engines made so far use (mc_dfft_transposes_used) */
+static int used;
+/* tests: this rank's shared segment fails (mc_dfft_refuse_shared) */
+static int refuse_shared;
+
+void mc_dfft_refuse_shared(int on) { refuse_shared = on != 0; }
+
+int mc_dfft_transposes_used(void) { return used; }
 
 #ifdef MC_MPI
+#include <fcntl.h>
 #include <fftw3-mpi.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 struct mc_dfft {
     MPI_Comm comm;
@@ -29,14 +42,18 @@ struct mc_dfft {
     int m;                        /* fields per batch (mc_dfft_create_many; 1: mc_dfft_create) */
     double *pack;                 /* batches: this rank's output rows, [r][f][x] */
     int *rcounts, *rdispls;       /* batches: the gather's rows per rank and first rows */
-    /* all ranks on one node: rows and cols live in shared windows and the transposes copy
+    /* all ranks on one node: rows and cols live in shared memory and the transposes copy
      * straight from the other ranks' buffers (shared_transpose); else FFTW-MPI's */
     int shared;
-    MPI_Win win_rows, win_cols;
-    double **peer_rows, **peer_cols; /* every rank's rows and cols, mapped here */
-    int *lay;                        /* every rank's r0, nr, k0, nk */
+    double **seg;     /* every rank's segment (its rows, then its cols), mapped here */
+    int nseg;         /* ranks (entries of seg) */
+    size_t seg_bytes; /* bytes of each segment */
+    size_t nbuf;      /* doubles from a segment's rows to its cols (the ranks' largest nbuf) */
+    int *lay;         /* every rank's r0, nr, k0, nk */
 };
 
+
+static void unmap_segments(mc_dfft *d);
 
 int mc_dfft_shared_transposes(int on)
 {
@@ -62,17 +79,12 @@ void mc_dfft_destroy(mc_dfft **pd)
     mc_free(d->pack);
     mc_free(d->rcounts);
     mc_free(d->rdispls);
-    if (d->shared) { /* (collective, as the create) */
-        MPI_Win_unlock_all(d->win_rows);
-        MPI_Win_unlock_all(d->win_cols);
-        MPI_Win_free(&d->win_rows);
-        MPI_Win_free(&d->win_cols);
+    if (d->shared) {
+        unmap_segments(d);
     } else {
         mc_free(d->rows);
         mc_free(d->cols);
     }
-    mc_free(d->peer_rows);
-    mc_free(d->peer_cols);
     mc_free(d->lay);
     mc_free(d);
     *pd = NULL;
@@ -80,9 +92,87 @@ void mc_dfft_destroy(mc_dfft **pd)
 
 static void *alloc_doubles(size_t n) { return mc_malloc((n ? n : 1) * sizeof(double)); }
 
-/* The transposes' buffers, nbuf doubles each: in shared windows when every rank of the
- * communicator is on this node (MPI_COMM_TYPE_SHARED), with every rank's base addresses and
- * layout; else private. Collective; every rank takes the same branch. 0 or MC_ERR_NOMEM. */
+/* Each rank's rows and cols as one POSIX shared-memory segment (rows, then cols, nbuf doubles
+ * each), mapped by every rank of the node: d->seg[p] is rank p's, d->rows / d->cols this rank's.
+ * Every step that can fail (the segment's creation or room: posix_fallocate reserves its pages,
+ * so a full /dev/shm fails here instead of killing the process on first touch; mapping a peer's)
+ * fails on its own rank, and the ranks agree after each: 1 when every rank has every mapping,
+ * else 0 with nothing mapped (FFTW-MPI's transposes then). The names are unlinked once all
+ * ranks have mapped them: nothing is left in /dev/shm, even by a killed run. Released by
+ * munmap alone (unmap_segments): no collective. Collective. */
+static void unmap_segments(mc_dfft *d)
+{
+    if (!d->seg)
+        return;
+    for (int p = 0; p < d->nseg; p++)
+        if (d->seg[p])
+            munmap(d->seg[p], d->seg_bytes);
+    mc_free(d->seg);
+    d->seg = NULL;
+}
+
+static int map_segments(mc_dfft *d, size_t nbuf)
+{
+    static unsigned serial; /* this process's segments so far: unique names */
+    enum { NAME = 64 };
+    int size, rank;
+    MPI_Comm_size(d->comm, &size);
+    MPI_Comm_rank(d->comm, &rank);
+    /* one layout for all: rows at 0, cols at the largest nbuf of the ranks (it varies by rank) */
+    unsigned long long most = nbuf;
+    MPI_Allreduce(MPI_IN_PLACE, &most, 1, MPI_UNSIGNED_LONG_LONG, MPI_MAX, d->comm);
+    nbuf = (size_t)most;
+    const long page = sysconf(_SC_PAGESIZE) > 0 ? sysconf(_SC_PAGESIZE) : 4096;
+    const size_t want = 2 * (nbuf ? nbuf : 1) * sizeof(double);
+    d->seg_bytes = (want + (size_t)page - 1) / (size_t)page * (size_t)page;
+    d->nseg = size;
+    d->seg = mc_calloc((size_t)size, sizeof *d->seg);
+    char *names = mc_calloc((size_t)size, NAME);
+    char mine[NAME];
+    snprintf(mine, sizeof mine, "/microcontact-dfft.%ld.%u", (long)getpid(), serial++);
+    int fd = d->seg && names && !refuse_shared ? shm_open(mine, O_CREAT | O_EXCL | O_RDWR, 0600)
+                                               : -1;
+    int ok = fd >= 0 && posix_fallocate(fd, 0, (off_t)d->seg_bytes) == 0;
+    if (ok) {
+        void *at = mmap(NULL, d->seg_bytes, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+        ok = at != MAP_FAILED;
+        d->seg[rank] = ok ? at : NULL;
+    }
+    if (fd >= 0)
+        close(fd);
+    MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, d->comm);
+    if (ok) { /* every rank's segment, mapped here */
+        MPI_Allgather(mine, NAME, MPI_CHAR, names, NAME, MPI_CHAR, d->comm);
+        for (int p = 0; p < size && ok; p++) {
+            if (p == rank)
+                continue;
+            const int pfd = shm_open(names + (size_t)p * NAME, O_RDWR, 0);
+            void *at = pfd >= 0 ? mmap(NULL, d->seg_bytes, PROT_READ | PROT_WRITE, MAP_SHARED,
+                                       pfd, 0)
+                                : MAP_FAILED;
+            if (pfd >= 0)
+                close(pfd);
+            ok = at != MAP_FAILED;
+            d->seg[p] = ok ? at : NULL;
+        }
+        MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, d->comm);
+    }
+    if (fd >= 0)
+        shm_unlink(mine); /* (every rank has mapped it, or none will) */
+    mc_free(names);
+    if (!ok) {
+        unmap_segments(d);
+        return 0;
+    }
+    d->nbuf = nbuf;
+    d->rows = d->seg[rank];
+    d->cols = d->seg[rank] + nbuf;
+    return 1;
+}
+
+/* The transposes' buffers, nbuf doubles each: shared (map_segments) when every rank of the
+ * communicator is on this node (MPI_COMM_TYPE_SHARED), with every rank's layout; else
+ * private. Collective; every rank takes the same branch. 0 or MC_ERR_NOMEM. */
 static int alloc_transpose_buffers(mc_dfft *d, size_t nbuf)
 {
     int size, nsize;
@@ -93,57 +183,34 @@ static int alloc_transpose_buffers(mc_dfft *d, size_t nbuf)
     MPI_Comm_free(&node);
     int shared = use_shared && nsize == size;
     MPI_Allreduce(MPI_IN_PLACE, &shared, 1, MPI_INT, MPI_MIN, d->comm);
+    if (shared) {
+        d->lay = mc_calloc(4 * (size_t)size, sizeof *d->lay);
+        shared = d->lay != NULL;
+        MPI_Allreduce(MPI_IN_PLACE, &shared, 1, MPI_INT, MPI_MIN, d->comm);
+    }
+    if (shared && !map_segments(d, nbuf))
+        shared = 0; /* (no shared memory to be had: FFTW-MPI's transposes) */
     if (!shared) {
+        used |= MC_DFFT_TRANSPOSES_FFTW;
         d->rows = alloc_doubles(nbuf);
         d->cols = alloc_doubles(nbuf);
         return d->rows && d->cols ? 0 : MC_ERR_NOMEM;
     }
-    MPI_Info info;
-    MPI_Info_create(&info);
-    MPI_Info_set(info, "alloc_shared_noncontig", "true"); /* each rank's pages its own */
-    const MPI_Aint bytes = (MPI_Aint)((nbuf ? nbuf : 1) * sizeof(double));
-    MPI_Win_allocate_shared(bytes, sizeof(double), info, d->comm, &d->rows, &d->win_rows);
-    MPI_Win_allocate_shared(bytes, sizeof(double), info, d->comm, &d->cols, &d->win_cols);
-    MPI_Info_free(&info);
+    used |= MC_DFFT_TRANSPOSES_SHARED;
     d->shared = 1;
-    MPI_Win_lock_all(MPI_MODE_NOCHECK, d->win_rows); /* passive epochs for the run's loads */
-    MPI_Win_lock_all(MPI_MODE_NOCHECK, d->win_cols);
-    d->peer_rows = mc_calloc((size_t)size, sizeof *d->peer_rows);
-    d->peer_cols = mc_calloc((size_t)size, sizeof *d->peer_cols);
-    d->lay = mc_calloc(4 * (size_t)size, sizeof *d->lay);
-    int bad = !d->peer_rows || !d->peer_cols || !d->lay;
-    MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, d->comm);
-    if (bad)
-        return MC_ERR_NOMEM;
-    for (int p = 0; p < size; p++) {
-        MPI_Aint sz;
-        int du;
-        MPI_Win_shared_query(d->win_rows, p, &sz, &du, &d->peer_rows[p]);
-        MPI_Win_shared_query(d->win_cols, p, &sz, &du, &d->peer_cols[p]);
-    }
     const int mine[4] = {(int)d->r0, (int)d->nr, (int)d->k0, (int)d->nk};
     MPI_Allgather(mine, 4, MPI_INT, d->lay, 4, MPI_INT, d->comm);
     return 0;
 }
 
-/* bad on any rank, once the buffers are shared (their release is collective: every rank must
- * then fail alike); else this rank's bad. */
-static int failed_anywhere(mc_dfft *d, int bad)
-{
-    if (d->shared)
-        MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, d->comm);
-    return bad;
-}
-
-/* Between the writers and the readers of the shared buffers: each rank's stores visible, and
- * no rank past this point before all have reached it. */
+/* Between the writers and the readers of the shared buffers: each rank's stores visible to the
+ * others (full fences on both sides of the barrier), and no rank past this point before all
+ * have reached it. */
 static void shared_fence(mc_dfft *d)
 {
-    MPI_Win_sync(d->win_rows);
-    MPI_Win_sync(d->win_cols);
+    atomic_thread_fence(memory_order_seq_cst);
     MPI_Barrier(d->comm);
-    MPI_Win_sync(d->win_rows);
-    MPI_Win_sync(d->win_cols);
+    atomic_thread_fence(memory_order_seq_cst);
 }
 
 /* The transposes on one node, as FFTW-MPI's (the same values moved: the same bits), each
@@ -165,7 +232,7 @@ static void shared_transpose(mc_dfft *d, int inverse)
          * rank, columns k < nk_p of rank p */
         const size_t nr = (size_t)(inverse ? d->nr : lp[1]), nk = (size_t)(inverse ? lp[3] : d->nk);
         const size_t row0 = (size_t)(inverse ? d->r0 : lp[0]), col0 = (size_t)(inverse ? lp[2] : d->k0);
-        const double *src = inverse ? d->peer_cols[p] : d->peer_rows[p];
+        const double *src = d->seg[p] + (inverse ? d->nbuf : 0); /* its cols or rows */
         double *dst = inverse ? d->rows : d->cols;
         for (size_t kb = 0; kb < nk; kb += TILE)
             for (size_t rb = 0; rb < nr; rb += TILE) {
@@ -238,19 +305,18 @@ int mc_dfft_create_many(int nx, int ny, int tx, int ty, int m, mc_dfft **out, mc
     int size;
     MPI_Comm_size(d->comm, &size);
     const size_t cl = (size_t)(d->hx > ty ? d->hx : ty);
-    if (failed_anywhere(d, alloc_transpose_buffers(d, nbuf) ||
+    if (alloc_transpose_buffers(d, nbuf) ||
         !(d->spec = alloc_doubles(2 * (size_t)d->nk * (size_t)ty)) ||
         !(d->line = alloc_doubles((size_t)tx)) || !(d->cline = alloc_doubles(2 * cl)) ||
         !(d->counts = mc_calloc((size_t)size, sizeof *d->counts)) ||
-        !(d->displs = mc_calloc((size_t)size, sizeof *d->displs)))) {
+        !(d->displs = mc_calloc((size_t)size, sizeof *d->displs))) {
         mc_dfft_destroy(&d);
         return mc_fail(err, MC_ERR_NOMEM, "distributed FFT %d x %d: out of memory", tx, ty);
     }
     /* who holds which output rows: the gather's counts and offsets */
     int mine[2] = {(int)d->nr * nx, (int)d->r0 * nx};
     int *all = mc_malloc(2 * (size_t)size * sizeof *all);
-    if (failed_anywhere(d, !all)) {
-        mc_free(all);
+    if (!all) {
         mc_dfft_destroy(&d);
         return mc_fail(err, MC_ERR_NOMEM, "distributed FFT: out of memory");
     }
@@ -260,9 +326,9 @@ int mc_dfft_create_many(int nx, int ny, int tx, int ty, int m, mc_dfft **out, mc
         d->displs[p] = all[2 * p + 1];
     }
     if (m > 1) { /* the batches' gather: whole rows (m fields each) per rank */
-        if (failed_anywhere(d, !(d->pack = alloc_doubles((size_t)d->nr * m * nx)) ||
+        if (!(d->pack = alloc_doubles((size_t)d->nr * m * nx)) ||
             !(d->rcounts = mc_calloc((size_t)size, sizeof *d->rcounts)) ||
-            !(d->rdispls = mc_calloc((size_t)size, sizeof *d->rdispls)))) {
+            !(d->rdispls = mc_calloc((size_t)size, sizeof *d->rdispls))) {
             mc_free(all);
             mc_dfft_destroy(&d);
             return mc_fail(err, MC_ERR_NOMEM, "distributed FFT: out of memory");
@@ -490,6 +556,8 @@ void mc_dfft_inverse_many_rows(mc_dfft *d, fftw_complex *spec, size_t sstride, i
     inverse_many(d, spec, sstride, m, out, stride, 0);
 }
 
+int mc_dfft_is_shared(const mc_dfft *d) { return d->shared; }
+
 void mc_dfft_rows(const mc_dfft *d, int *r0, int *nr)
 {
     *r0 = (int)d->r0;
@@ -604,6 +672,12 @@ int mc_dfft_table_rows(mc_dfft *d, double *rows, fftw_complex *spec)
 int mc_dfft_shared_transposes(int on)
 {
     (void)on;
+    return 0;
+}
+
+int mc_dfft_is_shared(const mc_dfft *d)
+{
+    (void)d;
     return 0;
 }
 

@@ -35,14 +35,34 @@
 typedef struct mc_dfft mc_dfft;
 
 /* The transposes of the engines made from now on. When every rank of the communicator shares
- * one node's memory (MPI_COMM_TYPE_SHARED) the row and column buffers live in MPI shared windows
- * and each rank copies its part of the transpose straight out of the other ranks' buffers: one
+ * one node's memory (MPI_COMM_TYPE_SHARED) the row and column buffers live in POSIX shared
+ * memory (one segment per rank in /dev/shm, its pages reserved when made, its name removed as
+ * soon as every rank has mapped it) and each rank copies its part of the transpose straight out
+ * of the other ranks' buffers: one
  * copy per element and two barriers, instead of FFTW-MPI's local rearrangements around an
  * all-to-all (which on this 2-core machine cost as much with two ranks as the whole local
  * transpose with one; theory.md §3.8). Across nodes, or after mc_dfft_shared_transposes(0),
- * FFTW-MPI's transposes. Both move the same values: the same bits. Returns the previous
+ * FFTW-MPI's transposes; also when a segment cannot be made or mapped on any rank (no room in
+ * /dev/shm, ...), which every rank then agrees on. Both move the same values: the same bits.
+ * Unlike MPI-3 shared windows (whose failure on one rank left the others waiting in OpenMPI
+ * 4.1, and whose release is collective) nothing here can hang or needs the other ranks to
+ * release. Returns the previous
  * setting (1 by default); call it on every rank alike. Without MC_MPI: 0, no effect. */
 int mc_dfft_shared_transposes(int on);
+
+/* Which transposes the engines made so far in this process use: MC_DFFT_TRANSPOSES_SHARED,
+ * MC_DFFT_TRANSPOSES_FFTW (across nodes, switched off, or the MPI library could not make the
+ * shared windows, e.g. no room in its backing directory), both, or 0 (none made). For the
+ * run's report line. */
+enum { MC_DFFT_TRANSPOSES_SHARED = 1, MC_DFFT_TRANSPOSES_FFTW = 2 };
+int mc_dfft_transposes_used(void);
+
+/* Tests: with on != 0 this rank cannot make its shared segment, as when /dev/shm is full; every
+ * rank then falls back to FFTW-MPI's transposes alike. */
+void mc_dfft_refuse_shared(int on);
+
+/* 1 when d's transposes go through shared memory, 0 when FFTW-MPI's. */
+int mc_dfft_is_shared(const mc_dfft *d);
 
 /* Plan for an nx x ny field padded to tx x ty (tx >= nx, ty >= ny) over the run's communicator.
  * *out is NULL on failure. MC_OK, MC_ERR_NOMEM (allocation or planning) or MC_ERR_INTERNAL (no

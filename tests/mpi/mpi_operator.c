@@ -116,58 +116,77 @@ static void precond_check(const char *name, const mc_grid *g, const double *f)
     mc_free(zd);
 }
 
-/* The transposes of one node (shared windows, each rank copying from the others' buffers) and
+/* The transposes of one node (shared memory, each rank copying from the others' buffers) and
  * FFTW-MPI's give the same bits (they only move values): single fields and batches of 3
- * interleaved fields, spectra and gathered results. Breaking the shared copy (an element from
- * the wrong row or rank) shows here and, through the operator, against direct above. */
+ * interleaved fields, spectra and gathered results. And when one rank cannot make its shared
+ * segment (the last: as with /dev/shm full) every rank falls back to FFTW-MPI's alike, without
+ * hanging, with the same bits. Breaking the shared copy (an element from the wrong row or rank)
+ * shows here and, through the operator, against direct above. */
 static void transposes_agree(const char *name, const mc_grid *g, const double *f)
 {
     const int nx = g->nx, ny = g->ny, tx = 2 * nx, ty = 2 * ny, m = 3;
     const size_t n = (size_t)nx * (size_t)ny;
-    /* per setting: results [the single field][the batch's m fields], spectra likewise */
-    double *out[2] = {mc_zeros((m + 1) * n), mc_zeros((m + 1) * n)};
-    double *spec[2] = {NULL, NULL}, *fs = mc_malloc(m * n * sizeof *fs);
+    int size;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    /* per mode (0 FFTW-MPI's, 1 shared, 2 shared refused on the last rank): results [the single
+     * field][the batch's m fields], spectra likewise, and whether the engines were shared */
+    double *out[3], *spec[3] = {NULL, NULL, NULL}, *fs = mc_malloc(m * n * sizeof *fs);
+    int shared_got[3] = {-1, -1, -1};
     size_t len = 0; /* doubles of one field's spectrum on this rank */
-    int ok = out[0] && out[1] && fs;
-    for (int shared = 1; shared >= 0 && ok; shared--) {
-        const int was = mc_dfft_shared_transposes(shared);
+    int ok = fs != NULL;
+    for (int mode = 0; mode < 3; mode++)
+        ok = (out[mode] = mc_zeros((m + 1) * n)) && ok;
+    for (int mode = 0; mode < 3 && ok; mode++) {
+        const int was = mc_dfft_shared_transposes(mode > 0);
+        mc_dfft_refuse_shared(mode == 2 && rank == size - 1);
         mc_dfft *d1 = NULL, *dm = NULL;
         mc_error err = {0};
         if (mc_dfft_create(nx, ny, tx, ty, &d1, &err) ||
             mc_dfft_create_many(nx, ny, tx, ty, m, &dm, &err) ||
-            !(spec[shared] = mc_zeros((m + 1) * (len = mc_dfft_spectrum_len(d1)) + 1))) {
+            !(spec[mode] = mc_zeros((m + 1) * (len = mc_dfft_spectrum_len(d1)) + 1))) {
             ok = 0;
         } else {
-            fftw_complex *sp = (fftw_complex *)spec[shared];
+            shared_got[mode] = mc_dfft_is_shared(d1) + 2 * mc_dfft_is_shared(dm);
+            fftw_complex *sp = (fftw_complex *)spec[mode];
             mc_dfft_forward(d1, f, mc_dfft_spectrum(d1), 0);
-            memcpy(spec[shared], mc_dfft_spectrum(d1), len * sizeof(double));
-            mc_dfft_inverse(d1, out[shared], 0);
+            memcpy(spec[mode], mc_dfft_spectrum(d1), len * sizeof(double));
+            mc_dfft_inverse(d1, out[mode], 0);
             for (int k = 0; k < m; k++) /* the batch: m different fields */
                 for (size_t i = 0; i < n; i++)
                     fs[k * n + i] = f[(i + 7 * (size_t)k) % n] * (1.0 + k);
             mc_dfft_forward_many(dm, fs, n, m, sp + len / 2, len / 2);
             double *keep = mc_malloc((m * len + 1) * sizeof *keep); /* (the inverse destroys) */
             if (keep) {
-                memcpy(keep, spec[shared] + len, m * len * sizeof *keep);
-                mc_dfft_inverse_many(dm, (fftw_complex *)keep, len / 2, m, out[shared] + n, n);
+                memcpy(keep, spec[mode] + len, m * len * sizeof *keep);
+                mc_dfft_inverse_many(dm, (fftw_complex *)keep, len / 2, m, out[mode] + n, n);
             }
             ok = keep != NULL;
             mc_free(keep);
         }
         mc_dfft_destroy(&d1);
         mc_dfft_destroy(&dm);
+        mc_dfft_refuse_shared(0);
         mc_dfft_shared_transposes(was);
     }
     char what[160];
-    snprintf(what, sizeof what, "%s: shared-memory and FFTW-MPI transposes, the same bits", name);
-    int same = ok && memcmp(out[0], out[1], (m + 1) * n * sizeof(double)) == 0 &&
-               memcmp(spec[0], spec[1], (m + 1) * len * sizeof(double)) == 0;
-    MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-    check(what, same ? 0.0 : 1.0, 0.0);
-    mc_free(out[0]);
-    mc_free(out[1]);
-    mc_free(spec[0]);
-    mc_free(spec[1]);
+    for (int mode = 0; mode < 3; mode += 2) {
+        snprintf(what, sizeof what, "%s: shared-memory transposes and %s, the same bits", name,
+                 mode == 0 ? "FFTW-MPI's" : "the fallback when one rank has no shared memory");
+        int same = ok && memcmp(out[mode], out[1], (m + 1) * n * sizeof(double)) == 0 &&
+                   memcmp(spec[mode], spec[1], (m + 1) * len * sizeof(double)) == 0;
+        MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+        check(what, same ? 0.0 : 1.0, 0.0);
+    }
+    /* the engines took the transposes asked for, on every rank alike */
+    int took = shared_got[0] == 0 && shared_got[1] == 3 && shared_got[2] == 0;
+    MPI_Allreduce(MPI_IN_PLACE, &took, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    snprintf(what, sizeof what, "%s: shared memory used when asked and possible, on every rank",
+             name);
+    check(what, took ? 0.0 : 1.0, 0.0);
+    for (int mode = 0; mode < 3; mode++) {
+        mc_free(out[mode]);
+        mc_free(spec[mode]);
+    }
     mc_free(fs);
 }
 
