@@ -150,7 +150,8 @@ static void print_solve(const mc_results *r)
     printf("  time %.3f s (setup %.3f, contact %.3f, stress %.3f), peak memory %.0f MiB\n",
            r->timing.total_s, r->timing.setup_s, r->timing.contact_s, r->timing.stress_s,
            peak_memory_mib());
-    if (mc_dist_active()) { /* bin/microcontact-mpi: rank 0's share (README "Running on a cluster") */
+    if (mc_dist_active()) { /* bin/microcontact-mpi: rank 0's share (README "Running on a
+                              * cluster") */
         const int tr = mc_dfft_transposes_used();
         printf("  MPI: %d process%s; rank 0 spent %.3f s communicating (its peak memory "
                "above); its CPU %.3f s, %.3f s of it in communication; contact stage CPU "

@@ -52,7 +52,6 @@ struct mc_dfft {
     int *lay;         /* every rank's r0, nr, k0, nk */
 };
 
-
 static void unmap_segments(mc_dfft *d);
 
 int mc_dfft_shared_transposes(int on)
@@ -230,8 +229,10 @@ static void shared_transpose(mc_dfft *d, int inverse)
         const int *lp = d->lay + 4 * p;
         /* forward: rows r < nr_p of rank p, columns k of this rank; inverse: rows r < nr of this
          * rank, columns k < nk_p of rank p */
-        const size_t nr = (size_t)(inverse ? d->nr : lp[1]), nk = (size_t)(inverse ? lp[3] : d->nk);
-        const size_t row0 = (size_t)(inverse ? d->r0 : lp[0]), col0 = (size_t)(inverse ? lp[2] : d->k0);
+        const size_t nr = (size_t)(inverse ? d->nr : lp[1]),
+                     nk = (size_t)(inverse ? lp[3] : d->nk);
+        const size_t row0 = (size_t)(inverse ? d->r0 : lp[0]),
+                     col0 = (size_t)(inverse ? lp[2] : d->k0);
         const double *src = d->seg[p] + (inverse ? d->nbuf : 0); /* its cols or rows */
         double *dst = inverse ? d->rows : d->cols;
         for (size_t kb = 0; kb < nk; kb += TILE)

@@ -46,8 +46,9 @@ static double operator_bytes(int nx, int ny, int px, int py, mc_backend b, int r
  * preconditioner's box buffers: serially a real and a half complex array of the grid (16 bytes a
  * cell); over P > 1 processes its transform engine over the box (the box at most the grid:
  * transposes, spectrum, rows, symbol, about 52 bytes a cell) and its exchange's slab (8), all
- * divided by P (precond.h), and the peers' pages its shared transposes read (dfft.h). The active set is whole on every rank. Measured per rank (Hertz
- * 2048^2, P = 2, 3: reports/bench, mpi section): the peak divides as R + S/P (R: the surface
+ * divided by P (precond.h), and the peers' pages its shared transposes read (dfft.h). The
+ * active set is whole on every rank. Measured per rank (Hertz 2048^2, P = 2, 3: reports/bench,
+ * mpi section): the peak divides as R + S/P (R: the surface
  * fields of pipeline.h, the coarse start's whole arrays, the process); this model errs high
  * (the kernel table counted beside the solver). */
 static double solver_bytes(int nx, int ny, mc_contact_method m, int ranks)
