@@ -101,7 +101,7 @@ while IFS= read -r line; do
     cp -p "$f" "$dir/pristine" || exit 2
     OLD=$old NEW=$new perl -0pi -e 's/\Q$ENV{OLD}\E/$ENV{NEW}/' "$f"
     if cmp -s "$f" "$dir/pristine"; then echo "mutate: $id: not applied" >&2; exit 2; fi
-    (cd "$dir/tree" && make --no-print-directory -j"$jobs" all build/tests/run_tests && sh -c "$run") >"$log" 2>&1
+    (cd "$dir/tree" && make --no-print-directory -j"$jobs" all build/tests/run_tests && sh -c "$run") < /dev/null >"$log" 2>&1
     rc=$?
     cp -p "$dir/pristine" "$f" && touch "$f"  # restored; newer than its object: rebuilt next time
     ran=$((ran + 1))
