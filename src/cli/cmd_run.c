@@ -160,7 +160,7 @@ static void print_solve(const mc_results *r)
                mc_dist_cpu_seconds(), mc_dist_comm_cpu_seconds(), r->timing.contact_cpu_s,
                r->timing.contact_comm_cpu_s,
                tr == MC_DFFT_TRANSPOSES_SHARED ? "through shared memory"
-               : tr == MC_DFFT_TRANSPOSES_FFTW ? "by FFTW-MPI (no shared memory across the ranks)"
+               : tr == MC_DFFT_TRANSPOSES_FFTW ? "by FFTW-MPI (the ranks on several machines, MC_TRANSPOSES=fftw, or no room in /dev/shm)"
                : tr ? "through shared memory and by FFTW-MPI"
                     : "none");
     }

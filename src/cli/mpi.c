@@ -3,6 +3,7 @@
  * the numerics (core/dist.h), and only rank 0 speaks (the other ranks' stdout and stderr go to
  * /dev/null: every rank computes the same numbers and meets the same errors). */
 #include <signal.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -10,6 +11,7 @@
 #include "core/dist.h"
 #include "core/error.h"
 #include "core/threads.h"
+#include "operator/dfft.h"
 
 #ifdef MC_MPI
 #include <fftw3-mpi.h>
@@ -65,6 +67,16 @@ static int start(int *argc, char ***argv)
         if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr))
             return mc_cli_mpi_end(3);
     }
+    /* MC_TRANSPOSES=fftw: FFTW-MPI's transposes on one machine too (to compare; operator/dfft.h);
+     * unset or auto: through shared memory where the ranks share one */
+    const char *tr = getenv("MC_TRANSPOSES");
+    if (tr && strcmp(tr, "auto") && strcmp(tr, "fftw")) {
+        fprintf(stderr, "microcontact: error: MC_TRANSPOSES=%s in the environment: accepted are "
+                        "auto (the default: through shared memory when the processes share one "
+                        "machine) and fftw (FFTW-MPI's transposes)\n", tr);
+        return mc_cli_mpi_end(2);
+    }
+    mc_dfft_shared_transposes(!(tr && !strcmp(tr, "fftw")));
     return 0;
 }
 

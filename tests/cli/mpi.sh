@@ -283,6 +283,39 @@ stop_resume rank0
 stop_resume rank1
 stop_resume group
 
+# ---- 2c. the transposes: shared memory on one machine, FFTW-MPI's on request -------------------
+# operator/dfft.h: on one machine the transposes copy straight out of the other ranks' shared
+# buffers; MC_TRANSPOSES=fftw takes FFTW-MPI's (what runs across machines). Both move the same
+# values: the same bits in every output, and the run's MPI line says which it used. A value
+# other than auto or fftw is refused (exit 2, the variable named, nothing written).
+TR="--set mesh.nx=96 --set mesh.ny=80"
+$MPIRUN -np 2 "$MPROG" run cases/rough_sphere.ini --out "$T/tr-shm" $TR > "$T/tr-shm.log" 2>&1 &&
+    MC_TRANSPOSES=fftw $MPIRUN -x MC_TRANSPOSES -np 2 "$MPROG" run cases/rough_sphere.ini \
+        --out "$T/tr-fftw" $TR > "$T/tr-fftw.log" 2>&1
+rc=$?
+if [ $rc -ne 0 ]; then
+    bad "transposes: the runs failed (exit $rc)"; tail -5 "$T/tr-shm.log" "$T/tr-fftw.log"
+else
+    grep -q "transposes through shared memory" "$T/tr-shm.log" &&
+        grep -q "transposes by FFTW-MPI" "$T/tr-fftw.log" &&
+        ok "transposes: the MPI line names them (shared memory; FFTW-MPI with MC_TRANSPOSES=fftw)" ||
+        bad "transposes: the MPI lines do not name shared memory and FFTW-MPI"
+    same=1
+    for f in "$T"/tr-shm/*.npy; do
+        cmp -s "$f" "$T/tr-fftw/$(basename "$f")" || { same=0; echo "differs: $(basename "$f")"; }
+    done
+    [ $same = 1 ] && ok "transposes: shared memory and FFTW-MPI's give the same bits ($(ls "$T"/tr-shm/*.npy | wc -l) arrays)" ||
+        bad "transposes: shared memory and FFTW-MPI's differ"
+fi
+MC_TRANSPOSES=bogus $MPIRUN -x MC_TRANSPOSES -np 2 "$MPROG" run cases/hertz_point.ini \
+    --out "$T/tr-bad" > "$T/tr-bad.log" 2>&1
+rc=$?
+if [ $rc -eq 2 ] && grep -q "MC_TRANSPOSES=bogus" "$T/tr-bad.log" && [ ! -e "$T/tr-bad" ]; then
+    ok "transposes: MC_TRANSPOSES=bogus refused (exit 2, named, nothing written)"
+else
+    bad "transposes: MC_TRANSPOSES=bogus: exit $rc"; cat "$T/tr-bad.log"
+fi
+
 # ---- 3. refused with more than one process ----------------------------------------------------
 refused() { # NAME WANT CASE SET...: exit ${CODE:-2}, the message naming WANT, no output directory
     name=$1 want=$2 case=$3 code=${CODE:-2}; shift 3
