@@ -1,0 +1,72 @@
+/* eigen_spectral.h - the residual stress and surface displacement of layers of eigenstrain in an
+ * isotropic elastic half-space z >= 0, per LATERAL FOURIER MODE (docs/theory.md §8.10): pure
+ * math, no state, no allocation.
+ *
+ * The spectral discretisation. A field of eigenstrain constant within layers [b_k, b_{k+1})
+ * (b_0 = 0) and varying laterally as exp(i (kx x + ky y)) causes a residual stress of the same
+ * lateral mode; per mode the depth problem has a closed form (Mura's infinite-space operator
+ * transformed in depth by residues, the mirror layer, and the surface traction's correction).
+ * In the frame of the wave vector (x' along k, q = |k|) the kernel depends on the scaled depth
+ * t = q z alone: e^{-|s|} (A + B |s|) (s = t - t') plus the local term M_inf inside the layer,
+ * the constant 6 x 6 matrices of mc_spec_coef. So a lateral mode costs O(nz) (running sums of
+ * the exponentials, mc_spec_depth) instead of the stored kernel spectra of the cuboid operators.
+ *
+ * Conventions as kernels/eigen.h: z depth into the body, stresses tension positive, u_z > 0 into
+ * the body, tensor strains, components xx, yy, zz, xy, yz, xz; the eigenstrain column of a shear
+ * component carries both tensor entries; stresses per 2G (physical = 2 G x value).
+ * Mode convention: a field f(x) = F e^{i k.x} has the coefficient F (the inverse DFT's sign).
+ * Observation: MC_SPEC_CENTRE takes the stress at the layer's centre; MC_SPEC_AVERAGE averages
+ * it over the layer's depth (a Galerkin form in depth: the operator's matrix is Hermitian with
+ * the layers' thicknesses as weights, no energy-releasing mode). k = 0 is the laterally uniform
+ * layer (kernels/eigen.h mc_eigen_stress1_layer: M_inf inside the layer, nothing outside). */
+#ifndef MC_EIGEN_SPECTRAL_H
+#define MC_EIGEN_SPECTRAL_H
+
+#include <complex.h>
+
+typedef enum { MC_SPEC_CENTRE = 0, MC_SPEC_AVERAGE = 1 } mc_spec_point;
+
+/* The constant matrices of the k-frame kernel (per 2G; frame components x'x', y'y', zz, x'y',
+ * y'z, x'z): K(s) = e^{-s} (Ap + Bp s) for s = t - t' > 0 (observation below the source),
+ * e^{-|s|} (Am + Bm |s|) for s < 0, plus Minf where the observation lies in the source layer;
+ * the stress of a unit compressive surface pressure e^{-t} (T0 + T1 t); u_z(0) of it uz0 / q
+ * (in units of the pressure / 2G). */
+typedef struct {
+    double complex Ap[6][6], Bp[6][6], Am[6][6], Bm[6][6];
+    double Minf[6][6];
+    double complex T0[6], T1[6];
+    double uz0;
+    double nu;
+} mc_spec_coef;
+
+/* Fill k for Poisson ratio nu in (-1, 0.5). */
+void mc_spec_coef_init(double nu, mc_spec_coef *k);
+
+/* Rotate a lab-frame tensor (6 components) into the frame of (c, s) = (kx, ky) / q, and back. */
+void mc_spec_to_frame(double c, double s, const double complex lab[6], double complex frame[6]);
+void mc_spec_from_frame(double c, double s, const double complex frame[6], double complex lab[6]);
+
+/* Reference, one pair of layers: the lab-frame response S[i][c] (stress i per unit eigenstrain
+ * column c, per 2G) at the observation layer [u1, u2] to the source layer [t1, t2] (depths in m,
+ * equal intervals for the self term, disjoint otherwise), mode (kx, ky) in 1/m. */
+void mc_spec_pair(const mc_spec_coef *k, double kx, double ky, double u1, double u2, double t1,
+                  double t2, mc_spec_point pt, double complex S[6][6]);
+
+/* Reference: surface u_z (m) per unit eigenstrain column of the source layer [t1, t2]. */
+void mc_spec_pair_uz(const mc_spec_coef *k, double kx, double ky, double t1, double t2,
+                     double complex D[6]);
+
+/* Reference: the stress (per 2G, lab frame) at the single depth z (m) of the source layer
+ * [t1, t2] (a depth on a face plane: below it; for the checks of the boundary conditions and of
+ * equilibrium). */
+void mc_spec_point_stress(const mc_spec_coef *k, double kx, double ky, double z, double t1,
+                          double t2, double complex S[6][6]);
+
+/* One lateral mode, all layers at once in O(nz): eps[l][6] (lab frame) of the nz layers with
+ * boundaries b[0] = 0 < b[1] < .. < b[nz] (m) -> sig[l][6] (per 2G, lab frame) and *uz (m; may
+ * be NULL). sig may not alias eps. work: room for 12 nz complex values. */
+void mc_spec_depth(const mc_spec_coef *k, double kx, double ky, int nz, const double *b,
+                   mc_spec_point pt, const double complex (*eps)[6], double complex (*sig)[6],
+                   double complex *uz, double complex *work);
+
+#endif

@@ -1,0 +1,333 @@
+/* test_eigen_spectral.c - the half-space eigenstrain kernel per lateral Fourier mode
+ * (src/kernels/eigen_spectral.h; docs/theory.md §8.10), against properties it must have and
+ * that its construction does not impose:
+ *   - the O(nz) running sums (mc_spec_depth) against the pair-by-pair closed forms;
+ *   - a traction-free surface (sigma_zz = sigma_xz = sigma_yz = 0 at z = 0);
+ *   - equilibrium (i k . sigma + d sigma_z / dz = 0, central differences in depth) and traction
+ *     continuity across the layer faces;
+ *   - the layer average against Gauss-Legendre quadrature of the point stress;
+ *   - Betti: the averaged operator is Hermitian and negative semi-definite in the energy inner
+ *     product (no energy-releasing mode);
+ *   - reciprocity: the surface displacement of an eigenstrain layer equals the integral of the
+ *     Boussinesq stress of the pressure mode over the layer (kernels independent of S1 + S2). */
+#include <check.h>
+#include <complex.h>
+#include <gsl/gsl_complex_math.h>
+#include <gsl/gsl_eigen.h>
+#include <gsl/gsl_integration.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "kernels/eigen_spectral.h"
+#include "test_util.h"
+
+static const double NU = 0.3;
+
+/* the two depth algorithms: running sums against pair sums, round-off of O(nz) terms */
+#define TOL_DEPTH 1e-12
+/* closed-form identities at a point: round-off of the O(1) terms */
+#define TOL_IDENTITY 1e-12
+/* central differences of step d in t = q z: O(d^2) of the second derivative (~1) */
+#define FD_STEP 1e-4
+#define TOL_FD 1e-6
+/* 20-point Gauss-Legendre of a smooth integrand over one layer (h q <= 4): below 1e-13 */
+#define TOL_QUAD 1e-11
+
+static double cmax6(double complex S[6][6])
+{
+    double m = 0.0;
+    for (int i = 0; i < 6; i++)
+        for (int c = 0; c < 6; c++)
+            m = fmax(m, cabs(S[i][c]));
+    return m;
+}
+
+/* modes and layerings: uniform fine, graded, and one thick layer */
+static const double KS[][2] = {{1e6, 0.0}, {0.0, 2.5e6}, {1.2e6, -0.7e6}, {3e4, 1e4}, {4e6, 5e6}};
+#define N_KS 5
+
+static int layering(int which, double *b)
+{
+    const int nz = which == 2 ? 1 : 7;
+    b[0] = 0.0;
+    for (int l = 0; l < nz; l++) {
+        double h = 0.25e-6;
+        if (which == 1)
+            h *= (l < 3 ? 1 : 2 * l - 3); /* 1, 1, 1, 3, 5, 7, 9 fine layers */
+        if (which == 2)
+            h = 1.5e-6;
+        b[l + 1] = b[l] + h;
+    }
+    return nz;
+}
+
+/* ---- the running sums against the pairs ------------------------------------------------------- */
+
+START_TEST(test_depth_vs_pairs)
+{
+    mc_spec_coef k;
+    mc_spec_coef_init(NU, &k);
+    double b[16];
+    double worst = 0.0;
+    for (int lay = 0; lay < 3; lay++) {
+        const int nz = layering(lay, b);
+        for (int m = 0; m < N_KS; m++)
+            for (int pt = 0; pt < 2; pt++) {
+                double re[6 * 16], im[6 * 16];
+                test_random_field(re, 6 * (size_t)nz, 11 + m);
+                test_random_field(im, 6 * (size_t)nz, 97 + m);
+                double complex eps[16][6], sig[16][6], ref[16][6], work[12 * 16], uz, uzr = 0.0;
+                for (int l = 0; l < nz; l++)
+                    for (int c = 0; c < 6; c++) {
+                        eps[l][c] = re[6 * l + c] + I * im[6 * l + c];
+                        ref[l][c] = 0.0;
+                    }
+                mc_spec_depth(&k, KS[m][0], KS[m][1], nz, b, (mc_spec_point)pt,
+                              (const double complex(*)[6])eps, sig, &uz, work);
+                double scale = 0.0;
+                for (int i = 0; i < nz; i++)
+                    for (int j = 0; j < nz; j++) {
+                        double complex S[6][6];
+                        mc_spec_pair(&k, KS[m][0], KS[m][1], b[i], b[i + 1], b[j], b[j + 1],
+                                     (mc_spec_point)pt, S);
+                        for (int r = 0; r < 6; r++)
+                            for (int c = 0; c < 6; c++)
+                                ref[i][r] += S[r][c] * eps[j][c];
+                    }
+                for (int j = 0; j < nz; j++) {
+                    double complex D[6];
+                    mc_spec_pair_uz(&k, KS[m][0], KS[m][1], b[j], b[j + 1], D);
+                    for (int c = 0; c < 6; c++)
+                        uzr += D[c] * eps[j][c];
+                }
+                for (int i = 0; i < nz; i++)
+                    for (int r = 0; r < 6; r++)
+                        scale = fmax(scale, cabs(ref[i][r]));
+                for (int i = 0; i < nz; i++)
+                    for (int r = 0; r < 6; r++)
+                        worst = test_worst(worst, cabs(sig[i][r] - ref[i][r]) / scale);
+                worst = test_worst(worst, cabs(uz - uzr) / cabs(uzr));
+                ck_assert(scale > 0.1 && cabs(uzr) > 0.0);
+            }
+    }
+    ck_assert_msg(worst <= TOL_DEPTH, "running sums vs pairs: %.3g", worst);
+}
+END_TEST
+
+/* ---- boundary conditions, equilibrium, continuity --------------------------------------------- */
+
+START_TEST(test_surface_free)
+{
+    mc_spec_coef k;
+    mc_spec_coef_init(NU, &k);
+    const double layers[][2] = {{0.0, 0.5e-6}, {0.3e-6, 0.9e-6}, {1e-6, 4e-6}};
+    double worst = 0.0;
+    for (int m = 0; m < N_KS; m++)
+        for (int l = 0; l < 3; l++) {
+            double complex S[6][6], In[6][6];
+            mc_spec_point_stress(&k, KS[m][0], KS[m][1], 0.0, layers[l][0], layers[l][1], S);
+            /* the scale: the stress inside the layer */
+            mc_spec_point_stress(&k, KS[m][0], KS[m][1], 0.5 * (layers[l][0] + layers[l][1]),
+                                 layers[l][0], layers[l][1], In);
+            for (int c = 0; c < 6; c++) {
+                worst = test_worst(worst, cabs(S[2][c]) / cmax6(In));
+                worst = test_worst(worst, cabs(S[4][c]) / cmax6(In));
+                worst = test_worst(worst, cabs(S[5][c]) / cmax6(In));
+            }
+        }
+    ck_assert_msg(worst <= TOL_IDENTITY, "surface traction %.3g", worst);
+}
+END_TEST
+
+/* sigma_zj(z) for the lab rows zz (2), yz (4), xz (5) */
+static void traction(const mc_spec_coef *k, const double *kv, double z, double t1, double t2,
+                     double complex S[6][6])
+{
+    mc_spec_point_stress(k, kv[0], kv[1], z, t1, t2, S);
+}
+
+START_TEST(test_equilibrium)
+{
+    mc_spec_coef k;
+    mc_spec_coef_init(NU, &k);
+    const double t1 = 0.4e-6, t2 = 1.1e-6;
+    double worst = 0.0, worst_jump = 0.0;
+    for (int m = 0; m < N_KS; m++) {
+        const double *kv = KS[m], q = hypot(kv[0], kv[1]), d = FD_STEP / q;
+        const double zs[] = {0.2e-6, 0.7e-6, 1.6e-6, 3e-6}; /* above, inside, below */
+        for (int p = 0; p < 4; p++) {
+            double complex S[6][6], Sp[6][6], Sm[6][6];
+            traction(&k, kv, zs[p], t1, t2, S);
+            traction(&k, kv, zs[p] + d, t1, t2, Sp);
+            traction(&k, kv, zs[p] - d, t1, t2, Sm);
+            const double scale = cmax6(S) * q + 1e-300;
+            /* rows of sigma_j. : x (xx, xy, xz), y (xy, yy, yz), z (xz, yz, zz) */
+            const int rx[3] = {0, 3, 5}, ry[3] = {3, 1, 4}, rz[3] = {5, 4, 2};
+            for (int j = 0; j < 3; j++)
+                for (int c = 0; c < 6; c++) {
+                    const double complex div = I * kv[0] * S[rx[j]][c] + I * kv[1] * S[ry[j]][c] +
+                                               (Sp[rz[j]][c] - Sm[rz[j]][c]) / (2.0 * d);
+                    worst = test_worst(worst, cabs(div) / scale);
+                }
+        }
+        /* traction continuity across both faces */
+        const double faces[2] = {t1, t2};
+        for (int f = 0; f < 2; f++) {
+            double complex A[6][6], B[6][6];
+            traction(&k, kv, faces[f] * (1.0 - 1e-15), t1, t2, A);
+            traction(&k, kv, faces[f], t1, t2, B);
+            for (int c = 0; c < 6; c++)
+                for (int r = 2; r < 6; r += (r == 2 ? 2 : 1))
+                    worst_jump = test_worst(worst_jump, cabs(A[r][c] - B[r][c]) / cmax6(B));
+        }
+    }
+    ck_assert_msg(worst <= TOL_FD, "equilibrium %.3g", worst);
+    ck_assert_msg(worst_jump <= 1e-9, "traction jump %.3g", worst_jump);
+}
+END_TEST
+
+/* ---- the layer average against quadrature ----------------------------------------------------- */
+
+START_TEST(test_average_quadrature)
+{
+    mc_spec_coef k;
+    mc_spec_coef_init(NU, &k);
+    gsl_integration_glfixed_table *gl = gsl_integration_glfixed_table_alloc(20);
+    const double lay[][4] = {/* observation, source */
+                             {0.0, 0.5e-6, 0.0, 0.5e-6},
+                             {1e-6, 1.5e-6, 1e-6, 1.5e-6},
+                             {1.5e-6, 2.5e-6, 0.25e-6, 0.75e-6},
+                             {0.0, 0.25e-6, 0.5e-6, 2e-6}};
+    double worst = 0.0;
+    for (int m = 0; m < N_KS; m++)
+        for (int l = 0; l < 4; l++) {
+            double complex A[6][6], Q[6][6] = {{0}};
+            mc_spec_pair(&k, KS[m][0], KS[m][1], lay[l][0], lay[l][1], lay[l][2], lay[l][3],
+                         MC_SPEC_AVERAGE, A);
+            for (size_t g = 0; g < 20; g++) {
+                double x, w;
+                gsl_integration_glfixed_point(lay[l][0], lay[l][1], g, &x, &w, gl);
+                double complex S[6][6];
+                mc_spec_point_stress(&k, KS[m][0], KS[m][1], x, lay[l][2], lay[l][3], S);
+                for (int r = 0; r < 6; r++)
+                    for (int c = 0; c < 6; c++)
+                        Q[r][c] += w * S[r][c] / (lay[l][1] - lay[l][0]);
+            }
+            for (int r = 0; r < 6; r++)
+                for (int c = 0; c < 6; c++)
+                    worst = test_worst(worst, cabs(A[r][c] - Q[r][c]) / cmax6(Q));
+        }
+    gsl_integration_glfixed_table_free(gl);
+    ck_assert_msg(worst <= TOL_QUAD, "layer average vs quadrature %.3g", worst);
+}
+END_TEST
+
+/* ---- Betti ------------------------------------------------------------------------------------ */
+
+START_TEST(test_betti)
+{
+    mc_spec_coef k;
+    mc_spec_coef_init(NU, &k);
+    double b[16];
+    const int nz = layering(1, b), n = 6 * nz;
+    const double wgt[6] = {1, 1, 1, 2, 2, 2}; /* sigma : eps with the shear columns' both entries */
+    double worst_herm = 0.0, lowest = 0.0, largest = 0.0;
+    gsl_matrix_complex *H = gsl_matrix_complex_alloc((size_t)n, (size_t)n);
+    gsl_vector *ev = gsl_vector_alloc((size_t)n);
+    gsl_eigen_herm_workspace *ws = gsl_eigen_herm_alloc((size_t)n);
+    for (int m = 0; m < N_KS; m++) {
+        /* W = -sum_i h_i conj(eps_i) . wgt . sigma_i: H[(i, r), (j, c)] */
+        for (int i = 0; i < nz; i++)
+            for (int j = 0; j < nz; j++) {
+                double complex S[6][6];
+                mc_spec_pair(&k, KS[m][0], KS[m][1], b[i], b[i + 1], b[j], b[j + 1],
+                             MC_SPEC_AVERAGE, S);
+                for (int r = 0; r < 6; r++)
+                    for (int c = 0; c < 6; c++) {
+                        const double complex v = -(b[i + 1] - b[i]) / b[nz] * wgt[r] * S[r][c];
+                        gsl_matrix_complex_set(H, (size_t)(6 * i + r), (size_t)(6 * j + c),
+                                               gsl_complex_rect(creal(v), cimag(v)));
+                    }
+            }
+        double big = 0.0;
+        for (int a = 0; a < n; a++)
+            for (int c = 0; c < n; c++) {
+                const gsl_complex x = gsl_matrix_complex_get(H, (size_t)a, (size_t)c);
+                big = fmax(big, hypot(GSL_REAL(x), GSL_IMAG(x)));
+            }
+        for (int a = 0; a < n; a++)
+            for (int c = 0; c < n; c++) {
+                const gsl_complex x = gsl_matrix_complex_get(H, (size_t)a, (size_t)c);
+                const gsl_complex y = gsl_matrix_complex_get(H, (size_t)c, (size_t)a);
+                worst_herm = test_worst(worst_herm, hypot(GSL_REAL(x) - GSL_REAL(y),
+                                                          GSL_IMAG(x) + GSL_IMAG(y)) / big);
+            }
+        gsl_eigen_herm(H, ev, ws); /* destroys H */
+        for (int a = 0; a < n; a++) {
+            lowest = fmin(lowest, gsl_vector_get(ev, (size_t)a) / big);
+            largest = fmax(largest, gsl_vector_get(ev, (size_t)a) / big);
+        }
+    }
+    gsl_eigen_herm_free(ws);
+    gsl_vector_free(ev);
+    gsl_matrix_complex_free(H);
+    ck_assert_msg(worst_herm <= TOL_IDENTITY, "averaged operator not Hermitian: %.3g", worst_herm);
+    ck_assert_msg(lowest >= -TOL_IDENTITY, "energy-releasing mode: lowest %.3g", lowest);
+    ck_assert(largest > 0.1);
+}
+END_TEST
+
+/* ---- reciprocity: u_z against the Boussinesq stress of the pressure mode ---------------------- */
+
+START_TEST(test_reciprocity)
+{
+    mc_spec_coef k;
+    mc_spec_coef_init(NU, &k);
+    gsl_integration_glfixed_table *gl = gsl_integration_glfixed_table_alloc(30);
+    const double G = 0.5; /* stresses per 2G: the pressure response per unit force, 2G = 1 */
+    double worst = 0.0;
+    for (int m = 0; m < N_KS; m++) {
+        const double kx = KS[m][0], ky = KS[m][1], q = hypot(kx, ky);
+        const double t1 = 0.3e-6, t2 = 0.3e-6 + 2.0 / q;
+        double complex D[6], R[6] = {0};
+        mc_spec_pair_uz(&k, kx, ky, t1, t2, D);
+        /* Betti: u_z(k) = int sigma^B(-k, z) : eps* dz, sigma^B the stress of a unit compressive
+         * point force (its lateral transform: the pressure mode), here per unit stress 2G */
+        for (size_t g = 0; g < 30; g++) {
+            double z, w;
+            gsl_integration_glfixed_point(t1, t2, g, &z, &w, gl);
+            double complex f[6], lab[6];
+            const double t = q * z;
+            for (int r = 0; r < 6; r++)
+                f[r] = exp(-t) * (k.T0[r] + k.T1[r] * t);
+            mc_spec_from_frame(-kx / q, -ky / q, f, lab);
+            const double wgt[6] = {1, 1, 1, 2, 2, 2};
+            for (int c = 0; c < 6; c++)
+                R[c] += w * wgt[c] * lab[c] / (2.0 * G);
+        }
+        double big = 0.0;
+        for (int c = 0; c < 6; c++)
+            big = fmax(big, cabs(R[c]));
+        for (int c = 0; c < 6; c++)
+            worst = test_worst(worst, cabs(D[c] - R[c]) / big);
+    }
+    gsl_integration_glfixed_table_free(gl);
+    ck_assert_msg(worst <= TOL_QUAD, "u_z against Betti with the pressure mode %.3g", worst);
+}
+END_TEST
+
+Suite *suite_eigen_spectral(void);
+Suite *suite_eigen_spectral(void)
+{
+    Suite *s = suite_create("eigen_spectral");
+    TCase *tc = tcase_create("kernel");
+    tcase_add_test(tc, test_depth_vs_pairs);
+    tcase_add_test(tc, test_surface_free);
+    tcase_add_test(tc, test_equilibrium);
+    tcase_add_test(tc, test_average_quadrature);
+    tcase_add_test(tc, test_betti);
+    tcase_add_test(tc, test_reciprocity);
+    suite_add_tcase(s, tc);
+    return s;
+}
