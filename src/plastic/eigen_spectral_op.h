@@ -1,0 +1,67 @@
+/* eigen_spectral_op.h - the spectral eigenstrain operator (docs/theory.md §8.10): the residual
+ * stress at the cell centres and the surface residual displacement of a volume of eigenstrain,
+ * with the lateral field a sampled trigonometric polynomial and the kernel evaluated per lateral
+ * Fourier mode when used (kernels/eigen_spectral.h), so that no kernel spectra are stored.
+ *
+ * It is a second discretisation, not a faster path to the cuboid operators' numbers
+ * (plastic/eigen_op.h): laterally the eigenstrain of a cell is a sample of a band-limited field
+ * instead of a uniform cuboid; in depth both hold it constant per layer. The two agree to the
+ * lateral discretisation error, O((k h)^2) for a smooth field (tests/test_eigen_spectral_op.c
+ * measures it).
+ *
+ * Grids: every combination of free and periodic axes (a periodic axis with one row: bars along
+ * it, the line contact). A periodic axis is transformed over its period; a free axis is zero
+ * padded to a period of at least twice the grid (mc_fftsize_good), so the field's images lie a
+ * grid away: their stress falls like (zone / distance)^3 (theory §8.10 measures it). The volume
+ * lies under the whole grid (a smaller window: MC_ERR_LIMIT). Graded layers as eigen_op.h.
+ * Volume fields and units as eigen_op.h (six arrays nz * ny * nx, layer-major; sig in Pa with
+ * G; u_z in m, > 0 into the body).
+ *
+ * Backends behind one interface:
+ *   fft    - lateral FFTs and, per mode, the O(nz) running sums of mc_spec_depth; memory: the
+ *            layers' spectra along x (16 bytes per cell and component on a free x axis, 8 on a
+ *            periodic one) and per-thread blocks; no kernel is stored;
+ *   direct - the kernel per pair of layers (mc_spec_pair) taken to space by a plain inverse DFT
+ *            into tables over the period, summed cell by cell in O(N^2 nz^2): the reference, for
+ *            small grids.
+ * Points in depth: MC_EIG_CELL_AVERAGE (the default) averages the stress over the layer's depth
+ * (Galerkin: no energy-releasing mode), MC_EIG_CELL_CENTRE takes it at the layer's centre.
+ *
+ * One thread at a time per object; create from one thread (FFTW's planner). Not distributed.
+ */
+#ifndef MC_EIGEN_SPECTRAL_OP_H
+#define MC_EIGEN_SPECTRAL_OP_H
+
+#include <stddef.h>
+
+#include "core/error.h"
+#include "core/grid.h"
+#include "operator/operator.h"
+#include "plastic/eigen_op.h"
+
+typedef struct mc_eigen_spectral mc_eigen_spectral;
+
+/* Plan for grid g, volume v (under the whole grid), Poisson ratio nu in (-1, 0.5), backend b.
+ * MC_OK; MC_ERR_INPUT (bad grid, volume, nu, backend), MC_ERR_LIMIT (a window smaller than the
+ * grid; the direct backend beyond MC_SPEC_DIRECT_MAX table values), MC_ERR_NOMEM. */
+int mc_eigen_spectral_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                             mc_eigen_spectral **out, mc_error *err);
+
+/* The direct backend's tables hold nz^2 x 36 x (periods) values: at most this many. */
+#define MC_SPEC_DIRECT_MAX (1L << 26)
+
+/* sig[6] (Pa, volume layout) = the residual stress of eps (G the shear modulus, Pa); uz (grid
+ * ny * nx, m; NULL: not wanted) the surface residual displacement. Never fails. */
+void mc_eigen_spectral_apply(mc_eigen_spectral *op, const double *const eps[6], double G,
+                             double *const sig[6], double *uz);
+
+size_t mc_eigen_spectral_bytes(const mc_eigen_spectral *op);
+
+/* What mc_eigen_spectral_bytes would return for create(g, v, b), from the sizes alone (threads:
+ * the thread count the object would be made with); 0 for what create refuses. */
+size_t mc_eigen_spectral_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
+                                  int threads);
+
+void mc_eigen_spectral_destroy(mc_eigen_spectral **op); /* NULL-safe; sets *op = NULL */
+
+#endif
