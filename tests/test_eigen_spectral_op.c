@@ -90,6 +90,23 @@ START_TEST(test_backends)
     ck_assert_msg(es <= TOL_BACKENDS, "case %d: stress fft vs direct %.3g", _i, es);
     ck_assert_msg(eu <= TOL_BACKENDS, "case %d: u_z fft vs direct %.3g", _i, eu);
     ck_assert(eig_max_abs(b2, 6 * n) > 0.0 && eig_max_abs(ud, ns) > 0.0);
+    /* the displacement alone (the layers streamed; the direct tables of u_z only) */
+    double *u1 = malloc(ns * sizeof *u1), *u2 = malloc(ns * sizeof *u2);
+    for (int b = 0; b < 2; b++) {
+        mc_eigen_spectral *ou = NULL;
+        mc_error err = {0};
+        const mc_backend be = b ? MC_BACKEND_DIRECT : MC_BACKEND_FFT;
+        ck_assert_int_eq(mc_eigen_spectral_create_uz(&g, &v, NU, be, &ou, &err), MC_OK);
+        mc_eigen_spectral_apply_uz(ou, (const double *const *)eps, u1);
+        const double e1 = test_rel_maxdiff(u1, ud, ns);
+        ck_assert_msg(e1 <= TOL_BACKENDS, "case %d: u_z alone (%s) vs direct %.3g", _i,
+                      b ? "direct" : "fft", e1);
+        ck_assert_uint_eq(mc_eigen_spectral_estimate_uz(&g, &v, be), mc_eigen_spectral_bytes(ou));
+        mc_eigen_spectral_destroy(&ou);
+    }
+    mc_eigen_spectral_apply_uz(of, (const double *const *)eps, u2); /* a whole object's u_z alone */
+    ck_assert(test_rel_maxdiff(u2, ud, ns) <= TOL_BACKENDS);
+    free(u1), free(u2);
     /* the estimate is the object's size */
     ck_assert_uint_eq(mc_eigen_spectral_estimate(&g, &v, MC_BACKEND_DIRECT, 1),
                       mc_eigen_spectral_bytes(od));

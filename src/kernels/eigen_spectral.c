@@ -12,6 +12,8 @@
 #include <math.h>
 #include <string.h>
 
+void mc_spec_coef_sparse(mc_spec_coef *k);
+
 void mc_spec_coef_init(double nu, mc_spec_coef *k)
 {
     memset(k, 0, sizeof *k);
@@ -63,6 +65,7 @@ void mc_spec_coef_init(double nu, mc_spec_coef *k)
     k->T1[2] = -1.0;
     k->T1[5] = I;
     k->uz0 = 2.0 - 2.0 * nu;
+    mc_spec_coef_sparse(k);
 }
 
 void mc_spec_to_frame(double c, double s, const double complex e[6], double complex f[6])
@@ -137,18 +140,6 @@ static double q1(double h)
 
 /* ---- small complex linear algebra ------------------------------------------------------------- */
 
-/* y += a M x (6 x 6) */
-static void mv_add(double complex y[6], double a, const double complex M[6][6],
-                   const double complex x[6])
-{
-    for (int i = 0; i < 6; i++) {
-        double complex s = 0.0;
-        for (int c = 0; c < 6; c++)
-            s += M[i][c] * x[c];
-        y[i] += a * s;
-    }
-}
-
 static void mv_add_real(double complex y[6], double a, const double M[6][6],
                         const double complex x[6])
 {
@@ -166,13 +157,6 @@ static void m_add(double complex M[6][6], double complex a, const double complex
     for (int i = 0; i < 6; i++)
         for (int c = 0; c < 6; c++)
             M[i][c] += a * N[i][c];
-}
-
-/* The mirror's R eps R: the columns yz, xz change sign (also in the k frame: R acts on z). */
-static void mirror(double complex e[6])
-{
-    e[4] = -e[4];
-    e[5] = -e[5];
 }
 
 /* ---- the reference: one pair of layers ------------------------------------------------------- */
@@ -342,28 +326,78 @@ void mc_spec_pair_uz(const mc_spec_coef *k, double kx, double ky, double t1, dou
 
 /* ---- the fast depth step: running sums ------------------------------------------------------- */
 
-/* Move sums U, V of e^{-(x - x_j)} P0 and e^{-(x - x_j)}((x - x_j) P0 + P1) by d >= 0. */
-static void shift(double complex U[6], double complex V[6], double d)
+/* The nonzero entries of the frame matrices, for products that skip the zeros (the in-plane and
+ * anti-plane blocks leave 17 of 36 entries in A, 9 in B) and split the complex arithmetic. */
+static void sparse_of(const double complex M[6][6], mc_spec_sparse *s)
 {
-    const double e = exp(-d);
-    for (int c = 0; c < 6; c++) {
-        V[c] = e * (V[c] + d * U[c]);
-        U[c] *= e;
+    s->n = 0;
+    for (int i = 0; i < 6; i++)
+        for (int c = 0; c < 6; c++)
+            if (M[i][c] != 0.0) {
+                s->r[s->n] = (unsigned char)i;
+                s->c[s->n] = (unsigned char)c;
+                s->re[s->n] = creal(M[i][c]);
+                s->im[s->n] = cimag(M[i][c]);
+                s->n++;
+            }
+}
+
+void mc_spec_coef_sparse(mc_spec_coef *k)
+{
+    sparse_of((const double complex(*)[6])k->Ap, &k->sAp);
+    sparse_of((const double complex(*)[6])k->Bp, &k->sBp);
+    sparse_of((const double complex(*)[6])k->Am, &k->sAm);
+    sparse_of((const double complex(*)[6])k->Bm, &k->sBm);
+    double complex S[6][6];
+    for (int i = 0; i < 6; i++)
+        for (int c = 0; c < 6; c++)
+            S[i][c] = k->Ap[i][c] + k->Am[i][c];
+    sparse_of((const double complex(*)[6])S, &k->sAs);
+    for (int i = 0; i < 6; i++)
+        for (int c = 0; c < 6; c++)
+            S[i][c] = k->Bp[i][c] + k->Bm[i][c];
+    sparse_of((const double complex(*)[6])S, &k->sBs);
+}
+
+/* y += a M x (x, y as re/im pairs) */
+static inline void sp_add(double *y, double a, const mc_spec_sparse *M, const double *x)
+{
+    for (int n = 0; n < M->n; n++) {
+        const double *xv = x + 2 * M->c[n];
+        double *yv = y + 2 * M->r[n];
+        const double re = M->re[n] * a, im = M->im[n] * a;
+        yv[0] += re * xv[0] - im * xv[1];
+        yv[1] += re * xv[1] + im * xv[0];
     }
 }
 
-/* out += A (a U) + B (b V + c U) */
-static void apply_ab(double complex out[6], const double complex A[6][6],
-                     const double complex B[6][6], double a, double b, double c,
-                     const double complex U[6], const double complex V[6])
+/* Per layer, the scalars of its scaled thickness h (the same h repeats on uniform layers) */
+typedef struct {
+    double h, eh, p0, p1, ehalf, p0h2, p1h2, q0, q1;
+} layer_scalars;
+
+static void scalars(double h, layer_scalars *L)
 {
-    double complex u[6], v[6];
-    for (int m = 0; m < 6; m++) {
-        u[m] = a * U[m];
-        v[m] = b * V[m] + c * U[m];
+    if (fabs(L->h - h) <= 1e-14 * h) /* the same thickness (the boundaries' round-off apart) */
+        return;
+    L->h = h;
+    L->eh = exp(-h);
+    L->p0 = p0(h);
+    L->p1 = p1(h);
+    L->ehalf = exp(-0.5 * h);
+    L->p0h2 = p0(0.5 * h);
+    L->p1h2 = p1(0.5 * h);
+    L->q0 = q0(h);
+    L->q1 = q1(h);
+}
+
+/* U, V (6 complex as re/im) moved by d: V = e^{-d}(V + d U), U = e^{-d} U */
+static inline void shift_by(double *U, double *V, double e, double d)
+{
+    for (int m = 0; m < 12; m++) {
+        V[m] = e * (V[m] + d * U[m]);
+        U[m] *= e;
     }
-    mv_add(out, 1.0, A, u);
-    mv_add(out, 1.0, B, v);
 }
 
 void mc_spec_depth(const mc_spec_coef *k, double kx, double ky, int nz, const double *b,
@@ -384,94 +418,186 @@ void mc_spec_depth(const mc_spec_coef *k, double kx, double ky, int nz, const do
         return;
     }
     const double cq = kx / q, sq = ky / q;
-    double complex(*e)[6] = (double complex(*)[6])work;
-    double complex(*acc)[6] = (double complex(*)[6])(work + 6 * (size_t)nz);
-    double complex M0[6] = {0}, M1[6] = {0};
-    for (int l = 0; l < nz; l++) {
-        mc_spec_to_frame(cq, sq, eps[l], e[l]);
-        memset(acc[l], 0, sizeof acc[l]);
-        const double t1 = q * b[l], w = q * (b[l + 1] - b[l]), et = exp(-t1);
-        double complex r[6];
-        memcpy(r, e[l], sizeof r);
-        mirror(r);
-        for (int c = 0; c < 6; c++) {
-            M0[c] += et * p0(w) * r[c];
-            M1[c] += et * (t1 * p0(w) + p1(w)) * r[c];
-        }
-    }
     const int avg = pt == MC_SPEC_AVERAGE;
-    /* down: the sources above each layer, and the mirror (all above); at x = top of layer i */
-    double complex U[6] = {0}, V[6] = {0}, Uc[6], Vc[6];
+    /* work: e (frame), acc (frame), as re/im pairs, 12 doubles per layer each */
+    double *e = (double *)work, *acc = e + 12 * (size_t)nz;
+    double M0[12] = {0}, M1[12] = {0};
+    layer_scalars L = {-1.0, 0, 0, 0, 0, 0, 0, 0, 0};
+    double x = 0.0, et = 1.0; /* the layer's scaled top and e^{-top} */
+    for (int l = 0; l < nz; l++) {
+        double complex f[6];
+        mc_spec_to_frame(cq, sq, eps[l], f);
+        double *el = e + 12 * l;
+        for (int c = 0; c < 6; c++) {
+            el[2 * c] = creal(f[c]);
+            el[2 * c + 1] = cimag(f[c]);
+        }
+        memset(acc + 12 * l, 0, 12 * sizeof *acc);
+        const double h = q * (b[l + 1] - b[l]);
+        scalars(h, &L);
+        const double w0 = et * L.p0, w1 = et * (x * L.p0 + L.p1);
+        for (int m = 0; m < 12; m++) {
+            const double r = m >= 8 ? -el[m] : el[m]; /* the mirror: yz, xz change sign */
+            M0[m] += w0 * r;
+            M1[m] += w1 * r;
+        }
+        x += h;
+        et *= L.eh;
+    }
+    /* down: the sources above each layer and the mirror (all above), at the layer's top (average)
+     * or centre */
+    double U[12] = {0}, V[12] = {0}, Uc[12], Vc[12];
+    x = 0.0;
+    et = 1.0;
     for (int i = 0; i < nz; i++) {
-        const double x = q * b[i], h = q * (b[i + 1] - b[i]);
-        const double xo = avg ? x : x + 0.5 * h; /* where the sums are taken */
+        const double h = q * (b[i + 1] - b[i]);
+        scalars(h, &L);
+        double *ai = acc + 12 * i;
         memcpy(Uc, U, sizeof Uc);
         memcpy(Vc, V, sizeof Vc);
-        if (!avg)
-            shift(Uc, Vc, 0.5 * h);
-        const double em = exp(-xo);
-        for (int c = 0; c < 6; c++) {
-            Uc[c] += em * M0[c];
-            Vc[c] += em * (xo * M0[c] + M1[c]);
+        double xo = x, em = et;
+        if (!avg) {
+            shift_by(Uc, Vc, L.ehalf, 0.5 * h);
+            xo = x + 0.5 * h;
+            em = et * L.ehalf;
         }
-        if (avg)
-            apply_ab(acc[i], k->Ap, k->Bp, p0(h) / h, p0(h) / h, p1(h) / h, Uc, Vc);
-        else
-            apply_ab(acc[i], k->Ap, k->Bp, 1.0, 1.0, 0.0, Uc, Vc);
-        shift(U, V, h);
-        for (int c = 0; c < 6; c++) {
-            U[c] += p0(h) * e[i][c];
-            V[c] += p1(h) * e[i][c];
+        for (int m = 0; m < 12; m++) {
+            Uc[m] += em * M0[m];
+            Vc[m] += em * (xo * M0[m] + M1[m]);
         }
+        if (avg) { /* A (p0/h U) + B (p0/h V + p1/h U) */
+            const double a = L.p0 / h, c = L.p1 / h;
+            for (int m = 0; m < 12; m++)
+                Vc[m] = a * Vc[m] + c * Uc[m];
+            sp_add(ai, a, &k->sAp, Uc);
+            sp_add(ai, 1.0, &k->sBp, Vc);
+        } else {
+            sp_add(ai, 1.0, &k->sAp, Uc);
+            sp_add(ai, 1.0, &k->sBp, Vc);
+        }
+        shift_by(U, V, L.eh, h);
+        const double *ei = e + 12 * i;
+        for (int m = 0; m < 12; m++) {
+            U[m] += L.p0 * ei[m];
+            V[m] += L.p1 * ei[m];
+        }
+        x += h;
+        et *= L.eh;
     }
-    /* up: the sources below each layer; at x = bottom of layer i */
+    /* up: the sources below each layer, at the layer's bottom (average) or centre */
     memset(U, 0, sizeof U);
     memset(V, 0, sizeof V);
     for (int i = nz - 1; i >= 0; i--) {
         const double h = q * (b[i + 1] - b[i]);
+        scalars(h, &L);
+        double *ai = acc + 12 * i;
         memcpy(Uc, U, sizeof Uc);
         memcpy(Vc, V, sizeof Vc);
         if (avg) {
-            apply_ab(acc[i], k->Am, k->Bm, p0(h) / h, p0(h) / h, p1(h) / h, Uc, Vc);
+            const double a = L.p0 / h, c = L.p1 / h;
+            for (int m = 0; m < 12; m++)
+                Vc[m] = a * Vc[m] + c * Uc[m];
+            sp_add(ai, a, &k->sAm, Uc);
+            sp_add(ai, 1.0, &k->sBm, Vc);
         } else {
-            shift(Uc, Vc, 0.5 * h);
-            apply_ab(acc[i], k->Am, k->Bm, 1.0, 1.0, 0.0, Uc, Vc);
+            shift_by(Uc, Vc, L.ehalf, 0.5 * h);
+            sp_add(ai, 1.0, &k->sAm, Uc);
+            sp_add(ai, 1.0, &k->sBm, Vc);
         }
-        shift(U, V, h);
-        for (int c = 0; c < 6; c++) {
-            U[c] += p0(h) * e[i][c];
-            V[c] += p1(h) * e[i][c];
+        shift_by(U, V, L.eh, h);
+        const double *ei = e + 12 * i;
+        for (int m = 0; m < 12; m++) {
+            U[m] += L.p0 * ei[m];
+            V[m] += L.p1 * ei[m];
         }
     }
-    /* at x = 0 the sums hold every layer: p3 */
-    double complex p3 = 0.0;
-    for (int c = 0; c < 6; c++)
-        p3 += 2.0 * (k->Am[2][c] * U[c] + k->Bm[2][c] * V[c]);
+    /* at x = 0 the sums hold every layer: p3 = 2 sigma_zz of S1 on z = 0 */
+    double p3[2] = {0.0, 0.0};
+    for (int c = 0; c < 6; c++) {
+        const double complex am = k->Am[2][c], bm = k->Bm[2][c];
+        p3[0] += 2.0 * (creal(am) * U[2 * c] - cimag(am) * U[2 * c + 1] + creal(bm) * V[2 * c] -
+                        cimag(bm) * V[2 * c + 1]);
+        p3[1] += 2.0 * (creal(am) * U[2 * c + 1] + cimag(am) * U[2 * c] +
+                        creal(bm) * V[2 * c + 1] + cimag(bm) * V[2 * c]);
+    }
     /* the self terms, S3, and back to the lab frame */
+    x = 0.0;
+    et = 1.0;
     for (int i = 0; i < nz; i++) {
-        const double x = q * b[i], h = q * (b[i + 1] - b[i]);
+        const double h = q * (b[i + 1] - b[i]);
+        scalars(h, &L);
         double sa, sb, tw0, tw1;
         if (avg) {
-            sa = q0(h) / h;
-            sb = q1(h) / h;
-            tw0 = exp(-x) * p0(h) / h;
-            tw1 = exp(-x) * (x * p0(h) + p1(h)) / h;
+            sa = L.q0 / h;
+            sb = L.q1 / h;
+            tw0 = et * L.p0 / h;
+            tw1 = et * (x * L.p0 + L.p1) / h;
         } else {
             const double c = x + 0.5 * h;
-            sa = p0(0.5 * h);
-            sb = p1(0.5 * h);
-            tw0 = exp(-c);
-            tw1 = exp(-c) * c;
+            sa = L.p0h2;
+            sb = L.p1h2;
+            tw0 = et * L.ehalf;
+            tw1 = tw0 * c;
         }
-        mv_add(acc[i], sa, k->Ap, e[i]);
-        mv_add(acc[i], sa, k->Am, e[i]);
-        mv_add(acc[i], sb, k->Bp, e[i]);
-        mv_add(acc[i], sb, k->Bm, e[i]);
-        mv_add_real(acc[i], 1.0, k->Minf, e[i]);
-        for (int m = 0; m < 6; m++)
-            acc[i][m] += (tw0 * k->T0[m] + tw1 * k->T1[m]) * p3;
-        mc_spec_from_frame(cq, sq, acc[i], sig[i]);
+        double *ai = acc + 12 * i;
+        const double *ei = e + 12 * i;
+        sp_add(ai, sa, &k->sAs, ei);
+        sp_add(ai, sb, &k->sBs, ei);
+        double complex f[6];
+        for (int m = 0; m < 6; m++) {
+            double complex s = 0.0;
+            for (int c = 0; c < 6; c++)
+                s += k->Minf[m][c] * (ei[2 * c] + I * ei[2 * c + 1]);
+            f[m] = ai[2 * m] + I * ai[2 * m + 1] + s +
+                   (tw0 * k->T0[m] + tw1 * k->T1[m]) * (p3[0] + I * p3[1]);
+        }
+        mc_spec_from_frame(cq, sq, f, sig[i]);
+        x += h;
+        et *= L.eh;
     }
     if (uz)
-        *uz = k->uz0 * p3 / q;
+        *uz = k->uz0 * (p3[0] + I * p3[1]) / q;
+}
+
+void mc_spec_uz_layers(const mc_spec_coef *k, double kx, double ky, int nz, const double *b,
+                       double complex (*D)[6])
+{
+    const double q = hypot(kx, ky);
+    if (q == 0.0) { /* the laterally constrained layer; the caller replaces it where the mode
+                       stands for a limit (eigen_spectral_op.c) */
+        const double a = k->nu / (1.0 - k->nu);
+        for (int l = 0; l < nz; l++) {
+            const double t = b[l + 1] - b[l];
+            D[l][0] = D[l][1] = -a * t;
+            D[l][2] = -t;
+            D[l][3] = D[l][4] = D[l][5] = 0.0;
+        }
+        return;
+    }
+    const double c = kx / q, s = ky / q, cc = c * c, ss = s * s, cs = c * s;
+    layer_scalars L = {-1.0, 0, 0, 0, 0, 0, 0, 0, 0};
+    double x = q * b[0], et = exp(-x); /* b[0] may lie below the surface here */
+    for (int l = 0; l < nz; l++) {
+        const double h = q * (b[l + 1] - b[l]);
+        scalars(h, &L);
+        const double wa = et * L.p0, wb = et * (x * L.p0 + L.p1), f = 2.0 * k->uz0 / q;
+        /* the frame row of p3 (u_z = uz0 p3 / q): real on x'x', y'y', zz, imaginary on x'z */
+        double r[6], ri[6];
+        for (int m = 0; m < 6; m++) {
+            r[m] = f * (wa * creal(k->Am[2][m]) + wb * creal(k->Bm[2][m]));
+            ri[m] = f * (wa * cimag(k->Am[2][m]) + wb * cimag(k->Bm[2][m]));
+        }
+        /* to the lab columns (the transpose of mc_spec_to_frame) */
+        double complex v[6];
+        for (int m = 0; m < 6; m++)
+            v[m] = r[m] + I * ri[m];
+        D[l][0] = cc * v[0] + ss * v[1] - cs * v[3];
+        D[l][1] = ss * v[0] + cc * v[1] + cs * v[3];
+        D[l][2] = v[2];
+        D[l][3] = 2.0 * cs * (v[0] - v[1]) + (cc - ss) * v[3];
+        D[l][4] = c * v[4] + s * v[5];
+        D[l][5] = c * v[5] - s * v[4];
+        x += h;
+        et *= L.eh;
+    }
 }

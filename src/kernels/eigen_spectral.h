@@ -32,11 +32,18 @@ typedef enum { MC_SPEC_CENTRE = 0, MC_SPEC_AVERAGE = 1 } mc_spec_point;
  * the stress of a unit compressive surface pressure e^{-t} (T0 + T1 t); u_z(0) of it uz0 / q
  * (in units of the pressure / 2G). */
 typedef struct {
+    int n;
+    unsigned char r[36], c[36];
+    double re[36], im[36];
+} mc_spec_sparse; /* the nonzero entries of a frame matrix (for the running sums' products) */
+
+typedef struct {
     double complex Ap[6][6], Bp[6][6], Am[6][6], Bm[6][6];
     double Minf[6][6];
     double complex T0[6], T1[6];
     double uz0;
     double nu;
+    mc_spec_sparse sAp, sBp, sAm, sBm, sAs, sBs; /* sAs = Ap + Am, sBs = Bp + Bm (self terms) */
 } mc_spec_coef;
 
 /* Fill k for Poisson ratio nu in (-1, 0.5). */
@@ -64,9 +71,16 @@ void mc_spec_point_stress(const mc_spec_coef *k, double kx, double ky, double z,
 
 /* One lateral mode, all layers at once in O(nz): eps[l][6] (lab frame) of the nz layers with
  * boundaries b[0] = 0 < b[1] < .. < b[nz] (m) -> sig[l][6] (per 2G, lab frame) and *uz (m; may
- * be NULL). sig may not alias eps. work: room for 12 nz complex values. */
+ * be NULL). sig may not alias eps. work: room for 12 nz complex values. Per mode ~130 nz
+ * multiply-adds, a few exponentials per distinct layer thickness. */
 void mc_spec_depth(const mc_spec_coef *k, double kx, double ky, int nz, const double *b,
                    mc_spec_point pt, const double complex (*eps)[6], double complex (*sig)[6],
                    double complex *uz, double complex *work);
+
+/* One lateral mode, the surface displacement per unit eigenstrain column of every layer in O(nz):
+ * u_z = sum_l sum_c D[l][c] eps[l][c], D[l] = mc_spec_pair_uz of layer l (m); at k = 0 the
+ * laterally constrained layer. Here b[0] >= 0 may lie below the surface (a subset of layers). */
+void mc_spec_uz_layers(const mc_spec_coef *k, double kx, double ky, int nz, const double *b,
+                       double complex (*D)[6]);
 
 #endif

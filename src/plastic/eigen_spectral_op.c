@@ -40,6 +40,11 @@ struct mc_eigen_spectral {
     double uz0[3];           /* k = 0 surface displacement per unit (eps_xx, eps_yy, eps_zz) and
                                 thickness: the mean over the directions the free axes allow */
     int nthr;
+    int uz_only;             /* 1: made by mc_eigen_spectral_create_uz (no stresses) */
+    /* fft, u_z only: one layer's six spectra at a time (py x hx each) and its padded rows */
+    fftw_complex *lay;
+    double *lrows;
+    fftw_plan lay_r2c;
     /* fft */
     fftw_complex *E;         /* 6 nz slabs [(c nz + l)][j][kx] */
     fftw_complex *U;         /* py x hx: the surface displacement's modes */
@@ -118,15 +123,37 @@ static size_t fft_bytes(const mc_eigen_spectral *op, int nthr)
            + (nz + 1) * sizeof(double) + sizeof(mc_eigen_spectral);
 }
 
+static size_t uz_bytes(const mc_eigen_spectral *op)
+{
+    const size_t per = (size_t)op->py * op->hx * sizeof(fftw_complex);
+    return 7 * per + (size_t)op->py * op->px * sizeof(double) +
+           ((size_t)op->nz + 1) * sizeof(double) + sizeof(mc_eigen_spectral);
+}
+
 static size_t direct_values(const mc_eigen_spectral *op)
 {
-    return ((size_t)op->nz * op->nz * 36 + 6 * (size_t)op->nz) * op->py * op->px;
+    return ((op->uz_only ? 0 : (size_t)op->nz * op->nz * 36) + 6 * (size_t)op->nz) * op->py *
+           op->px;
 }
 
 static size_t direct_bytes(const mc_eigen_spectral *op)
 {
     return direct_values(op) * sizeof(double) + (op->nz + 1) * sizeof(double) +
            sizeof(mc_eigen_spectral);
+}
+
+size_t mc_eigen_spectral_estimate_uz(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)
+{
+    mc_error err = {0};
+    if (check(g, v, 0.3, b, &err) != MC_OK)
+        return 0;
+    mc_eigen_spectral op;
+    memset(&op, 0, sizeof op);
+    shape(g, v, &op);
+    op.uz_only = 1;
+    if (b == MC_BACKEND_DIRECT)
+        return direct_values(&op) > (size_t)MC_SPEC_DIRECT_MAX ? 0 : direct_bytes(&op);
+    return uz_bytes(&op);
 }
 
 size_t mc_eigen_spectral_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
@@ -148,8 +175,8 @@ void mc_eigen_spectral_destroy(mc_eigen_spectral **op)
     if (!op || !*op)
         return;
     mc_eigen_spectral *o = *op;
-    fftw_plan plans[] = {o->x_r2c, o->x_c2r, o->y_fwd, o->y_bwd, o->y_fwd_tail, o->y_bwd_tail,
-                         o->uz_c2r};
+    fftw_plan plans[] = {o->x_r2c, o->x_c2r,      o->y_fwd,  o->y_bwd, o->y_fwd_tail,
+                         o->y_bwd_tail, o->uz_c2r, o->lay_r2c};
     for (size_t p = 0; p < sizeof plans / sizeof plans[0]; p++)
         if (plans[p])
             fftw_destroy_plan(plans[p]);
@@ -161,6 +188,8 @@ void mc_eigen_spectral_destroy(mc_eigen_spectral **op)
     mc_free(o->mode);
     mc_free(o->tab);
     mc_free(o->dtab);
+    mc_free(o->lay);
+    mc_free(o->lrows);
     mc_free(o);
     *op = NULL;
 }
@@ -326,7 +355,7 @@ static void fft_apply(mc_eigen_spectral *op, const double *const eps[6], double 
     /* 3. back along x: Pa */
     const double scale = 2.0 * G / ((double)px * py);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(op->nthr)
-    for (int s = 0; s < ns; s++) {
+    for (int s = 0; s < (sig ? ns : 0); s++) {
         double *r = op->rows + (size_t)omp_get_thread_num() * rowlen;
         fftw_execute_dft_c2r(op->x_c2r, op->E + s * slab, r);
         double *f = sig[s / nz] + (size_t)(s % nz) * layer;
@@ -341,6 +370,79 @@ static void fft_apply(mc_eigen_spectral *op, const double *const eps[6], double 
             for (int i = 0; i < nx; i++)
                 uz[(size_t)j * nx + i] = us * op->rows[(size_t)j * px + i];
     }
+}
+
+/* ---- fft, the surface displacement alone: one layer at a time, D evaluated per mode ---------- */
+
+static int uz_prepare(mc_eigen_spectral *op, mc_error *err)
+{
+    const int px = op->px, py = op->py, hx = op->hx;
+    const size_t per = (size_t)py * hx;
+    op->lay = mc_malloc(6 * per * sizeof *op->lay);
+    op->U = mc_malloc(per * sizeof *op->U);
+    op->lrows = mc_malloc((size_t)py * px * sizeof *op->lrows);
+    if (!op->lay || !op->U || !op->lrows)
+        return mc_fail(err, MC_ERR_NOMEM, "spectral eigen displacement: out of memory (%zu bytes)",
+                       uz_bytes(op));
+    int rc = mc_fftw_prepare(err);
+    if (rc)
+        return rc;
+    const unsigned fl = FFTW_ESTIMATE | FFTW_UNALIGNED;
+    op->lay_r2c = fftw_plan_dft_r2c_2d(py, px, op->lrows, op->lay, fl);
+    op->uz_c2r = fftw_plan_dft_c2r_2d(py, px, op->U, op->lrows, fl | FFTW_DESTROY_INPUT);
+    if (!op->lay_r2c || !op->uz_c2r)
+        return mc_fail(err, MC_ERR_NOMEM, "spectral eigen displacement: FFTW could not plan");
+    return MC_OK;
+}
+
+static void uz_apply(mc_eigen_spectral *op, const double *const eps[6], double *uz)
+{
+    const int nz = op->nz, nx = op->nx, ny = op->ny, px = op->px, py = op->py, hx = op->hx;
+    const size_t per = (size_t)py * hx, layer = (size_t)nx * ny;
+    memset(op->U, 0, per * sizeof *op->U);
+    for (int l = 0; l < nz; l++) {
+        for (int c = 0; c < 6; c++) {
+            memset(op->lrows, 0, (size_t)py * px * sizeof *op->lrows);
+            const double *f = eps[c] + (size_t)l * layer;
+            for (int j = 0; j < ny; j++)
+                memcpy(op->lrows + (size_t)j * px, f + (size_t)j * nx, (size_t)nx * sizeof(double));
+            fftw_execute_dft_r2c(op->lay_r2c, op->lrows, op->lay + c * per);
+        }
+        const double bl[2] = {op->b[l], op->b[l + 1]};
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+        for (int ky = 0; ky < py; ky++) {
+            int nyqy, nyqx;
+            const double kyv = wave(ky, py, op->g.dy, &nyqy);
+            for (int kx = 0; kx < hx; kx++) {
+                const double kxv = wave(kx, px, op->g.dx, &nyqx);
+                double complex D[6];
+                const size_t at = (size_t)ky * hx + kx;
+                if (kxv == 0.0 && kyv == 0.0) {
+                    for (int c = 0; c < 6; c++)
+                        D[c] = c < 3 ? -(bl[1] - bl[0]) * op->uz0[c] : 0.0;
+                } else {
+                    const int nsx = nyqx ? 2 : 1, nsy = nyqy ? 2 : 1, n = nsx * nsy;
+                    memset(D, 0, sizeof D);
+                    for (int a = 0; a < n; a++) {
+                        const double sx = (a % nsx) ? -1.0 : 1.0, sy = (a / nsx) ? -1.0 : 1.0;
+                        double complex Dl[1][6];
+                        mc_spec_uz_layers(&op->coef, sx * kxv, sy * kyv, 1, bl, Dl);
+                        for (int c = 0; c < 6; c++)
+                            D[c] += Dl[0][c] / n;
+                    }
+                }
+                double complex u = 0.0;
+                for (int c = 0; c < 6; c++)
+                    u += D[c] * op->lay[c * per + at];
+                op->U[at] += u;
+            }
+        }
+    }
+    fftw_execute_dft_c2r(op->uz_c2r, op->U, op->lrows);
+    const double us = 1.0 / ((double)px * py);
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            uz[(size_t)j * nx + i] = us * op->lrows[(size_t)j * px + i];
 }
 
 /* ---- direct backend: tables over the period by a plain inverse DFT, summed cell by cell -------- */
@@ -408,16 +510,16 @@ static int direct_prepare(mc_eigen_spectral *op, mc_error *err)
                        "(at most %ld; the direct backend is the reference for small grids)",
                        direct_values(op), op->nx, op->ny, nz, MC_SPEC_DIRECT_MAX);
     const size_t per = (size_t)px * py;
-    op->tab = mc_zeros((size_t)nz * nz * 36 * per);
+    op->tab = op->uz_only ? NULL : mc_zeros((size_t)nz * nz * 36 * per);
     op->dtab = mc_zeros(6 * (size_t)nz * per);
     double complex *kv = mc_malloc(per * sizeof *kv), *half = mc_malloc(per * sizeof *half);
     double complex(*all)[6][6] = mc_malloc(per * sizeof *all);
-    if (!op->tab || !op->dtab || !kv || !half || !all) {
+    if ((!op->tab && !op->uz_only) || !op->dtab || !kv || !half || !all) {
         mc_free(kv), mc_free(half), mc_free(all);
         return mc_fail(err, MC_ERR_NOMEM, "spectral eigen operator, direct: out of memory");
     }
     /* pairs (i, j) of layers, then (i = -1) the displacement of each source layer */
-    for (int i = -1; i < nz; i++)
+    for (int i = -1; i < (op->uz_only ? 0 : nz); i++)
         for (int j = 0; j < nz; j++) {
             for (int ky = 0; ky < py; ky++)
                 for (int kx = 0; kx < px; kx++)
@@ -440,7 +542,7 @@ static void direct_apply(mc_eigen_spectral *op, const double *const eps[6], doub
 {
     const int nz = op->nz, nx = op->nx, ny = op->ny, px = op->px, py = op->py;
     const size_t layer = (size_t)nx * ny, per = (size_t)px * py;
-    for (int i = 0; i < nz; i++)
+    for (int i = 0; i < nz && sig; i++)
         for (int y = 0; y < ny; y++)
             for (int x = 0; x < nx; x++) {
                 double s[6] = {0};
@@ -476,8 +578,8 @@ static void direct_apply(mc_eigen_spectral *op, const double *const eps[6], doub
 
 /* ---- the interface ----------------------------------------------------------------------------- */
 
-int mc_eigen_spectral_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
-                             mc_eigen_spectral **out, mc_error *err)
+static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                  int uz_only, mc_eigen_spectral **out, mc_error *err)
 {
     *out = NULL;
     int rc = check(g, v, nu, b, err);
@@ -489,6 +591,7 @@ int mc_eigen_spectral_create(const mc_grid *g, const mc_eigen_volume *v, double 
     shape(g, v, op);
     op->nu = nu;
     op->backend = b;
+    op->uz_only = uz_only;
     op->pt = v->stress_points == MC_EIG_CELL_CENTRE ? MC_SPEC_CENTRE : MC_SPEC_AVERAGE;
     mc_spec_coef_init(nu, &op->coef);
     op->nthr = mc_threads_count() < 1 ? 1 : mc_threads_count();
@@ -513,23 +616,54 @@ int mc_eigen_spectral_create(const mc_grid *g, const mc_eigen_volume *v, double 
     }
     for (int k = 0; k <= v->nz; k++)
         op->b[k] = mc_eigen_layer_first(v, k) * v->dz;
-    rc = b == MC_BACKEND_FFT ? fft_prepare(op, err) : direct_prepare(op, err);
+    rc = b == MC_BACKEND_DIRECT ? direct_prepare(op, err)
+         : uz_only             ? uz_prepare(op, err)
+                               : fft_prepare(op, err);
     if (rc) {
         mc_eigen_spectral_destroy(&op);
         return rc;
     }
-    op->bytes = b == MC_BACKEND_FFT ? fft_bytes(op, op->nthr) : direct_bytes(op);
+    op->bytes = b == MC_BACKEND_DIRECT ? direct_bytes(op)
+                : uz_only             ? uz_bytes(op)
+                                      : fft_bytes(op, op->nthr);
     *out = op;
     return MC_OK;
+}
+
+int mc_eigen_spectral_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                             mc_eigen_spectral **out, mc_error *err)
+{
+    return create(g, v, nu, b, 0, out, err);
+}
+
+int mc_eigen_spectral_create_uz(const mc_grid *g, const mc_eigen_volume *v, double nu,
+                                mc_backend b, mc_eigen_spectral **out, mc_error *err)
+{
+    return create(g, v, nu, b, 1, out, err);
 }
 
 void mc_eigen_spectral_apply(mc_eigen_spectral *op, const double *const eps[6], double G,
                              double *const sig[6], double *uz)
 {
+    if (op->uz_only) { /* (a caller's slip: the object holds no stress path) */
+        if (uz)
+            mc_eigen_spectral_apply_uz(op, eps, uz);
+        return;
+    }
     if (op->backend == MC_BACKEND_FFT)
         fft_apply(op, eps, G, sig, uz);
     else
         direct_apply(op, eps, G, sig, uz);
+}
+
+void mc_eigen_spectral_apply_uz(mc_eigen_spectral *op, const double *const eps[6], double *uz)
+{
+    if (op->backend == MC_BACKEND_DIRECT)
+        direct_apply(op, eps, 0.0, NULL, uz);
+    else if (op->uz_only)
+        uz_apply(op, eps, uz);
+    else
+        fft_apply(op, eps, 0.0, NULL, uz);
 }
 
 size_t mc_eigen_spectral_bytes(const mc_eigen_spectral *op) { return op->bytes; }

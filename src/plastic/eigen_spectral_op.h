@@ -55,6 +55,16 @@ int mc_eigen_spectral_create(const mc_grid *g, const mc_eigen_volume *v, double 
 void mc_eigen_spectral_apply(mc_eigen_spectral *op, const double *const eps[6], double G,
                              double *const sig[6], double *uz);
 
+/* The surface displacement alone (the displacement operator of eigen_op.h with the spectral
+ * kernel): an object made by mc_eigen_spectral_create_uz streams the layers one at a time (the
+ * fft backend holds one layer's spectra and the surface's: a few hundred bytes per surface cell),
+ * the direct backend only the displacement tables. mc_eigen_spectral_apply_uz works on either
+ * kind of object. */
+int mc_eigen_spectral_create_uz(const mc_grid *g, const mc_eigen_volume *v, double nu,
+                                mc_backend b, mc_eigen_spectral **out, mc_error *err);
+void mc_eigen_spectral_apply_uz(mc_eigen_spectral *op, const double *const eps[6], double *uz);
+size_t mc_eigen_spectral_estimate_uz(const mc_grid *g, const mc_eigen_volume *v, mc_backend b);
+
 size_t mc_eigen_spectral_bytes(const mc_eigen_spectral *op);
 
 /* What mc_eigen_spectral_bytes would return for create(g, v, b), from the sizes alone (threads:
