@@ -270,7 +270,7 @@ static int op_measure(int n, int nz, int per, int reps, op_cost *c)
 static void op_agree(double *dev_s, double *dev_d)
 {
     mc_grid g = {13, 10, 1.0e-6, 1.3e-6, 0, 0};
-    const mc_eigen_volume v = {2, 1, 9, 8, 5, 0.8e-6, MC_EIG_CELL_AVERAGE, NULL};
+    const mc_eigen_volume v = {2, 1, 9, 8, 5, 0.8e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID};
     const size_t nv = (size_t)v.nx * v.ny * v.nz, ns = (size_t)g.nx * g.ny;
     double *blk = mc_zeros(18 * nv + 2 * ns);
     *dev_s = *dev_d = NAN;
@@ -816,7 +816,7 @@ static void whole_run_model(const char *ini, double m[8])
     if (mc_case_load(ini, 0, NULL, &sc, &err) != MC_OK)
         return;
     const mc_grid *g = &sc.grid;
-    const mc_eigen_volume v = {0, 0, g->nx, g->ny, 32, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL};
+    const mc_eigen_volume v = {0, 0, g->nx, g->ny, 32, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID};
     size_t parts[MC_EIGEN_STRESS_PARTS];
     mc_eigen_stress_estimate(g, &v, sc.solver.backend, parts);
     for (int k = 0; k < MC_EIGEN_STRESS_PARTS; k++)

@@ -65,7 +65,7 @@ static double block_quotient(int pat, int mx, int my, double r, mc_eig_stress_po
     const int mz = (int)lround(DEPTH / r), k0 = (int)lround(TOP / r);
     const int nx = mx + 2 * MARGIN, ny = my + 2 * MARGIN, nz = k0 + mz;
     const mc_grid g = {nx, ny, 1.0, 1.0, 0, 0};
-    const mc_eigen_volume v = {0, 0, nx, ny, nz, r, sp, NULL};
+    const mc_eigen_volume v = {0, 0, nx, ny, nz, r, sp, NULL, MC_EIG_KERNEL_CUBOID};
     mc_eigen_stress *op = NULL;
     mc_error err;
     int rc = mc_eigen_stress_create(&g, &v, NU, MC_BACKEND_FFT, &op, &err);
@@ -171,7 +171,7 @@ END_TEST
 static double lowest_mode(double r, mc_eig_stress_points sp, double *share, double *coh)
 {
     const mc_grid g = {EIG_NX, EIG_NY, 1.0, 1.0, 0, 0};
-    const mc_eigen_volume v = {0, 0, EIG_NX, EIG_NY, EIG_NZ, r, sp, NULL};
+    const mc_eigen_volume v = {0, 0, EIG_NX, EIG_NY, EIG_NZ, r, sp, NULL, MC_EIG_KERNEL_CUBOID};
     mc_eigen_stress *op = NULL;
     mc_error err;
     ck_assert_msg(mc_eigen_stress_create(&g, &v, NU, MC_BACKEND_FFT, &op, &err) == MC_OK, "%s",

@@ -61,7 +61,7 @@ static mc_grid grid_of(const gcase *c)
 
 static mc_eigen_volume vol_of(const gcase *c, const int *group)
 {
-    mc_eigen_volume v = {c->i0, c->j0, c->wx, c->wy, c->nz, c->dz, MC_EIG_CELL_AVERAGE, group};
+    mc_eigen_volume v = {c->i0, c->j0, c->wx, c->wy, c->nz, c->dz, MC_EIG_CELL_AVERAGE, group, MC_EIG_KERNEL_CUBOID};
     return v;
 }
 
@@ -259,7 +259,7 @@ START_TEST(test_grade)
     /* an even count is refused with a message */
     const int bad[2] = {1, 2};
     const mc_grid g = {6, 5, 1e-6, 1e-6, 0, 0};
-    const mc_eigen_volume v = {0, 0, 6, 5, 2, 1e-6, MC_EIG_CELL_AVERAGE, bad};
+    const mc_eigen_volume v = {0, 0, 6, 5, 2, 1e-6, MC_EIG_CELL_AVERAGE, bad, MC_EIG_KERNEL_CUBOID};
     mc_eigen_stress *op = NULL;
     mc_error err;
     ck_assert_int_eq(mc_eigen_stress_create(&g, &v, NU, MC_BACKEND_FFT, &op, &err), MC_ERR_INPUT);
@@ -301,7 +301,7 @@ START_TEST(test_corner_lattice)
     const gcase *gc = &cases[(_i / 2) % 2];
     const mc_grid g = grid_of(gc);
     mc_eigen_volume v = {gc->i0, gc->j0, gc->wx, gc->wy, gc->nz, gc->dz,
-                         (_i & 1) ? MC_EIG_CELL_CENTRE : MC_EIG_CELL_AVERAGE, gc->group};
+                         (_i & 1) ? MC_EIG_CELL_CENTRE : MC_EIG_CELL_AVERAGE, gc->group, MC_EIG_KERNEL_CUBOID};
     if (_i >= 4) /* the same windows, uniform */
         v.group = NULL;
     mc_eigen_stress *op = NULL;

@@ -54,7 +54,7 @@ START_TEST(estimate_is_the_objects_bytes)
     g.periodic_y = c->py;
     static int group[] = {1, 1, 3, 5};
     const mc_eigen_volume v = {c->i0, c->j0, c->wx, c->wy, c->nz, 0.5e-6, MC_EIG_CELL_AVERAGE,
-                               c->graded ? group : NULL};
+                               c->graded ? group : NULL, MC_EIG_KERNEL_CUBOID};
     mc_eigen_stress *s = eig_stress_op(&g, &v, 0.3, b);
     mc_eigen_disp *d = eig_disp_op(&g, &v, 0.3, b);
     size_t got[MC_EIGEN_STRESS_PARTS], est[MC_EIGEN_STRESS_PARTS], sum = 0;
@@ -72,7 +72,7 @@ START_TEST(estimate_is_the_objects_bytes)
                   b == MC_BACKEND_FFT ? "fft" : "direct", threads, mc_eigen_disp_bytes(d),
                   mc_eigen_disp_estimate(&g, &v, b));
     /* a volume create refuses: nothing */
-    const mc_eigen_volume bad = {0, 0, c->nx + 1, c->wy, c->nz, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL};
+    const mc_eigen_volume bad = {0, 0, c->nx + 1, c->wy, c->nz, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID};
     mc_eigen_stress_estimate(&g, &bad, b, est);
     for (int k = 0; k < MC_EIGEN_STRESS_PARTS; k++)
         ck_assert(est[k] == 0);
@@ -115,7 +115,7 @@ START_TEST(plastic_stage_guard)
     ck_assert_int_eq(mc_pipeline_run(&s, &r, &err), MC_OK);
     ck_assert(r.plastic.enabled && !r.plastic.elastic_shortcut && r.plastic.volume_cells > 0);
     /* the stage's estimate grows with the volume's layers */
-    const mc_eigen_volume v1 = {0, 0, 32, 32, 8, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL};
+    const mc_eigen_volume v1 = {0, 0, 32, 32, 8, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID};
     mc_eigen_volume v2 = v1;
     v2.nz = 16;
     ck_assert(mc_memory_estimate_plastic(&s, &r.grid, &v2, 0) >

@@ -81,7 +81,7 @@ static mc_grid case_grid(const vol_case *c)
 
 static mc_eigen_volume case_volume(const vol_case *c)
 {
-    mc_eigen_volume v = {c->i0, c->j0, c->wx, c->wy, c->nz, c->dz, MC_EIG_CELL_CENTRE, NULL};
+    mc_eigen_volume v = {c->i0, c->j0, c->wx, c->wy, c->nz, c->dz, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID};
     return v;
 }
 
@@ -525,7 +525,7 @@ static double long_error(int what, int ny, const double *eps_line, const mc_grid
 {
     const int nx = gl->nx, wx = vl->nx, nz = vl->nz;
     const mc_grid g = {nx, ny, gl->dx, gl->dy, 0, 0};
-    const mc_eigen_volume v = {vl->i0, 0, wx, ny, nz, vl->dz, MC_EIG_CELL_CENTRE, NULL};
+    const mc_eigen_volume v = {vl->i0, 0, wx, ny, nz, vl->dz, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID};
     const size_t n = (size_t)wx * ny * nz, nl = (size_t)wx * nz;
     double *eps[6], *blk = eig_fields(n, eps), *el[6];
     for (int c = 0; c < 6; c++) {
@@ -576,7 +576,7 @@ static double long_error(int what, int ny, const double *eps_line, const mc_grid
 START_TEST(test_line_vs_long_grid)
 {
     const mc_grid gl = {11, 1, 1e-6, 1.2e-6, 0, 1};
-    const mc_eigen_volume vl = {2, 0, 7, 1, 3, 0.7e-6, MC_EIG_CELL_CENTRE, NULL};
+    const mc_eigen_volume vl = {2, 0, 7, 1, 3, 0.7e-6, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID};
     const size_t nl = (size_t)vl.nx * vl.nz;
     double *eps[6], *blk = eig_fields(nl, eps);
     test_random_field(blk, 6 * nl, 71);
@@ -598,7 +598,7 @@ START_TEST(test_bad_input)
     mc_eigen_disp *od = NULL;
     mc_eigen_stress *os = NULL;
     const mc_grid g = {8, 6, 1e-6, 1e-6, 0, 0};
-    const mc_eigen_volume ok = {1, 1, 4, 3, 2, 1e-6, MC_EIG_CELL_CENTRE, NULL};
+    const mc_eigen_volume ok = {1, 1, 4, 3, 2, 1e-6, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID};
     mc_eigen_volume v = ok;
     /* periodic axes (tests/test_eigen_periodic.c): a volume that does not span the period of a
      * periodic axis, and x periodic alone, are refused */
@@ -608,19 +608,19 @@ START_TEST(test_bad_input)
     ck_assert_ptr_nonnull(strstr(err.msg, "whole period"));
     ck_assert_int_eq(mc_eigen_stress_create(&gp, &v, NU, MC_BACKEND_DIRECT, &os, &err),
                      MC_ERR_INPUT);
-    const mc_eigen_volume v1 = {1, 0, 4, 1, 2, 1e-6, MC_EIG_CELL_CENTRE, NULL};
+    const mc_eigen_volume v1 = {1, 0, 4, 1, 2, 1e-6, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID};
     ck_assert_int_eq(mc_eigen_disp_create(&gx, &v1, NU, MC_BACKEND_FFT, &od, &err), MC_ERR_LIMIT);
     ck_assert_ptr_nonnull(strstr(err.msg, "periodic along x alone"));
     ck_assert_int_eq(mc_eigen_stress_create(&gxy, &v1, NU, MC_BACKEND_FFT, &os, &err),
                      MC_ERR_INPUT);
     const mc_eigen_volume bad[] = {
-        {5, 1, 4, 3, 2, 1e-6, MC_EIG_CELL_CENTRE, NULL},  /* window beyond x */
-        {1, 4, 4, 3, 2, 1e-6, MC_EIG_CELL_CENTRE, NULL},  /* beyond y */
-        {-1, 1, 4, 3, 2, 1e-6, MC_EIG_CELL_CENTRE, NULL}, /* negative origin */
-        {1, 1, 0, 3, 2, 1e-6, MC_EIG_CELL_CENTRE, NULL},  /* empty */
-        {1, 1, 4, 3, 0, 1e-6, MC_EIG_CELL_CENTRE, NULL},  /* no layer */
-        {1, 1, 4, 3, 2, 0.0, MC_EIG_CELL_CENTRE, NULL},   /* zero thickness */
-        {1, 1, 4, 3, 2, NAN, MC_EIG_CELL_CENTRE, NULL},
+        {5, 1, 4, 3, 2, 1e-6, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID},  /* window beyond x */
+        {1, 4, 4, 3, 2, 1e-6, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID},  /* beyond y */
+        {-1, 1, 4, 3, 2, 1e-6, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID}, /* negative origin */
+        {1, 1, 0, 3, 2, 1e-6, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID},  /* empty */
+        {1, 1, 4, 3, 0, 1e-6, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID},  /* no layer */
+        {1, 1, 4, 3, 2, 0.0, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID},   /* zero thickness */
+        {1, 1, 4, 3, 2, NAN, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID},
     };
     for (size_t q = 0; q < sizeof bad / sizeof bad[0]; q++) {
         v = bad[q];
@@ -644,7 +644,7 @@ END_TEST
 START_TEST(test_alloc_failure)
 {
     const mc_grid g = {7, 6, 1e-6, 1.2e-6, 0, 0};
-    const mc_eigen_volume v = {1, 1, 5, 4, 2, 0.8e-6, MC_EIG_CELL_CENTRE, NULL};
+    const mc_eigen_volume v = {1, 1, 5, 4, 2, 0.8e-6, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID};
     const mc_backend b = (_i & 1) ? MC_BACKEND_DIRECT : MC_BACKEND_FFT;
     int done = 0;
     for (long k = 1; k < 200 && !done; k++) {

@@ -63,7 +63,7 @@ static mc_grid grid_of(const pcase *c)
 
 static mc_eigen_volume vol_of(const pcase *c)
 {
-    mc_eigen_volume v = {c->i0, 0, c->wx, c->ny, c->nz, c->dz, MC_EIG_CELL_AVERAGE, NULL};
+    mc_eigen_volume v = {c->i0, 0, c->wx, c->ny, c->nz, c->dz, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID};
     return v;
 }
 
@@ -141,7 +141,7 @@ START_TEST(test_strip_uniform_is_line)
     const mc_eig_stress_points sp = (_i & 2) ? MC_EIG_CELL_CENTRE : MC_EIG_CELL_AVERAGE;
     const mc_backend b = MC_BACKEND_FFT;
     const mc_grid gs = {nx, ny, 1e-6, 1.2e-6, 0, 1}, gl = {nx, 1, 1e-6, 1.2e-6, 0, 1};
-    const mc_eigen_volume vs = {0, 0, nx, ny, nz, 0.5e-6, sp, NULL}, vl = {0, 0, nx, 1, nz, 0.5e-6, sp, NULL};
+    const mc_eigen_volume vs = {0, 0, nx, ny, nz, 0.5e-6, sp, NULL, MC_EIG_KERNEL_CUBOID}, vl = {0, 0, nx, 1, nz, 0.5e-6, sp, NULL, MC_EIG_KERNEL_CUBOID};
     const size_t nl = (size_t)nx * nz, ns = nl * ny;
     double *el[6], *es[6], *sl[6], *ss[6];
     double *b1 = eig_fields(nl, el), *b2 = eig_fields(ns, es), *b3 = eig_fields(nl, sl), *b4 = eig_fields(ns, ss);
@@ -195,7 +195,7 @@ START_TEST(test_tiled)
     const int nx = 8, ny = 6, nz = 2, dbl = _i == 0;
     const int tx = dbl ? 2 * nx : nx, ty = 2 * ny;
     const mc_grid g1 = {nx, ny, 1e-6, 1.1e-6, dbl, 1}, g2 = {tx, ty, 1e-6, 1.1e-6, dbl, 1};
-    const mc_eigen_volume v1 = {0, 0, nx, ny, nz, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL}, v2 = {0, 0, tx, ty, nz, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL};
+    const mc_eigen_volume v1 = {0, 0, nx, ny, nz, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID}, v2 = {0, 0, tx, ty, nz, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID};
     const size_t n1 = (size_t)nx * ny * nz, n2 = (size_t)tx * ty * nz;
     double *e1[6], *e2[6], *s1[6], *s2[6];
     double *b1 = eig_fields(n1, e1), *b2 = eig_fields(n2, e2), *b3 = eig_fields(n1, s1), *b4 = eig_fields(n2, s2);
@@ -250,14 +250,14 @@ START_TEST(test_refused)
     mc_eigen_stress *os = NULL;
     /* x periodic alone */
     const mc_grid gx = {8, 6, 1e-6, 1e-6, 1, 0};
-    const mc_eigen_volume vx = {0, 0, 8, 6, 2, 1e-6, MC_EIG_CELL_AVERAGE, NULL};
+    const mc_eigen_volume vx = {0, 0, 8, 6, 2, 1e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID};
     ck_assert_int_eq(mc_eigen_disp_create(&gx, &vx, NU, MC_BACKEND_FFT, &od, &err), MC_ERR_LIMIT);
     ck_assert_ptr_nonnull(strstr(err.msg, "periodic along x alone"));
     ck_assert_int_eq(mc_eigen_stress_create(&gx, &vx, NU, MC_BACKEND_DIRECT, &os, &err),
                      MC_ERR_LIMIT);
     /* a window that does not span the period of a periodic axis */
     const mc_grid gy = {8, 6, 1e-6, 1e-6, 0, 1}, gxy = {8, 6, 1e-6, 1e-6, 1, 1};
-    const mc_eigen_volume vy = {1, 1, 4, 4, 2, 1e-6, MC_EIG_CELL_AVERAGE, NULL}, vxy = {1, 0, 6, 6, 2, 1e-6, MC_EIG_CELL_AVERAGE, NULL};
+    const mc_eigen_volume vy = {1, 1, 4, 4, 2, 1e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID}, vxy = {1, 0, 6, 6, 2, 1e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID};
     ck_assert_int_eq(mc_eigen_disp_create(&gy, &vy, NU, MC_BACKEND_FFT, &od, &err), MC_ERR_INPUT);
     ck_assert_ptr_nonnull(strstr(err.msg, "whole period"));
     ck_assert_int_eq(mc_eigen_stress_create(&gxy, &vxy, NU, MC_BACKEND_FFT, &os, &err),

@@ -54,7 +54,7 @@ static mc_grid grid_of(const scase *c)
 
 static mc_eigen_volume vol_of(const scase *c, mc_eig_stress_points pt)
 {
-    mc_eigen_volume v = {0, 0, c->nx, c->ny, c->nz, c->dz, pt, c->graded ? GROUPS : NULL};
+    mc_eigen_volume v = {0, 0, c->nx, c->ny, c->nz, c->dz, pt, c->graded ? GROUPS : NULL, MC_EIG_KERNEL_CUBOID};
     return v;
 }
 
@@ -145,7 +145,7 @@ static void compare_cuboid(int n, int strip, double *es, double *eu)
 {
     const double L = 64e-6;
     mc_grid g = {n, n, L / n, L / n, 0, strip};
-    mc_eigen_volume v = {0, 0, n, n, 4, 1e-6, MC_EIG_CELL_CENTRE, NULL};
+    mc_eigen_volume v = {0, 0, n, n, 4, 1e-6, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID};
     const size_t ns = (size_t)n * n, nv = ns * v.nz;
     double *eps[6], *sc[6], *ss[6];
     double *b1 = eig_fields(nv, eps), *b2 = eig_fields(nv, sc), *b3 = eig_fields(nv, ss);
@@ -340,7 +340,7 @@ END_TEST
 START_TEST(test_refusals)
 {
     mc_grid g = {8, 8, 1e-6, 1e-6, 0, 0};
-    mc_eigen_volume v = {1, 0, 6, 8, 3, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL};
+    mc_eigen_volume v = {1, 0, 6, 8, 3, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID};
     mc_eigen_spectral *op = NULL;
     mc_error err = {0};
     ck_assert_int_eq(mc_eigen_spectral_create(&g, &v, NU, MC_BACKEND_FFT, &op, &err), MC_ERR_LIMIT);

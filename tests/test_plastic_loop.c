@@ -730,7 +730,7 @@ START_TEST(window_is_symmetric)
     sphere_init(&t);
     mc_plastic_problem pb = t.pb;
     pb.load_steps = 1;
-    pb.volume = (mc_eigen_volume){2, 3, 12, 10, 6, 40e-6, MC_EIG_CELL_AVERAGE, NULL};
+    pb.volume = (mc_eigen_volume){2, 3, 12, 10, 6, 40e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID};
     mc_plastic_result r;
     mc_contact_summary cs;
     mc_error err = {0};

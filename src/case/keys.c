@@ -502,6 +502,16 @@ const case_key mc_keys[] = {
             "part averaged over the cell near the source (Galerkin-like: no unstable "
             "checkerboard mode); centre, the cell-centre values (the earlier collocation, whose "
             "operator has energy-releasing checkerboard modes; docs/theory.md §8.5, §8.7)."},
+    {.section = "plasticity", .name = "kernel", .kind = K_ENUM, .choices = "cuboid spectral",
+     .def = "cuboid", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
+     .off = AT(plasticity.kernel),
+     .doc = "Lateral discretisation of the plastic strain (docs/theory.md §8.10): cuboid, uniform "
+            "cuboids whose kernels are tabulated and kept as spectra (~600 bytes per volume "
+            "cell on a free grid); spectral, sampled trigonometric fields with the kernel "
+            "evaluated per Fourier mode when used (~110 bytes per volume cell free, ~55 doubly "
+            "periodic; no build time; exact laterally for smooth fields). spectral puts the "
+            "volume under the whole grid, takes the elastic stresses from the stress module "
+            "(not folded), and runs on one process."},
     {.section = "plasticity", .name = "depth", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "auto", .word = "auto", .word_value = 0, .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.depth),

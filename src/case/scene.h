@@ -151,6 +151,7 @@ typedef struct {
                                     docs/theory.md §9.7); 0: one global application per sweep */
         double dz;                    /* layer thickness, m; 0: min(dx, dy) / 2 (line: dx / 2) */
         mc_eig_stress_points stress_points; /* cell_average (default) or centre */
+        mc_eig_kernel kernel;               /* cuboid (default) or spectral */
         double depth;                 /* m; 0: auto */
         double margin;                /* columns around the contact's box, m; 0: auto */
         double friction;              /* q_x = friction (p - p_lub) in solid contact */

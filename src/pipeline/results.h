@@ -79,6 +79,7 @@ typedef struct {
     const char *criterion;     /* "von_mises" | "pressure_cap" */
     const char *hardening;     /* "perfect" | "linear" | "swift" | "table" ("" for a cap) */
     const char *stress_points; /* "cell_average" | "centre" (NULL for a cap) */
+    const char *kernel;        /* "cuboid" | "spectral" (NULL for a cap) */
     const char *iteration;     /* "joint" | "nested" (NULL for a cap; plastic/loop.h) */
     double yield_initial;      /* sigma_y(0), Pa (von_mises) */
     double vm_elastic_max;     /* largest von Mises stress of the elastic solve at full load, Pa */

@@ -473,6 +473,7 @@ static int plan_volume(runin_ctx *c, mc_error *err)
     }
     c->vol = mc_eigen_volume_full(&c->g, nz, dz);
     c->vol.stress_points = sc->plasticity.stress_points;
+    c->vol.kernel = sc->plasticity.kernel;
     c->vol.group = c->group;
     c->nvol = (long)c->vol.nz * c->g.nx * c->g.ny;
     return MC_OK;
@@ -744,6 +745,7 @@ static int plastic_results(runin_ctx *c, const mc_plastic_step *records, int nre
     ps->criterion = "von_mises";
     ps->hardening = mc_hardening_name(sc->plasticity.hardening);
     ps->stress_points = mc_eig_stress_points_name(sc->plasticity.stress_points);
+    ps->kernel = mc_eig_kernel_name(sc->plasticity.kernel);
     ps->iteration = mc_plastic_iteration_name(sc->plasticity.iteration);
     ps->yield_initial = mc_hardening_initial(&c->law);
     ps->load_steps = nrec;

@@ -156,7 +156,8 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, doubl
         /* at most nz layers: every layer holds at least one dz */
         nz = mc_eigen_grade(dz, depth, fine, sc->plasticity.grading, ps->group, nz);
     }
-    const mc_eigen_volume lay = {0, 0, 1, 1, nz, dz, MC_EIG_CELL_AVERAGE, ps->group};
+    const mc_eigen_volume lay = {0, 0, 1, 1, nz, dz, MC_EIG_CELL_AVERAGE, ps->group,
+                                 MC_EIG_KERNEL_CUBOID};
     const double vdepth = mc_eigen_volume_depth(&lay);
     double margin = sc->plasticity.margin > 0 ? sc->plasticity.margin : vdepth;
     int mx = (int)ceil(margin / g->dx - 1e-9), my = (int)ceil(margin / g->dy - 1e-9);
@@ -169,8 +170,11 @@ static int plan_volume(const mc_scene *sc, mc_results *res, double yield0, doubl
         i0 = 0, i1 = g->nx - 1;
     if (g->periodic_y)
         j0 = 0, j1 = g->ny - 1;
+    /* the spectral kernel transforms the whole grid (theory.md §8.10) */
+    if (sc->plasticity.kernel == MC_EIG_KERNEL_SPECTRAL)
+        i0 = j0 = 0, i1 = g->nx - 1, j1 = g->ny - 1;
     *v = (mc_eigen_volume){i0,  j0, i1 - i0 + 1, j1 - j0 + 1, nz, dz, sc->plasticity.stress_points,
-                           ps->group};
+                           ps->group, sc->plasticity.kernel};
     ps->depth = vdepth;
     ps->dz = dz;
     ps->nz = nz;
@@ -249,6 +253,7 @@ int mc_stage_plastic(const mc_scene *sc, mc_operator *K, mc_contact_solver *solv
     ps->criterion = "von_mises";
     ps->hardening = mc_hardening_name(sc->plasticity.hardening);
     ps->stress_points = mc_eig_stress_points_name(sc->plasticity.stress_points);
+    ps->kernel = mc_eig_kernel_name(sc->plasticity.kernel);
     ps->iteration = mc_plastic_iteration_name(sc->plasticity.iteration);
     ps->load_steps = sc->plasticity.load_steps;
     mc_hardening law;

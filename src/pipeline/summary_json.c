@@ -414,6 +414,8 @@ static void summary_results(jbuild *b, json_t *root, const mc_scene *s, const mc
             jset(b, o, "hardening", jstr(q->hardening));
         if (q->stress_points)
             jset(b, o, "stress_points", jstr(q->stress_points));
+        if (q->kernel)
+            jset(b, o, "kernel", jstr(q->kernel));
         if (q->iteration) { /* and how many increments the joint iteration left to the nested */
             int fallbacks = 0;
             for (int n = 0; q->steps && n < q->steps_done; n++)

@@ -67,7 +67,7 @@ int mc_eig_check(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backe
 int mc_eigen_volume_equal(const mc_eigen_volume *a, const mc_eigen_volume *b)
 {
     if (a->i0 != b->i0 || a->j0 != b->j0 || a->nx != b->nx || a->ny != b->ny || a->nz != b->nz ||
-        a->dz != b->dz || a->stress_points != b->stress_points)
+        a->dz != b->dz || a->stress_points != b->stress_points || a->kernel != b->kernel)
         return 0;
     for (int k = 0; k < a->nz; k++)
         if (mc_eigen_layer_count(a, k) != mc_eigen_layer_count(b, k))

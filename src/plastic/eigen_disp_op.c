@@ -16,6 +16,7 @@
 #include "kernels/eigen.h"
 #include "operator/dfft.h"
 #include "plastic/eigen_internal.h"
+#include "plastic/eigen_spectral_op.h"
 
 typedef struct disp_ops disp_ops;
 
@@ -45,6 +46,8 @@ struct mc_eigen_disp {
     double *whole;   /* bm x grid ny * nx: a batch of layers' windows embedded in zeros */
     fftw_complex *bs; /* bm x nk * ty: the batch's spectra, mc_dfft's layout */
     fftw_complex *acc; /* nk * ty: the sum, mc_dfft's layout */
+    mc_eigen_spectral *sp; /* the spectral kernel (v.kernel): the whole operator, the layers
+                                streamed (eigen_spectral_op.h mc_eigen_spectral_create_uz) */
     size_t bytes;
 };
 
@@ -455,6 +458,7 @@ void mc_eigen_disp_destroy(mc_eigen_disp **op)
     mc_free((*op)->spec);
     mc_free((*op)->sums);
     mc_free((*op)->group);
+    mc_eigen_spectral_destroy(&(*op)->sp);
     mc_free(*op);
     *op = NULL;
 }
@@ -483,6 +487,21 @@ int mc_eigen_disp_create(const mc_grid *g, const mc_eigen_volume *v, double nu, 
     for (size_t r = 0; r < sizeof backends / sizeof backends[0]; r++)
         if (backends[r].id == b)
             op->ops = &backends[r];
+    if (v->kernel == MC_EIG_KERNEL_SPECTRAL) { /* theory.md §8.10 */
+        if (mc_dist_active())
+            rc = mc_fail(err, MC_ERR_LIMIT,
+                         "eigen displacement: the spectral kernel is not distributed over MPI "
+                         "ranks yet (run it with one process, or use kernel = cuboid)");
+        else
+            rc = mc_eigen_spectral_create_uz(g, &op->v, nu, b, &op->sp, err);
+        if (rc) {
+            mc_eigen_disp_destroy(&op);
+            return rc;
+        }
+        op->bytes = sizeof *op + mc_eigen_spectral_bytes(op->sp);
+        *out = op;
+        return MC_OK;
+    }
     /* field minus source along x: from -(i0 + wx - 1) to nx - 1 - i0; a periodic axis: the
      * periodic kernel's offsets 0 .. n/2 */
     op->ux = v->i0 + v->nx > g->nx - v->i0 ? v->i0 + v->nx : g->nx - v->i0;
@@ -526,7 +545,10 @@ int mc_eigen_disp_create(const mc_grid *g, const mc_eigen_volume *v, double nu, 
 
 void mc_eigen_disp_apply(mc_eigen_disp *op, const double *const eps[6], double *uz)
 {
-    op->ops->apply(op, eps, uz);
+    if (op->sp)
+        mc_eigen_spectral_apply_uz(op->sp, eps, uz);
+    else
+        op->ops->apply(op, eps, uz);
 }
 
 /* ---- u_z from the stress operator's layer spectra (theory.md §8.9) --------------------------- */
@@ -534,7 +556,7 @@ void mc_eigen_disp_apply(mc_eigen_disp *op, const double *const eps[6], double *
 int mc_eigen_disp_shares(const mc_eigen_disp *dop, const mc_eigen_stress *sop)
 {
     const mc_eigen_volume *v = &dop->v;
-    if (dop->ops->id != MC_BACKEND_FFT || !sop->fft || !mc_eigen_volume_equal(v, &sop->v) ||
+    if (dop->sp || sop->spec || dop->ops->id != MC_BACKEND_FFT || !sop->fft || !mc_eigen_volume_equal(v, &sop->v) ||
         v->i0 != 0 || v->j0 != 0 || v->nx != dop->g.nx || v->ny != dop->g.ny ||
         dop->g.nx != sop->g.nx || dop->g.ny != sop->g.ny ||
         dop->g.periodic_x != sop->g.periodic_x || dop->g.periodic_y != sop->g.periodic_y)
@@ -615,6 +637,10 @@ size_t mc_eigen_disp_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, 
     mc_error err = {0};
     if (mc_eig_check(g, v, 0.3, b, "eigen displacement", &err) != MC_OK)
         return 0;
+    if (v->kernel == MC_EIG_KERNEL_SPECTRAL) {
+        const size_t s = ranks > 0 ? 0 : mc_eigen_spectral_estimate_uz(g, v, b);
+        return s ? sizeof(mc_eigen_disp) + s : 0;
+    }
     /* the used offsets and the quadrant as mc_eigen_disp_create and fft_create set them */
     const int px = mc_eig_per_x(g), py = mc_eig_per_y(g);
     int ux = v->i0 + v->nx > g->nx - v->i0 ? v->i0 + v->nx : g->nx - v->i0;

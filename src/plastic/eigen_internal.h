@@ -228,6 +228,8 @@ struct mc_eigen_stress {
     int keep_rows;     /* distributed fft: 1 = the stresses are written on this rank's rows only,
                         * not gathered (mc_eigen_stress_keep_rows) */
     size_t part[MC_EIGEN_STRESS_PARTS]; /* bytes held, by part (mc_eigen_stress_parts) */
+    struct mc_eigen_spectral *spec; /* the spectral kernel (v.kernel; eigen_spectral_op.h): the
+                        * whole operator, nothing above is made but p3 */
 };
 
 /* The corner lattice of the s1 and p3 tables (theory.md §8.2, eigen.h mc_eigen_corner_h): on a

@@ -86,6 +86,21 @@ static inline const char *mc_eig_stress_points_name(mc_eig_stress_points s)
     return s == MC_EIG_CELL_CENTRE ? "centre" : "cell_average";
 }
 
+/* The lateral discretisation of the eigenstrain (theory.md §8.10). */
+typedef enum {
+    MC_EIG_KERNEL_CUBOID = 0,  /* the default: uniform cuboids, their kernels tabulated in space
+                                * and stored as spectra (§8.1-§8.9) */
+    MC_EIG_KERNEL_SPECTRAL = 1 /* sampled trigonometric fields, the kernel evaluated per lateral
+                                * mode when used (plastic/eigen_spectral_op.h): no kernel stored;
+                                * a volume under the whole grid, not distributed */
+} mc_eig_kernel;
+
+/* The key word of each kernel ([plasticity] kernel, summary.json). */
+static inline const char *mc_eig_kernel_name(mc_eig_kernel k)
+{
+    return k == MC_EIG_KERNEL_SPECTRAL ? "spectral" : "cuboid";
+}
+
 /* Cells (of the larger lateral size) from the source within which MC_EIG_CELL_AVERAGE averages. */
 #define MC_EIG_AVERAGE_REACH 3
 
@@ -110,12 +125,14 @@ typedef struct {
     mc_eig_stress_points stress_points; /* the residual stress operator's evaluation (default 0) */
     const int *group; /* NULL: uniform; else nz odd counts >= 1 of fine layers per layer (graded).
                        * Borrowed: the operators copy it; whoever holds a volume keeps it alive */
+    mc_eig_kernel kernel; /* the lateral discretisation (default 0: cuboids) */
 } mc_eigen_volume;
 
 /* The volume of nz layers of thickness dz under the whole surface grid g. */
 static inline mc_eigen_volume mc_eigen_volume_full(const mc_grid *g, int nz, double dz)
 {
-    mc_eigen_volume v = {0, 0, g->nx, g->ny, nz, dz, MC_EIG_CELL_AVERAGE, NULL};
+    mc_eigen_volume v = {0, 0, g->nx, g->ny, nz, dz, MC_EIG_CELL_AVERAGE, NULL,
+                         MC_EIG_KERNEL_CUBOID};
     return v;
 }
 

@@ -18,9 +18,11 @@
 
 #include "core/alloc.h"
 #include "core/dist.h"
+#include "core/threads.h"
 #include "kernels/eigen.h"
 #include "kernels/kernel.h"
 #include "plastic/eigen_internal.h"
+#include "plastic/eigen_spectral_op.h"
 #include "stress/stress.h"
 
 /* ---- kernel tables --------------------------------------------------------------------------- */
@@ -689,8 +691,9 @@ void mc_eigen_stress_destroy(mc_eigen_stress **op)
 {
     if (!op || !*op)
         return;
-    if ((*op)->ops)
+    if ((*op)->ops && !(*op)->spec)
         (*op)->ops->release(*op);
+    mc_eigen_spectral_destroy(&(*op)->spec);
     mc_free((*op)->love);
     mc_free((*op)->lk);
     mc_free((*op)->p3);
@@ -720,6 +723,31 @@ int mc_eig_stress_create_replicated(const mc_grid *g, const mc_eigen_volume *v, 
                                     mc_eigen_stress **out, mc_error *err)
 {
     return create(g, v, nu, MC_BACKEND_FFT, MC_EIG_DEPTH_AUTO, 1, out, err);
+}
+
+/* The spectral kernel (theory.md §8.10): the whole operator is an mc_eigen_spectral; p3 is not
+ * kept (zeros). Not distributed: under mpirun only a replicated object (the near field's). */
+static int create_spectral(mc_eigen_stress *op, int replicated, mc_eigen_stress **out,
+                           mc_error *err)
+{
+    if (mc_dist_active() && !replicated) {
+        mc_eigen_stress_destroy(&op);
+        return mc_fail(err, MC_ERR_LIMIT,
+                       "eigen stress: the spectral kernel is not distributed over MPI ranks yet "
+                       "(run it with one process, or use kernel = cuboid)");
+    }
+    const size_t wc = (size_t)op->v.nx * op->v.ny;
+    op->p3 = mc_zeros(wc);
+    int rc = op->p3 ? mc_eigen_spectral_create(&op->g, &op->v, op->nu, op->ops->id, &op->spec, err)
+                    : mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory");
+    if (rc) {
+        mc_eigen_stress_destroy(&op);
+        return rc;
+    }
+    op->part[1] = mc_eigen_spectral_bytes(op->spec);
+    op->part[4] = sizeof *op + wc * sizeof(double) + (2 * (size_t)op->v.nz + 1) * sizeof(int);
+    *out = op;
+    return MC_OK;
 }
 
 static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
@@ -757,6 +785,8 @@ static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_back
     for (size_t r = 0; r < sizeof backends / sizeof backends[0]; r++)
         if (backends[r].id == b)
             op->ops = &backends[r];
+    if (v->kernel == MC_EIG_KERNEL_SPECTRAL)
+        return create_spectral(op, replicated, out, err);
     op->ops->size(op);
     op->qlen = ((size_t)op->qx * op->qy + 7) / 8 * 8;
     const size_t wc = (size_t)v->nx * v->ny, nl = 6 * (size_t)v->nz * op->qlen;
@@ -788,7 +818,10 @@ void mc_eigen_stress_apply(mc_eigen_stress *op, const double *const eps[6], doub
                            double *const sig[6])
 {
     op->fwd = NULL;
-    op->ops->apply(op, eps, G, NULL, sig);
+    if (op->spec)
+        mc_eigen_spectral_apply(op->spec, eps, G, sig, NULL);
+    else
+        op->ops->apply(op, eps, G, NULL, sig);
 }
 
 /* ---- the forward transforms shared with the displacement operator ---------------------------- */
@@ -799,7 +832,7 @@ void mc_eig_stress_forward_visit(mc_eigen_stress *op, const double *const eps[6]
     for (int c = 0; c < 6; c++)
         op->fwd_eps[c] = eps[c];
     op->fwd = op->fwd_eps;
-    if (op->ops->id == MC_BACKEND_FFT)
+    if (op->ops->id == MC_BACKEND_FFT && !op->spec)
         mc_eig_stress_fft_forward(op, eps, visit);
 }
 
@@ -812,7 +845,7 @@ int mc_eigen_stress_forwarded(const mc_eigen_stress *op) { return op->fwd != NUL
 
 int mc_eigen_stress_keep_rows(mc_eigen_stress *op, int on, int *r0, int *nr)
 {
-    const int dist = op->ops->id == MC_BACKEND_FFT && mc_eig_stress_fft_rows(op, r0, nr);
+    const int dist = op->ops->id == MC_BACKEND_FFT && !op->spec && mc_eig_stress_fft_rows(op, r0, nr);
     if (!dist) {
         *r0 = 0;
         *nr = op->v.ny;
@@ -835,6 +868,10 @@ int mc_eigen_stress_loads(mc_eigen_stress *op, int loads, mc_error *err)
 {
     if (op->nloads > 0)
         return mc_fail(err, MC_ERR_INPUT, "eigen stress: surface loads are folded in already");
+    if (op->spec)
+        return mc_fail(err, MC_ERR_INPUT,
+                       "eigen stress: the spectral kernel does not fold surface loads (the loop "
+                       "takes the stress module's elastic stresses; plastic/loop.h)");
     if (!(loads & MC_TRACTION_P) || (loads & ~(MC_TRACTION_P | MC_TRACTION_QX)))
         return mc_fail(err, MC_ERR_INPUT,
                        "eigen stress: surface loads %d: the pressure, and at most q_x besides",
@@ -886,7 +923,16 @@ static void apply_loads(mc_eigen_stress *op, const double *const eps[6], double 
     const double *loads[2] = {NULL, NULL};
     for (int l = 0; l < op->nloads; l++)
         loads[l] = op->load_id[l] == MC_TRACTION_P ? p : qx;
-    op->ops->apply(op, eps, G, op->nloads ? loads : NULL, sig);
+    if (op->spec) { /* no loads are folded; no strain: zeros */
+        const size_t n = (size_t)op->v.nx * op->v.ny * op->v.nz;
+        if (eps)
+            mc_eigen_spectral_apply(op->spec, eps, G, sig, NULL);
+        else
+            for (int c = 0; c < 6; c++)
+                memset(sig[c], 0, n * sizeof *sig[c]);
+    } else {
+        op->ops->apply(op, eps, G, op->nloads ? loads : NULL, sig);
+    }
     op->fwd = NULL;
 }
 
@@ -952,7 +998,8 @@ size_t mc_eigen_stress_loads_estimate(const mc_grid *g, const mc_eigen_volume *v
                                       int ranks, int loads)
 {
     mc_eigen_stress op;
-    if (!(loads & MC_TRACTION_P) || !shell(g, v, b, &op) || !whole_window(&op))
+    if (!(loads & MC_TRACTION_P) || !shell(g, v, b, &op) || !whole_window(&op) ||
+        v->kernel == MC_EIG_KERNEL_SPECTRAL)
         return 0;
     const int n = 1 + ((loads & MC_TRACTION_QX) != 0);
     return b == MC_BACKEND_FFT ? mc_eig_stress_fft_loads_bytes(&op, ranks, n)
@@ -966,6 +1013,15 @@ void mc_eigen_stress_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, 
     mc_eigen_stress op;
     if (!shell(g, v, b, &op))
         return;
+    if (v->kernel == MC_EIG_KERNEL_SPECTRAL) { /* create_spectral's parts */
+        if (ranks > 0)
+            return; /* refused under mpirun */
+        parts[1] = mc_eigen_spectral_estimate(g, v, b, mc_threads_count());
+        parts[4] = parts[1] ? sizeof op + (size_t)v->nx * v->ny * sizeof(double) +
+                                  (2 * (size_t)v->nz + 1) * sizeof(int)
+                            : 0;
+        return;
+    }
     const size_t wc = (size_t)v->nx * v->ny, nl = 6 * (size_t)v->nz * op.qlen;
     parts[3] = nl * sizeof(double);
     parts[4] = sizeof op + 2 * wc * sizeof(double) + (2 * (size_t)v->nz + 1) * sizeof(int);

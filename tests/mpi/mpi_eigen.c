@@ -363,7 +363,7 @@ static int plastic_run(int distributed, mc_plastic_iteration it, int window, dou
         rc = mc_contact_create(K, &o, &s, &err);
     mc_eigen_volume v = mc_eigen_volume_full(&g, 6, 40e-6);
     if (window) /* 14 x 13 columns from (3, 2): the layer-by-layer elastic stresses */
-        v = (mc_eigen_volume){3, 2, 14, 13, 6, 40e-6, MC_EIG_CELL_AVERAGE, NULL};
+        v = (mc_eigen_volume){3, 2, 14, 13, 6, 40e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID};
     const mc_plastic_problem pb = {.h = h, .load = 4 * 91.96, .load_steps = 2, .E = 210e9,
                                    .nu = 0.3, .law = &law, .volume = v,
                                    .backend = MC_BACKEND_FFT, .relaxation = 0.7,
@@ -475,8 +475,8 @@ int main(int argc, char **argv)
     const mc_grid strip = {18, 12, d, d, 0, 1}, per = {15, 11, d, 1.2 * d, 1, 1};
     const mc_grid line = {30, 1, d, d, 0, 1};
     mc_eigen_volume vf = mc_eigen_volume_full(&free_g, 4, 0.5 * d);
-    mc_eigen_volume vw = {5, 3, 13, 9, 3, 0.7 * d, MC_EIG_CELL_AVERAGE, NULL}; /* a window */
-    mc_eigen_volume vs = {3, 0, 11, 12, 3, 0.5 * d, MC_EIG_CELL_CENTRE, NULL}; /* strip: all y */
+    mc_eigen_volume vw = {5, 3, 13, 9, 3, 0.7 * d, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID}; /* a window */
+    mc_eigen_volume vs = {3, 0, 11, 12, 3, 0.5 * d, MC_EIG_CELL_CENTRE, NULL, MC_EIG_KERNEL_CUBOID}; /* strip: all y */
     mc_eigen_volume vp = mc_eigen_volume_full(&per, 3, 0.6 * d);
     mc_eigen_volume vl = mc_eigen_volume_full(&line, 5, 0.5 * d);
     mc_eigen_volume vg = mc_eigen_volume_full(&free_g, 4, 0.3 * d);
