@@ -120,6 +120,53 @@ START_TEST(test_depth_vs_pairs)
 }
 END_TEST
 
+/* the two passes layer by layer (mc_spec_down_layer, mc_spec_up_layer) against mc_spec_depth */
+START_TEST(test_streamed)
+{
+    mc_spec_coef k;
+    mc_spec_coef_init(NU, &k);
+    double b[16];
+    double worst = 0.0;
+    for (int lay = 0; lay < 3; lay++) {
+        const int nz = layering(lay, b);
+        for (int m = 0; m < N_KS; m++)
+            for (int pt = 0; pt < 2; pt++) {
+                double re[6 * 16], im[6 * 16];
+                test_random_field(re, 6 * (size_t)nz, 31 + m);
+                test_random_field(im, 6 * (size_t)nz, 37 + m);
+                double complex eps[16][6], ref[16][6], sig[16][6], work[12 * 16], uz, uzs;
+                for (int l = 0; l < nz; l++)
+                    for (int c = 0; c < 6; c++)
+                        eps[l][c] = re[6 * l + c] + I * im[6 * l + c];
+                mc_spec_depth(&k, KS[m][0], KS[m][1], nz, b, (mc_spec_point)pt,
+                              (const double complex(*)[6])eps, ref, &uz, work);
+                mc_spec_state st;
+                mc_spec_state_init(&st);
+                for (int l = 0; l < nz; l++)
+                    mc_spec_down_layer(&k, KS[m][0], KS[m][1], b[l], b[l + 1], (mc_spec_point)pt,
+                                       eps[l], &st, sig[l]);
+                uzs = mc_spec_turn(&k, KS[m][0], KS[m][1], &st);
+                for (int l = nz - 1; l >= 0; l--) {
+                    double complex add[6];
+                    mc_spec_up_layer(&k, KS[m][0], KS[m][1], b[l], b[l + 1], (mc_spec_point)pt,
+                                     eps[l], &st, add);
+                    for (int c = 0; c < 6; c++)
+                        sig[l][c] += add[c];
+                }
+                double scale = 0.0;
+                for (int l = 0; l < nz; l++)
+                    for (int c = 0; c < 6; c++)
+                        scale = fmax(scale, cabs(ref[l][c]));
+                for (int l = 0; l < nz; l++)
+                    for (int c = 0; c < 6; c++)
+                        worst = test_worst(worst, cabs(sig[l][c] - ref[l][c]) / scale);
+                worst = test_worst(worst, cabs(uzs - uz) / cabs(uz));
+            }
+    }
+    ck_assert_msg(worst <= TOL_DEPTH, "streamed vs running sums: %.3g", worst);
+}
+END_TEST
+
 /* ---- boundary conditions, equilibrium, continuity --------------------------------------------- */
 
 START_TEST(test_surface_free)
@@ -328,6 +375,7 @@ Suite *suite_eigen_spectral(void)
     Suite *s = suite_create("eigen_spectral");
     TCase *tc = tcase_create("kernel");
     tcase_add_test(tc, test_depth_vs_pairs);
+    tcase_add_test(tc, test_streamed);
     tcase_add_test(tc, test_surface_free);
     tcase_add_test(tc, test_equilibrium);
     tcase_add_test(tc, test_average_quadrature);

@@ -46,6 +46,8 @@
  *  plasticity margin              a running-in (whole-grid columns)           here
  *  plasticity margin              doubly periodic grid (the volume spans the  here (new)
  *                                  whole period along x and y)
+ *  plasticity margin              kernel = spectral (the volume spans the     here (new)
+ *                                  whole grid)
  *  runin nominal_deflection       doubly periodic grid (no bowl)              here
  *  runin friction_in_yield        no [plasticity] (von_mises); pure rolling   here (new)
  *                                  (no sliding direction)
@@ -201,6 +203,11 @@ static int plastic_runin_rules(const mc_scene *s, mc_error *err, const char **se
         BLAME("plasticity", "margin",
               "[plasticity] margin has no effect on a grid periodic along x and y (the plastic "
               "volume spans the whole period along both axes): remove it");
+    if (vm && s->plasticity.margin > 0 && s->plasticity.kernel == MC_EIG_KERNEL_SPECTRAL &&
+        !s->runin.enabled)
+        BLAME("plasticity", "margin",
+              "[plasticity] margin has no effect with kernel = spectral (its volume spans the "
+              "whole grid, docs/theory.md §8.10): remove it");
     if (!s->runin.enabled)
         return MC_OK;
     if (vm && s->plasticity.margin > 0)

@@ -601,3 +601,151 @@ void mc_spec_uz_layers(const mc_spec_coef *k, double kx, double ky, int nz, cons
         et *= L.eh;
     }
 }
+
+/* ---- the depth step streamed layer by layer ---------------------------------------------------- */
+
+void mc_spec_state_init(mc_spec_state *st)
+{
+    memset(st, 0, sizeof *st);
+    st->et = 1.0;
+    st->h = -1.0;
+}
+
+/* the state's cached scalars of thickness h */
+static void state_scalars(mc_spec_state *st, double h)
+{
+    layer_scalars L = {st->h, st->eh, st->p0, st->p1, st->ehalf, st->p0h2, st->p1h2, st->q0, st->q1};
+    scalars(h, &L);
+    st->h = L.h, st->eh = L.eh, st->p0 = L.p0, st->p1 = L.p1, st->ehalf = L.ehalf;
+    st->p0h2 = L.p0h2, st->p1h2 = L.p1h2, st->q0 = L.q0, st->q1 = L.q1;
+}
+
+static void frame_of(double cq, double sq, const double complex eps[6], double e[12])
+{
+    double complex f[6];
+    mc_spec_to_frame(cq, sq, eps, f);
+    for (int c = 0; c < 6; c++) {
+        e[2 * c] = creal(f[c]);
+        e[2 * c + 1] = cimag(f[c]);
+    }
+}
+
+static void lab_of(double cq, double sq, const double a[12], double complex sig[6])
+{
+    double complex f[6];
+    for (int m = 0; m < 6; m++)
+        f[m] = a[2 * m] + I * a[2 * m + 1];
+    mc_spec_from_frame(cq, sq, f, sig);
+}
+
+/* out += A (a U) + B (a V + c U) (average) or A Uc + B Vc with the sums moved by h/2 (centre) */
+static void observe(const mc_spec_sparse *A, const mc_spec_sparse *B, const mc_spec_state *st,
+                    const double *U, const double *V, int avg, double *out)
+{
+    double Uc[12], Vc[12];
+    if (avg) {
+        const double a = st->p0 / st->h, c = st->p1 / st->h;
+        for (int m = 0; m < 12; m++) {
+            Uc[m] = a * U[m];
+            Vc[m] = a * V[m] + c * U[m];
+        }
+    } else {
+        const double e = st->ehalf, d = 0.5 * st->h;
+        for (int m = 0; m < 12; m++) {
+            Uc[m] = e * U[m];
+            Vc[m] = e * (V[m] + d * U[m]);
+        }
+    }
+    sp_add(out, 1.0, A, Uc);
+    sp_add(out, 1.0, B, Vc);
+}
+
+void mc_spec_down_layer(const mc_spec_coef *k, double kx, double ky, double top, double bottom,
+                        mc_spec_point pt, const double complex eps[6], mc_spec_state *st,
+                        double complex sig[6])
+{
+    const double q = hypot(kx, ky), cq = kx / q, sq = ky / q, x = q * top, h = q * (bottom - top);
+    const int avg = pt == MC_SPEC_AVERAGE;
+    state_scalars(st, h);
+    double e[12], out[12] = {0};
+    frame_of(cq, sq, eps, e);
+    observe(&k->sAp, &k->sBp, st, st->U, st->V, avg, out); /* the layers above */
+    const double sa = avg ? st->q0 / h : st->p0h2, sb = avg ? st->q1 / h : st->p1h2;
+    sp_add(out, sa, &k->sAs, e); /* its own */
+    sp_add(out, sb, &k->sBs, e);
+    for (int m = 0; m < 6; m++)
+        for (int c = 0; c < 6; c++) {
+            out[2 * m] += k->Minf[m][c] * e[2 * c];
+            out[2 * m + 1] += k->Minf[m][c] * e[2 * c + 1];
+        }
+    lab_of(cq, sq, out, sig);
+    for (int m = 0; m < 12; m++) { /* past the layer; the totals */
+        st->V[m] = st->eh * (st->V[m] + h * st->U[m]) + st->p1 * e[m];
+        st->U[m] = st->eh * st->U[m] + st->p0 * e[m];
+        st->W0[m] += st->et * st->p0 * e[m];
+        st->W1[m] += st->et * (x * st->p0 + st->p1) * e[m];
+    }
+    st->et *= st->eh;
+}
+
+double complex mc_spec_turn(const mc_spec_coef *k, double kx, double ky, mc_spec_state *st)
+{
+    const double q = hypot(kx, ky);
+    double re = 0.0, im = 0.0;
+    for (int c = 0; c < 6; c++) {
+        const double complex am = k->Am[2][c], bm = k->Bm[2][c];
+        re += 2.0 * (creal(am) * st->W0[2 * c] - cimag(am) * st->W0[2 * c + 1] +
+                     creal(bm) * st->W1[2 * c] - cimag(bm) * st->W1[2 * c + 1]);
+        im += 2.0 * (creal(am) * st->W0[2 * c + 1] + cimag(am) * st->W0[2 * c] +
+                     creal(bm) * st->W1[2 * c + 1] + cimag(bm) * st->W1[2 * c]);
+    }
+    st->p3[0] = re;
+    st->p3[1] = im;
+    memset(st->U, 0, sizeof st->U);
+    memset(st->V, 0, sizeof st->V);
+    return k->uz0 * (re + I * im) / q;
+}
+
+void mc_spec_up_layer(const mc_spec_coef *k, double kx, double ky, double top, double bottom,
+                      mc_spec_point pt, const double complex eps[6], mc_spec_state *st,
+                      double complex sig[6])
+{
+    const double q = hypot(kx, ky), cq = kx / q, sq = ky / q, x = q * top, h = q * (bottom - top);
+    const int avg = pt == MC_SPEC_AVERAGE;
+    state_scalars(st, h);
+    double e[12], out[12] = {0}, Um[12], Vm[12];
+    frame_of(cq, sq, eps, e);
+    observe(&k->sAm, &k->sBm, st, st->U, st->V, avg, out); /* the layers below */
+    /* the mirror layers, all above: the totals seen from the layer's top, R (yz, xz) flipped */
+    const double em = exp(-x);
+    for (int m = 0; m < 12; m++) {
+        const double r = m >= 8 ? -1.0 : 1.0;
+        Um[m] = em * r * st->W0[m];
+        Vm[m] = em * r * (x * st->W0[m] + st->W1[m]);
+    }
+    if (avg) {
+        observe(&k->sAp, &k->sBp, st, Um, Vm, 1, out);
+    } else { /* (observe moves them by h/2 to the centre) */
+        observe(&k->sAp, &k->sBp, st, Um, Vm, 0, out);
+    }
+    /* S3 */
+    double tw0, tw1;
+    if (avg) {
+        tw0 = em * st->p0 / h;
+        tw1 = em * (x * st->p0 + st->p1) / h;
+    } else {
+        const double c = x + 0.5 * h;
+        tw0 = em * st->ehalf;
+        tw1 = tw0 * c;
+    }
+    for (int m = 0; m < 6; m++) {
+        const double complex t = (tw0 * k->T0[m] + tw1 * k->T1[m]) * (st->p3[0] + I * st->p3[1]);
+        out[2 * m] += creal(t);
+        out[2 * m + 1] += cimag(t);
+    }
+    lab_of(cq, sq, out, sig);
+    for (int m = 0; m < 12; m++) { /* above the layer */
+        st->V[m] = st->eh * (st->V[m] + h * st->U[m]) + st->p1 * e[m];
+        st->U[m] = st->eh * st->U[m] + st->p0 * e[m];
+    }
+}

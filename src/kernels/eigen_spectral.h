@@ -83,4 +83,30 @@ void mc_spec_depth(const mc_spec_coef *k, double kx, double ky, int nz, const do
 void mc_spec_uz_layers(const mc_spec_coef *k, double kx, double ky, int nz, const double *b,
                        double complex (*D)[6]);
 
+/* ---- the depth step streamed layer by layer (the operator that keeps no layer spectra) ---------
+ * Two passes over the layers per lateral mode, each layer's eigenstrain given when its turn comes:
+ * down (top to bottom) mc_spec_down_layer returns the stress at layer l of the layers above it,
+ * its own and the local term; then mc_spec_turn; then up (bottom to top) mc_spec_up_layer returns
+ * the rest: the layers below, the mirror layers and the surface correction S3. Their sum is
+ * mc_spec_depth's result to round-off. The state holds a mode's running sums (re/im pairs), the
+ * totals of the down pass and the scalars of the last layer thickness. q > 0. */
+typedef struct {
+    double U[12], V[12];   /* the running sums of the pass */
+    double W0[12], W1[12]; /* the down pass's totals sum e^{-t1} P0 e, sum e^{-t1} (t1 P0 + P1) e */
+    double et;             /* e^{-q top} of the next layer of the down pass */
+    double p3[2];          /* after mc_spec_turn: p3 per 2G (re, im) */
+    double h, eh, p0, p1, ehalf, p0h2, p1h2, q0, q1; /* the last thickness' scalars (h < 0: none) */
+} mc_spec_state;
+
+void mc_spec_state_init(mc_spec_state *st);
+/* top, bottom: the layer's depths, m; eps (lab), sig (lab, per 2G) written (not added) */
+void mc_spec_down_layer(const mc_spec_coef *k, double kx, double ky, double top, double bottom,
+                        mc_spec_point pt, const double complex eps[6], mc_spec_state *st,
+                        double complex sig[6]);
+/* after the last layer of the down pass; returns u_z (m) of the mode */
+double complex mc_spec_turn(const mc_spec_coef *k, double kx, double ky, mc_spec_state *st);
+void mc_spec_up_layer(const mc_spec_coef *k, double kx, double ky, double top, double bottom,
+                      mc_spec_point pt, const double complex eps[6], mc_spec_state *st,
+                      double complex sig[6]);
+
 #endif

@@ -448,6 +448,11 @@ row lube_radii_macro     o 1 "lube_ok.ini:19:" \
 row margin_doubly_periodic o 1 "--set plasticity.margin" \
     "[plasticity] margin has no effect on a grid periodic along x and y" \
     -- plastic_line.ini --out o --set mesh.periodic_x=yes --set mesh.ny=2 --set plasticity.margin=40um
+row margin_spectral      o 1 "--set plasticity.margin" \
+    "[plasticity] margin has no effect with kernel = spectral" \
+    -- plastic_line.ini --out o --set plasticity.kernel=spectral --set plasticity.margin=40um
+row kernel_bad           o 1 "--set plasticity.kernel" "one of cuboid, spectral" \
+    -- plastic_line.ini --out o --set plasticity.kernel=fourier
 row fine_depth_uniform   o 1 "--set plasticity.fine_depth" \
     "[plasticity] fine_depth has no effect with layering = auto and a given depth" \
     -- plastic_line.ini --out o --set plasticity.depth=10um --set plasticity.fine_depth=4um
