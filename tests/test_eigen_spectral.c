@@ -141,15 +141,13 @@ START_TEST(test_streamed)
                 mc_spec_depth(&k, KS[m][0], KS[m][1], nz, b, (mc_spec_point)pt,
                               (const double complex(*)[6])eps, ref, &uz, work);
                 mc_spec_state st;
-                mc_spec_state_init(&st);
+                mc_spec_state_init(&st, KS[m][0], KS[m][1]);
                 for (int l = 0; l < nz; l++)
-                    mc_spec_down_layer(&k, KS[m][0], KS[m][1], b[l], b[l + 1], (mc_spec_point)pt,
-                                       eps[l], &st, sig[l]);
-                uzs = mc_spec_turn(&k, KS[m][0], KS[m][1], &st);
+                    mc_spec_down_layer(&k, b[l], b[l + 1], (mc_spec_point)pt, eps[l], &st, sig[l]);
+                uzs = mc_spec_turn(&k, &st);
                 for (int l = nz - 1; l >= 0; l--) {
                     double complex add[6];
-                    mc_spec_up_layer(&k, KS[m][0], KS[m][1], b[l], b[l + 1], (mc_spec_point)pt,
-                                     eps[l], &st, add);
+                    mc_spec_up_layer(&k, b[l], b[l + 1], (mc_spec_point)pt, eps[l], &st, add);
                     for (int c = 0; c < 6; c++)
                         sig[l][c] += add[c];
                 }

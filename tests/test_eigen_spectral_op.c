@@ -108,8 +108,10 @@ START_TEST(test_backends)
     ck_assert(test_rel_maxdiff(u2, ud, ns) <= TOL_BACKENDS);
     free(u1), free(u2);
     /* the estimate is the object's size */
-    ck_assert_uint_eq(mc_eigen_spectral_estimate(&g, &v, MC_BACKEND_DIRECT, 1),
+    ck_assert_uint_eq(mc_eigen_spectral_estimate(&g, &v, MC_BACKEND_DIRECT),
                       mc_eigen_spectral_bytes(od));
+    ck_assert_uint_eq(mc_eigen_spectral_estimate(&g, &v, MC_BACKEND_FFT),
+                      mc_eigen_spectral_bytes(of));
     mc_eigen_spectral_destroy(&od);
     mc_eigen_spectral_destroy(&of);
     free(ud), free(uf), free(b1), free(b2), free(b3);
@@ -349,7 +351,7 @@ START_TEST(test_refusals)
     v = mc_eigen_volume_full(&g, 3, 0.5e-6);
     ck_assert_int_eq(mc_eigen_spectral_create(&g, &v, 0.5, MC_BACKEND_FFT, &op, &err), MC_ERR_INPUT);
     ck_assert_ptr_nonnull(strstr(err.msg, "Poisson"));
-    ck_assert_uint_eq(mc_eigen_spectral_estimate(&g, &v, MC_BACKEND_FFT, 1) > 0, 1);
+    ck_assert_uint_eq(mc_eigen_spectral_estimate(&g, &v, MC_BACKEND_FFT) > 0, 1);
     /* out of memory at every allocation: a clean failure */
     for (long n = 1; n <= 8; n++) {
         mc_alloc_fail_at(n);

@@ -604,16 +604,21 @@ void mc_spec_uz_layers(const mc_spec_coef *k, double kx, double ky, int nz, cons
 
 /* ---- the depth step streamed layer by layer ---------------------------------------------------- */
 
-void mc_spec_state_init(mc_spec_state *st)
+void mc_spec_state_init(mc_spec_state *st, double kx, double ky)
 {
     memset(st, 0, sizeof *st);
     st->et = 1.0;
     st->h = -1.0;
+    st->q = hypot(kx, ky);
+    st->cq = st->q > 0.0 ? kx / st->q : 1.0;
+    st->sq = st->q > 0.0 ? ky / st->q : 0.0;
 }
 
 /* the state's cached scalars of thickness h */
 static void state_scalars(mc_spec_state *st, double h)
 {
+    if (fabs(st->h - h) <= 1e-14 * h)
+        return;
     layer_scalars L = {st->h, st->eh, st->p0, st->p1, st->ehalf, st->p0h2, st->p1h2, st->q0, st->q1};
     scalars(h, &L);
     st->h = L.h, st->eh = L.eh, st->p0 = L.p0, st->p1 = L.p1, st->ehalf = L.ehalf;
@@ -660,11 +665,10 @@ static void observe(const mc_spec_sparse *A, const mc_spec_sparse *B, const mc_s
     sp_add(out, 1.0, B, Vc);
 }
 
-void mc_spec_down_layer(const mc_spec_coef *k, double kx, double ky, double top, double bottom,
-                        mc_spec_point pt, const double complex eps[6], mc_spec_state *st,
-                        double complex sig[6])
+void mc_spec_down_layer(const mc_spec_coef *k, double top, double bottom, mc_spec_point pt,
+                        const double complex eps[6], mc_spec_state *st, double complex sig[6])
 {
-    const double q = hypot(kx, ky), cq = kx / q, sq = ky / q, x = q * top, h = q * (bottom - top);
+    const double q = st->q, cq = st->cq, sq = st->sq, x = q * top, h = q * (bottom - top);
     const int avg = pt == MC_SPEC_AVERAGE;
     state_scalars(st, h);
     double e[12], out[12] = {0};
@@ -688,9 +692,9 @@ void mc_spec_down_layer(const mc_spec_coef *k, double kx, double ky, double top,
     st->et *= st->eh;
 }
 
-double complex mc_spec_turn(const mc_spec_coef *k, double kx, double ky, mc_spec_state *st)
+double complex mc_spec_turn(const mc_spec_coef *k, mc_spec_state *st)
 {
-    const double q = hypot(kx, ky);
+    const double q = st->q;
     double re = 0.0, im = 0.0;
     for (int c = 0; c < 6; c++) {
         const double complex am = k->Am[2][c], bm = k->Bm[2][c];
@@ -706,11 +710,10 @@ double complex mc_spec_turn(const mc_spec_coef *k, double kx, double ky, mc_spec
     return k->uz0 * (re + I * im) / q;
 }
 
-void mc_spec_up_layer(const mc_spec_coef *k, double kx, double ky, double top, double bottom,
-                      mc_spec_point pt, const double complex eps[6], mc_spec_state *st,
-                      double complex sig[6])
+void mc_spec_up_layer(const mc_spec_coef *k, double top, double bottom, mc_spec_point pt,
+                      const double complex eps[6], mc_spec_state *st, double complex sig[6])
 {
-    const double q = hypot(kx, ky), cq = kx / q, sq = ky / q, x = q * top, h = q * (bottom - top);
+    const double q = st->q, cq = st->cq, sq = st->sq, x = q * top, h = q * (bottom - top);
     const int avg = pt == MC_SPEC_AVERAGE;
     state_scalars(st, h);
     double e[12], out[12] = {0}, Um[12], Vm[12];

@@ -96,17 +96,17 @@ typedef struct {
     double et;             /* e^{-q top} of the next layer of the down pass */
     double p3[2];          /* after mc_spec_turn: p3 per 2G (re, im) */
     double h, eh, p0, p1, ehalf, p0h2, p1h2, q0, q1; /* the last thickness' scalars (h < 0: none) */
+    double q, cq, sq;      /* |k| and the frame's direction */
 } mc_spec_state;
 
-void mc_spec_state_init(mc_spec_state *st);
+/* a fresh state for the mode (kx, ky) (1/m) */
+void mc_spec_state_init(mc_spec_state *st, double kx, double ky);
 /* top, bottom: the layer's depths, m; eps (lab), sig (lab, per 2G) written (not added) */
-void mc_spec_down_layer(const mc_spec_coef *k, double kx, double ky, double top, double bottom,
-                        mc_spec_point pt, const double complex eps[6], mc_spec_state *st,
-                        double complex sig[6]);
+void mc_spec_down_layer(const mc_spec_coef *k, double top, double bottom, mc_spec_point pt,
+                        const double complex eps[6], mc_spec_state *st, double complex sig[6]);
 /* after the last layer of the down pass; returns u_z (m) of the mode */
-double complex mc_spec_turn(const mc_spec_coef *k, double kx, double ky, mc_spec_state *st);
-void mc_spec_up_layer(const mc_spec_coef *k, double kx, double ky, double top, double bottom,
-                      mc_spec_point pt, const double complex eps[6], mc_spec_state *st,
-                      double complex sig[6]);
+double complex mc_spec_turn(const mc_spec_coef *k, mc_spec_state *st);
+void mc_spec_up_layer(const mc_spec_coef *k, double top, double bottom, mc_spec_point pt,
+                      const double complex eps[6], mc_spec_state *st, double complex sig[6]);
 
 #endif

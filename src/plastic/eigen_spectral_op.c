@@ -24,10 +24,6 @@
 #include "core/threads.h"
 #include "kernels/eigen_spectral.h"
 
-/* x frequencies per block of step 2: a block of all slabs (6 nz x py x BLOCK complex) stays
- * within a few MB at 512 x 32 layers, and a mode's gather touches BLOCK-wide rows */
-#define BLOCK 8
-
 struct mc_eigen_spectral {
     mc_grid g;
     int nz, nx, ny;
@@ -45,13 +41,17 @@ struct mc_eigen_spectral {
     fftw_complex *lay;
     double *lrows;
     fftw_plan lay_r2c;
-    /* fft */
-    fftw_complex *E;         /* 6 nz slabs [(c nz + l)][j][kx] */
+    /* fft, streamed (two passes over the layers, theory §8.10): per lateral bin its wave vectors
+     * (two or four at a Nyquist index, weighted), each with its depth state */
+    int nbins, nent;
+    int *bin_first;          /* nbins + 1: the entries of bin b are bin_first[b] .. [b + 1] - 1 */
+    double *ent_k;           /* 3 per entry: kx, ky, weight */
+    mc_spec_state *st;       /* nent */
+    fftw_complex *sp6;       /* 6 spectra py x hx: a layer's six components, in and out */
+    double *prow;            /* py x px: padded rows */
+    fftw_plan a_r2c, b_fwd, c_bwd, d_c2r; /* x rows, y columns, and back */
     fftw_complex *U;         /* py x hx: the surface displacement's modes */
-    double *rows;            /* nthr x ny x px (also py x px for u_z: the larger) */
-    fftw_complex *blk;       /* nthr x 6 nz x py x BLOCK */
-    double complex *mode;    /* nthr x 32 nz: eps, sig, the depth step's work, an average */
-    fftw_plan x_r2c, x_c2r, y_fwd, y_bwd, y_fwd_tail, y_bwd_tail, uz_c2r;
+    fftw_plan uz_c2r;
     /* direct */
     double *tab;             /* [(i nz + j) 36 + r 6 + c][py][px]: stress per 2G */
     double *dtab;            /* [j 6 + c][py][px]: u_z, m */
@@ -111,18 +111,6 @@ static void shape(const mc_grid *g, const mc_eigen_volume *v, mc_eigen_spectral 
     op->hx = op->px / 2 + 1;
 }
 
-static size_t fft_bytes(const mc_eigen_spectral *op, int nthr)
-{
-    const size_t nz = (size_t)op->nz, cplx = sizeof(fftw_complex);
-    const size_t rowlen = (size_t)(op->ny > op->py ? op->ny : op->py) * op->px;
-    return 6 * nz * op->ny * op->hx * cplx                      /* E */
-           + (size_t)op->py * op->hx * cplx                     /* U */
-           + (size_t)nthr * rowlen * sizeof(double)             /* rows */
-           + (size_t)nthr * 6 * nz * op->py * BLOCK * cplx      /* blk */
-           + (size_t)nthr * 32 * nz * sizeof(double complex)    /* mode */
-           + (nz + 1) * sizeof(double) + sizeof(mc_eigen_spectral);
-}
-
 static size_t uz_bytes(const mc_eigen_spectral *op)
 {
     const size_t per = (size_t)op->py * op->hx * sizeof(fftw_complex);
@@ -142,6 +130,33 @@ static size_t direct_bytes(const mc_eigen_spectral *op)
            sizeof(mc_eigen_spectral);
 }
 
+/* entries per bin: 1, or 2 / 4 at a Nyquist index (both signs stand for the bin) */
+static int bin_entries(const mc_eigen_spectral *op, int ky, int kx)
+{
+    int nyqx, nyqy;
+    (void)wave(kx, op->px, op->g.dx, &nyqx);
+    (void)wave(ky, op->py, op->g.dy, &nyqy);
+    return (nyqx ? 2 : 1) * (nyqy ? 2 : 1);
+}
+
+static size_t stream_entries(const mc_eigen_spectral *op)
+{
+    size_t n = 0;
+    for (int ky = 0; ky < op->py; ky++)
+        for (int kx = 0; kx < op->hx; kx++)
+            n += (size_t)bin_entries(op, ky, kx);
+    return n;
+}
+
+static size_t stream_bytes(const mc_eigen_spectral *op)
+{
+    const size_t bins = (size_t)op->py * op->hx, nent = stream_entries(op);
+    return nent * (sizeof(mc_spec_state) + 3 * sizeof(double)) + (bins + 1) * sizeof(int) +
+           7 * bins * sizeof(fftw_complex) /* sp6 and U */ +
+           (size_t)op->py * op->px * sizeof(double) + ((size_t)op->nz + 1) * sizeof(double) +
+           sizeof(mc_eigen_spectral);
+}
+
 size_t mc_eigen_spectral_estimate_uz(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)
 {
     mc_error err = {0};
@@ -156,8 +171,7 @@ size_t mc_eigen_spectral_estimate_uz(const mc_grid *g, const mc_eigen_volume *v,
     return uz_bytes(&op);
 }
 
-size_t mc_eigen_spectral_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b,
-                                  int threads)
+size_t mc_eigen_spectral_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)
 {
     mc_error err = {0};
     if (check(g, v, 0.3, b, &err) != MC_OK)
@@ -167,7 +181,7 @@ size_t mc_eigen_spectral_estimate(const mc_grid *g, const mc_eigen_volume *v, mc
     shape(g, v, &op);
     if (b == MC_BACKEND_DIRECT)
         return direct_values(&op) > (size_t)MC_SPEC_DIRECT_MAX ? 0 : direct_bytes(&op);
-    return fft_bytes(&op, threads < 1 ? 1 : threads);
+    return stream_bytes(&op);
 }
 
 void mc_eigen_spectral_destroy(mc_eigen_spectral **op)
@@ -175,201 +189,23 @@ void mc_eigen_spectral_destroy(mc_eigen_spectral **op)
     if (!op || !*op)
         return;
     mc_eigen_spectral *o = *op;
-    fftw_plan plans[] = {o->x_r2c, o->x_c2r,      o->y_fwd,  o->y_bwd, o->y_fwd_tail,
-                         o->y_bwd_tail, o->uz_c2r, o->lay_r2c};
+    fftw_plan plans[] = {o->uz_c2r, o->lay_r2c, o->a_r2c, o->b_fwd, o->c_bwd, o->d_c2r};
     for (size_t p = 0; p < sizeof plans / sizeof plans[0]; p++)
         if (plans[p])
             fftw_destroy_plan(plans[p]);
     mc_free(o->b);
-    mc_free(o->E);
     mc_free(o->U);
-    mc_free(o->rows);
-    mc_free(o->blk);
-    mc_free(o->mode);
     mc_free(o->tab);
     mc_free(o->dtab);
     mc_free(o->lay);
     mc_free(o->lrows);
+    mc_free(o->bin_first);
+    mc_free(o->ent_k);
+    mc_free(o->st);
+    mc_free(o->sp6);
+    mc_free(o->prow);
     mc_free(o);
     *op = NULL;
-}
-
-/* ---- the mode (kx, ky): the depth step, averaged over both signs at a Nyquist index ---------- */
-
-/* eps, sig: nz x 6; work: 18 nz (the depth step's 12 nz and a second result) */
-static void mode_step(const mc_eigen_spectral *op, double kx, int nyqx, double ky, int nyqy,
-                      const double complex (*eps)[6], double complex (*sig)[6],
-                      double complex *uz, double complex *work)
-{
-    const int nz = op->nz;
-    if (kx == 0.0 && ky == 0.0) { /* the laterally uniform field: the layer, and the surface
-                                     displacement's limit of a finite patch (theory §8.10) */
-        mc_spec_depth(&op->coef, 0.0, 0.0, nz, op->b, op->pt, eps, sig, NULL, work);
-        double complex u = 0.0;
-        for (int l = 0; l < nz; l++)
-            u -= (op->b[l + 1] - op->b[l]) *
-                 (op->uz0[0] * eps[l][0] + op->uz0[1] * eps[l][1] + op->uz0[2] * eps[l][2]);
-        *uz = u;
-        return;
-    }
-    const int nsx = nyqx ? 2 : 1, nsy = nyqy ? 2 : 1, n = nsx * nsy;
-    double complex(*one)[6] = (double complex(*)[6])(work + 12 * (size_t)nz);
-    *uz = 0.0;
-    for (int a = 0; a < n; a++) {
-        const double sx = (a % nsx) ? -1.0 : 1.0, sy = (a / nsx) ? -1.0 : 1.0;
-        double complex u;
-        mc_spec_depth(&op->coef, sx * kx, sy * ky, nz, op->b, op->pt, eps, n == 1 ? sig : one,
-                      &u, work);
-        *uz += u / n;
-        if (n == 1)
-            return;
-        for (int l = 0; l < nz; l++)
-            for (int c = 0; c < 6; c++) {
-                if (a == 0)
-                    sig[l][c] = 0.0;
-                sig[l][c] += one[l][c] / n;
-            }
-    }
-}
-
-/* ---- fft backend ------------------------------------------------------------------------------- */
-
-static int fft_prepare(mc_eigen_spectral *op, mc_error *err)
-{
-    const int nz = op->nz, nx = op->nx, ny = op->ny, px = op->px, py = op->py, hx = op->hx;
-    const size_t rowlen = (size_t)(ny > py ? ny : py) * px;
-    op->E = mc_malloc(6 * (size_t)nz * ny * hx * sizeof *op->E);
-    op->U = mc_malloc((size_t)py * hx * sizeof *op->U);
-    op->rows = mc_malloc((size_t)op->nthr * rowlen * sizeof *op->rows);
-    op->blk = mc_malloc((size_t)op->nthr * 6 * nz * py * BLOCK * sizeof *op->blk);
-    op->mode = mc_malloc((size_t)op->nthr * 32 * nz * sizeof *op->mode);
-    if (!op->E || !op->U || !op->rows || !op->blk || !op->mode)
-        return mc_fail(err, MC_ERR_NOMEM, "spectral eigen operator: out of memory (%zu bytes)",
-                       fft_bytes(op, op->nthr));
-    int rc = mc_fftw_prepare(err);
-    if (rc)
-        return rc;
-    fftw_plan_with_nthreads(1); /* the operator's own loops run the threads */
-    const unsigned fl = FFTW_ESTIMATE | FFTW_UNALIGNED;
-    int n1[1] = {px}, ny1[1] = {py};
-    op->x_r2c = fftw_plan_many_dft_r2c(1, n1, ny, op->rows, NULL, 1, px, op->E, NULL, 1, hx, fl);
-    op->x_c2r = fftw_plan_many_dft_c2r(1, n1, ny, op->E, NULL, 1, hx, op->rows, NULL, 1, px,
-                                       fl | FFTW_DESTROY_INPUT);
-    op->y_fwd = fftw_plan_many_dft(1, ny1, BLOCK, op->blk, NULL, BLOCK, 1, op->blk, NULL, BLOCK,
-                                   1, FFTW_FORWARD, fl);
-    op->y_bwd = fftw_plan_many_dft(1, ny1, BLOCK, op->blk, NULL, BLOCK, 1, op->blk, NULL, BLOCK,
-                                   1, FFTW_BACKWARD, fl);
-    const int tail = hx % BLOCK;
-    if (tail) {
-        op->y_fwd_tail = fftw_plan_many_dft(1, ny1, tail, op->blk, NULL, BLOCK, 1, op->blk, NULL,
-                                            BLOCK, 1, FFTW_FORWARD, fl);
-        op->y_bwd_tail = fftw_plan_many_dft(1, ny1, tail, op->blk, NULL, BLOCK, 1, op->blk, NULL,
-                                            BLOCK, 1, FFTW_BACKWARD, fl);
-    }
-    op->uz_c2r = fftw_plan_dft_c2r_2d(py, px, op->U, op->rows, fl | FFTW_DESTROY_INPUT);
-    fftw_plan_with_nthreads(mc_threads_count());
-    if (!op->x_r2c || !op->x_c2r || !op->y_fwd || !op->y_bwd || !op->uz_c2r ||
-        (tail && (!op->y_fwd_tail || !op->y_bwd_tail)))
-        return mc_fail(err, MC_ERR_NOMEM, "spectral eigen operator: FFTW could not plan");
-    (void)nx;
-    return MC_OK;
-}
-
-/* step 2 for the block of x frequencies k0 .. k0 + w - 1 on thread me */
-static void fft_block(mc_eigen_spectral *op, int k0, int w, int me)
-{
-    const int nz = op->nz, ny = op->ny, py = op->py, hx = op->hx, ns = 6 * nz;
-    const size_t slab = (size_t)ny * hx, bs = (size_t)py * BLOCK;
-    fftw_complex *blk = op->blk + (size_t)me * ns * bs;
-    double complex *m = op->mode + (size_t)me * 32 * nz;
-    double complex(*eps)[6] = (double complex(*)[6])m;
-    double complex(*sig)[6] = (double complex(*)[6])(m + 6 * (size_t)nz);
-    double complex *work = m + 12 * (size_t)nz;
-    const fftw_plan fwd = w == BLOCK ? op->y_fwd : op->y_fwd_tail;
-    const fftw_plan bwd = w == BLOCK ? op->y_bwd : op->y_bwd_tail;
-    for (int s = 0; s < ns; s++) {
-        fftw_complex *b = blk + s * bs;
-        const fftw_complex *e = op->E + s * slab;
-        for (int j = 0; j < ny; j++)
-            memcpy(b + (size_t)j * BLOCK, e + (size_t)j * hx + k0, (size_t)w * sizeof *b);
-        for (int j = ny; j < py; j++)
-            memset(b + (size_t)j * BLOCK, 0, (size_t)w * sizeof *b);
-        fftw_execute_dft(fwd, b, b);
-    }
-    for (int ky = 0; ky < py; ky++) {
-        int nyqy, nyqx;
-        const double kyv = wave(ky, py, op->g.dy, &nyqy);
-        for (int i = 0; i < w; i++) {
-            const double kxv = wave(k0 + i, op->px, op->g.dx, &nyqx);
-            const size_t at = (size_t)ky * BLOCK + i;
-            for (int l = 0; l < nz; l++)
-                for (int c = 0; c < 6; c++) {
-                    const fftw_complex *v = blk + (size_t)(c * nz + l) * bs + at;
-                    eps[l][c] = *v;
-                }
-            double complex uz;
-            mode_step(op, kxv, nyqx, kyv, nyqy, (const double complex(*)[6])eps, sig, &uz, work);
-            for (int l = 0; l < nz; l++)
-                for (int c = 0; c < 6; c++) {
-                    fftw_complex *v = blk + (size_t)(c * nz + l) * bs + at;
-                    *v = sig[l][c];
-                }
-            fftw_complex *u = op->U + (size_t)ky * hx + k0 + i;
-            *u = uz;
-        }
-    }
-    for (int s = 0; s < ns; s++) {
-        fftw_complex *b = blk + s * bs;
-        fftw_execute_dft(bwd, b, b);
-        fftw_complex *e = op->E + s * slab;
-        for (int j = 0; j < ny; j++)
-            memcpy(e + (size_t)j * hx + k0, b + (size_t)j * BLOCK, (size_t)w * sizeof *b);
-    }
-}
-
-static void fft_apply(mc_eigen_spectral *op, const double *const eps[6], double G,
-                      double *const sig[6], double *uz)
-{
-    const int nz = op->nz, nx = op->nx, ny = op->ny, px = op->px, py = op->py, hx = op->hx;
-    const int ns = 6 * nz;
-    const size_t slab = (size_t)ny * hx, layer = (size_t)nx * ny;
-    const size_t rowlen = (size_t)(ny > py ? ny : py) * px;
-    /* 1. along x */
-#pragma omp parallel for schedule(dynamic, 1) num_threads(op->nthr)
-    for (int s = 0; s < ns; s++) {
-        double *r = op->rows + (size_t)omp_get_thread_num() * rowlen;
-        const double *f = eps[s / nz] + (size_t)(s % nz) * layer;
-        for (int j = 0; j < ny; j++) {
-            memcpy(r + (size_t)j * px, f + (size_t)j * nx, (size_t)nx * sizeof *r);
-            memset(r + (size_t)j * px + nx, 0, (size_t)(px - nx) * sizeof *r);
-        }
-        fftw_execute_dft_r2c(op->x_r2c, r, op->E + s * slab);
-    }
-    /* 2. blocks of x frequencies */
-    const int nblk = (hx + BLOCK - 1) / BLOCK;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(op->nthr)
-    for (int kb = 0; kb < nblk; kb++) {
-        const int k0 = kb * BLOCK, w = hx - k0 < BLOCK ? hx - k0 : BLOCK;
-        fft_block(op, k0, w, omp_get_thread_num());
-    }
-    /* 3. back along x: Pa */
-    const double scale = 2.0 * G / ((double)px * py);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(op->nthr)
-    for (int s = 0; s < (sig ? ns : 0); s++) {
-        double *r = op->rows + (size_t)omp_get_thread_num() * rowlen;
-        fftw_execute_dft_c2r(op->x_c2r, op->E + s * slab, r);
-        double *f = sig[s / nz] + (size_t)(s % nz) * layer;
-        for (int j = 0; j < ny; j++)
-            for (int i = 0; i < nx; i++)
-                f[(size_t)j * nx + i] = scale * r[(size_t)j * px + i];
-    }
-    if (uz) {
-        fftw_execute_dft_c2r(op->uz_c2r, op->U, op->rows);
-        const double us = 1.0 / ((double)px * py);
-        for (int j = 0; j < ny; j++)
-            for (int i = 0; i < nx; i++)
-                uz[(size_t)j * nx + i] = us * op->rows[(size_t)j * px + i];
-    }
 }
 
 /* ---- fft, the surface displacement alone: one layer at a time, D evaluated per mode ---------- */
@@ -443,6 +279,168 @@ static void uz_apply(mc_eigen_spectral *op, const double *const eps[6], double *
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++)
             uz[(size_t)j * nx + i] = us * op->lrows[(size_t)j * px + i];
+}
+
+/* ---- fft, streamed: two passes over the layers, no layer spectra kept ---------------------- */
+
+static int stream_prepare(mc_eigen_spectral *op, mc_error *err)
+{
+    const int px = op->px, py = op->py, hx = op->hx, ny = op->ny;
+    const size_t bins = (size_t)py * hx, nent = stream_entries(op);
+    op->nbins = (int)bins;
+    op->nent = (int)nent;
+    op->bin_first = mc_malloc((bins + 1) * sizeof *op->bin_first);
+    op->ent_k = mc_malloc(3 * nent * sizeof *op->ent_k);
+    op->st = mc_malloc(nent * sizeof *op->st);
+    op->sp6 = mc_malloc(6 * bins * sizeof *op->sp6);
+    op->U = mc_malloc(bins * sizeof *op->U);
+    op->prow = mc_malloc((size_t)py * px * sizeof *op->prow);
+    if (!op->bin_first || !op->ent_k || !op->st || !op->sp6 || !op->U || !op->prow)
+        return mc_fail(err, MC_ERR_NOMEM, "spectral eigen operator: out of memory (%zu bytes)",
+                       stream_bytes(op));
+    size_t e = 0;
+    for (int ky = 0; ky < py; ky++)
+        for (int kx = 0; kx < hx; kx++) {
+            op->bin_first[(size_t)ky * hx + kx] = (int)e;
+            int nyqx, nyqy;
+            const double kxv = wave(kx, px, op->g.dx, &nyqx), kyv = wave(ky, py, op->g.dy, &nyqy);
+            const int nsx = nyqx ? 2 : 1, nsy = nyqy ? 2 : 1, n = nsx * nsy;
+            for (int a = 0; a < n; a++, e++) {
+                op->ent_k[3 * e] = ((a % nsx) ? -1.0 : 1.0) * kxv;
+                op->ent_k[3 * e + 1] = ((a / nsx) ? -1.0 : 1.0) * kyv;
+                op->ent_k[3 * e + 2] = 1.0 / n;
+            }
+        }
+    op->bin_first[bins] = (int)e;
+    int rc = mc_fftw_prepare(err);
+    if (rc)
+        return rc;
+    fftw_plan_with_nthreads(op->nthr);
+    const unsigned fl = FFTW_ESTIMATE | FFTW_UNALIGNED;
+    int nxp[1] = {px}, nyp[1] = {py};
+    /* forward: the ny rows along x (the padded rows are zero), then every column along y */
+    op->a_r2c = fftw_plan_many_dft_r2c(1, nxp, ny, op->prow, NULL, 1, px, op->sp6, NULL, 1, hx, fl);
+    op->b_fwd = fftw_plan_many_dft(1, nyp, hx, op->sp6, NULL, hx, 1, op->sp6, NULL, hx, 1,
+                                   FFTW_FORWARD, fl);
+    /* back: every column along y, then the ny rows along x */
+    op->c_bwd = fftw_plan_many_dft(1, nyp, hx, op->sp6, NULL, hx, 1, op->sp6, NULL, hx, 1,
+                                   FFTW_BACKWARD, fl);
+    op->d_c2r = fftw_plan_many_dft_c2r(1, nxp, ny, op->sp6, NULL, 1, hx, op->prow, NULL, 1, px,
+                                       fl | FFTW_DESTROY_INPUT);
+    fftw_plan_with_nthreads(mc_threads_count());
+    if (!op->a_r2c || !op->b_fwd || !op->c_bwd || !op->d_c2r)
+        return mc_fail(err, MC_ERR_NOMEM, "spectral eigen operator: FFTW could not plan");
+    return MC_OK;
+}
+
+/* layer l's six components into op->sp6 (spectra) */
+static void stream_forward(mc_eigen_spectral *op, const double *const eps[6], int l)
+{
+    const int nx = op->nx, ny = op->ny, px = op->px, py = op->py, hx = op->hx;
+    const size_t bins = (size_t)py * hx, layer = (size_t)nx * ny;
+    for (int c = 0; c < 6; c++) {
+        const double *f = eps[c] + (size_t)l * layer;
+        for (int j = 0; j < ny; j++) {
+            memcpy(op->prow + (size_t)j * px, f + (size_t)j * nx, (size_t)nx * sizeof *op->prow);
+            memset(op->prow + (size_t)j * px + nx, 0, (size_t)(px - nx) * sizeof *op->prow);
+        }
+        fftw_complex *S = op->sp6 + c * bins;
+        fftw_execute_dft_r2c(op->a_r2c, op->prow, S);
+        memset(S + (size_t)ny * hx, 0, (size_t)(py - ny) * hx * sizeof *S);
+        fftw_execute_dft(op->b_fwd, S, S);
+    }
+}
+
+/* op->sp6 (spectra) back into layer l of sig, scaled; added when add */
+static void stream_inverse(mc_eigen_spectral *op, double scale, double *const sig[6], int l,
+                           int add)
+{
+    const int nx = op->nx, ny = op->ny, px = op->px, py = op->py, hx = op->hx;
+    const size_t bins = (size_t)py * hx, layer = (size_t)nx * ny;
+    for (int c = 0; c < 6; c++) {
+        fftw_complex *S = op->sp6 + c * bins;
+        fftw_execute_dft(op->c_bwd, S, S);
+        fftw_execute_dft_c2r(op->d_c2r, S, op->prow);
+        double *f = sig[c] + (size_t)l * layer;
+        for (int j = 0; j < ny; j++)
+            for (int i = 0; i < nx; i++) {
+                const double v = scale * op->prow[(size_t)j * px + i];
+                f[(size_t)j * nx + i] = add ? f[(size_t)j * nx + i] + v : v;
+            }
+    }
+}
+
+static void stream_apply(mc_eigen_spectral *op, const double *const eps[6], double G,
+                         double *const sig[6], double *uz)
+{
+    const int nz = op->nz, nx = op->nx, ny = op->ny, px = op->px, py = op->py;
+    const size_t bins = (size_t)op->nbins;
+    const double scale = 2.0 * G / ((double)px * py);
+    double complex u0 = 0.0; /* the mode k = 0's surface displacement (bin 0) */
+    for (int e = 0; e < op->nent; e++)
+        mc_spec_state_init(&op->st[e], op->ent_k[3 * e], op->ent_k[3 * e + 1]);
+    for (int pass = 0; pass < 2; pass++) {
+        for (int n = 0; n < nz; n++) {
+            const int l = pass ? nz - 1 - n : n;
+            const double top = op->b[l], bottom = op->b[l + 1];
+            stream_forward(op, eps, l);
+            if (pass == 0) {
+                const fftw_complex *S = op->sp6;
+                u0 -= (bottom - top) * (op->uz0[0] * S[0] + op->uz0[1] * S[bins] +
+                                        op->uz0[2] * S[2 * bins]);
+            }
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+            for (size_t b = 0; b < bins; b++) {
+                double complex e[6], out[6] = {0}, one[6];
+                for (int c = 0; c < 6; c++)
+                    e[c] = op->sp6[c * bins + b];
+                for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++) {
+                    const double kx = op->ent_k[3 * en], ky = op->ent_k[3 * en + 1],
+                                 w = op->ent_k[3 * en + 2];
+                    if (kx == 0.0 && ky == 0.0) { /* the layer: local stresses only */
+                        if (pass == 0)
+                            for (int m = 0; m < 6; m++)
+                                for (int c = 0; c < 6; c++)
+                                    out[m] += op->coef.Minf[m][c] * e[c];
+                        continue;
+                    }
+                    if (pass == 0)
+                        mc_spec_down_layer(&op->coef, top, bottom, op->pt, e, &op->st[en], one);
+                    else
+                        mc_spec_up_layer(&op->coef, top, bottom, op->pt, e, &op->st[en], one);
+                    for (int c = 0; c < 6; c++)
+                        out[c] += w * one[c];
+                }
+                for (int c = 0; c < 6; c++)
+                    op->sp6[c * bins + b] = out[c];
+            }
+            if (sig)
+                stream_inverse(op, scale, sig, l, pass);
+        }
+        if (pass == 0) { /* the turn: p3 of every mode, the surface displacement */
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+            for (size_t b = 0; b < bins; b++) {
+                double complex u = 0.0;
+                for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++) {
+                    const double kx = op->ent_k[3 * en], ky = op->ent_k[3 * en + 1];
+                    if (kx != 0.0 || ky != 0.0)
+                        u += op->ent_k[3 * en + 2] * mc_spec_turn(&op->coef, &op->st[en]);
+                }
+                op->U[b] = u;
+            }
+            op->U[0] = u0;
+            if (uz) {
+                fftw_execute_dft(op->c_bwd, op->U, op->U);
+                fftw_execute_dft_c2r(op->d_c2r, op->U, op->prow);
+                const double us = 1.0 / ((double)px * py);
+                for (int j = 0; j < ny; j++)
+                    for (int i = 0; i < nx; i++)
+                        uz[(size_t)j * nx + i] = us * op->prow[(size_t)j * px + i];
+            }
+            if (!sig)
+                return; /* the displacement alone */
+        }
+    }
 }
 
 /* ---- direct backend: tables over the period by a plain inverse DFT, summed cell by cell -------- */
@@ -618,14 +616,14 @@ static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_back
         op->b[k] = mc_eigen_layer_first(v, k) * v->dz;
     rc = b == MC_BACKEND_DIRECT ? direct_prepare(op, err)
          : uz_only             ? uz_prepare(op, err)
-                               : fft_prepare(op, err);
+                               : stream_prepare(op, err);
     if (rc) {
         mc_eigen_spectral_destroy(&op);
         return rc;
     }
     op->bytes = b == MC_BACKEND_DIRECT ? direct_bytes(op)
                 : uz_only             ? uz_bytes(op)
-                                      : fft_bytes(op, op->nthr);
+                                      : stream_bytes(op);
     *out = op;
     return MC_OK;
 }
@@ -651,7 +649,7 @@ void mc_eigen_spectral_apply(mc_eigen_spectral *op, const double *const eps[6], 
         return;
     }
     if (op->backend == MC_BACKEND_FFT)
-        fft_apply(op, eps, G, sig, uz);
+        stream_apply(op, eps, G, sig, uz);
     else
         direct_apply(op, eps, G, sig, uz);
 }
@@ -663,7 +661,7 @@ void mc_eigen_spectral_apply_uz(mc_eigen_spectral *op, const double *const eps[6
     else if (op->uz_only)
         uz_apply(op, eps, uz);
     else
-        fft_apply(op, eps, 0.0, NULL, uz);
+        stream_apply(op, eps, 0.0, NULL, uz);
 }
 
 size_t mc_eigen_spectral_bytes(const mc_eigen_spectral *op) { return op->bytes; }

@@ -1016,7 +1016,7 @@ void mc_eigen_stress_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, 
     if (v->kernel == MC_EIG_KERNEL_SPECTRAL) { /* create_spectral's parts */
         if (ranks > 0)
             return; /* refused under mpirun */
-        parts[1] = mc_eigen_spectral_estimate(g, v, b, mc_threads_count());
+        parts[1] = mc_eigen_spectral_estimate(g, v, b);
         parts[4] = parts[1] ? sizeof op + (size_t)v->nx * v->ny * sizeof(double) +
                                   (2 * (size_t)v->nz + 1) * sizeof(int)
                             : 0;
