@@ -17,6 +17,7 @@
 #include "core/alloc.h"
 #include "plastic/eigen_op.h"
 #include "plastic/eigen_spectral_op.h"
+#include "stress/stress.h"
 #include "eigen_testkit.h"
 #include "test_util.h"
 
@@ -339,6 +340,70 @@ START_TEST(test_patch_mean_mode)
 }
 END_TEST
 
+/* Through the eigenstrain operators' interface (plastic/eigen_op.h, v.kernel = spectral): the
+ * residual stress and u_z are the spectral operator's; the folded loads add the stress module's
+ * patch stresses at the layer centres (theory §8.10), the same values as mc_stress_field; the
+ * estimates are the built objects' bytes. Free and doubly periodic, with friction. */
+START_TEST(test_through_eigen_op)
+{
+    const int per = _i;
+    mc_grid g = {10, 8, 1e-6, 1.2e-6, per, per};
+    mc_eigen_volume v = mc_eigen_volume_full(&g, 3, 0.5e-6);
+    v.kernel = MC_EIG_KERNEL_SPECTRAL;
+    const size_t ns = 80, n = ns * 3;
+    double *eps[6], *s1[6], *s2[6], *se[6];
+    double *b1 = eig_fields(n, eps), *b2 = eig_fields(n, s1), *b3 = eig_fields(n, s2),
+           *b4 = eig_fields(n, se);
+    test_random_field(b1, 6 * n, 77);
+    double p[80], qx[80], u1[80], u2[80];
+    test_random_field(p, ns, 78);
+    for (size_t i = 0; i < ns; i++) {
+        p[i] = 1e9 * (1.5 + p[i]);
+        qx[i] = 0.1 * p[i];
+    }
+    mc_eigen_stress *os = eig_stress_op(&g, &v, NU, MC_BACKEND_FFT);
+    mc_eigen_disp *od = eig_disp_op(&g, &v, NU, MC_BACKEND_FFT);
+    mc_eigen_spectral *sp = spec_op(&g, &v, MC_BACKEND_FFT);
+    mc_eigen_stress_apply(os, (const double *const *)eps, G_MOD, s1);
+    mc_eigen_disp_apply(od, (const double *const *)eps, u1);
+    mc_eigen_spectral_apply(sp, (const double *const *)eps, G_MOD, s2, u2);
+    ck_assert(test_rel_maxdiff(b2, b3, 6 * n) <= TOL_SAME_MODES);
+    ck_assert(test_rel_maxdiff(u1, u2, ns) <= TOL_SAME_MODES);
+    /* the estimates */
+    size_t parts[MC_EIGEN_STRESS_PARTS], est = 0;
+    mc_eigen_stress_estimate(&g, &v, MC_BACKEND_FFT, parts);
+    for (int k = 0; k < MC_EIGEN_STRESS_PARTS; k++)
+        est += parts[k];
+    ck_assert_uint_eq(est, mc_eigen_stress_bytes(os));
+    ck_assert_uint_eq(mc_eigen_disp_estimate(&g, &v, MC_BACKEND_FFT), mc_eigen_disp_bytes(od));
+    /* folded loads */
+    mc_error err = {0};
+    const int loads = MC_TRACTION_P | MC_TRACTION_QX;
+    ck_assert_int_eq(mc_eigen_stress_loads(os, loads, &err), MC_OK);
+    ck_assert_int_eq(mc_eigen_stress_loads_of(os), loads);
+    mc_eigen_stress_apply_loaded(os, (const double *const *)eps, G_MOD, p, qx, s1);
+    double depths[3];
+    for (int k = 0; k < 3; k++)
+        depths[k] = mc_eigen_layer_depth(&v, k);
+    const mc_stress_options so = {.kernel = MC_STRESS_PATCH, .nu = NU, .nlayers = 3,
+                                  .depths = depths, .backend = MC_BACKEND_FFT, .loads = loads};
+    mc_stress_plan *plan = NULL;
+    ck_assert_int_eq(mc_stress_create(&g, &so, &plan, &err), MC_OK);
+    ck_assert_int_eq(mc_stress_field(plan, p, qx, NULL, se, &err), MC_OK);
+    for (int c = 0; c < 6; c++)
+        for (size_t i = 0; i < n; i++)
+            s2[c][i] += se[c][i];
+    const double e = test_rel_maxdiff(b2, b3, 6 * n);
+    ck_assert_msg(e <= TOL_SAME_MODES, "folded loads %.3g", e);
+    ck_assert_uint_eq(mc_eigen_stress_loads_estimate(&g, &v, MC_BACKEND_FFT, 0, loads) > 0, 1);
+    mc_stress_destroy(&plan);
+    mc_eigen_stress_destroy(&os);
+    mc_eigen_disp_destroy(&od);
+    mc_eigen_spectral_destroy(&sp);
+    free(b1), free(b2), free(b3), free(b4);
+}
+END_TEST
+
 START_TEST(test_refusals)
 {
     mc_grid g = {8, 8, 1e-6, 1e-6, 0, 0};
@@ -376,6 +441,7 @@ Suite *suite_eigen_spectral_op(void)
     tcase_add_test(tc, test_tiled);
     tcase_add_loop_test(tc, test_uniform_layer, 0, 2);
     tcase_add_loop_test(tc, test_patch_mean_mode, 0, 2);
+    tcase_add_loop_test(tc, test_through_eigen_op, 0, 2);
     tcase_add_test(tc, test_refusals);
     suite_add_tcase(s, tc);
     return s;

@@ -230,6 +230,10 @@ struct mc_eigen_stress {
     size_t part[MC_EIGEN_STRESS_PARTS]; /* bytes held, by part (mc_eigen_stress_parts) */
     struct mc_eigen_spectral *spec; /* the spectral kernel (v.kernel; eigen_spectral_op.h): the
                         * whole operator, nothing above is made but p3 */
+    struct mc_stress_plan *lplan; /* spectral with loads: the stress module's plan of the Love
+                        * stresses at the layer centres, computed layer by layer into lay6 and
+                        * added to the residual stress (no kernel spectra kept on free axes) */
+    double *lay6;      /* 6 x grid cells */
 };
 
 /* The corner lattice of the s1 and p3 tables (theory.md §8.2, eigen.h mc_eigen_corner_h): on a

@@ -23,6 +23,7 @@
 #include "core/fftsize.h"
 #include "core/threads.h"
 #include "kernels/eigen_spectral.h"
+#include "plastic/eigen_internal.h"
 
 struct mc_eigen_spectral {
     mc_grid g;
@@ -592,7 +593,9 @@ static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_back
     op->uz_only = uz_only;
     op->pt = v->stress_points == MC_EIG_CELL_CENTRE ? MC_SPEC_CENTRE : MC_SPEC_AVERAGE;
     mc_spec_coef_init(nu, &op->coef);
-    op->nthr = mc_threads_count() < 1 ? 1 : mc_threads_count();
+    /* a lateral mode costs ~500 flops per layer and pass: threads pay from ~32k modes (the
+     * team's wake-ups dominated a 44^2 run, 36 % of its time in the scheduler) */
+    op->nthr = mc_eig_threads(8 * (size_t)op->hx * op->py);
     /* the surface displacement of the mode k = 0 per unit thickness: u_z = -t (a e_xx + b e_yy
      * + e_zz). Over a periodic axis the field is uniform along it; along a free axis the mode
      * stands for the limit k -> 0 (theory §8.10): the laterally constrained layer when both

@@ -18,6 +18,7 @@
 
 #include "core/alloc.h"
 #include "core/dist.h"
+#include "core/fftsize.h"
 #include "core/threads.h"
 #include "kernels/eigen.h"
 #include "kernels/kernel.h"
@@ -694,6 +695,8 @@ void mc_eigen_stress_destroy(mc_eigen_stress **op)
     if ((*op)->ops && !(*op)->spec)
         (*op)->ops->release(*op);
     mc_eigen_spectral_destroy(&(*op)->spec);
+    mc_stress_destroy(&(*op)->lplan);
+    mc_free((*op)->lay6);
     mc_free((*op)->love);
     mc_free((*op)->lk);
     mc_free((*op)->p3);
@@ -864,14 +867,106 @@ static int whole_window(const mc_eigen_stress *op)
     return op->v.i0 == 0 && op->v.j0 == 0 && op->v.nx == op->g.nx && op->v.ny == op->g.ny;
 }
 
+/* The spectral kernel folds the loads through the stress module (theory.md §8.10): its plan of
+ * the patch stresses at the layer centres, each layer computed into a grid-sized scratch and
+ * added to the residual stress, so that the loop's sweep reads one array as with the cuboid
+ * operators' folding, and no elastic stress array of the volume exists. Free axes keep no
+ * kernel spectra (the tables are built per layer and call); periodic axes keep them (stress.h). */
+/* The kernel spectra of every layer the plan would keep (6 per layer and load: quadrants on free
+ * axes, half spectra on periodic ones), bytes. Free axes keep them (repeated) while they stay
+ * within SPECTRAL_LOADS_CACHE: rebuilding the tables per layer and call cost 2.7x the time of a
+ * small run (44^2 x 13 sphere 1.24 -> 3.35 s), and at large sizes their memory is what the
+ * spectral kernel is for (256^2 x 32: 101 MB, 48 bytes per volume cell). */
+#define SPECTRAL_LOADS_CACHE ((double)(64 << 20))
+
+static double spectral_loads_cache(const mc_grid *g, int nz, int nloads)
+{
+    const int px = g->periodic_x, py = g->periodic_y;
+    const double tx = px ? g->nx : mc_fftsize_good(2 * g->nx - 1);
+    const double ty = py ? g->ny : mc_fftsize_good(2 * g->ny - 1);
+    const double quad = (mc_fftsize_good(g->nx < 2 ? 2 : g->nx) + 1.0) *
+                        (mc_fftsize_good(g->ny < 2 ? 2 : g->ny) + 1.0) * 8;
+    return (double)nz * nloads * 6 * (px || py ? 16 * ty * (tx / 2 + 1) : quad);
+}
+
+static int spectral_loads_repeated(const mc_grid *g, int nz, int nloads)
+{
+    return spectral_loads_cache(g, nz, nloads) <= SPECTRAL_LOADS_CACHE;
+}
+
+static size_t spectral_loads_bytes(const mc_grid *g, int nz, int nloads)
+{
+    const int px = g->periodic_x, py = g->periodic_y;
+    const double tx = px ? g->nx : mc_fftsize_good(2 * g->nx - 1);
+    const double ty = py ? g->ny : mc_fftsize_good(2 * g->ny - 1);
+    const double spec = 16 * ty * (tx / 2 + 1), cells = (double)g->nx * g->ny;
+    double b = nloads * 7 * spec + 6 * 8 * tx * ty + 4 * cells + 6 * 8 * cells;
+    const double cache = spectral_loads_cache(g, nz, nloads);
+    if ((px || py || spectral_loads_repeated(g, nz, nloads)) &&
+        cache <= (double)MC_STRESS_CACHE_BYTES)
+        b += cache;
+    return (size_t)b;
+}
+
+static int spectral_loads(mc_eigen_stress *op, int loads, mc_error *err)
+{
+    double *depths = mc_zeros((size_t)op->v.nz);
+    if (!depths)
+        return mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory");
+    for (int k = 0; k < op->v.nz; k++)
+        depths[k] = mc_eigen_layer_depth(&op->v, k);
+    const mc_stress_options so = {.kernel = MC_STRESS_PATCH,
+                                  .nu = op->nu,
+                                  .nlayers = op->v.nz,
+                                  .depths = depths,
+                                  .backend = op->ops->id,
+                                  .loads = loads,
+                                  .repeated = spectral_loads_repeated(
+                                      &op->g, op->v.nz, 1 + ((loads & MC_TRACTION_QX) != 0))};
+    int rc = mc_stress_create(&op->g, &so, &op->lplan, err);
+    mc_free(depths);
+    if (rc == MC_OK && !(op->lay6 = mc_malloc(6 * (size_t)op->g.nx * op->g.ny * sizeof(double))))
+        rc = mc_fail(err, MC_ERR_NOMEM, "eigen stress: out of memory for the loads' layer");
+    if (rc != MC_OK) {
+        mc_stress_destroy(&op->lplan);
+        return rc;
+    }
+    int n = 0;
+    for (int l = 0; l < 2; l++)
+        if (loads & FOLDABLE[l])
+            op->load_id[n++] = FOLDABLE[l];
+    op->nloads = n;
+    op->part[3] += spectral_loads_bytes(&op->g, op->v.nz, n);
+    return MC_OK;
+}
+
+/* sig += the loads' stresses, layer by layer (spectral kernel) */
+static void spectral_add_loads(mc_eigen_stress *op, const double *p, const double *qx,
+                               double *const sig[6])
+{
+    const size_t cells = (size_t)op->g.nx * op->g.ny;
+    double *s[6];
+    for (int c = 0; c < 6; c++)
+        s[c] = op->lay6 + c * cells;
+    for (int k = 0; k < op->v.nz; k++) {
+        mc_error e = {0};
+        if (mc_stress_layer(op->lplan, k, p, qx, NULL, s, &e) != MC_OK) {
+            /* (a prepared plan fails only on loads it was not made for: a caller's slip) */
+            for (int c = 0; c < 6; c++)
+                for (size_t i = 0; i < cells; i++)
+                    sig[c][k * cells + i] = NAN;
+            continue;
+        }
+        for (int c = 0; c < 6; c++)
+            for (size_t i = 0; i < cells; i++)
+                sig[c][k * cells + i] += s[c][i];
+    }
+}
+
 int mc_eigen_stress_loads(mc_eigen_stress *op, int loads, mc_error *err)
 {
     if (op->nloads > 0)
         return mc_fail(err, MC_ERR_INPUT, "eigen stress: surface loads are folded in already");
-    if (op->spec)
-        return mc_fail(err, MC_ERR_INPUT,
-                       "eigen stress: the spectral kernel does not fold surface loads (the loop "
-                       "takes the stress module's elastic stresses; plastic/loop.h)");
     if (!(loads & MC_TRACTION_P) || (loads & ~(MC_TRACTION_P | MC_TRACTION_QX)))
         return mc_fail(err, MC_ERR_INPUT,
                        "eigen stress: surface loads %d: the pressure, and at most q_x besides",
@@ -881,6 +976,8 @@ int mc_eigen_stress_loads(mc_eigen_stress *op, int loads, mc_error *err)
                        "eigen stress: surface loads need the volume under the whole grid (window "
                        "%d x %d at (%d, %d) of %d x %d)",
                        op->v.nx, op->v.ny, op->v.i0, op->v.j0, op->g.nx, op->g.ny);
+    if (op->spec)
+        return spectral_loads(op, loads, err);
     int n = 0;
     for (int l = 0; l < 2; l++)
         if (loads & FOLDABLE[l])
@@ -923,13 +1020,15 @@ static void apply_loads(mc_eigen_stress *op, const double *const eps[6], double 
     const double *loads[2] = {NULL, NULL};
     for (int l = 0; l < op->nloads; l++)
         loads[l] = op->load_id[l] == MC_TRACTION_P ? p : qx;
-    if (op->spec) { /* no loads are folded; no strain: zeros */
+    if (op->spec) { /* the residual stress, then the loads' layer by layer */
         const size_t n = (size_t)op->v.nx * op->v.ny * op->v.nz;
         if (eps)
             mc_eigen_spectral_apply(op->spec, eps, G, sig, NULL);
         else
             for (int c = 0; c < 6; c++)
                 memset(sig[c], 0, n * sizeof *sig[c]);
+        if (op->nloads)
+            spectral_add_loads(op, loads[0], op->nloads > 1 ? loads[1] : NULL, sig);
     } else {
         op->ops->apply(op, eps, G, op->nloads ? loads : NULL, sig);
     }
@@ -998,9 +1097,10 @@ size_t mc_eigen_stress_loads_estimate(const mc_grid *g, const mc_eigen_volume *v
                                       int ranks, int loads)
 {
     mc_eigen_stress op;
-    if (!(loads & MC_TRACTION_P) || !shell(g, v, b, &op) || !whole_window(&op) ||
-        v->kernel == MC_EIG_KERNEL_SPECTRAL)
+    if (!(loads & MC_TRACTION_P) || !shell(g, v, b, &op) || !whole_window(&op))
         return 0;
+    if (v->kernel == MC_EIG_KERNEL_SPECTRAL)
+        return ranks > 0 ? 0 : spectral_loads_bytes(g, v->nz, 1 + ((loads & MC_TRACTION_QX) != 0));
     const int n = 1 + ((loads & MC_TRACTION_QX) != 0);
     return b == MC_BACKEND_FFT ? mc_eig_stress_fft_loads_bytes(&op, ranks, n)
                                : (size_t)n * 6 * v->nz * op.qlen * sizeof(double);

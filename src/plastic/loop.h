@@ -66,8 +66,7 @@ typedef struct {
  * check); its tables cost 6 nz quadrants per load beside Love's (the memory guard counts them). */
 static inline int mc_plastic_ops_fold(const mc_grid *g, const mc_eigen_volume *v)
 {
-    return v->i0 == 0 && v->j0 == 0 && v->nx == g->nx && v->ny == g->ny &&
-           v->kernel != MC_EIG_KERNEL_SPECTRAL; /* (its elastic stresses: the stress module's) */
+    return v->i0 == 0 && v->j0 == 0 && v->nx == g->nx && v->ny == g->ny;
 }
 
 /* Build the operators for grid g, volume v, Poisson ratio nu, backend b, with the friction
