@@ -488,7 +488,7 @@ int mc_eigen_disp_create(const mc_grid *g, const mc_eigen_volume *v, double nu, 
         if (backends[r].id == b)
             op->ops = &backends[r];
     if (v->kernel == MC_EIG_KERNEL_SPECTRAL) { /* theory.md §8.10 */
-        if (mc_dist_active())
+        if (mc_dist_active() && mc_dist_size() > 1)
             rc = mc_fail(err, MC_ERR_LIMIT,
                          "eigen displacement: the spectral kernel is not distributed over MPI "
                          "ranks yet (run it with one process, or use kernel = cuboid)");

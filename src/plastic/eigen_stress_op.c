@@ -733,7 +733,7 @@ int mc_eig_stress_create_replicated(const mc_grid *g, const mc_eigen_volume *v, 
 static int create_spectral(mc_eigen_stress *op, int replicated, mc_eigen_stress **out,
                            mc_error *err)
 {
-    if (mc_dist_active() && !replicated) {
+    if (mc_dist_active() && mc_dist_size() > 1 && !replicated) {
         mc_eigen_stress_destroy(&op);
         return mc_fail(err, MC_ERR_LIMIT,
                        "eigen stress: the spectral kernel is not distributed over MPI ranks yet "

@@ -329,6 +329,7 @@ refused() { # NAME WANT CASE SET...: exit ${CODE:-2}, the message naming WANT, n
     fi
 }
 refused plans '\[solver\] plans' cases/hertz_point.ini --set solver.plans=measure
+refused spectral '\[plasticity\] kernel' cases/elastic_plastic.ini --set plasticity.kernel=spectral
 # the memory guard decides for all processes alike (rank 0's available memory): exit 3 on all
 export MC_MEMORY_LIMIT=1000
 CODE=3
