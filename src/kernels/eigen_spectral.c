@@ -752,3 +752,39 @@ void mc_spec_up_layer(const mc_spec_coef *k, double top, double bottom, mc_spec_
         st->U[m] = st->eh * st->U[m] + st->p0 * e[m];
     }
 }
+
+/* ---- the surface displacement, layer by layer ---------------------------------------------- */
+
+void mc_spec_uzstate_init(mc_spec_uzstate *u, double kx, double ky, double top)
+{
+    memset(u, 0, sizeof *u);
+    u->q = hypot(kx, ky);
+    u->cq = u->q > 0.0 ? kx / u->q : 1.0;
+    u->sq = u->q > 0.0 ? ky / u->q : 0.0;
+    u->et = exp(-u->q * top);
+    u->h = -1.0;
+}
+
+void mc_spec_uz_next(const mc_spec_coef *k, mc_spec_uzstate *u, double top, double bottom,
+                     double complex D[6])
+{
+    const double q = u->q, x = q * top, h = q * (bottom - top);
+    if (!(fabs(u->h - h) <= 1e-14 * h)) {
+        u->h = h;
+        u->eh = exp(-h);
+        u->p0 = p0(h);
+        u->p1 = p1(h);
+    }
+    const double wa = u->et * u->p0, wb = u->et * (x * u->p0 + u->p1), f = 2.0 * k->uz0 / q;
+    const double c = u->cq, s = u->sq, cc = c * c, ss = s * s, cs = c * s;
+    double complex v[6];
+    for (int m = 0; m < 6; m++)
+        v[m] = f * (wa * k->Am[2][m] + wb * k->Bm[2][m]);
+    D[0] = cc * v[0] + ss * v[1] - cs * v[3];
+    D[1] = ss * v[0] + cc * v[1] + cs * v[3];
+    D[2] = v[2];
+    D[3] = 2.0 * cs * (v[0] - v[1]) + (cc - ss) * v[3];
+    D[4] = c * v[4] + s * v[5];
+    D[5] = c * v[5] - s * v[4];
+    u->et *= u->eh;
+}

@@ -109,4 +109,15 @@ double complex mc_spec_turn(const mc_spec_coef *k, mc_spec_state *st);
 void mc_spec_up_layer(const mc_spec_coef *k, double top, double bottom, mc_spec_point pt,
                       const double complex eps[6], mc_spec_state *st, double complex sig[6]);
 
+/* The surface displacement alone, layer by layer in order from the top (the displacement
+ * operator): a mode's state, then per layer D (lab, m per unit eigenstrain column). */
+typedef struct {
+    double q, cq, sq, et;          /* |k|, the frame, e^{-q top} of the next layer */
+    double h, eh, p0, p1;          /* the last scaled thickness and its scalars */
+} mc_spec_uzstate;
+
+void mc_spec_uzstate_init(mc_spec_uzstate *u, double kx, double ky, double top);
+void mc_spec_uz_next(const mc_spec_coef *k, mc_spec_uzstate *u, double top, double bottom,
+                     double complex D[6]);
+
 #endif

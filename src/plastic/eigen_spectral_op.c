@@ -42,6 +42,7 @@ struct mc_eigen_spectral {
     fftw_complex *lay;
     double *lrows;
     fftw_plan lay_r2c;
+    mc_spec_uzstate *ust;    /* nent: each wave vector's state */
     /* fft, streamed (two passes over the layers, theory §8.10): per lateral bin its wave vectors
      * (two or four at a Nyquist index, weighted), each with its depth state */
     int nbins, nent;
@@ -112,10 +113,13 @@ static void shape(const mc_grid *g, const mc_eigen_volume *v, mc_eigen_spectral 
     op->hx = op->px / 2 + 1;
 }
 
+static size_t stream_entries(const mc_eigen_spectral *op);
+
 static size_t uz_bytes(const mc_eigen_spectral *op)
 {
-    const size_t per = (size_t)op->py * op->hx * sizeof(fftw_complex);
-    return 7 * per + (size_t)op->py * op->px * sizeof(double) +
+    const size_t bins = (size_t)op->py * op->hx, nent = stream_entries(op);
+    return 7 * bins * sizeof(fftw_complex) + (size_t)op->py * op->px * sizeof(double) +
+           (bins + 1) * sizeof(int) + nent * (3 * sizeof(double) + sizeof(mc_spec_uzstate)) +
            ((size_t)op->nz + 1) * sizeof(double) + sizeof(mc_eigen_spectral);
 }
 
@@ -200,6 +204,7 @@ void mc_eigen_spectral_destroy(mc_eigen_spectral **op)
     mc_free(o->dtab);
     mc_free(o->lay);
     mc_free(o->lrows);
+    mc_free(o->ust);
     mc_free(o->bin_first);
     mc_free(o->ent_k);
     mc_free(o->st);
@@ -209,77 +214,24 @@ void mc_eigen_spectral_destroy(mc_eigen_spectral **op)
     *op = NULL;
 }
 
-/* ---- fft, the surface displacement alone: one layer at a time, D evaluated per mode ---------- */
-
-static int uz_prepare(mc_eigen_spectral *op, mc_error *err)
+/* each bin's wave vectors and weights (op->bin_first, op->ent_k allocated) */
+static void entries_fill(mc_eigen_spectral *op)
 {
     const int px = op->px, py = op->py, hx = op->hx;
-    const size_t per = (size_t)py * hx;
-    op->lay = mc_malloc(6 * per * sizeof *op->lay);
-    op->U = mc_malloc(per * sizeof *op->U);
-    op->lrows = mc_malloc((size_t)py * px * sizeof *op->lrows);
-    if (!op->lay || !op->U || !op->lrows)
-        return mc_fail(err, MC_ERR_NOMEM, "spectral eigen displacement: out of memory (%zu bytes)",
-                       uz_bytes(op));
-    int rc = mc_fftw_prepare(err);
-    if (rc)
-        return rc;
-    const unsigned fl = FFTW_ESTIMATE | FFTW_UNALIGNED;
-    op->lay_r2c = fftw_plan_dft_r2c_2d(py, px, op->lrows, op->lay, fl);
-    op->uz_c2r = fftw_plan_dft_c2r_2d(py, px, op->U, op->lrows, fl | FFTW_DESTROY_INPUT);
-    if (!op->lay_r2c || !op->uz_c2r)
-        return mc_fail(err, MC_ERR_NOMEM, "spectral eigen displacement: FFTW could not plan");
-    return MC_OK;
-}
-
-static void uz_apply(mc_eigen_spectral *op, const double *const eps[6], double *uz)
-{
-    const int nz = op->nz, nx = op->nx, ny = op->ny, px = op->px, py = op->py, hx = op->hx;
-    const size_t per = (size_t)py * hx, layer = (size_t)nx * ny;
-    memset(op->U, 0, per * sizeof *op->U);
-    for (int l = 0; l < nz; l++) {
-        for (int c = 0; c < 6; c++) {
-            memset(op->lrows, 0, (size_t)py * px * sizeof *op->lrows);
-            const double *f = eps[c] + (size_t)l * layer;
-            for (int j = 0; j < ny; j++)
-                memcpy(op->lrows + (size_t)j * px, f + (size_t)j * nx, (size_t)nx * sizeof(double));
-            fftw_execute_dft_r2c(op->lay_r2c, op->lrows, op->lay + c * per);
-        }
-        const double bl[2] = {op->b[l], op->b[l + 1]};
-#pragma omp parallel for schedule(static) num_threads(op->nthr)
-        for (int ky = 0; ky < py; ky++) {
-            int nyqy, nyqx;
-            const double kyv = wave(ky, py, op->g.dy, &nyqy);
-            for (int kx = 0; kx < hx; kx++) {
-                const double kxv = wave(kx, px, op->g.dx, &nyqx);
-                double complex D[6];
-                const size_t at = (size_t)ky * hx + kx;
-                if (kxv == 0.0 && kyv == 0.0) {
-                    for (int c = 0; c < 6; c++)
-                        D[c] = c < 3 ? -(bl[1] - bl[0]) * op->uz0[c] : 0.0;
-                } else {
-                    const int nsx = nyqx ? 2 : 1, nsy = nyqy ? 2 : 1, n = nsx * nsy;
-                    memset(D, 0, sizeof D);
-                    for (int a = 0; a < n; a++) {
-                        const double sx = (a % nsx) ? -1.0 : 1.0, sy = (a / nsx) ? -1.0 : 1.0;
-                        double complex Dl[1][6];
-                        mc_spec_uz_layers(&op->coef, sx * kxv, sy * kyv, 1, bl, Dl);
-                        for (int c = 0; c < 6; c++)
-                            D[c] += Dl[0][c] / n;
-                    }
-                }
-                double complex u = 0.0;
-                for (int c = 0; c < 6; c++)
-                    u += D[c] * op->lay[c * per + at];
-                op->U[at] += u;
+    size_t e = 0;
+    for (int ky = 0; ky < py; ky++)
+        for (int kx = 0; kx < hx; kx++) {
+            op->bin_first[(size_t)ky * hx + kx] = (int)e;
+            int nyqx, nyqy;
+            const double kxv = wave(kx, px, op->g.dx, &nyqx), kyv = wave(ky, py, op->g.dy, &nyqy);
+            const int nsx = nyqx ? 2 : 1, nsy = nyqy ? 2 : 1, n = nsx * nsy;
+            for (int a = 0; a < n; a++, e++) {
+                op->ent_k[3 * e] = ((a % nsx) ? -1.0 : 1.0) * kxv;
+                op->ent_k[3 * e + 1] = ((a / nsx) ? -1.0 : 1.0) * kyv;
+                op->ent_k[3 * e + 2] = 1.0 / n;
             }
         }
-    }
-    fftw_execute_dft_c2r(op->uz_c2r, op->U, op->lrows);
-    const double us = 1.0 / ((double)px * py);
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++)
-            uz[(size_t)j * nx + i] = us * op->lrows[(size_t)j * px + i];
+    op->bin_first[(size_t)py * hx] = (int)e;
 }
 
 /* ---- fft, streamed: two passes over the layers, no layer spectra kept ---------------------- */
@@ -299,20 +251,7 @@ static int stream_prepare(mc_eigen_spectral *op, mc_error *err)
     if (!op->bin_first || !op->ent_k || !op->st || !op->sp6 || !op->U || !op->prow)
         return mc_fail(err, MC_ERR_NOMEM, "spectral eigen operator: out of memory (%zu bytes)",
                        stream_bytes(op));
-    size_t e = 0;
-    for (int ky = 0; ky < py; ky++)
-        for (int kx = 0; kx < hx; kx++) {
-            op->bin_first[(size_t)ky * hx + kx] = (int)e;
-            int nyqx, nyqy;
-            const double kxv = wave(kx, px, op->g.dx, &nyqx), kyv = wave(ky, py, op->g.dy, &nyqy);
-            const int nsx = nyqx ? 2 : 1, nsy = nyqy ? 2 : 1, n = nsx * nsy;
-            for (int a = 0; a < n; a++, e++) {
-                op->ent_k[3 * e] = ((a % nsx) ? -1.0 : 1.0) * kxv;
-                op->ent_k[3 * e + 1] = ((a / nsx) ? -1.0 : 1.0) * kyv;
-                op->ent_k[3 * e + 2] = 1.0 / n;
-            }
-        }
-    op->bin_first[bins] = (int)e;
+    entries_fill(op);
     int rc = mc_fftw_prepare(err);
     if (rc)
         return rc;
@@ -442,6 +381,78 @@ static void stream_apply(mc_eigen_spectral *op, const double *const eps[6], doub
                 return; /* the displacement alone */
         }
     }
+}
+
+/* ---- fft, the surface displacement alone: one layer at a time, D evaluated per mode ---------- */
+
+static int uz_prepare(mc_eigen_spectral *op, mc_error *err)
+{
+    const int px = op->px, py = op->py, hx = op->hx;
+    const size_t per = (size_t)py * hx, nent = stream_entries(op);
+    op->nbins = (int)per;
+    op->nent = (int)nent;
+    op->lay = mc_malloc(6 * per * sizeof *op->lay);
+    op->U = mc_malloc(per * sizeof *op->U);
+    op->lrows = mc_malloc((size_t)py * px * sizeof *op->lrows);
+    op->bin_first = mc_malloc((per + 1) * sizeof *op->bin_first);
+    op->ent_k = mc_malloc(3 * nent * sizeof *op->ent_k);
+    op->ust = mc_malloc(nent * sizeof *op->ust);
+    if (op->bin_first && op->ent_k)
+        entries_fill(op);
+    if (!op->lay || !op->U || !op->lrows || !op->bin_first || !op->ent_k || !op->ust)
+        return mc_fail(err, MC_ERR_NOMEM, "spectral eigen displacement: out of memory (%zu bytes)",
+                       uz_bytes(op));
+    int rc = mc_fftw_prepare(err);
+    if (rc)
+        return rc;
+    const unsigned fl = FFTW_ESTIMATE | FFTW_UNALIGNED;
+    fftw_plan_with_nthreads(op->nthr);
+    op->lay_r2c = fftw_plan_dft_r2c_2d(py, px, op->lrows, op->lay, fl);
+    op->uz_c2r = fftw_plan_dft_c2r_2d(py, px, op->U, op->lrows, fl | FFTW_DESTROY_INPUT);
+    fftw_plan_with_nthreads(mc_threads_count());
+    if (!op->lay_r2c || !op->uz_c2r)
+        return mc_fail(err, MC_ERR_NOMEM, "spectral eigen displacement: FFTW could not plan");
+    return MC_OK;
+}
+
+static void uz_apply(mc_eigen_spectral *op, const double *const eps[6], double *uz)
+{
+    const int nz = op->nz, nx = op->nx, ny = op->ny, px = op->px, py = op->py;
+    const size_t bins = (size_t)op->nbins, layer = (size_t)nx * ny;
+    memset(op->U, 0, bins * sizeof *op->U);
+    for (int e = 0; e < op->nent; e++)
+        mc_spec_uzstate_init(&op->ust[e], op->ent_k[3 * e], op->ent_k[3 * e + 1], op->b[0]);
+    for (int l = 0; l < nz; l++) {
+        for (int c = 0; c < 6; c++) {
+            memset(op->lrows, 0, (size_t)py * px * sizeof *op->lrows);
+            const double *f = eps[c] + (size_t)l * layer;
+            for (int j = 0; j < ny; j++)
+                memcpy(op->lrows + (size_t)j * px, f + (size_t)j * nx, (size_t)nx * sizeof(double));
+            fftw_execute_dft_r2c(op->lay_r2c, op->lrows, op->lay + c * bins);
+        }
+        const double top = op->b[l], bottom = op->b[l + 1];
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+        for (size_t b = 0; b < bins; b++) {
+            double complex u = 0.0;
+            for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++) {
+                double complex D[6];
+                if (op->ent_k[3 * en] == 0.0 && op->ent_k[3 * en + 1] == 0.0) {
+                    for (int c = 0; c < 6; c++) /* the mode k = 0 (create says which limit) */
+                        D[c] = c < 3 ? -(bottom - top) * op->uz0[c] : 0.0;
+                } else {
+                    mc_spec_uz_next(&op->coef, &op->ust[en], top, bottom, D);
+                }
+                for (int c = 0; c < 6; c++)
+                    u += op->ent_k[3 * en + 2] * D[c] * op->lay[c * bins + b];
+            }
+            op->U[b] += u;
+        }
+    }
+    fftw_execute_dft_c2r(op->uz_c2r, op->U, op->lrows);
+    const double us = 1.0 / ((double)px * py);
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            uz[(size_t)j * nx + i] = us * op->lrows[(size_t)j * px + i];
 }
 
 /* ---- direct backend: tables over the period by a plain inverse DFT, summed cell by cell -------- */
