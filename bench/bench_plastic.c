@@ -79,6 +79,7 @@ typedef struct {
     double margin, depth, yield; /* [plasticity] margin, depth (m), yield_stress (Pa) */
     double side;                 /* domain side, m (0: 24 a_c / 2.7) */
     int load_steps;              /* [plasticity] load_steps (0: the default) */
+    int spectral;                /* 1: [plasticity] kernel = spectral */
     /* out */
     double cpu;                  /* process CPU time of the run (all threads), s */
     int st_outer[KE_MAX_STEPS], st_sweeps[KE_MAX_STEPS], st_applies[KE_MAX_STEPS];
@@ -112,6 +113,8 @@ static void ke_solve(int n, double p_pc, ke_run *r)
         sc.plasticity.depth = r->depth;
     if (r->load_steps > 0)
         sc.plasticity.load_steps = r->load_steps;
+    if (r->spectral)
+        sc.plasticity.kernel = MC_EIG_KERNEL_SPECTRAL;
     mc_results res;
     mc_error err = {0};
     const double t0 = mc_clock(), c0 = mc_bench_cpu();
@@ -787,7 +790,7 @@ static double child_peak(const char *self, const char *ini, const char *out, int
  * or doubly periodic (2). One load step, one outer iteration of at most 5 sweeps: every array of
  * the loop and the operators is allocated and written by then (the run ends not converged, exit
  * 1, by design). 0, or -1 when the file cannot be written. */
-static int whole_run_case(const char *ini, int n, int per)
+static int whole_run_case(const char *ini, int n, int per, int spectral)
 {
     FILE *f = fopen(ini, "w");
     if (!f)
@@ -796,9 +799,9 @@ static int whole_run_case(const char *ini, int n, int per)
                "[geometry]\nshape = sphere\nradius = 2 mm\n[body2]\nrigid = yes\n"
                "[load]\nforce = 0.5 N\n[plasticity]\nhardening = perfect\n"
                "yield_stress = 450 MPa\nload_steps = 1\ndz = 0.5 um\ndepth = 16 um\n%s"
-               "max_outer = 1\nmax_plastic = 5\n",
+               "max_outer = 1\nmax_plastic = 5\n%s",
             n, n, per == 2 ? "yes" : "no", per >= 1 ? "yes" : "no",
-            per == 2 ? "" : "margin = 1 mm\n");
+            per == 2 || spectral ? "" : "margin = 1 mm\n", spectral ? "kernel = spectral\n" : "");
     fclose(f);
     return 0;
 }
@@ -807,7 +810,7 @@ static int whole_run_case(const char *ini, int n, int per)
  * bytes: [0..4] the stress operator's (mc_eigen_stress_estimate), [5] the displacement
  * operator, [6] the loop's dense arrays (mc_plastic_loop_bytes without yielding cells), [7] the
  * memory guard's whole estimate (mc_memory_estimate + mc_memory_estimate_plastic). */
-static void whole_run_model(const char *ini, double m[8])
+static void whole_run_model(const char *ini, int spectral, double m[8])
 {
     for (int k = 0; k < 8; k++)
         m[k] = NAN;
@@ -816,11 +819,14 @@ static void whole_run_model(const char *ini, double m[8])
     if (mc_case_load(ini, 0, NULL, &sc, &err) != MC_OK)
         return;
     const mc_grid *g = &sc.grid;
-    const mc_eigen_volume v = {0, 0, g->nx, g->ny, 32, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL, MC_EIG_KERNEL_CUBOID};
+    const mc_eigen_volume v = {0,    0,    g->nx, g->ny, 32, 0.5e-6, MC_EIG_CELL_AVERAGE, NULL,
+                               spectral ? MC_EIG_KERNEL_SPECTRAL : MC_EIG_KERNEL_CUBOID};
     size_t parts[MC_EIGEN_STRESS_PARTS];
     mc_eigen_stress_estimate(g, &v, sc.solver.backend, parts);
     for (int k = 0; k < MC_EIGEN_STRESS_PARTS; k++)
         m[k] = (double)parts[k];
+    if (spectral) /* the loads' plan (mc_eigen_stress_loads, the pressure) in part 3 */
+        m[3] = (double)mc_eigen_stress_loads_estimate(g, &v, sc.solver.backend, 0, MC_TRACTION_P);
     m[5] = (double)mc_eigen_disp_estimate(g, &v, sc.solver.backend);
     m[6] = mc_plastic_loop_bytes(g, &v, 4, sc.plasticity.near_field, 0);
     m[7] = mc_memory_estimate(&sc) + mc_memory_estimate_plastic(&sc, g, &v, 0);
@@ -867,9 +873,9 @@ static void section_whole_peak(vf_ctx *ctx, int quick)
         double rss = -1, m[8];
         for (int k = 0; k < 8; k++)
             m[k] = NAN;
-        if (whole_run_case(ini, n, per) == 0) {
+        if (whole_run_case(ini, n, per, 0) == 0) {
             rss = child_peak(self, ini, out, 0, NULL);
-            whole_run_model(ini, m);
+            whole_run_model(ini, 0, m);
         }
         const double cells = (double)n * n * 32, bpc = rss > 0 ? rss / cells : NAN;
         const double model = m[0] + m[1] + m[2] + m[3] + m[4] + m[5] + m[6];
@@ -928,6 +934,166 @@ static void section_whole_peak(vf_ctx *ctx, int quick)
         vf_text(ctx, "(could not remove %s)\n", dir);
 }
 
+/* ---- the spectral kernel (theory.md §8.10; issue 20 item 2) -------------------------------- */
+
+static double median_of(double *t, int n)
+{
+    for (int i = 1; i < n; i++) /* (a handful of values) */
+        for (int j = i; j > 0 && t[j] < t[j - 1]; j--) {
+            const double x = t[j];
+            t[j] = t[j - 1];
+            t[j - 1] = x;
+        }
+    return t[n / 2];
+}
+
+static void section_spectral(vf_ctx *ctx, int quick)
+{
+    static const int on[] = {64, 128, 256}, onz[] = {8, 16, 32};
+    const int nop = quick ? 2 : 3;
+    vf_text(ctx, "\n### The spectral kernel ([plasticity] kernel = spectral, theory §8.10)\n\n"
+                 "The second lateral discretisation: the plastic strain a sampled trigonometric "
+                 "field, the half-space kernel evaluated per lateral Fourier mode when used, the "
+                 "layers streamed in two passes (no kernel spectra, no layer spectra kept). One "
+                 "application (ONE thread, median of repeated calls) of the stress operator (its "
+                 "surface displacement comes with it) and of the displacement operator alone, on "
+                 "the volumes of the table above, and their bytes per volume cell (the objects' "
+                 "own count). The cuboid rows above for comparison.\n\n"
+                 "| volume | grid | stress apply (s) | B / cell | displacement apply (s) | B / cell | "
+                 "create (s) |\n|---|---|---|---|---|---|---|\n");
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    for (int k = 0; k < nop + (quick ? 0 : 2); k++) {
+        const int big = k >= nop, n = big ? on[nop - 1] : on[k], nz = big ? onz[nop - 1] : onz[k];
+        const int per = big ? k - nop + 1 : 0;
+        mc_grid g = {n, n, 1e-6, 1e-6, per == 2, per >= 1};
+        mc_eigen_volume v = mc_eigen_volume_full(&g, nz, 0.5e-6);
+        v.kernel = MC_EIG_KERNEL_SPECTRAL;
+        const size_t nv = (size_t)n * n * nz;
+        double *blk = mc_zeros(12 * nv), *u = mc_zeros((size_t)n * n);
+        mc_eigen_stress *os = NULL;
+        mc_eigen_disp *od = NULL;
+        mc_error err = {0};
+        const double t0 = mc_clock();
+        if (!blk || !u || mc_eigen_stress_create(&g, &v, 0.3, MC_BACKEND_FFT, &os, &err) ||
+            mc_eigen_disp_create(&g, &v, 0.3, MC_BACKEND_FFT, &od, &err)) {
+            vf_text(ctx, "| %d² x %d | could not create the operators (memory?) |\n", n, nz);
+            mc_eigen_stress_destroy(&os);
+            mc_eigen_disp_destroy(&od);
+            mc_free(blk), mc_free(u);
+            continue;
+        }
+        const double create = mc_clock() - t0;
+        const double *e[6];
+        double *sg[6];
+        for (int c = 0; c < 6; c++) {
+            e[c] = blk + c * nv;
+            sg[c] = blk + (6 + c) * nv;
+            for (size_t i = 0; i < nv; i++)
+                blk[c * nv + i] = 1e-3 * sin(0.001 * (double)i + c);
+        }
+        const int reps = n <= 128 ? 5 : 3;
+        double ts[8], td[8];
+        for (int r = 0; r < reps; r++) {
+            double c0 = mc_bench_cpu();
+            mc_eigen_stress_apply(os, e, 80e9, sg);
+            ts[r] = mc_bench_cpu() - c0;
+            c0 = mc_bench_cpu();
+            mc_eigen_disp_apply(od, e, u);
+            td[r] = mc_bench_cpu() - c0;
+        }
+        const double ms = median_of(ts, reps), md = median_of(td, reps);
+        const double bs = (double)mc_eigen_stress_bytes(os) / nv, bd = (double)mc_eigen_disp_bytes(od) / nv;
+        static const char *const gname[] = {"free", "strip", "doubly periodic"};
+        vf_text(ctx, "| %d² x %d | %s | %.3f | %.0f | %.3f | %.0f | %.3f |\n", n, nz, gname[per], ms,
+                bs, md, bd, create);
+        if (n == on[nop - 1]) {
+            char id[64], q[160];
+            snprintf(id, sizeof id, "spectral_bytes_%s", per == 0 ? "free" : per == 1 ? "strip" : "doubly");
+            snprintf(q, sizeof q, "spectral eigen operators (stress + displacement), bytes per "
+                     "volume cell, %s %d² x %d", gname[per], n, nz);
+            vf_info(ctx, id, q, "the cuboid operators' rows above", NAN, bs + bd);
+            vf_regress(ctx, id, VF_TIER_NONE);
+            snprintf(id, sizeof id, "spectral_apply_%s", per == 0 ? "free" : per == 1 ? "strip" : "doubly");
+            snprintf(q, sizeof q, "spectral stress apply (with u_z), s, one thread, %s %d² x %d",
+                     gname[per], n, nz);
+            vf_info(ctx, id, q, "", NAN, ms);
+        }
+        mc_eigen_stress_destroy(&os);
+        mc_eigen_disp_destroy(&od);
+        mc_free(blk), mc_free(u);
+    }
+    mc_threads_end(&scope);
+    /* whole runs: the peak of the sphere of section_whole_peak with kernel = spectral */
+    char dir[] = "/tmp/mc_bench_spec_XXXXXX", self[1024];
+    const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (len <= 0 || !mkdtemp(dir))
+        return;
+    self[len] = '\0';
+    static const char *const name[] = {"free", "strip (periodic y)", "doubly periodic"};
+    static const char *const key[] = {"free", "strip", "doubly"};
+    const int n = quick ? 128 : 256, nper = quick ? 1 : 3;
+    vf_text(ctx, "\nPeak memory of a whole run with kernel = spectral: the sphere of \"Peak memory of "
+                 "a whole run\" above (%d² x 32 under the whole grid, one thread, child ru_maxrss), "
+                 "its model's parts per volume cell: the stress operator (its mode states and one "
+                 "layer's spectra; the loads' plan of the stress module, whose kernel spectra it "
+                 "keeps only below 64 MB), the displacement operator, the loop's dense arrays "
+                 "(less sig_e, which a folded run never makes).\n\n"
+                 "| volume | peak (MiB) | peak B/cell | stress operator | loads' plan | disp | loop "
+                 "(less sig_e) | rest | wall (s) |\n|---|---|---|---|---|---|---|---|---|\n",
+            n);
+    for (int per = 0; per < nper; per++) {
+        char ini[512], out[512];
+        snprintf(ini, sizeof ini, "%s/spec%d_%d.ini", dir, n, per);
+        snprintf(out, sizeof out, "%s/out%d_%d", dir, n, per);
+        double rss = -1, m[8], t = NAN;
+        for (int k = 0; k < 8; k++)
+            m[k] = NAN;
+        if (whole_run_case(ini, n, per, 1) == 0) {
+            const double t0 = mc_clock();
+            rss = child_peak(self, ini, out, 0, NULL);
+            t = mc_clock() - t0;
+            whole_run_model(ini, 1, m);
+        }
+        const double cells = (double)n * n * 32, bpc = rss > 0 ? rss / cells : NAN;
+        const double loop = m[6] - 48.0 * cells;
+        const double model = m[0] + m[1] + m[2] + m[4] + m[5] + loop + m[3];
+        vf_text(ctx, "| %s %d² x 32 | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.1f |\n",
+                name[per], n, rss / 1048576.0, bpc, (m[0] + m[1] + m[2] + m[4]) / cells,
+                m[3] / cells, m[5] / cells, loop / cells, (rss - model) / cells, t);
+        char id[64], q[160];
+        snprintf(id, sizeof id, "spectral_run_peak_bytes_%s", key[per]);
+        snprintf(q, sizeof q, "peak bytes per volume cell of a whole elastic-plastic run, kernel = "
+                 "spectral, %s %d² x 32 (child ru_maxrss)", name[per], n);
+        vf_info(ctx, id, q, "issue 20 target <= 200 at 256² x 32", 200, bpc);
+        vf_regress(ctx, id, VF_TIER_NONE);
+    }
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    if (system(cmd) != 0)
+        vf_text(ctx, "(could not remove %s)\n", dir);
+    /* the Kogut-Etsion sphere at 8 P_c on 64^2 with the spectral kernel */
+    if (!quick) {
+        ke_run r;
+        memset(&r, 0, sizeof r);
+        r.load_steps = 16;
+        r.spectral = 1;
+        ke_solve(64, 8.0, &r);
+        vf_text(ctx, "\nThe Kogut-Etsion sphere at 8 P_c in 16 load steps on 64² (the scene of the "
+                     "section below) with kernel = spectral (the volume under the whole grid): "
+                     "w/w_c %.4f (%+.2f %% against the KE fit), A/A_c %.2f (%+.1f %%), volume %d x "
+                     "%d x %d, wall %.1f s, CPU %.1f s, %d outer iterations, %d sweeps, %s.\n",
+                r.w, 100 * r.err_w, r.a, 100 * r.err_a, r.wnx, r.wny, r.nz, r.t, r.cpu, r.outer,
+                r.sweeps, r.converged ? "converged" : "NOT converged");
+        vf_info(ctx, "spectral_ke8_error", "KE sphere at 8 P_c, 64², kernel = spectral: |w/w_c "
+                "error| against the KE fit", "within 3 % (issue 20 item 3, cuboid kernel)",
+                KE_TOL_W, r.ok && r.converged ? fabs(r.err_w) : NAN);
+        vf_info(ctx, "spectral_ke8_time", "KE sphere at 8 P_c, 64², kernel = spectral: wall, s",
+                "<= 60 s (issue 20 item 3, cuboid kernel)", KE_TIME_MAX, r.ok ? r.t : NAN);
+    }
+    vf_text(ctx, "\n");
+}
+
 int mc_bench_plastic(vf_ctx *ctx, int quick)
 {
     double ratio256 = NAN, bytes256 = NAN;
@@ -942,6 +1108,7 @@ int mc_bench_plastic(vf_ctx *ctx, int quick)
     vf_check(ctx, "plastic_bytes_per_cell", q, "target <= 400 (issue 11)", BYTES_MAX, bytes256,
              BYTES_MAX, VF_MAX);
     section_whole_peak(ctx, quick);
+    section_spectral(ctx, quick);
     section_ke(ctx, quick);
     section_ke64(ctx, quick);
     section_graded(ctx, quick);
