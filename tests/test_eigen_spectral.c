@@ -33,6 +33,8 @@ static const double NU = 0.3;
 #define TOL_FD 1e-6
 /* 20-point Gauss-Legendre of a smooth integrand over one layer (h q <= 4): below 1e-13 */
 #define TOL_QUAD 1e-11
+/* the 15 printed digits of an O(1) stress */
+#define TOL_ODE 1e-13
 
 static double cmax6(double complex S[6][6])
 {
@@ -367,6 +369,51 @@ START_TEST(test_reciprocity)
 }
 END_TEST
 
+/* ---- an independent solution: plane strain, region by region -------------------------------- */
+
+/* tools/check_spectral_ode.py: the half-space with a layer [0.4, 1.1] (q = 1) of eigenstrain
+ * column c varying as e^{i x}, solved region by region (homogeneous solutions of the Navier
+ * equations, the particular one of a constant eigenstress, continuity of u and of the traction at
+ * the faces, a free surface, decay) with sympy, 15 digits: sigma_xx, sigma_yy, sigma_zz, sigma_xz
+ * per 2G at z = 0.2 (above), 0.75 (inside), 1.6 (below). A derivation that shares nothing with
+ * the residues of eigen_spectral.c. */
+static const struct {
+    int col;
+    double z;
+    double s[4][2];
+} ODE[] = {
+    {0, 0.20, {{0.618739026383293, 0}, {0.181920336899358, 0}, {-0.012337903385434, 0}, {0, -0.123266989750154}}},
+    {0, 0.75, {{-0.7345578319464, 0}, {-0.248006619853985, 0}, {-0.092130900900217, 0}, {0, 0.005963147560597}}},
+    {0, 1.60, {{0.247190763605042, 0}, {0.088510739943311, 0}, {0.047845036205996, 0}, {0, 0.099672863699523}}},
+    {1, 0.20, {{0.242247575420018, 0}, {0.071043388215432, 0}, {-0.005436281368578, 0}, {0, -0.052798540178866}}},
+    {1, 0.75, {{-0.250773594608419, 0}, {-1.38758295921175, 0}, {-0.041169602764073, 0}, {0, -0.017078528899867}}},
+    {1, 1.60, {{0.06250939150737, 0}, {0.01751908384205, 0}, {-0.004112445367202, 0}, {0, 0.033310918437286}}},
+    {2, 0.20, {{0.188752891683434, 0}, {0.054890957152083, 0}, {-0.005783034509825, 0}, {0, -0.052728144179399}}},
+    {2, 0.75, {{-0.101354150081664, 0}, {-0.043936577518507, 0}, {-0.045101108313361, 0}, {0, -0.062891577226821}}},
+    {2, 1.60, {{-0.038826125247143, 0}, {-0.030113793803143, 0}, {-0.061553187430001, 0}, {0, 0.011363531091429}}},
+    {5, 0.20, {{0, -0.429986134699859}, {0, -0.127029379747275}, {0, 0.006554868875609}, {-0.070538845570756, 0}}},
+    {5, 0.75, {{0, -0.021149544302641}, {0, 0.028623108290866}, {0, 0.116559905272194}, {-0.283489320071939, 0}}},
+    {5, 1.60, {{0, 0.233274785774611}, {0, 0.143092421511058}, {0, 0.243699952595582}, {0.005212583410485, 0}}},
+};
+
+START_TEST(test_against_region_solution)
+{
+    mc_spec_coef k;
+    mc_spec_coef_init(NU, &k);
+    const int rows[4] = {0, 1, 2, 5};
+    double worst = 0.0;
+    for (size_t t = 0; t < sizeof ODE / sizeof ODE[0]; t++) {
+        double complex S[6][6];
+        mc_spec_point_stress(&k, 1.0, 0.0, ODE[t].z, 0.4, 1.1, S);
+        for (int r = 0; r < 4; r++) {
+            const double complex want = ODE[t].s[r][0] + I * ODE[t].s[r][1];
+            worst = test_worst(worst, cabs(S[rows[r]][ODE[t].col] - want));
+        }
+    }
+    ck_assert_msg(worst <= TOL_ODE, "against the region-by-region solution: %.3g", worst);
+}
+END_TEST
+
 Suite *suite_eigen_spectral(void);
 Suite *suite_eigen_spectral(void)
 {
@@ -374,6 +421,7 @@ Suite *suite_eigen_spectral(void)
     TCase *tc = tcase_create("kernel");
     tcase_add_test(tc, test_depth_vs_pairs);
     tcase_add_test(tc, test_streamed);
+    tcase_add_test(tc, test_against_region_solution);
     tcase_add_test(tc, test_surface_free);
     tcase_add_test(tc, test_equilibrium);
     tcase_add_test(tc, test_average_quadrature);
