@@ -1,6 +1,10 @@
 /* eigen_op.h - the two eigenstrain operators of the semi-analytical elastic-plastic method
  * (Jacq et al. 2002; theory.md §9.1-§8.2), each with two backends behind one
- * interface, chosen by the mc_backend of operator/operator.h:
+ * interface, chosen by the mc_backend of operator/operator.h (what follows is the cuboid kernel,
+ * v.kernel = MC_EIG_KERNEL_CUBOID; with MC_EIG_KERNEL_SPECTRAL both objects are the spectral
+ * operator of plastic/eigen_spectral_op.h behind the same calls: a volume under the whole grid, the
+ * loads folded through the stress module, p3 from the fft backend only (zeros from the direct
+ * one), refused with more than one MPI process; theory.md §8.10):
  *   direct - plain O(N^2) summation over the kernel tables, written for clarity: the reference;
  *   fft    - DC-FFT (zero padding along both lateral axes, Liu, Wang & Liu 2000) over the SAME
  *            tables, so the two agree to round-off.

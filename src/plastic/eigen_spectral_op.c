@@ -53,6 +53,7 @@ struct mc_eigen_spectral {
     double *prow;            /* py x px: padded rows */
     fftw_plan a_r2c, b_fwd, c_bwd, d_c2r; /* x rows, y columns, and back */
     fftw_complex *U;         /* py x hx: the surface displacement's modes */
+    double *p3;              /* ny x nx: p3 of the last apply (stresses), Pa */
     fftw_plan uz_c2r;
     /* direct */
     double *tab;             /* [(i nz + j) 36 + r 6 + c][py][px]: stress per 2G */
@@ -158,6 +159,7 @@ static size_t stream_bytes(const mc_eigen_spectral *op)
     const size_t bins = (size_t)op->py * op->hx, nent = stream_entries(op);
     return nent * (sizeof(mc_spec_state) + 3 * sizeof(double)) + (bins + 1) * sizeof(int) +
            7 * bins * sizeof(fftw_complex) /* sp6 and U */ +
+           (size_t)op->nx * op->ny * sizeof(double) /* p3 */ +
            (size_t)op->py * op->px * sizeof(double) + ((size_t)op->nz + 1) * sizeof(double) +
            sizeof(mc_eigen_spectral);
 }
@@ -200,6 +202,7 @@ void mc_eigen_spectral_destroy(mc_eigen_spectral **op)
             fftw_destroy_plan(plans[p]);
     mc_free(o->b);
     mc_free(o->U);
+    mc_free(o->p3);
     mc_free(o->tab);
     mc_free(o->dtab);
     mc_free(o->lay);
@@ -248,7 +251,8 @@ static int stream_prepare(mc_eigen_spectral *op, mc_error *err)
     op->sp6 = mc_malloc(6 * bins * sizeof *op->sp6);
     op->U = mc_malloc(bins * sizeof *op->U);
     op->prow = mc_malloc((size_t)py * px * sizeof *op->prow);
-    if (!op->bin_first || !op->ent_k || !op->st || !op->sp6 || !op->U || !op->prow)
+    op->p3 = mc_zeros((size_t)op->nx * op->ny);
+    if (!op->bin_first || !op->ent_k || !op->st || !op->sp6 || !op->U || !op->prow || !op->p3)
         return mc_fail(err, MC_ERR_NOMEM, "spectral eigen operator: out of memory (%zu bytes)",
                        stream_bytes(op));
     entries_fill(op);
@@ -369,6 +373,20 @@ static void stream_apply(mc_eigen_spectral *op, const double *const eps[6], doub
                 op->U[b] = u;
             }
             op->U[0] = u0;
+            if (sig) { /* p3 of every mode (the states hold it after the turn), Pa */
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+                for (size_t b = 0; b < bins; b++) {
+                    double complex v = 0.0;
+                    for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++)
+                        v += op->ent_k[3 * en + 2] * (op->st[en].p3[0] + I * op->st[en].p3[1]);
+                    op->sp6[b] = v;
+                }
+                fftw_execute_dft(op->c_bwd, op->sp6, op->sp6);
+                fftw_execute_dft_c2r(op->d_c2r, op->sp6, op->prow);
+                for (int j = 0; j < ny; j++)
+                    for (int i = 0; i < nx; i++)
+                        op->p3[(size_t)j * nx + i] = scale * op->prow[(size_t)j * px + i];
+            }
             if (uz) {
                 fftw_execute_dft(op->c_bwd, op->U, op->U);
                 fftw_execute_dft_c2r(op->d_c2r, op->U, op->prow);
@@ -676,6 +694,15 @@ void mc_eigen_spectral_apply_uz(mc_eigen_spectral *op, const double *const eps[6
         uz_apply(op, eps, uz);
     else
         stream_apply(op, eps, 0.0, NULL, uz);
+}
+
+void mc_eigen_spectral_p3(const mc_eigen_spectral *op, double *p3)
+{
+    const size_t n = (size_t)op->nx * op->ny;
+    if (op->p3)
+        memcpy(p3, op->p3, n * sizeof *p3);
+    else
+        memset(p3, 0, n * sizeof *p3);
 }
 
 size_t mc_eigen_spectral_bytes(const mc_eigen_spectral *op) { return op->bytes; }

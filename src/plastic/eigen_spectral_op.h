@@ -69,6 +69,11 @@ int mc_eigen_spectral_create_uz(const mc_grid *g, const mc_eigen_volume *v, doub
 void mc_eigen_spectral_apply_uz(mc_eigen_spectral *op, const double *const eps[6], double *uz);
 size_t mc_eigen_spectral_estimate_uz(const mc_grid *g, const mc_eigen_volume *v, mc_backend b);
 
+/* p3 (Pa, grid ny * nx) of the last mc_eigen_spectral_apply of the fft backend: the surface normal
+ * traction of S1 + S2 that S3 cancels (as eigen_op.h mc_eigen_stress_p3); zeros before the first
+ * apply and for the direct backend and the displacement alone. */
+void mc_eigen_spectral_p3(const mc_eigen_spectral *op, double *p3);
+
 size_t mc_eigen_spectral_bytes(const mc_eigen_spectral *op);
 
 /* What mc_eigen_spectral_bytes would return for create(g, v, b), from the sizes alone; 0 for

@@ -1050,6 +1050,10 @@ void mc_eigen_stress_apply_forwarded(mc_eigen_stress *op, double G, const double
 
 void mc_eigen_stress_p3(const mc_eigen_stress *op, double *p3)
 {
+    if (op->spec) {
+        mc_eigen_spectral_p3(op->spec, p3);
+        return;
+    }
     memcpy(p3, op->p3, (size_t)op->v.nx * op->v.ny * sizeof *p3);
 }
 
