@@ -832,15 +832,46 @@ static void whole_run_model(const char *ini, int spectral, double m[8])
     m[7] = mc_memory_estimate(&sc) + mc_memory_estimate_plastic(&sc, g, &v, 0);
 }
 
+static const char *const WHOLE_NAME[] = {"free", "strip (periodic y)", "doubly periodic"};
+static const char *const WHOLE_KEY[] = {"free", "strip", "doubly"};
+
+/* This executable's path into self (1024 bytes) and a fresh directory from the template dir; 0 when
+ * either fails. */
+static int whole_run_dir(char *dir, char *self)
+{
+    const ssize_t len = readlink("/proc/self/exe", self, 1023);
+    if (len <= 0 || !mkdtemp(dir))
+        return 0;
+    self[len] = '\0';
+    return 1;
+}
+
+/* One whole run of whole_run_case(n, per, spectral) in dir: its peak (*rss, bytes; -1 when it
+ * failed), wall time (*t, s) and memory model (m, as whole_run_model). */
+static void whole_run_measure(const char *self, const char *dir, int n, int per, int spectral,
+                              double *rss, double *t, double m[8])
+{
+    char ini[512], out[512];
+    snprintf(ini, sizeof ini, "%s/%s%d_%d.ini", dir, spectral ? "spec" : "peak", n, per);
+    snprintf(out, sizeof out, "%s/out%s%d_%d", dir, spectral ? "s" : "", n, per);
+    *rss = -1;
+    *t = NAN;
+    for (int k = 0; k < 8; k++)
+        m[k] = NAN;
+    if (whole_run_case(ini, n, per, spectral) != 0)
+        return;
+    const double t0 = mc_clock();
+    *rss = child_peak(self, ini, out, 0, NULL);
+    *t = mc_clock() - t0;
+    whole_run_model(ini, spectral, m);
+}
+
 static void section_whole_peak(vf_ctx *ctx, int quick)
 {
     char dir[] = "/tmp/mc_bench_peak_XXXXXX", self[1024];
-    const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (len <= 0 || !mkdtemp(dir))
+    if (!whole_run_dir(dir, self))
         return;
-    self[len] = '\0';
-    static const char *const name[] = {"free", "strip (periodic y)", "doubly periodic"};
-    static const char *const key[] = {"free", "strip", "doubly"};
+    const char *const *name = WHOLE_NAME, *const *key = WHOLE_KEY;
     const int n = quick ? 128 : 256, nper = quick ? 1 : 3;
     vf_text(ctx, "\n### Peak memory of a whole run\n\n"
                  "Peak resident memory (getrusage ru_maxrss of a child `microcontact run`, one "
@@ -867,16 +898,8 @@ static void section_whole_peak(vf_ctx *ctx, int quick)
                  "|---|---|---|---|---|---|---|---|---|---|---|\n",
             n);
     for (int per = 0; per < nper; per++) {
-        char ini[512], out[512];
-        snprintf(ini, sizeof ini, "%s/peak%d_%d.ini", dir, n, per);
-        snprintf(out, sizeof out, "%s/out%d_%d", dir, n, per);
-        double rss = -1, m[8];
-        for (int k = 0; k < 8; k++)
-            m[k] = NAN;
-        if (whole_run_case(ini, n, per, 0) == 0) {
-            rss = child_peak(self, ini, out, 0, NULL);
-            whole_run_model(ini, 0, m);
-        }
+        double rss, t, m[8];
+        whole_run_measure(self, dir, n, per, 0, &rss, &t, m);
         const double cells = (double)n * n * 32, bpc = rss > 0 ? rss / cells : NAN;
         const double model = m[0] + m[1] + m[2] + m[3] + m[4] + m[5] + m[6];
         vf_text(ctx, "| %s %d² x 32 | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | "
@@ -1026,12 +1049,9 @@ static void section_spectral(vf_ctx *ctx, int quick)
     mc_threads_end(&scope);
     /* whole runs: the peak of the sphere of section_whole_peak with kernel = spectral */
     char dir[] = "/tmp/mc_bench_spec_XXXXXX", self[1024];
-    const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (len <= 0 || !mkdtemp(dir))
+    if (!whole_run_dir(dir, self))
         return;
-    self[len] = '\0';
-    static const char *const name[] = {"free", "strip (periodic y)", "doubly periodic"};
-    static const char *const key[] = {"free", "strip", "doubly"};
+    const char *const *name = WHOLE_NAME, *const *key = WHOLE_KEY;
     const int n = quick ? 128 : 256, nper = quick ? 1 : 3;
     vf_text(ctx, "\nPeak memory of a whole run with kernel = spectral: the sphere of \"Peak memory of "
                  "a whole run\" above (%d² x 32 under the whole grid, one thread, child ru_maxrss), "
@@ -1043,18 +1063,8 @@ static void section_spectral(vf_ctx *ctx, int quick)
                  "(less sig_e) | rest | wall (s) |\n|---|---|---|---|---|---|---|---|---|\n",
             n);
     for (int per = 0; per < nper; per++) {
-        char ini[512], out[512];
-        snprintf(ini, sizeof ini, "%s/spec%d_%d.ini", dir, n, per);
-        snprintf(out, sizeof out, "%s/out%d_%d", dir, n, per);
-        double rss = -1, m[8], t = NAN;
-        for (int k = 0; k < 8; k++)
-            m[k] = NAN;
-        if (whole_run_case(ini, n, per, 1) == 0) {
-            const double t0 = mc_clock();
-            rss = child_peak(self, ini, out, 0, NULL);
-            t = mc_clock() - t0;
-            whole_run_model(ini, 1, m);
-        }
+        double rss, t, m[8];
+        whole_run_measure(self, dir, n, per, 1, &rss, &t, m);
         const double cells = (double)n * n * 32, bpc = rss > 0 ? rss / cells : NAN;
         const double loop = m[6] - 48.0 * cells;
         const double model = m[0] + m[1] + m[2] + m[4] + m[5] + loop + m[3];

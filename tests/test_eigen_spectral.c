@@ -64,6 +64,17 @@ static int layering(int which, double *b)
     return nz;
 }
 
+/* nz layers of random complex eigenstrain (seeds a, b for the real and imaginary parts) */
+static void random_layers(int nz, unsigned a, unsigned b, double complex eps[16][6])
+{
+    double re[6 * 16], im[6 * 16];
+    test_random_field(re, 6 * (size_t)nz, a);
+    test_random_field(im, 6 * (size_t)nz, b);
+    for (int l = 0; l < nz; l++)
+        for (int c = 0; c < 6; c++)
+            eps[l][c] = re[6 * l + c] + I * im[6 * l + c];
+}
+
 /* ---- the running sums against the pairs ------------------------------------------------------- */
 
 START_TEST(test_depth_vs_pairs)
@@ -76,15 +87,9 @@ START_TEST(test_depth_vs_pairs)
         const int nz = layering(lay, b);
         for (int m = 0; m < N_KS; m++)
             for (int pt = 0; pt < 2; pt++) {
-                double re[6 * 16], im[6 * 16];
-                test_random_field(re, 6 * (size_t)nz, 11 + m);
-                test_random_field(im, 6 * (size_t)nz, 97 + m);
-                double complex eps[16][6], sig[16][6], ref[16][6], work[12 * 16], uz, uzr = 0.0;
-                for (int l = 0; l < nz; l++)
-                    for (int c = 0; c < 6; c++) {
-                        eps[l][c] = re[6 * l + c] + I * im[6 * l + c];
-                        ref[l][c] = 0.0;
-                    }
+                double complex eps[16][6], sig[16][6], ref[16][6] = {{0}}, work[12 * 16], uz,
+                                                                  uzr = 0.0;
+                random_layers(nz, 11 + (unsigned)m, 97 + (unsigned)m, eps);
                 mc_spec_depth(&k, KS[m][0], KS[m][1], nz, b, (mc_spec_point)pt,
                               (const double complex(*)[6])eps, sig, &uz, work);
                 double scale = 0.0;
@@ -133,13 +138,8 @@ START_TEST(test_streamed)
         const int nz = layering(lay, b);
         for (int m = 0; m < N_KS; m++)
             for (int pt = 0; pt < 2; pt++) {
-                double re[6 * 16], im[6 * 16];
-                test_random_field(re, 6 * (size_t)nz, 31 + m);
-                test_random_field(im, 6 * (size_t)nz, 37 + m);
                 double complex eps[16][6], ref[16][6], sig[16][6], work[12 * 16], uz, uzs;
-                for (int l = 0; l < nz; l++)
-                    for (int c = 0; c < 6; c++)
-                        eps[l][c] = re[6 * l + c] + I * im[6 * l + c];
+                random_layers(nz, 31 + (unsigned)m, 37 + (unsigned)m, eps);
                 mc_spec_depth(&k, KS[m][0], KS[m][1], nz, b, (mc_spec_point)pt,
                               (const double complex(*)[6])eps, ref, &uz, work);
                 mc_spec_state st;

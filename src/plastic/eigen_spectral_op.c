@@ -1,16 +1,19 @@
 /* eigen_spectral_op.c - the spectral eigenstrain operator (eigen_spectral_op.h; docs/theory.md
  * §8.10): lateral FFTs around the per-mode kernel of kernels/eigen_spectral.h.
  *
- * fft backend, one apply:
- *   1. every layer and component is transformed along x (zero padded on a free axis) into the
- *      layer spectra E: 6 nz slabs of ny x hx values, hx = px / 2 + 1;
- *   2. the x frequencies go in blocks of BLOCK columns: each block's slabs are transformed along
- *      y (padded on a free axis), every mode (kx, ky) of the block runs the depth step
- *      (mc_spec_depth: O(nz), the kernel evaluated there), the block goes back along y and its
- *      stress spectra overwrite the block's columns of E (the eigenstrain there is consumed);
- *   3. E is transformed back along x into the stresses; the surface displacement's modes,
- *      collected in step 2, by one 2-D inverse transform.
- * Nothing of the kernel is stored: the memory is E plus a block per thread. */
+ * fft backend, one apply, in two passes over the layers (a lateral mode's depth step needs only
+ * its own running sums, so no layer's spectra need to be kept):
+ *   down - each layer in turn: its six components transformed (x rows, then y columns, pruned to
+ *          the ny rows of a padded y axis), every mode's state advanced past it
+ *          (mc_spec_down_layer: the layers above, its own, the local term), the stresses
+ *          transformed back and written;
+ *   turn - p3 and u_z of every mode from the states' totals; u_z and p3 transformed back;
+ *   up   - each layer from the bottom: transformed again, the layers below, the mirror layers
+ *          and S3 (mc_spec_up_layer), added to the stresses.
+ * A bin of the half spectrum holds one wave vector, or two or four at a Nyquist index (both signs,
+ * weighted). Memory: the states (60 doubles per wave vector), one layer's six spectra, the padded
+ * rows; neither the kernel nor the layers' spectra. The displacement alone (create_uz) streams the
+ * layers once with an 8-double state per wave vector. */
 #include "plastic/eigen_spectral_op.h"
 
 #include <complex.h> /* before fftw3.h: fftw_complex is then double complex */
@@ -164,7 +167,8 @@ static size_t stream_bytes(const mc_eigen_spectral *op)
            sizeof(mc_eigen_spectral);
 }
 
-size_t mc_eigen_spectral_estimate_uz(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)
+/* the bytes create(g, v, b, uz_only) would hold, from the sizes alone; 0 for what it refuses */
+static size_t estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b, int uz_only)
 {
     mc_error err = {0};
     if (check(g, v, 0.3, b, &err) != MC_OK)
@@ -172,23 +176,20 @@ size_t mc_eigen_spectral_estimate_uz(const mc_grid *g, const mc_eigen_volume *v,
     mc_eigen_spectral op;
     memset(&op, 0, sizeof op);
     shape(g, v, &op);
-    op.uz_only = 1;
+    op.uz_only = uz_only;
     if (b == MC_BACKEND_DIRECT)
         return direct_values(&op) > (size_t)MC_SPEC_DIRECT_MAX ? 0 : direct_bytes(&op);
-    return uz_bytes(&op);
+    return uz_only ? uz_bytes(&op) : stream_bytes(&op);
+}
+
+size_t mc_eigen_spectral_estimate_uz(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)
+{
+    return estimate(g, v, b, 1);
 }
 
 size_t mc_eigen_spectral_estimate(const mc_grid *g, const mc_eigen_volume *v, mc_backend b)
 {
-    mc_error err = {0};
-    if (check(g, v, 0.3, b, &err) != MC_OK)
-        return 0;
-    mc_eigen_spectral op;
-    memset(&op, 0, sizeof op);
-    shape(g, v, &op);
-    if (b == MC_BACKEND_DIRECT)
-        return direct_values(&op) > (size_t)MC_SPEC_DIRECT_MAX ? 0 : direct_bytes(&op);
-    return stream_bytes(&op);
+    return estimate(g, v, b, 0);
 }
 
 void mc_eigen_spectral_destroy(mc_eigen_spectral **op)
