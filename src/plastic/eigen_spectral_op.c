@@ -441,9 +441,11 @@ static void uz_apply(mc_eigen_spectral *op, const double *const eps[6], double *
     memset(op->U, 0, bins * sizeof *op->U);
     for (int e = 0; e < op->nent; e++)
         mc_spec_uzstate_init(&op->ust[e], op->ent_k[3 * e], op->ent_k[3 * e + 1], op->b[0]);
+    /* the padding rows stay zero (the out-of-place r2c keeps its input; the last apply's c2r
+     * wrote over them) */
+    memset(op->lrows, 0, (size_t)py * px * sizeof *op->lrows);
     for (int l = 0; l < nz; l++) {
         for (int c = 0; c < 6; c++) {
-            memset(op->lrows, 0, (size_t)py * px * sizeof *op->lrows);
             const double *f = eps[c] + (size_t)l * layer;
             for (int j = 0; j < ny; j++)
                 memcpy(op->lrows + (size_t)j * px, f + (size_t)j * nx, (size_t)nx * sizeof(double));
