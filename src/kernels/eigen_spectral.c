@@ -562,9 +562,8 @@ void mc_spec_depth(const mc_spec_coef *k, double kx, double ky, int nz, const do
 void mc_spec_uz_layers(const mc_spec_coef *k, double kx, double ky, int nz, const double *b,
                        double complex (*D)[6])
 {
-    const double q = hypot(kx, ky);
-    if (q == 0.0) { /* the laterally constrained layer; the caller replaces it where the mode
-                       stands for a limit (eigen_spectral_op.c) */
+    if (kx == 0.0 && ky == 0.0) { /* the laterally constrained layer; the caller replaces it where
+                                     the mode stands for a limit (eigen_spectral_op.c) */
         const double a = k->nu / (1.0 - k->nu);
         for (int l = 0; l < nz; l++) {
             const double t = b[l + 1] - b[l];
@@ -574,32 +573,10 @@ void mc_spec_uz_layers(const mc_spec_coef *k, double kx, double ky, int nz, cons
         }
         return;
     }
-    const double c = kx / q, s = ky / q, cc = c * c, ss = s * s, cs = c * s;
-    layer_scalars L = {-1.0, 0, 0, 0, 0, 0, 0, 0, 0};
-    double x = q * b[0], et = exp(-x); /* b[0] may lie below the surface here */
-    for (int l = 0; l < nz; l++) {
-        const double h = q * (b[l + 1] - b[l]);
-        scalars(h, &L);
-        const double wa = et * L.p0, wb = et * (x * L.p0 + L.p1), f = 2.0 * k->uz0 / q;
-        /* the frame row of p3 (u_z = uz0 p3 / q): real on x'x', y'y', zz, imaginary on x'z */
-        double r[6], ri[6];
-        for (int m = 0; m < 6; m++) {
-            r[m] = f * (wa * creal(k->Am[2][m]) + wb * creal(k->Bm[2][m]));
-            ri[m] = f * (wa * cimag(k->Am[2][m]) + wb * cimag(k->Bm[2][m]));
-        }
-        /* to the lab columns (the transpose of mc_spec_to_frame) */
-        double complex v[6];
-        for (int m = 0; m < 6; m++)
-            v[m] = r[m] + I * ri[m];
-        D[l][0] = cc * v[0] + ss * v[1] - cs * v[3];
-        D[l][1] = ss * v[0] + cc * v[1] + cs * v[3];
-        D[l][2] = v[2];
-        D[l][3] = 2.0 * cs * (v[0] - v[1]) + (cc - ss) * v[3];
-        D[l][4] = c * v[4] + s * v[5];
-        D[l][5] = c * v[5] - s * v[4];
-        x += h;
-        et *= L.eh;
-    }
+    mc_spec_uzstate u;
+    mc_spec_uzstate_init(&u, kx, ky, b[0]);
+    for (int l = 0; l < nz; l++)
+        mc_spec_uz_next(k, &u, b[l], b[l + 1], D[l]);
 }
 
 /* ---- the depth step streamed layer by layer ---------------------------------------------------- */
