@@ -63,6 +63,67 @@ static void steps(mc_anderson *a, double *x, int n)
     }
 }
 
+/* The cells of a dense field whose values are not zero, as a sparse list (stride W + 1: the
+ * loop's lists carry one more value per cell, which the accelerator must skip). */
+static long to_list(const double *f, long *cell, double *val)
+{
+    long n = 0;
+    for (int v = 0; v < NC; v++) {
+        int nz = 0;
+        for (int q = 0; q < W; q++)
+            nz |= f[q * NC + v] != 0.0;
+        if (!nz)
+            continue;
+        cell[n] = v;
+        for (int q = 0; q < W; q++)
+            val[(W + 1) * n + q] = f[q * NC + v];
+        val[(W + 1) * n + W] = -1.0; /* (not a component) */
+        n++;
+    }
+    return n;
+}
+
+/* The sparse step (the plastic loop's, theory.md §9.9) gives the bits of the dense step, step by
+ * step from a start with a few non-zero cells, and its iterate is zero off its active cells. */
+START_TEST(sparse_as_dense)
+{
+    mc_anderson *dense = NULL, *sparse = NULL;
+    mc_error err;
+    ck_assert_int_eq(mc_anderson_create(NC, W, 4, &dense, &err), MC_OK);
+    ck_assert_int_eq(mc_anderson_create(NC, W, 4, &sparse, &err), MC_OK);
+    double xd[W * NC] = {0}, xs[W * NC] = {0}, g[W * NC];
+    xd[17] = xs[17] = 0.3; /* a warm start on two cells */
+    xd[NC + 40] = xs[NC + 40] = -0.2;
+    long xc[NC], gc[NC];
+    double xv[(W + 1) * NC], gv[(W + 1) * NC];
+    for (int k = 0; k < 12; k++) {
+        image(xd, g);
+        ck_assert_int_eq(mc_anderson_step(dense, xd, g, &err), MC_OK);
+        image(xs, g);
+        const long nx = to_list(xs, xc, xv), ng = to_list(g, gc, gv);
+        long n;
+        const long *cells;
+        const double *vals;
+        ck_assert_int_eq(mc_anderson_step_sparse(sparse, nx, xc, xv, ng, gc, gv, W + 1, &n,
+                                                 &cells, &vals, &err),
+                         MC_OK);
+        memset(xs, 0, sizeof xs);
+        for (long e = 0; e < n; e++)
+            for (int q = 0; q < W; q++)
+                xs[q * NC + cells[e]] = vals[W * e + q];
+        ck_assert_int_eq(n, mc_anderson_active(dense));
+        ck_assert_msg(memcmp(xs, xd, sizeof xs) == 0, "step %d: the iterates differ", k);
+    }
+    ck_assert_msg(residual(xd) < 1e-3 * residual((double[W * NC]){0}), "residual %g",
+                  residual(xd));
+    ck_assert_int_eq(mc_anderson_step_sparse(sparse, 0, xc, xv, 0, gc, gv, W - 1, &(long){0},
+                                             &(const long *){NULL}, &(const double *){NULL}, &err),
+                     MC_ERR_INPUT);
+    mc_anderson_destroy(&dense);
+    mc_anderson_destroy(&sparse);
+}
+END_TEST
+
 START_TEST(rows_whole_field_as_whole_mode)
 {
     mc_anderson *aw = NULL, *ar = NULL;
@@ -165,6 +226,7 @@ Suite *suite_anderson(void)
     Suite *s = suite_create("anderson");
     TCase *t = tcase_create("rows");
     tcase_add_test(t, rows_whole_field_as_whole_mode);
+    tcase_add_test(t, sparse_as_dense);
     tcase_add_test(t, rows_keep_to_their_rows);
     tcase_add_test(t, rows_shape_checked);
     suite_add_tcase(s, t);

@@ -655,6 +655,73 @@ START_TEST(folded_matches_separate)
 }
 END_TEST
 
+/* The sparse increment of the joint iteration (theory §9.9; the spectral kernel) against the
+ * same iteration on dense arrays (dense_increment): the same bits in every result and count,
+ * with friction (the loads' q_x), warm starts over three load steps, and a fallback to the
+ * nested iteration (max_outer two evaluations short of the joint iteration's first step: the
+ * sparse state goes to the dense arrays). */
+START_TEST(sparse_matches_dense)
+{
+    mc_threads_scope scope;
+    mc_threads_begin(1, &scope);
+    sphere t;
+    sphere_init(&t);
+    const size_t n = mc_grid_cells(&t.g);
+    for (int fb = 0; fb < 2; fb++) {
+        mc_plastic_problem pb = t.pb;
+        pb.anderson = 4;
+        pb.friction = 0.3;
+        pb.load_steps = 3;
+        pb.volume.kernel = MC_EIG_KERNEL_SPECTRAL;
+        if (fb)
+            pb.max_outer = 3;
+        mc_plastic_result r[2];
+        double *p[2];
+        mc_contact_summary cs;
+        for (int v = 0; v < 2; v++) {
+            pb.dense_increment = v;
+            mc_error err = {0};
+            const int rc = mc_plastic_run(&t.g, t.K, t.s, &pb, t.p, t.u, t.gap, &cs, &r[v], &err);
+            ck_assert_msg(rc == MC_OK || (fb && rc == MC_NOT_CONVERGED), "%s", err.msg);
+            ck_assert_int_eq(r[v].sparse_increment, !v);
+            ck_assert(p[v] = mc_malloc(n * sizeof *p[v]));
+            memcpy(p[v], t.p, n * sizeof *p[v]);
+        }
+        const size_t nv = (size_t)r[0].nvol;
+        ck_assert(maxabs(r[0].peq, nv) > 0);
+        int fallbacks = 0;
+        ck_assert_int_eq(r[0].steps_done, r[1].steps_done);
+        for (int k = 0; k < r[0].steps_done; k++) {
+            const mc_plastic_step *a = &r[0].steps[k], *b = &r[1].steps[k];
+            ck_assert_int_eq(a->joint_evaluations, b->joint_evaluations);
+            ck_assert_int_eq(a->plastic_iterations, b->plastic_iterations);
+            ck_assert_int_eq(a->stress_applies, b->stress_applies);
+            ck_assert_int_eq(a->warm_cells, b->warm_cells);
+            ck_assert_int_eq(a->joint_fallback, b->joint_fallback);
+            fallbacks += a->joint_fallback;
+        }
+        ck_assert_msg(fb ? fallbacks > 0 : fallbacks == 0, "%d fallbacks", fallbacks);
+        ck_assert(r[0].converged == r[1].converged);
+        ck_assert(memcmp(r[0].eps_p, r[1].eps_p, 6 * nv * sizeof(double)) == 0);
+        ck_assert(memcmp(r[0].peq, r[1].peq, nv * sizeof(double)) == 0);
+        ck_assert(memcmp(r[0].sig_r, r[1].sig_r, 6 * nv * sizeof(double)) == 0);
+        ck_assert(memcmp(r[0].residual_vm, r[1].residual_vm, nv * sizeof(double)) == 0);
+        ck_assert(memcmp(r[0].u_r, r[1].u_r, n * sizeof(double)) == 0);
+        ck_assert(memcmp(p[0], p[1], n * sizeof(double)) == 0);
+        if (getenv("MC_TEST_VERBOSE"))
+            fprintf(stderr, "sparse vs dense increment (%s): the same bits, %d sweeps, peq max "
+                            "%.3e\n",
+                    fb ? "with fallbacks" : "joint", sweeps(&r[0]), maxabs(r[0].peq, nv));
+        for (int v = 0; v < 2; v++) {
+            mc_plastic_result_free(&r[v]);
+            mc_free(p[v]);
+        }
+    }
+    sphere_free(&t);
+    mc_threads_end(&scope);
+}
+END_TEST
+
 /* A contact that does not converge ends the run with its iterate (the residual fields of the
  * state before it included), not with blank fields. */
 START_TEST(stops_on_contact)
@@ -883,6 +950,7 @@ Suite *suite_plastic_loop(void)
     tcase_add_test(t, stops_on_contact);
     tcase_add_test(t, joint_inexact_lubricant);
     tcase_add_test(t, folded_matches_separate);
+    tcase_add_test(t, sparse_matches_dense);
     tcase_add_test(t, overload_ends_bounded);
     tcase_add_test(t, window_is_symmetric);
     tcase_add_test(t, local_global_matches_global);

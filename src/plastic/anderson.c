@@ -1,6 +1,7 @@
 /* anderson.c - Anderson acceleration on the active cells of a field (anderson.h). */
 #include "plastic/anderson.h"
 
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -11,10 +12,12 @@
 struct mc_anderson {
     long ncells;
     int width, depth;
-    long *map;    /* ncells: slot of a cell in the compact vectors, -1 when not active */
-    long *cells;  /* nact active cells, in the order they joined */
-    long nact, cap;
+    int *map;     /* ncells: slot of a cell in the compact vectors, -1 when not active (4 bytes
+                     per cell: the field's cells fit an int, create checks) */
+    long *cells;  /* nact active cells, in the order they joined (ccap of room) */
+    long nact, cap, ccap;
     double *f[MC_ANDERSON_MAX_DEPTH + 1], *g[MC_ANDERSON_MAX_DEPTH + 1]; /* width * cap each */
+    double *xo;   /* width * cap: the new iterate of a sparse step */
     int count;    /* stored iterates (<= depth + 1) */
     int head;     /* ring position of the next one */
     /* rows mode (mc_anderson_rows): cells nb x ny x nx, this rank's rows r0 .. r0 + nr - 1 of
@@ -33,9 +36,10 @@ int mc_anderson_create(long ncells, int width, int depth, mc_anderson **out, mc_
     if (ncells < 1 || width < 1 || depth < 1 || depth > MC_ANDERSON_MAX_DEPTH)
         return mc_fail(err, MC_ERR_INPUT, "anderson: %ld cells of width %d, depth %d (1..%d)",
                        ncells, width, depth, MC_ANDERSON_MAX_DEPTH);
+    if (ncells > INT_MAX)
+        return mc_fail(err, MC_ERR_LIMIT, "anderson: %ld cells (at most %d)", ncells, INT_MAX);
     mc_anderson *a = mc_calloc(1, sizeof *a);
-    if (!a || !(a->map = mc_malloc((size_t)ncells * sizeof *a->map)) ||
-        !(a->cells = mc_malloc((size_t)ncells * sizeof *a->cells))) {
+    if (!a || !(a->map = mc_malloc((size_t)ncells * sizeof *a->map))) {
         mc_anderson_destroy(&a);
         return mc_fail(err, MC_ERR_NOMEM, "anderson: out of memory for %ld cells", ncells);
     }
@@ -137,6 +141,7 @@ void mc_anderson_destroy(mc_anderson **pa)
     }
     mc_free(a->map);
     mc_free(a->cells);
+    mc_free(a->xo);
     mc_free(a->part);
     mc_free(a->all);
     mc_free(a);
@@ -154,6 +159,11 @@ static int grow(mc_anderson *a, long need)
     if (cap > a->ncells)
         cap = a->ncells;
     const size_t w = (size_t)a->width;
+    double *nx = mc_malloc(w * (size_t)cap * sizeof *nx);
+    if (!nx)
+        return 0;
+    mc_free(a->xo);
+    a->xo = nx;
     for (int k = 0; k <= a->depth; k++) {
         double *nf = mc_zeros(w * (size_t)cap), *ng = mc_zeros(w * (size_t)cap);
         if (!nf || !ng) {
@@ -217,46 +227,53 @@ static int solve_small(int m, double A[][MC_ANDERSON_MAX_DEPTH], double *b, doub
     return 1;
 }
 
-int mc_anderson_step(mc_anderson *a, double *x, const double *gx, mc_error *err)
+/* Cell v joins the active set (slot need, then need + 1); 0 when the list cannot grow. */
+static int join(mc_anderson *a, long v, long *need)
+{
+    if (*need == a->ccap) {
+        long cap = a->ccap ? 2 * a->ccap : 1024;
+        cap = cap > a->ncells ? a->ncells : cap;
+        long *nc = mc_malloc((size_t)cap * sizeof *nc);
+        if (!nc)
+            return 0;
+        if (a->cells)
+            memcpy(nc, a->cells, (size_t)*need * sizeof *nc);
+        mc_free(a->cells);
+        a->cells = nc;
+        a->ccap = cap;
+    }
+    a->map[v] = (int)*need;
+    a->cells[(*need)++] = v;
+    return 1;
+}
+
+/* The active set grown to need cells (joined since nact): room in the history, or the joins
+ * undone and the history dropped (0). */
+static void undo(mc_anderson *a, long need)
+{
+    for (long k = a->nact; k < need; k++)
+        a->map[a->cells[k]] = -1;
+    mc_anderson_restart(a);
+}
+
+static int admit(mc_anderson *a, long need)
+{
+    if (grow(a, need)) {
+        a->nact = need;
+        return 1;
+    }
+    undo(a, need);
+    return 0;
+}
+
+/* The mixing of the stored pair (f_k, g_k in the slot a->head, not yet advanced): advances the
+ * ring and writes x_{k+1} on the active cells through put(a, slot k, component q, value). */
+static void mix_into(mc_anderson *a, double *x, int dense)
 {
     const long N = a->ncells;
     const int w = a->width;
-    /* cells that turned non-zero join the active set (rows mode: of this rank's rows) */
-    long need = a->nact;
-    const long nrun = a->nr < 0 ? 1 : a->nb, run = a->nr < 0 ? N : (long)a->nx * a->nr;
-    for (long r = 0; r < nrun; r++)
-    for (long v = a->nr < 0 ? 0 : ((long)r * a->ny + a->r0) * a->nx, vend = v + run; v < vend;
-         v++) {
-        if (a->map[v] >= 0)
-            continue;
-        int nz = 0;
-        for (int q = 0; q < w && !nz; q++)
-            nz = x[(size_t)q * (size_t)N + (size_t)v] != 0.0 ||
-                 gx[(size_t)q * (size_t)N + (size_t)v] != 0.0;
-        if (nz) {
-            a->map[v] = need;
-            a->cells[need++] = v;
-        }
-    }
-    if (!grow(a, need)) {
-        for (long k = a->nact; k < need; k++)
-            a->map[a->cells[k]] = -1;
-        mc_anderson_restart(a);
-        memcpy(x, gx, (size_t)w * (size_t)N * sizeof *x);
-        return mc_fail(err, MC_ERR_NOMEM, "anderson: out of memory for %ld active cells", need);
-    }
-    a->nact = need;
-    /* store f_k = g(x_k) - x_k and g(x_k) on the active cells, slot-major */
     const int cur = a->head;
-    double *fc = a->f[cur], *gc = a->g[cur];
-    for (long k = 0; k < a->nact; k++) {
-        const size_t v = (size_t)a->cells[k];
-        for (int q = 0; q < w; q++) {
-            double gv = gx[(size_t)q * (size_t)N + v];
-            fc[(size_t)k * (size_t)w + (size_t)q] = gv - x[(size_t)q * (size_t)N + v];
-            gc[(size_t)k * (size_t)w + (size_t)q] = gv;
-        }
-    }
+    double *gc = a->g[cur];
     if (a->count < a->depth + 1)
         a->count++;
     a->head = (a->head + 1) % (a->depth + 1);
@@ -265,8 +282,8 @@ int mc_anderson_step(mc_anderson *a, double *x, const double *gx, mc_error *err)
     double gamma[MC_ANDERSON_MAX_DEPTH];
     int mix = m > 0;
     const size_t len = (size_t)a->nact * (size_t)w;
+    int ring[MC_ANDERSON_MAX_DEPTH + 1]; /* oldest .. newest (= cur) */
     if (mix) {
-        int ring[MC_ANDERSON_MAX_DEPTH + 1]; /* oldest .. newest (= cur) */
         for (int j = 0; j <= m; j++)
             ring[j] = (cur - m + j + 2 * (a->depth + 1)) % (a->depth + 1);
         /* dF_j = f_{ring[j+1]} - f_{ring[j]}; normal equations dF' dF gamma = dF' f_k */
@@ -289,24 +306,115 @@ int mc_anderson_step(mc_anderson *a, double *x, const double *gx, mc_error *err)
         for (int i = 0; i < m; i++)
             A[i][i] += 1e-12 * trace;
         mix = trace > 0 && solve_small(m, A, b, gamma);
-        if (mix) {
-            for (long k = 0; k < a->nact; k++) {
-                const size_t v = (size_t)a->cells[k];
-                for (int q = 0; q < w; q++) {
-                    const size_t s = (size_t)k * (size_t)w + (size_t)q;
-                    double xv = gc[s];
-                    for (int j = 0; j < m; j++)
-                        xv -= gamma[j] * (a->g[ring[j + 1]][s] - a->g[ring[j]][s]);
-                    x[(size_t)q * (size_t)N + v] = xv;
-                }
-            }
+    }
+    for (long k = 0; k < a->nact; k++) {
+        const size_t v = (size_t)a->cells[k];
+        for (int q = 0; q < w; q++) {
+            const size_t s = (size_t)k * (size_t)w + (size_t)q;
+            double xv = gc[s];
+            for (int j = 0; mix && j < m; j++)
+                xv -= gamma[j] * (a->g[ring[j + 1]][s] - a->g[ring[j]][s]);
+            if (dense)
+                x[(size_t)q * (size_t)N + v] = xv;
+            else
+                x[s] = xv;
         }
     }
-    if (!mix)
-        for (long k = 0; k < a->nact; k++) {
-            const size_t v = (size_t)a->cells[k];
-            for (int q = 0; q < w; q++)
-                x[(size_t)q * (size_t)N + v] = gc[(size_t)k * (size_t)w + (size_t)q];
+}
+
+int mc_anderson_step(mc_anderson *a, double *x, const double *gx, mc_error *err)
+{
+    const long N = a->ncells;
+    const int w = a->width;
+    /* cells that turned non-zero join the active set (rows mode: of this rank's rows) */
+    long need = a->nact;
+    int room = 1;
+    const long nrun = a->nr < 0 ? 1 : a->nb, run = a->nr < 0 ? N : (long)a->nx * a->nr;
+    for (long r = 0; r < nrun && room; r++)
+    for (long v = a->nr < 0 ? 0 : ((long)r * a->ny + a->r0) * a->nx, vend = v + run;
+         v < vend && room; v++) {
+        if (a->map[v] >= 0)
+            continue;
+        int nz = 0;
+        for (int q = 0; q < w && !nz; q++)
+            nz = x[(size_t)q * (size_t)N + (size_t)v] != 0.0 ||
+                 gx[(size_t)q * (size_t)N + (size_t)v] != 0.0;
+        if (nz)
+            room = join(a, v, &need);
+    }
+    if (!room)
+        undo(a, need);
+    if (!room || !admit(a, need)) {
+        memcpy(x, gx, (size_t)w * (size_t)N * sizeof *x);
+        return mc_fail(err, MC_ERR_NOMEM, "anderson: out of memory for %ld active cells", need);
+    }
+    /* store f_k = g(x_k) - x_k and g(x_k) on the active cells, slot-major */
+    double *fc = a->f[a->head], *gc = a->g[a->head];
+    for (long k = 0; k < a->nact; k++) {
+        const size_t v = (size_t)a->cells[k];
+        for (int q = 0; q < w; q++) {
+            double gv = gx[(size_t)q * (size_t)N + v];
+            fc[(size_t)k * (size_t)w + (size_t)q] = gv - x[(size_t)q * (size_t)N + v];
+            gc[(size_t)k * (size_t)w + (size_t)q] = gv;
         }
+    }
+    mix_into(a, x, 1);
+    return MC_OK;
+}
+
+int mc_anderson_step_sparse(mc_anderson *a, long nx, const long *xcell, const double *xval,
+                            long ng, const long *gcell, const double *gval, int stride,
+                            long *n, const long **cells, const double **vals, mc_error *err)
+{
+    const int w = a->width;
+    *n = 0;
+    *cells = NULL;
+    *vals = NULL;
+    if (a->nr >= 0 || stride < w)
+        return mc_fail(err, MC_ERR_INPUT, "anderson: a sparse step in rows mode or of stride %d",
+                       stride);
+    long need = a->nact;
+    int room = 1;
+    /* new cells join in ascending order, as the dense step's scan: the lists merged */
+    for (long ex = 0, eg = 0; (ex < nx || eg < ng) && room;) {
+        const long cx = ex < nx ? xcell[ex] : LONG_MAX, cg = eg < ng ? gcell[eg] : LONG_MAX;
+        const long v = cx < cg ? cx : cg;
+        int nz = 0;
+        for (int q = 0; q < w && !nz; q++)
+            nz = (cx == v && xval[(size_t)stride * (size_t)ex + (size_t)q] != 0.0) ||
+                 (cg == v && gval[(size_t)stride * (size_t)eg + (size_t)q] != 0.0);
+        ex += cx == v;
+        eg += cg == v;
+        if (nz && a->map[v] < 0)
+            room = join(a, v, &need);
+    }
+    if (!room)
+        undo(a, need);
+    if (!room || !admit(a, need))
+        return mc_fail(err, MC_ERR_NOMEM, "anderson: out of memory for %ld active cells", need);
+    /* f_k = g(x_k) - x_k and g(x_k) on the active cells: g's entries first, then x's taken off,
+     * the bits of the dense step (0 - x = -x, g - 0 = g) */
+    double *fc = a->f[a->head], *gc = a->g[a->head];
+    const size_t len = (size_t)a->nact * (size_t)w;
+    memset(fc, 0, len * sizeof *fc);
+    memset(gc, 0, len * sizeof *gc);
+    for (long e = 0; e < ng; e++) {
+        const int s = a->map[gcell[e]];
+        if (s < 0)
+            continue; /* (a zero entry of a cell that never joined) */
+        for (int q = 0; q < w; q++)
+            fc[(size_t)s * w + q] = gc[(size_t)s * w + q] = gval[(size_t)stride * e + q];
+    }
+    for (long e = 0; e < nx; e++) {
+        const int s = a->map[xcell[e]];
+        if (s < 0)
+            continue;
+        for (int q = 0; q < w; q++)
+            fc[(size_t)s * w + q] = gc[(size_t)s * w + q] - xval[(size_t)stride * e + q];
+    }
+    mix_into(a, a->xo, 0);
+    *n = a->nact;
+    *cells = a->cells;
+    *vals = a->xo;
     return MC_OK;
 }

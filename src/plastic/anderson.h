@@ -13,7 +13,8 @@
  *
  * Storage is restricted to the active cells: a cell joins when x or g(x) is non-zero on it and
  * stays until the next restart; its earlier history entries are zero, which is exact (x and g(x)
- * were zero there). Memory: 2 (m + 1) width doubles per active cell, plus a map of ncells longs.
+ * were zero there). Memory: (2 (m + 1) + 1) width doubles and an index per active cell, plus a
+ * map of ncells ints (4 bytes per cell; at most INT_MAX cells).
  * Fields are component-major: value q of cell v at [q * ncells + v], q < width.
  */
 #ifndef MC_ANDERSON_H
@@ -37,6 +38,19 @@ void mc_anderson_restart(mc_anderson *a);
  * x_{k+1} = g(x_k). MC_OK, or MC_ERR_NOMEM when the active set cannot grow (x is then g(x_k) and
  * the history is dropped: the iteration goes on unaccelerated). */
 int mc_anderson_step(mc_anderson *a, double *x, const double *gx, mc_error *err);
+
+/* The same step with x and g(x) given sparse, as the plastic loop holds its increment (theory
+ * §9.9): nx entries of x at cells xcell (each cell once), their width values at
+ * xval[stride e + q], and ng entries of g(x) likewise, each list ascending by cell; the cells
+ * not listed are zero. The new
+ * iterate is not zero on the active cells alone: *n of them, *cells (in the order they joined,
+ * not sorted) with their width values at (*vals)[width k + q], both the accelerator's (valid
+ * until its next call). The same bits as mc_anderson_step on the dense fields. MC_OK;
+ * MC_ERR_NOMEM (history dropped; the caller goes on with g(x_k)); MC_ERR_INPUT in rows mode or
+ * for stride < width. */
+int mc_anderson_step_sparse(mc_anderson *a, long nx, const long *xcell, const double *xval,
+                            long ng, const long *gcell, const double *gval, int stride,
+                            long *n, const long **cells, const double **vals, mc_error *err);
 
 /* Distributed runs (core/dist.h): the field's cells are nblocks x ny x nx (cell (b, j, i) at
  * (b ny + j) nx + i) and this rank keeps rows r0 .. r0 + nr - 1 of every block. The steps that

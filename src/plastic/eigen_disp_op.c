@@ -553,6 +553,17 @@ void mc_eigen_disp_apply(mc_eigen_disp *op, const double *const eps[6], double *
 
 /* ---- u_z from the stress operator's layer spectra (theory.md §8.9) --------------------------- */
 
+int mc_eigen_disp_takes_sum(const mc_eigen_disp *op) { return op->sp != NULL; }
+
+int mc_eigen_disp_apply_sum(mc_eigen_disp *op, const double *const eps[6],
+                            const mc_eigen_sparse *inc, double *uz)
+{
+    if (!op->sp)
+        return MC_ERR_LIMIT;
+    mc_eigen_spectral_apply_uz_sum(op->sp, eps, inc, uz);
+    return MC_OK;
+}
+
 int mc_eigen_disp_shares(const mc_eigen_disp *dop, const mc_eigen_stress *sop)
 {
     const mc_eigen_volume *v = &dop->v;

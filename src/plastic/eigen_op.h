@@ -132,6 +132,16 @@ typedef struct {
     mc_eig_kernel kernel; /* the lateral discretisation (default 0: cuboids) */
 } mc_eigen_volume;
 
+/* A sparse addend of a volume field: the plastic loop's strain increment, which is not zero on
+ * the yielding cells alone. n entries, their volume indices cell[k] ascending, component c
+ * (xx .. xz) of entry k at val[stride * k + c] (stride >= 6). */
+typedef struct {
+    long n;
+    const long *cell;
+    const double *val;
+    int stride;
+} mc_eigen_sparse;
+
 /* The volume of nz layers of thickness dz under the whole surface grid g. */
 static inline mc_eigen_volume mc_eigen_volume_full(const mc_grid *g, int nz, double dz)
 {
@@ -271,6 +281,21 @@ int mc_eigen_stress_loads_of(const mc_eigen_stress *op);
  * mc_stress_field takes them. Collective under mpirun. */
 void mc_eigen_stress_apply_loaded(mc_eigen_stress *op, const double *const eps[6], double G,
                                   const double *p, const double *qx, double *const sig[6]);
+
+/* A field given as a dense part and a sparse addend (mc_eigen_sparse; inc NULL or without
+ * entries: eps alone): the operators read eps + inc value by value as they read their input, so
+ * the results are the bits of applying the summed field and the caller holds no volume array of
+ * the sum (the plastic loop's eps_p + d eps_p, theory.md §9.9). Only the spectral kernel's
+ * objects on one process take it (mc_eigen_stress_takes_sum, mc_eigen_disp_takes_sum: 1); the
+ * calls return MC_ERR_LIMIT and write nothing for the others. As mc_eigen_stress_apply_loaded and
+ * mc_eigen_disp_apply otherwise. */
+int mc_eigen_stress_takes_sum(const mc_eigen_stress *op);
+int mc_eigen_stress_apply_sum(mc_eigen_stress *op, const double *const eps[6],
+                              const mc_eigen_sparse *inc, double G, const double *p,
+                              const double *qx, double *const sig[6]);
+int mc_eigen_disp_takes_sum(const mc_eigen_disp *op);
+int mc_eigen_disp_apply_sum(mc_eigen_disp *op, const double *const eps[6],
+                            const mc_eigen_sparse *inc, double *uz);
 
 /* The forward transforms of one strain field shared by both operators (theory.md §8.9): the
  * joint iteration needs u_z and the stresses of the same eps in one evaluation, with the contact

@@ -61,6 +61,7 @@ struct mc_eigen_spectral {
     /* direct */
     double *tab;             /* [(i nz + j) 36 + r 6 + c][py][px]: stress per 2G */
     double *dtab;            /* [j 6 + c][py][px]: u_z, m */
+    double *dsum;            /* 6 nz ny nx: eps + a sparse addend, formed before the sums */
     size_t bytes;
 };
 
@@ -135,8 +136,8 @@ static size_t direct_values(const mc_eigen_spectral *op)
 
 static size_t direct_bytes(const mc_eigen_spectral *op)
 {
-    return direct_values(op) * sizeof(double) + (op->nz + 1) * sizeof(double) +
-           sizeof(mc_eigen_spectral);
+    return (direct_values(op) + 6 * (size_t)op->nz * op->nx * op->ny) * sizeof(double) +
+           (op->nz + 1) * sizeof(double) + sizeof(mc_eigen_spectral);
 }
 
 /* entries per bin: 1, or 2 / 4 at a Nyquist index (both signs stand for the bin) */
@@ -206,6 +207,7 @@ void mc_eigen_spectral_destroy(mc_eigen_spectral **op)
     mc_free(o->p3);
     mc_free(o->tab);
     mc_free(o->dtab);
+    mc_free(o->dsum);
     mc_free(o->lay);
     mc_free(o->lrows);
     mc_free(o->ust);
@@ -278,8 +280,45 @@ static int stream_prepare(mc_eigen_spectral *op, mc_error *err)
     return MC_OK;
 }
 
-/* layer l's six components into op->sp6 (spectra) */
-static void stream_forward(mc_eigen_spectral *op, const double *const eps[6], int l)
+/* The entries of the sparse addend inc (NULL: none) in layer l of layers of `layer` cells:
+ * k0 .. k1 - 1 (its cells ascend). */
+static void sparse_layer(const mc_eigen_sparse *inc, size_t layer, int l, long *k0, long *k1)
+{
+    *k0 = *k1 = 0;
+    if (!inc || inc->n <= 0)
+        return;
+    for (int e = 0; e < 2; e++) { /* the first entry at or after the layer's (l + e)-th cell */
+        const long at = (long)((size_t)(l + e) * layer);
+        long lo = 0, hi = inc->n;
+        while (lo < hi) {
+            const long mid = lo + (hi - lo) / 2;
+            if (inc->cell[mid] < at)
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        *(e ? k1 : k0) = lo;
+    }
+}
+
+/* rows (pitch values per row, layer l's values of component c in place) += the entries of inc
+ * in layer l: the sum eps + inc formed value by value, the bits of a summed field */
+static void sparse_add(const mc_eigen_spectral *op, const mc_eigen_sparse *inc, int l, int c,
+                       double *rows, int pitch)
+{
+    const size_t layer = (size_t)op->nx * op->ny;
+    long k0, k1;
+    sparse_layer(inc, layer, l, &k0, &k1);
+    for (long k = k0; k < k1; k++) {
+        const size_t at = (size_t)inc->cell[k] - (size_t)l * layer;
+        rows[(at / (size_t)op->nx) * (size_t)pitch + at % (size_t)op->nx] +=
+            inc->val[(size_t)inc->stride * (size_t)k + (size_t)c];
+    }
+}
+
+/* layer l's six components of eps + inc (inc NULL: eps alone) into op->sp6 (spectra) */
+static void stream_forward(mc_eigen_spectral *op, const double *const eps[6],
+                           const mc_eigen_sparse *inc, int l)
 {
     const int nx = op->nx, ny = op->ny, px = op->px, py = op->py, hx = op->hx;
     const size_t bins = (size_t)py * hx, layer = (size_t)nx * ny;
@@ -289,6 +328,7 @@ static void stream_forward(mc_eigen_spectral *op, const double *const eps[6], in
             memcpy(op->prow + (size_t)j * px, f + (size_t)j * nx, (size_t)nx * sizeof *op->prow);
             memset(op->prow + (size_t)j * px + nx, 0, (size_t)(px - nx) * sizeof *op->prow);
         }
+        sparse_add(op, inc, l, c, op->prow, px);
         fftw_complex *S = op->sp6 + c * bins;
         fftw_execute_dft_r2c(op->a_r2c, op->prow, S);
         memset(S + (size_t)ny * hx, 0, (size_t)(py - ny) * hx * sizeof *S);
@@ -315,8 +355,8 @@ static void stream_inverse(mc_eigen_spectral *op, double scale, double *const si
     }
 }
 
-static void stream_apply(mc_eigen_spectral *op, const double *const eps[6], double G,
-                         double *const sig[6], double *uz)
+static void stream_apply(mc_eigen_spectral *op, const double *const eps[6],
+                         const mc_eigen_sparse *inc, double G, double *const sig[6], double *uz)
 {
     const int nz = op->nz, nx = op->nx, ny = op->ny, px = op->px, py = op->py;
     const size_t bins = (size_t)op->nbins;
@@ -328,7 +368,7 @@ static void stream_apply(mc_eigen_spectral *op, const double *const eps[6], doub
         for (int n = 0; n < nz; n++) {
             const int l = pass ? nz - 1 - n : n;
             const double top = op->b[l], bottom = op->b[l + 1];
-            stream_forward(op, eps, l);
+            stream_forward(op, eps, inc, l);
             if (pass == 0) {
                 const fftw_complex *S = op->sp6;
                 u0 -= (bottom - top) * (op->uz0[0] * S[0] + op->uz0[1] * S[bins] +
@@ -434,7 +474,8 @@ static int uz_prepare(mc_eigen_spectral *op, mc_error *err)
     return MC_OK;
 }
 
-static void uz_apply(mc_eigen_spectral *op, const double *const eps[6], double *uz)
+static void uz_apply(mc_eigen_spectral *op, const double *const eps[6],
+                     const mc_eigen_sparse *inc, double *uz)
 {
     const int nz = op->nz, nx = op->nx, ny = op->ny, px = op->px, py = op->py;
     const size_t bins = (size_t)op->nbins, layer = (size_t)nx * ny;
@@ -449,6 +490,7 @@ static void uz_apply(mc_eigen_spectral *op, const double *const eps[6], double *
             const double *f = eps[c] + (size_t)l * layer;
             for (int j = 0; j < ny; j++)
                 memcpy(op->lrows + (size_t)j * px, f + (size_t)j * nx, (size_t)nx * sizeof(double));
+            sparse_add(op, inc, l, c, op->lrows, px);
             fftw_execute_dft_r2c(op->lay_r2c, op->lrows, op->lay + c * bins);
         }
         const double top = op->b[l], bottom = op->b[l + 1];
@@ -543,9 +585,10 @@ static int direct_prepare(mc_eigen_spectral *op, mc_error *err)
     const size_t per = (size_t)px * py;
     op->tab = op->uz_only ? NULL : mc_zeros((size_t)nz * nz * 36 * per);
     op->dtab = mc_zeros(6 * (size_t)nz * per);
+    op->dsum = mc_malloc(6 * (size_t)nz * op->nx * op->ny * sizeof *op->dsum);
     double complex *kv = mc_malloc(per * sizeof *kv), *half = mc_malloc(per * sizeof *half);
     double complex(*all)[6][6] = mc_malloc(per * sizeof *all);
-    if ((!op->tab && !op->uz_only) || !op->dtab || !kv || !half || !all) {
+    if ((!op->tab && !op->uz_only) || !op->dtab || !op->dsum || !kv || !half || !all) {
         mc_free(kv), mc_free(half), mc_free(all);
         return mc_fail(err, MC_ERR_NOMEM, "spectral eigen operator, direct: out of memory");
     }
@@ -675,28 +718,60 @@ int mc_eigen_spectral_create_uz(const mc_grid *g, const mc_eigen_volume *v, doub
     return create(g, v, nu, b, 1, out, err);
 }
 
-void mc_eigen_spectral_apply(mc_eigen_spectral *op, const double *const eps[6], double G,
-                             double *const sig[6], double *uz)
+/* The direct backend's input: eps itself, or eps + inc formed in op->dsum (o: six arrays). */
+static const double *const *direct_input(mc_eigen_spectral *op, const double *const eps[6],
+                                         const mc_eigen_sparse *inc, const double *o[6])
+{
+    if (!inc || inc->n <= 0)
+        return eps;
+    const size_t n = (size_t)op->nz * op->nx * op->ny;
+    for (int c = 0; c < 6; c++) {
+        double *d = op->dsum + (size_t)c * n;
+        memcpy(d, eps[c], n * sizeof *d);
+        for (long k = 0; k < inc->n; k++)
+            d[inc->cell[k]] += inc->val[(size_t)inc->stride * (size_t)k + (size_t)c];
+        o[c] = d;
+    }
+    return o;
+}
+
+void mc_eigen_spectral_apply_sum(mc_eigen_spectral *op, const double *const eps[6],
+                                 const mc_eigen_sparse *inc, double G, double *const sig[6],
+                                 double *uz)
 {
     if (op->uz_only) { /* (a caller's slip: the object holds no stress path) */
         if (uz)
-            mc_eigen_spectral_apply_uz(op, eps, uz);
+            mc_eigen_spectral_apply_uz_sum(op, eps, inc, uz);
         return;
     }
+    const double *o[6];
     if (op->backend == MC_BACKEND_FFT)
-        stream_apply(op, eps, G, sig, uz);
+        stream_apply(op, eps, inc, G, sig, uz);
     else
-        direct_apply(op, eps, G, sig, uz);
+        direct_apply(op, direct_input(op, eps, inc, o), G, sig, uz);
+}
+
+void mc_eigen_spectral_apply(mc_eigen_spectral *op, const double *const eps[6], double G,
+                             double *const sig[6], double *uz)
+{
+    mc_eigen_spectral_apply_sum(op, eps, NULL, G, sig, uz);
+}
+
+void mc_eigen_spectral_apply_uz_sum(mc_eigen_spectral *op, const double *const eps[6],
+                                    const mc_eigen_sparse *inc, double *uz)
+{
+    const double *o[6];
+    if (op->backend == MC_BACKEND_DIRECT)
+        direct_apply(op, direct_input(op, eps, inc, o), 0.0, NULL, uz);
+    else if (op->uz_only)
+        uz_apply(op, eps, inc, uz);
+    else
+        stream_apply(op, eps, inc, 0.0, NULL, uz);
 }
 
 void mc_eigen_spectral_apply_uz(mc_eigen_spectral *op, const double *const eps[6], double *uz)
 {
-    if (op->backend == MC_BACKEND_DIRECT)
-        direct_apply(op, eps, 0.0, NULL, uz);
-    else if (op->uz_only)
-        uz_apply(op, eps, uz);
-    else
-        stream_apply(op, eps, 0.0, NULL, uz);
+    mc_eigen_spectral_apply_uz_sum(op, eps, NULL, uz);
 }
 
 void mc_eigen_spectral_p3(const mc_eigen_spectral *op, double *p3)

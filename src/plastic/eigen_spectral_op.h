@@ -59,6 +59,14 @@ int mc_eigen_spectral_create(const mc_grid *g, const mc_eigen_volume *v, double 
 void mc_eigen_spectral_apply(mc_eigen_spectral *op, const double *const eps[6], double G,
                              double *const sig[6], double *uz);
 
+/* The same of the field eps + inc, inc a sparse addend (eigen_op.h mc_eigen_sparse; NULL or
+ * no entries: eps alone), the sum formed value by value as the layers are read, so the results
+ * are the bits of applying the summed field and no volume array of the sum exists (the fft
+ * backend; the direct one forms it in a scratch of the object). */
+void mc_eigen_spectral_apply_sum(mc_eigen_spectral *op, const double *const eps[6],
+                                 const mc_eigen_sparse *inc, double G, double *const sig[6],
+                                 double *uz);
+
 /* The surface displacement alone (the displacement operator of eigen_op.h with the spectral
  * kernel): an object made by mc_eigen_spectral_create_uz streams the layers one at a time (the
  * fft backend holds one layer's spectra and the surface's: a few hundred bytes per surface cell),
@@ -67,6 +75,8 @@ void mc_eigen_spectral_apply(mc_eigen_spectral *op, const double *const eps[6], 
 int mc_eigen_spectral_create_uz(const mc_grid *g, const mc_eigen_volume *v, double nu,
                                 mc_backend b, mc_eigen_spectral **out, mc_error *err);
 void mc_eigen_spectral_apply_uz(mc_eigen_spectral *op, const double *const eps[6], double *uz);
+void mc_eigen_spectral_apply_uz_sum(mc_eigen_spectral *op, const double *const eps[6],
+                                    const mc_eigen_sparse *inc, double *uz);
 size_t mc_eigen_spectral_estimate_uz(const mc_grid *g, const mc_eigen_volume *v, mc_backend b);
 
 /* p3 (Pa, grid ny * nx) of the last mc_eigen_spectral_apply of the fft backend: the surface normal

@@ -1014,8 +1014,9 @@ int mc_eigen_stress_loads_of(const mc_eigen_stress *op)
     return loads;
 }
 
-static void apply_loads(mc_eigen_stress *op, const double *const eps[6], double G,
-                        const double *p, const double *qx, double *const sig[6])
+static void apply_loads(mc_eigen_stress *op, const double *const eps[6],
+                        const mc_eigen_sparse *inc, double G, const double *p, const double *qx,
+                        double *const sig[6])
 {
     const double *loads[2] = {NULL, NULL};
     for (int l = 0; l < op->nloads; l++)
@@ -1023,7 +1024,7 @@ static void apply_loads(mc_eigen_stress *op, const double *const eps[6], double 
     if (op->spec) { /* the residual stress, then the loads' layer by layer */
         const size_t n = (size_t)op->v.nx * op->v.ny * op->v.nz;
         if (eps)
-            mc_eigen_spectral_apply(op->spec, eps, G, sig, NULL);
+            mc_eigen_spectral_apply_sum(op->spec, eps, inc, G, sig, NULL);
         else
             for (int c = 0; c < 6; c++)
                 memset(sig[c], 0, n * sizeof *sig[c]);
@@ -1039,13 +1040,26 @@ void mc_eigen_stress_apply_loaded(mc_eigen_stress *op, const double *const eps[6
                                   const double *p, const double *qx, double *const sig[6])
 {
     op->fwd = NULL;
-    apply_loads(op, eps, G, p, qx, sig);
+    apply_loads(op, eps, NULL, G, p, qx, sig);
+}
+
+int mc_eigen_stress_takes_sum(const mc_eigen_stress *op) { return op->spec != NULL; }
+
+int mc_eigen_stress_apply_sum(mc_eigen_stress *op, const double *const eps[6],
+                              const mc_eigen_sparse *inc, double G, const double *p,
+                              const double *qx, double *const sig[6])
+{
+    if (!op->spec)
+        return MC_ERR_LIMIT;
+    op->fwd = NULL;
+    apply_loads(op, eps, inc, G, p, qx, sig);
+    return MC_OK;
 }
 
 void mc_eigen_stress_apply_forwarded(mc_eigen_stress *op, double G, const double *p,
                                      const double *qx, double *const sig[6])
 {
-    apply_loads(op, op->fwd, G, p, qx, sig); /* fwd NULL: the loads alone */
+    apply_loads(op, op->fwd, NULL, G, p, qx, sig); /* fwd NULL: the loads alone */
 }
 
 void mc_eigen_stress_p3(const mc_eigen_stress *op, double *p3)

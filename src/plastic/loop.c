@@ -9,6 +9,7 @@
 #include "kernels/invariants.h"
 #include "kernels/kernel.h"
 #include "plastic/anderson.h"
+#include "plastic/increment.h"
 #include "plastic/return_map.h"
 #include "stress/stress.h"
 #include "stress/traction.h"
@@ -67,12 +68,10 @@ typedef struct {
     mc_anderson *aa_outer;       /* and of the outer iteration on u_r */
     /* the last converged increment, the warm start of the next (theory §9.6): its plastic
      * strain increment and equivalent plastic strain increment on the cells where they are not
-     * zero (w_cell: their indices; w_val: 7 values per cell, the six components and dp; the
-     * plastic zone is usually a small part of the volume, so this holds far less than the dense
-     * 56 bytes per volume cell), the change of u_r and the load, N */
-    long *w_cell;
-    double *w_val, *w_ur;
-    long w_n, w_cap;
+     * zero (increment.h: the plastic zone is usually a small part of the volume, so this holds
+     * far less than the dense 56 bytes per volume cell), the change of u_r and the load, N */
+    mc_plastic_incr warm;
+    double *w_ur;
     double w_load;
     int w_have;                  /* 1: the w_ arrays hold a converged increment */
     long stress_applies;         /* residual stress applications (sweeps that were not skipped) */
@@ -95,6 +94,15 @@ typedef struct {
                                     residual stress and Anderson's mixing keep to this rank's
                                     rows (theory §8.4); the other rows of d_eps, dp, d_new,
                                     dp_new and sig_r are stale until joint_iteration gathers */
+    /* the sparse increment (theory §9.9): with operators that take a sparse addend the joint
+     * iteration holds its iterate (d eps_p, d p) in inc and the sweep's image in inc_new, and
+     * the dense d_eps, tot, dp, dp_new exist only once an increment falls back to the nested
+     * iteration (dense_arrays) */
+    int sparse;                  /* 1: the joint iteration runs on inc */
+    int dense_now;               /* 1: this increment's state is in the dense arrays */
+    int eps_any;                 /* 1: the committed eps_p is not zero somewhere */
+    mc_plastic_incr inc, inc_new, inc_tmp;
+    double *lay7;                /* 7 x one layer of the window: the sweep's per-layer values */
 } loop_ctx;
 
 static void ctx_free(loop_ctx *c)
@@ -108,14 +116,18 @@ static void ctx_free(loop_ctx *c)
     mc_plastic_ops_destroy(&c->own); /* (borrowed operators are the caller's) */
     mc_anderson_destroy(&c->aa);
     mc_anderson_destroy(&c->aa_outer);
-    mc_free(c->w_cell);
+    mc_incr_free(&c->warm);
+    mc_incr_free(&c->inc);
+    mc_incr_free(&c->inc_new);
+    mc_incr_free(&c->inc_tmp);
+    mc_free(c->lay7);
     if (c->lent_sig_e)
         c->sig_e = NULL;
     if (c->lent_sig_r)
         c->sig_r = NULL;
     double *arrays[] = {c->depths, c->s_layer, c->qx,     c->sig_e, c->sig_r, c->d_eps,
                         c->tot,    c->dp,      c->dp_new, c->u_r,   c->u_new, c->h_extra,
-                        c->w_val,  c->w_ur};
+                        c->w_ur};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         mc_free(arrays[k]);
 }
@@ -210,6 +222,21 @@ static int check_problem(const mc_grid *g, const mc_plastic_problem *pb, mc_erro
     return MC_OK;
 }
 
+/* The dense increment arrays d_eps, tot (= d_new), dp, dp_new: made at the start, or with the
+ * sparse increment when an increment first falls back to the nested iteration (zeroed). */
+static int dense_arrays(loop_ctx *c, mc_error *err)
+{
+    const size_t nv6 = 6 * (size_t)c->nvol;
+    if ((!c->d_eps && !(c->d_eps = mc_zeros(nv6))) || (!c->tot && !(c->tot = mc_zeros(nv6))) ||
+        (!c->dp && !(c->dp = mc_zeros((size_t)c->nvol))) ||
+        (!c->dp_new && !(c->dp_new = mc_zeros((size_t)c->nvol))))
+        return mc_fail(err, MC_ERR_NOMEM,
+                       "plastic loop: out of memory for the increment of %ld volume cells",
+                       c->nvol);
+    c->d_new = c->tot;
+    return MC_OK;
+}
+
 static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb, mc_error *err)
 {
     memset(c, 0, sizeof *c);
@@ -231,12 +258,8 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
              (c->sig_e = pb->work_sig_e ? pb->work_sig_e : c->whole ? NULL : mc_zeros(nv6),
               c->sig_e || c->whole) &&
              (c->sig_r = pb->state_sig_r ? pb->state_sig_r : mc_zeros(nv6)) &&
-             (c->d_eps = mc_zeros(nv6)) && (c->tot = mc_zeros(nv6)) &&
-             (c->dp = mc_zeros((size_t)c->nvol)) &&
-             (c->dp_new = mc_zeros((size_t)c->nvol)) &&
              (c->u_r = mc_zeros(c->ncell)) && (c->u_new = mc_zeros(c->ncell)) &&
              (c->h_extra = mc_zeros(c->ncell)) && (c->w_ur = mc_zeros(c->ncell));
-    c->d_new = c->tot;
     mc_dist_share(c->nwy, &c->row0, &c->rows);
     if (mc_dist_size() > MC_DIST_MAX_RANKS) /* (the split gathers cannot fail below this) */
         return mc_fail(err, MC_ERR_LIMIT, "plastic loop: %d MPI processes, at most %d",
@@ -294,6 +317,17 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
         if (rc == MC_OK && !(c->active = mc_malloc((size_t)c->nvol * sizeof *c->active)))
             rc = mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the active set");
     }
+    /* the sparse increment (theory §9.9): the joint iteration alone, on one process, with
+     * operators that read eps_p + a sparse increment */
+    c->sparse = rc == MC_OK && c->folded && pb->iteration == MC_PLASTIC_JOINT &&
+                pb->anderson > 0 && reach == 0 && !pb->tight_inner && !pb->dense_increment &&
+                mc_dist_size() == 1 && mc_eigen_stress_takes_sum(c->resid) &&
+                mc_eigen_disp_takes_sum(c->disp);
+    if (rc == MC_OK && c->sparse &&
+        !(c->lay7 = mc_malloc((size_t)MC_INCR_WIDTH * c->nwx * c->nwy * sizeof *c->lay7)))
+        rc = mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the sweep's layer");
+    if (rc == MC_OK && !c->sparse)
+        rc = dense_arrays(c, err);
     if (rc == MC_OK && pb->anderson > 0)
         rc = mc_anderson_create(c->nvol, 6, pb->anderson, &c->aa, err);
     if (rc == MC_OK && pb->anderson > 0)
@@ -301,47 +335,14 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
     return rc;
 }
 
-/* Keep the converged increment (d_eps, dp) as the warm start: its cells that are not zero, in
- * the compact arrays w_cell, w_val (grown by doubling; a cell whose seven values are all zero is
- * left out: the warm start writes zeros there, the same values). */
+/* Keep the converged increment as the warm start: its cells that are not zero (increment.h; a
+ * cell whose seven values are all zero is left out: the warm start writes zeros there, the same
+ * values), from the sparse increment or the dense arrays. */
 static int warm_keep(loop_ctx *c, mc_error *err)
 {
-    const long nvol = c->nvol;
-    long n = 0;
-    for (long v = 0; v < nvol; v++) {
-        int any = c->dp[v] != 0.0;
-        for (int q = 0; q < 6 && !any; q++)
-            any = c->d_eps[(size_t)q * nvol + v] != 0.0;
-        n += any;
-    }
-    if (n > c->w_cap) {
-        long cap = c->w_cap ? c->w_cap : 1024;
-        while (cap < n)
-            cap *= 2;
-        cap = cap > nvol ? nvol : cap;
-        mc_free(c->w_cell);
-        mc_free(c->w_val);
-        c->w_cap = 0;
-        if (!(c->w_cell = mc_malloc((size_t)cap * sizeof *c->w_cell)) ||
-            !(c->w_val = mc_malloc(7 * (size_t)cap * sizeof *c->w_val)))
-            return mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the warm start");
-        c->w_cap = cap;
-    }
-    n = 0;
-    for (long v = 0; v < nvol; v++) {
-        int any = c->dp[v] != 0.0;
-        for (int q = 0; q < 6 && !any; q++)
-            any = c->d_eps[(size_t)q * nvol + v] != 0.0;
-        if (!any)
-            continue;
-        c->w_cell[n] = v;
-        for (int q = 0; q < 6; q++)
-            c->w_val[7 * n + q] = c->d_eps[(size_t)q * nvol + v];
-        c->w_val[7 * n + 6] = c->dp[v];
-        n++;
-    }
-    c->w_n = n;
-    return MC_OK;
+    const int ok = c->dense_now ? mc_incr_gather(&c->warm, c->nvol, c->d_eps, c->dp)
+                                : mc_incr_scaled(&c->warm, &c->inc, 1.0);
+    return ok ? MC_OK : mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the warm start");
 }
 
 /* The accepted increment as the next one's warm start (theory §9.6): its cells (warm_keep) and
@@ -1177,6 +1178,237 @@ static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, 
     return rc;
 }
 
+/* The sweep on the sparse increment (theory §9.9): sig_r = sigma_e(p) + S(eps_p + inc) from one
+ * apply (the operators read the sum as they read their input), then layer by layer the return
+ * map of every cell from the trial stress sig_r + 2 G d, d the layer's entries of inc spread
+ * into lay7, and the image (d eps_p, d p) of the cells where it is not zero appended to inc_new
+ * in order. The same values, maxima and flags as sweep() on the dense arrays. Returns 1 when a
+ * return map failed; *nomem 1 when inc_new could not grow. */
+static int sparse_sweep(loop_ctx *c, const double *eps_p, const double *peq, const double *p,
+                        double elastic_below, double *change_out, double *size_out,
+                        int *plastic_out, int *any_out, int *nomem)
+{
+    const mc_plastic_problem *pb = c->pb;
+    const long lay = c->nwx * c->nwy, nvol = c->nvol;
+    const int any = c->eps_any || mc_incr_any(&c->inc);
+    const double *qx = friction_traction(c, p), *e[6];
+    double *sg[6];
+    split6(c, eps_p, e);
+    for (int q = 0; q < 6; q++)
+        sg[q] = c->sig_r + (size_t)q * (size_t)nvol;
+    if (any) { /* (the operators take the sum: ctx_init checked) */
+        const mc_eigen_sparse inc = mc_incr_strain(&c->inc);
+        (void)mc_eigen_stress_apply_sum(c->resid, e, &inc, c->G, p, qx, sg);
+        c->stress_applies++;
+    } else
+        mc_eigen_stress_apply_loaded(c->resid, NULL, c->G, p, qx, sg);
+    int bad = 0, plastic = 0;
+    double change = 0, size = 0;
+    double *d7 = c->lay7;
+    memset(d7, 0, (size_t)MC_INCR_WIDTH * (size_t)lay * sizeof *d7);
+    c->inc_new.n = 0;
+    *nomem = 0;
+    for (int k = 0; k < pb->volume.nz; k++) {
+        const long v0 = (long)k * lay;
+        long k0, k1;
+        mc_incr_range(&c->inc, v0, v0 + lay, &k0, &k1);
+        for (long n = k0; n < k1; n++)
+            for (int q = 0; q < 6; q++)
+                d7[(size_t)q * (size_t)lay + (size_t)(c->inc.cell[n] - v0)] =
+                    c->inc.val[(size_t)MC_INCR_WIDTH * (size_t)n + (size_t)q];
+#pragma omp parallel for schedule(static) reduction(| : plastic, bad) \
+    reduction(max : change, size) if (lay > 4096)
+        for (long at = 0; at < lay; at++) {
+            const long v = v0 + at;
+            double trial[6], out[6], de[6] = {0}, dpv = 0.0;
+            for (int q = 0; q < 6; q++)
+                trial[q] = c->sig_r[q * nvol + v] + 2.0 * c->G * d7[q * lay + at];
+            if (!(mc_von_mises(trial) < elastic_below)) { /* else mc_return_map's elastic branch */
+                mc_error e1;
+                if (mc_return_map(trial, peq[v], pb->law, c->G, out, de, &dpv, &e1) != MC_OK) {
+                    bad = 1;
+                    for (int q = 0; q < 6; q++)
+                        de[q] = 0.0;
+                    dpv = 0.0;
+                }
+            }
+            double ch = 0, sz = 0;
+            for (int q = 0; q < 6; q++) {
+                ch = fmax(ch, fabs(de[q] - d7[q * lay + at]));
+                sz = fmax(sz, fabs(de[q]));
+                d7[q * lay + at] = de[q];
+            }
+            d7[6 * lay + at] = dpv;
+            change = change > ch ? change : ch;
+            size = size > sz ? size : sz;
+            plastic |= dpv > 0;
+        }
+        for (long at = 0; at < lay; at++) { /* the image's cells, in order; lay7 zeroed again */
+            double v7[MC_INCR_WIDTH];
+            int nz = 0;
+            for (int q = 0; q < MC_INCR_WIDTH; q++) {
+                v7[q] = d7[q * lay + at];
+                nz |= v7[q] != 0.0;
+            }
+            if (!nz)
+                continue;
+            for (int q = 0; q < MC_INCR_WIDTH; q++)
+                d7[q * lay + at] = 0.0;
+            if (!*nomem && !mc_incr_push(&c->inc_new, v0 + at, v7))
+                *nomem = 1;
+        }
+    }
+    *change_out = change;
+    *size_out = size;
+    *plastic_out = plastic;
+    *any_out = any;
+    return bad;
+}
+
+static void incr_swap(mc_plastic_incr *a, mc_plastic_incr *b)
+{
+    const mc_plastic_incr t = *a;
+    *a = *b;
+    *b = t;
+}
+
+/* u (grid) = D(eps_p + inc): the residual displacement of the committed strain and the sparse
+ * increment */
+static void sparse_displacement(loop_ctx *c, const double *eps_p, double *u)
+{
+    const double *e[6];
+    split6(c, eps_p, e);
+    const mc_eigen_sparse inc = mc_incr_strain(&c->inc);
+    (void)mc_eigen_disp_apply_sum(c->disp, e, &inc, u); /* (ctx_init checked) */
+}
+
+/* The next iterate of the sparse joint iteration: Anderson's mix of inc (x) and inc_new (its
+ * image) on the active cells, sorted, with d p of the image (as the dense iteration copies
+ * dp_new). MC_OK, MC_ERR_NOMEM (inc is then the image, the history dropped). */
+static int sparse_mix(loop_ctx *c, mc_error *err)
+{
+    long n;
+    const long *cells;
+    const double *vals;
+    const int W = MC_INCR_WIDTH;
+    if (mc_anderson_step_sparse(c->aa, c->inc.n, c->inc.cell, c->inc.val, c->inc_new.n,
+                                c->inc_new.cell, c->inc_new.val, W, &n, &cells, &vals,
+                                err) != MC_OK ||
+        !mc_incr_reserve(&c->inc_tmp, n)) {
+        incr_swap(&c->inc, &c->inc_new);
+        return MC_ERR_NOMEM;
+    }
+    mc_plastic_incr *x = &c->inc_tmp;
+    x->n = 0;
+    for (long k = 0; k < n; k++) {
+        double v[MC_INCR_WIDTH] = {0};
+        memcpy(v, vals + 6 * k, 6 * sizeof *v);
+        mc_incr_push(x, cells[k], v); /* (room reserved; sorted next) */
+    }
+    if (!mc_incr_sort(x, &c->inc)) {
+        incr_swap(&c->inc, &c->inc_new);
+        return mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the increment");
+    }
+    /* d p from the image: its cells with d p > 0 yield, so they are active (in x) */
+    for (long k = 0, j = 0; k < x->n; k++) {
+        while (j < c->inc_new.n && c->inc_new.cell[j] < x->cell[k])
+            j++;
+        if (j < c->inc_new.n && c->inc_new.cell[j] == x->cell[k])
+            x->val[(size_t)W * k + 6] = c->inc_new.val[(size_t)W * j + 6];
+    }
+    incr_swap(&c->inc, x);
+    return MC_OK;
+}
+
+/* joint_body on the sparse increment (theory §9.9): the same iteration, evaluations and tests,
+ * with inc for (d_eps, dp), inc_new for (d_new, dp_new) and the sums eps_p + inc formed inside
+ * the operators. One process (ctx_init). */
+static int joint_sparse(loop_ctx *c, mc_contact_solver *solver, double load, int warm,
+                        double *p, double *u, double *gap, mc_contact_summary *sum,
+                        mc_plastic_result *res, mc_plastic_step *st, int *done,
+                        int *contact_failed, mc_error *err)
+{
+    const mc_plastic_problem *pb = c->pb;
+    const size_t nv6 = 6 * (size_t)c->nvol;
+    const double elastic_below = surely_elastic_below(pb->law);
+    double least = INFINITY;
+    int since_least = 0;
+    int exact = 0; /* 1: the next contact step settles the caller's equilibrium (not inexact) */
+    *done = 0;
+    *contact_failed = 0;
+    c->eps_any = 0;
+    for (size_t i = 0; i < nv6 && !c->eps_any; i++)
+        c->eps_any = res->eps_p[i] != 0.0;
+    mc_anderson_restart(c->aa);
+    for (int k = 1; k <= pb->max_outer; k++) {
+        if (pb->stop && pb->stop(pb->stop_ctx))
+            return mc_fail(err, MC_ERR_INTERRUPTED, "plastic loop: stopped on request");
+        st->joint_evaluations++;
+        st->outer_iterations++;
+        st->plastic_iterations++;
+        if (c->eps_any || mc_incr_any(&c->inc))
+            sparse_displacement(c, res->eps_p, c->u_r);
+        else
+            memset(c->u_r, 0, c->ncell * sizeof *c->u_r);
+        int settled;
+        int rc = contact_on_ur(c, solver, load, warm || k > 1, !exact, p, u, gap, sum, &settled,
+                               st, err);
+        if (rc == MC_NOT_CONVERGED) {
+            *contact_failed = 1;
+            return MC_OK;
+        }
+        if (rc != MC_OK)
+            return rc;
+        int plastic = 0, had = 0, nomem = 0;
+        double change = 0, size = 0;
+        const int bad = sparse_sweep(c, res->eps_p, res->peq, p, elastic_below, &change, &size,
+                                     &plastic, &had, &nomem);
+        if (nomem)
+            return mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the increment");
+        if (bad || !(size <= DIVERGED_STRAIN)) { /* blew up: the nested loop starts cold */
+            c->inc.n = 0;
+            memcpy(c->u_r, res->u_r, c->ncell * sizeof *c->u_r);
+            return MC_OK;
+        }
+        if (!plastic && !had) { /* nothing yields and nothing has: the increment is elastic */
+            c->inc.n = 0;
+            res->yield_skips++;
+            *done = 1;
+            return MC_OK;
+        }
+        const double rel = change / fmax(size, 1e-3);
+        if (rel <= pb->tol_plastic) { /* as joint_body: the image becomes the iterate */
+            incr_swap(&c->inc, &c->inc_new);
+            sparse_displacement(c, res->eps_p, c->u_new);
+            double uch = 0, usz = 0;
+            for (size_t i = 0; i < c->ncell; i++) {
+                uch = fmax(uch, fabs(c->u_new[i] - c->u_r[i]));
+                usz = fmax(usz, fabs(c->u_new[i]));
+            }
+            if (uch <= pb->tol_outer * usz && settled) {
+                memcpy(c->u_r, c->u_new, c->ncell * sizeof *c->u_r);
+                res->inner_change = fmax(res->inner_change, rel);
+                *done = 1;
+                return MC_OK;
+            }
+            exact |= !settled;
+            continue;
+        }
+        if (rel < least) {
+            least = rel;
+            since_least = 0;
+        } else if (++since_least >= JOINT_PATIENCE)
+            break;
+        mc_error aerr;
+        if (sparse_mix(c, &aerr) != MC_OK) {
+            mc_anderson_destroy(&c->aa); /* no memory to mix: the nested loop, unaccelerated */
+            break;
+        }
+    }
+    st->joint_fallback = 1;
+    return MC_OK;
+}
+
 static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double dload,
                      int warm, double *p, double *u, double *gap, mc_contact_summary *sum,
                      mc_plastic_result *res, mc_plastic_step *st, int *conv, int *diverged,
@@ -1191,28 +1423,32 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
     const long budget = (long)pb->max_outer * pb->max_plastic;
     int capped = 0, grew = 0; /* successive tight fixed points at their cap; growths of u_r's */
     double last_change = INFINITY, least_change = INFINITY; /* change at tight fixed points */
-    memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
     c->sig_r_fresh = 0;
-    memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
+    c->dense_now = !c->sparse;
+    c->inc.n = 0;
+    if (c->dense_now) {
+        memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
+        memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
+    }
     memcpy(c->u_r, res->u_r, c->ncell * sizeof *c->u_r);
     if (!pb->cold_start && c->w_have && c->w_load > 0) {
         /* the warm start (theory §9.6): the last converged increment, scaled to this one's load
          * (at most 1: a step after split increments starts from the smaller increment) */
         const double s = fmin(1.0, dload / c->w_load);
-        st->warm_cells = c->w_n;
-        for (long n = 0; n < c->w_n; n++) { /* the other cells stay 0 (memset above) */
-            const long v = c->w_cell[n];
-            for (int q = 0; q < 6; q++)
-                c->d_eps[(size_t)q * c->nvol + v] = s * c->w_val[7 * n + q];
-            c->dp[v] = s * c->w_val[7 * n + 6];
-        }
+        st->warm_cells = c->warm.n;
+        if (!mc_incr_scaled(&c->inc, &c->warm, s))
+            return mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the warm start");
+        if (c->dense_now) /* the other cells stay 0 (memset above) */
+            mc_incr_scatter(&c->inc, c->nvol, c->d_eps, c->dp);
         for (size_t i = 0; i < c->ncell; i++)
             c->u_r[i] += s * c->w_ur[i];
     }
     int joint_done = 0, joint_contact = 0, rc = MC_OK;
     if (pb->iteration == MC_PLASTIC_JOINT && c->aa && !c->near && !pb->tight_inner &&
-        (rc = joint_iteration(c, solver, load, warm, p, u, gap, sum, res, st, &joint_done,
-                              &joint_contact, err)) != MC_OK)
+        (rc = c->sparse ? joint_sparse(c, solver, load, warm, p, u, gap, sum, res, st,
+                                       &joint_done, &joint_contact, err)
+                        : joint_iteration(c, solver, load, warm, p, u, gap, sum, res, st,
+                                          &joint_done, &joint_contact, err)) != MC_OK)
         return rc;
     if (joint_contact)
         *why = MC_PLASTIC_STOP_CONTACT;
@@ -1223,6 +1459,14 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
     }
     if (joint_done || joint_contact)
         goto commit;
+    if (!c->dense_now) { /* the nested iteration on dense arrays, from the joint one's state */
+        if ((rc = dense_arrays(c, err)) != MC_OK)
+            return rc;
+        memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
+        memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
+        mc_incr_scatter(&c->inc, c->nvol, c->d_eps, c->dp);
+        c->dense_now = 1;
+    }
     double outer_rel = 1.0; /* relative change of u_r in the last outer iteration */
     double rel_hist[2] = {INFINITY, INFINITY}; /* in the two before it, older first */
     double forcing = pb->tight_inner ? 0.0 : INNER_FORCING;
@@ -1327,10 +1571,19 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
         *why = MC_PLASTIC_STOP_OUTER_CAP;
 commit:
     /* commit: the converged state, or the last iterate of a stop (the run ends with it) */
-    for (size_t i = 0; i < nv6; i++)
-        res->eps_p[i] += c->d_eps[i];
-    for (long v = 0; v < c->nvol; v++)
-        res->peq[v] += c->dp[v];
+    if (c->dense_now) {
+        for (size_t i = 0; i < nv6; i++)
+            res->eps_p[i] += c->d_eps[i];
+        for (long v = 0; v < c->nvol; v++)
+            res->peq[v] += c->dp[v];
+    } else { /* the other cells add zeros */
+        for (long k = 0; k < c->inc.n; k++) {
+            const size_t v = (size_t)c->inc.cell[k];
+            for (int q = 0; q < 6; q++)
+                res->eps_p[(size_t)q * (size_t)c->nvol + v] += c->inc.val[MC_INCR_WIDTH * k + q];
+            res->peq[v] += c->inc.val[MC_INCR_WIDTH * k + 6];
+        }
+    }
     memcpy(res->u_r, c->u_r, c->ncell * sizeof *c->u_r);
     return MC_OK;
 }
@@ -1447,8 +1700,14 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
         c.sig_r = NULL;
         if (c.lent_sig_r)
             res->lent |= 2;
-        res->residual_vm = c.dp_new; /* likewise: a volume array the loop no longer needs */
+        res->residual_vm = c.dp_new; /* likewise: a volume array the loop no longer needs (the
+                                        sparse increment's runs make it now) */
         c.dp_new = NULL;
+        if (!res->residual_vm &&
+            !(res->residual_vm = mc_malloc((size_t)c.nvol * sizeof *res->residual_vm)))
+            rc = mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the results");
+    }
+    if (rc == MC_OK) {
         for (long v = 0; v < c.nvol; v++) {
             double s3[6];
             for (int q = 0; q < 6; q++)
@@ -1464,6 +1723,7 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
     }
     res->p_lub = c.p_lub;
     res->contact_solves = c.solves;
+    res->sparse_increment = c.sparse;
     mc_free(save_eps);
     mc_free(save_peq);
     mc_free(save_ur);

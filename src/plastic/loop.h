@@ -143,6 +143,10 @@ typedef struct {
                                   operator's near field (local_op.h) within near_reach columns;
                                   the same fixed point and stopping test as 0, far fewer
                                   applications; 0: one application per sweep (the reference) */
+    int dense_increment;       /* 1: the joint iteration holds its increment in dense volume
+                                  arrays even where the sparse increment applies (spectral kernel,
+                                  one process; theory §9.9): the same bits, for the tests; 0
+                                  (default): sparse where it applies */
     int anderson;              /* > 0: Anderson acceleration with this history depth
                                   (plastic/anderson.h, <= MC_ANDERSON_MAX_DEPTH) of the plastic
                                   fixed point and of the outer iteration (on the relaxed map
@@ -240,6 +244,8 @@ typedef struct {
     int lent;                   /* bits: 1 eps_p and peq are the problem's state_eps_p and
                                    state_peq, 2 sig_r is its state_sig_r (not freed here) */
     long nvol;
+    int sparse_increment;       /* 1: the joint iteration held its increment sparse (theory
+                                   §9.9; mc_plastic_problem.dense_increment) */
     long yield_skips;           /* outer iterations where nothing yielded (shortcut taken) */
     double inner_change;        /* largest relative change of the plastic fixed point's last
                                    sweep at an accepted outer iteration (<= tol_plastic) */
