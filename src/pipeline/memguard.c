@@ -161,8 +161,9 @@ double mc_memory_estimate_plastic(const mc_scene *s, const mc_grid *g, const mc_
     else
         ops += stress_cache(s, g, v, 1);
     const double nvol = (double)v->nz * v->nx * v->ny;
+    /* with the arrays a fallback to the nested iteration makes: the guard holds for it too */
     const double loop = mc_plastic_loop_bytes(g, v, PLASTIC_ANDERSON, s->plasticity.near_field,
-                                              PLASTIC_YIELDING * nvol);
+                                              PLASTIC_YIELDING * nvol, 1);
     /* the peak is in the loop; the fields come after it has freed its operators */
     return fmax(ops + loop, fields + loop);
 }

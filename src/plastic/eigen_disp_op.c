@@ -553,6 +553,17 @@ void mc_eigen_disp_apply(mc_eigen_disp *op, const double *const eps[6], double *
 
 /* ---- u_z from the stress operator's layer spectra (theory.md §8.9) --------------------------- */
 
+int mc_eigen_disp_borrow(mc_eigen_disp *dop, mc_eigen_stress *sop)
+{
+    if (!dop->sp || !sop->spec || !mc_eigen_volume_equal(&dop->v, &sop->v) ||
+        dop->g.nx != sop->g.nx || dop->g.ny != sop->g.ny ||
+        dop->g.periodic_x != sop->g.periodic_x || dop->g.periodic_y != sop->g.periodic_y ||
+        !mc_eigen_spectral_borrow(dop->sp, sop->spec))
+        return 0;
+    dop->bytes = sizeof *dop + mc_eigen_spectral_bytes(dop->sp);
+    return 1;
+}
+
 int mc_eigen_disp_takes_sum(const mc_eigen_disp *op) { return op->sp != NULL; }
 
 int mc_eigen_disp_apply_sum(mc_eigen_disp *op, const double *const eps[6],

@@ -318,6 +318,13 @@ int mc_eigen_stress_keep_rows(mc_eigen_stress *op, int on, int *r0, int *nr);
 void mc_eigen_stress_apply_forwarded(mc_eigen_stress *op, double G, const double *p,
                                      const double *qx, double *const sig[6]);
 
+/* The spectral kernel's displacement object dop takes the workspaces of its stress object sop
+ * (eigen_spectral_op.h mc_eigen_spectral_borrow: 8 bytes per volume cell at 256^2 x 32 free):
+ * 1 when done (dop and sop are then applied one at a time, and sop destroyed after dop; the
+ * plastic operators do both), 0 for objects that do not fit (other kernels, the direct backend,
+ * another volume). */
+int mc_eigen_disp_borrow(mc_eigen_disp *dop, mc_eigen_stress *sop);
+
 /* 1 when dop can read the layer spectra of sop's forward (fft backends of one volume under the
  * whole grid, the same transform sizes and, distributed, the same columns). */
 int mc_eigen_disp_shares(const mc_eigen_disp *dop, const mc_eigen_stress *sop);

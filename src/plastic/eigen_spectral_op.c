@@ -41,6 +41,7 @@ struct mc_eigen_spectral {
                                 thickness: the mean over the directions the free axes allow */
     int nthr;
     int uz_only;             /* 1: made by mc_eigen_spectral_create_uz (no stresses) */
+    int borrowed;            /* 1: lay, lrows and U are another object's (mc_eigen_spectral_borrow) */
     /* fft, u_z only: one layer's six spectra at a time (py x hx each) and its padded rows */
     fftw_complex *lay;
     double *lrows;
@@ -203,6 +204,8 @@ void mc_eigen_spectral_destroy(mc_eigen_spectral **op)
         if (plans[p])
             fftw_destroy_plan(plans[p]);
     mc_free(o->b);
+    if (o->borrowed)
+        o->U = NULL, o->lay = NULL, o->lrows = NULL;
     mc_free(o->U);
     mc_free(o->p3);
     mc_free(o->tab);
@@ -772,6 +775,26 @@ void mc_eigen_spectral_apply_uz_sum(mc_eigen_spectral *op, const double *const e
 void mc_eigen_spectral_apply_uz(mc_eigen_spectral *op, const double *const eps[6], double *uz)
 {
     mc_eigen_spectral_apply_uz_sum(op, eps, NULL, uz);
+}
+
+int mc_eigen_spectral_borrow(mc_eigen_spectral *uz_op, mc_eigen_spectral *op)
+{
+    if (!uz_op->uz_only || op->uz_only || uz_op->borrowed || uz_op->backend != MC_BACKEND_FFT ||
+        op->backend != MC_BACKEND_FFT || uz_op->px != op->px || uz_op->py != op->py ||
+        uz_op->hx != op->hx)
+        return 0;
+    /* the same shapes: lay (6 spectra py x hx) as sp6, lrows (py x px) as prow, U as U; uz_apply
+     * zeroes lrows and U itself, and the stress passes write every value they read */
+    const size_t bins = (size_t)op->py * op->hx;
+    mc_free(uz_op->lay);
+    mc_free(uz_op->lrows);
+    mc_free(uz_op->U);
+    uz_op->lay = op->sp6;
+    uz_op->lrows = op->prow;
+    uz_op->U = op->U;
+    uz_op->borrowed = 1;
+    uz_op->bytes -= 7 * bins * sizeof(fftw_complex) + (size_t)op->py * op->px * sizeof(double);
+    return 1;
 }
 
 void mc_eigen_spectral_p3(const mc_eigen_spectral *op, double *p3)

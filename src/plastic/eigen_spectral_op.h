@@ -79,6 +79,13 @@ void mc_eigen_spectral_apply_uz_sum(mc_eigen_spectral *op, const double *const e
                                     const mc_eigen_sparse *inc, double *uz);
 size_t mc_eigen_spectral_estimate_uz(const mc_grid *g, const mc_eigen_volume *v, mc_backend b);
 
+/* The displacement object uz_op (create_uz, fft) takes the workspaces of the stress object op
+ * (fft, the same grid and volume) instead of its own: one layer's six spectra, the padded rows
+ * and the surface's spectrum (at 256^2 x 32 free: 17 MB, 8 bytes per volume cell). The two must
+ * then be applied one at a time, and op destroyed after uz_op. 1 when done; 0 (nothing changed)
+ * for objects that do not fit. */
+int mc_eigen_spectral_borrow(mc_eigen_spectral *uz_op, mc_eigen_spectral *op);
+
 /* p3 (Pa, grid ny * nx) of the last mc_eigen_spectral_apply of the fft backend: the surface normal
  * traction of S1 + S2 that S3 cancels (as eigen_op.h mc_eigen_stress_p3); zeros before the first
  * apply and for the direct backend and the displacement alone. */

@@ -132,8 +132,10 @@ static void ctx_free(loop_ctx *c)
         mc_free(arrays[k]);
 }
 
-int mc_plastic_ops_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
-                          int friction, mc_plastic_ops *ops, mc_error *err)
+/* mc_plastic_ops_create; elastic 0: without the elastic stress plan (a run that builds its own
+ * folded operators never uses it: theory §8.9) */
+static int ops_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                      int friction, int elastic, mc_plastic_ops *ops, mc_error *err)
 {
     memset(ops, 0, sizeof *ops);
     if (v->nz < 1 || !(v->dz > 0))
@@ -151,7 +153,7 @@ int mc_plastic_ops_create(const mc_grid *g, const mc_eigen_volume *v, double nu,
                             .loads = MC_TRACTION_P | (friction ? MC_TRACTION_QX : 0),
                             /* folded: the loop never uses this plan (theory §8.9) */
                             .repeated = !mc_plastic_ops_fold(g, v)};
-    int rc = mc_stress_create(g, &so, &ops->elastic, err);
+    int rc = elastic ? mc_stress_create(g, &so, &ops->elastic, err) : MC_OK;
     mc_free(depths);
     if (rc == MC_OK)
         rc = mc_eigen_disp_create(g, v, nu, b, &ops->disp, err);
@@ -166,6 +168,8 @@ int mc_plastic_ops_create(const mc_grid *g, const mc_eigen_volume *v, double nu,
         mc_plastic_ops_destroy(ops);
         return rc;
     }
+    /* the spectral kernel: one set of workspaces for both operators (destroyed disp first) */
+    (void)mc_eigen_disp_borrow(ops->disp, ops->resid);
     ops->g = *g;
     ops->volume = *v;
     if (v->group) {
@@ -180,6 +184,12 @@ int mc_plastic_ops_create(const mc_grid *g, const mc_eigen_volume *v, double nu,
     ops->backend = b;
     ops->friction = friction != 0;
     return MC_OK;
+}
+
+int mc_plastic_ops_create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_backend b,
+                          int friction, mc_plastic_ops *ops, mc_error *err)
+{
+    return ops_create(g, v, nu, b, friction, 1, ops, err);
 }
 
 void mc_plastic_ops_destroy(mc_plastic_ops *ops)
@@ -281,8 +291,8 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
             return mc_fail(err, MC_ERR_INPUT,
                            "plastic loop: the operators given were made for another problem");
     } else {
-        rc = mc_plastic_ops_create(g, &pb->volume, pb->nu, pb->backend, pb->friction != 0,
-                                   &c->own, err);
+        rc = ops_create(g, &pb->volume, pb->nu, pb->backend, pb->friction != 0,
+                        !mc_plastic_ops_fold(g, &pb->volume), &c->own, err);
         ops = &c->own;
     }
     c->elastic = ops->elastic;
@@ -1459,14 +1469,6 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
     }
     if (joint_done || joint_contact)
         goto commit;
-    if (!c->dense_now) { /* the nested iteration on dense arrays, from the joint one's state */
-        if ((rc = dense_arrays(c, err)) != MC_OK)
-            return rc;
-        memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
-        memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
-        mc_incr_scatter(&c->inc, c->nvol, c->d_eps, c->dp);
-        c->dense_now = 1;
-    }
     double outer_rel = 1.0; /* relative change of u_r in the last outer iteration */
     double rel_hist[2] = {INFINITY, INFINITY}; /* in the two before it, older first */
     double forcing = pb->tight_inner ? 0.0 : INNER_FORCING;
@@ -1476,6 +1478,15 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
         if (st->plastic_iterations > budget - pb->max_plastic) { /* (never in an unsplit step) */
             *why = MC_PLASTIC_STOP_STEP_BUDGET;
             break;
+        }
+        if (!c->dense_now) { /* the nested iteration runs on dense arrays, from the joint
+                                 iteration's state (made when first needed: theory §9.9) */
+            if ((rc = dense_arrays(c, err)) != MC_OK)
+                return rc;
+            memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
+            memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
+            mc_incr_scatter(&c->inc, c->nvol, c->d_eps, c->dp);
+            c->dense_now = 1;
         }
         st->outer_iterations++;
         int settled;
@@ -1746,16 +1757,25 @@ void mc_plastic_result_free(mc_plastic_result *res)
 }
 
 double mc_plastic_loop_bytes(const mc_grid *g, const mc_eigen_volume *v, int anderson,
-                             int near_reach, double yielding)
+                             int near_reach, double yielding, int fallback)
 {
     const double nvol = (double)v->nz * v->nx * v->ny, ncell = (double)g->nx * g->ny;
     const int whole = v->i0 == 0 && v->j0 == 0 && v->nx == g->nx && v->ny == g->ny;
-    /* ctx_init: sig_e, sig_r, d_eps, tot (6 each), dp, dp_new; the result's eps_p (6), peq */
-    double per_vol = (4 * 6 + 2 + 6 + 1) * 8.0;
+    const int sparse = v->kernel == MC_EIG_KERNEL_SPECTRAL && whole && anderson > 0 &&
+                       near_reach == 0;
+    /* the result's eps_p (6) and peq, sig_r (6); dense: sig_e (6, in the fallback when whole),
+     * d_eps, tot (6 each), dp, dp_new; sparse: those in the fallback, one layer of 7 */
+    double per_vol = (6 + 1 + 6) * 8.0, per_layer = 0;
     double per_yield = 7 * 8.0 + 8; /* warm start: 7 values and the index */
+    if (sparse) {
+        per_layer = 7 * 8.0;
+        per_yield += 3 * (7 * 8.0 + 8) + 16;
+        per_vol += fallback ? (6 + 6 + 6 + 1 + 1) * 8.0 : 0.0;
+    } else
+        per_vol += (6 + 6 + 1 + 1) * 8.0 + (!whole || fallback ? 6 * 8.0 : 0.0);
     if (anderson > 0) {
-        per_vol += 16;                            /* map and list of the active cells */
-        per_yield += 2.0 * (anderson + 1) * 6 * 8; /* the f and g histories */
+        per_vol += 4;                                      /* the map of the active cells */
+        per_yield += 2.0 * (anderson + 1) * 6 * 8 + 6 * 8 + 8; /* histories, iterate, list */
     }
     if (near_reach > 0) {
         per_vol += 4;                  /* the active index */
@@ -1765,5 +1785,5 @@ double mc_plastic_loop_bytes(const mc_grid *g, const mc_eigen_volume *v, int and
      * layer of elastic stresses; Anderson on u_r */
     double per_cell = 7 * 8.0 + (whole ? 0 : 6 * 8.0) + (anderson > 0 ? 16 + 16.0 * (anderson + 1)
                                                                         : 0);
-    return per_vol * nvol + per_yield * yielding + per_cell * ncell;
+    return per_vol * nvol + per_layer * v->nx * v->ny + per_yield * yielding + per_cell * ncell;
 }

@@ -273,18 +273,24 @@ int mc_plastic_run(const mc_grid *g, mc_operator *K, mc_contact_solver *solver,
 void mc_plastic_result_free(mc_plastic_result *res);
 
 /* The bytes mc_plastic_run holds besides its operators (mc_plastic_ops), for volume v on grid g
- * with Anderson depth `anderson` (0: none) and near_reach (0: none), at its peak (the sweeps):
- * the dense volume arrays of the loop and the result (264 bytes per volume cell, + 16 with
- * Anderson, + 4 with the near field), the surface arrays, and the arrays that grow with the
- * yielding cells (warm start, Anderson history, near-field lists: 64 + 96 (anderson + 1) + 160
- * bytes per yielding cell) counted for `yielding` cells. The arrays a problem lends
- * (state_eps_p, state_peq, state_sig_r, work_sig_e: 152 bytes per volume cell) are counted too:
- * the caller holds them instead of the loop. A split load step's copy of the state
- * (56 bytes per volume cell, taken only when a step diverges) is not counted. The elastic
- * stresses of a volume under the whole grid (48 bytes per volume cell) are made on first need,
- * which the joint iteration with folded operators (mc_plastic_ops_fold) never has unless it
- * falls back to the nested loop: counted, so that the guard holds for the fallback too. */
+ * with Anderson depth `anderson` (0: none) and near_reach (0: none), at its peak (the sweeps),
+ * with `yielding` cells in the plastic zone; fallback 1 adds what a nested iteration makes on
+ * first need (the memory guard counts it; a run that never leaves the joint iteration never
+ * makes it).
+ *   Dense increment (the cuboid kernel; any kernel with near_reach or anderson 0): the dense
+ *     volume arrays of the loop and the result (264 bytes per volume cell: sig_e, sig_r, d_eps,
+ *     tot, eps_p 48 each, dp, dp_new, peq 8 each; a volume under the whole grid makes sig_e on
+ *     first need, i.e. in the fallback), Anderson's map (4), the near field's index (4).
+ *   Sparse increment (theory §9.9: the spectral kernel, a volume under the whole grid, Anderson,
+ *     no near field; the default joint iteration on one process): sig_r, eps_p, peq (104 bytes
+ *     per volume cell), Anderson's map (4), one layer of 7 values; the fallback makes d_eps,
+ *     tot, dp, dp_new and sig_e (160 bytes per volume cell).
+ * Per yielding cell: the warm start (64 bytes), Anderson's history (96 (anderson + 1) + 56), the
+ * near-field lists (160), the sparse increment's three lists (192) and its sort (16); and the
+ * surface arrays. The arrays a problem lends (state_eps_p, state_peq, state_sig_r, work_sig_e)
+ * are counted too: the caller holds them instead of the loop. A split load step's copy of the
+ * state (56 bytes per volume cell, taken only when a step diverges) is not counted. */
 double mc_plastic_loop_bytes(const mc_grid *g, const mc_eigen_volume *v, int anderson,
-                             int near_reach, double yielding);
+                             int near_reach, double yielding, int fallback);
 
 #endif
