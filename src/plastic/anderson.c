@@ -13,8 +13,10 @@ struct mc_anderson {
     long ncells;
     int width, depth;
     int *map;     /* ncells: slot of a cell in the compact vectors, -1 when not active (4 bytes
-                     per cell: the field's cells fit an int, create checks) */
+                     per cell: the field's cells fit an int, create checks); made by the first
+                     dense step (the sparse steps find slots through order) */
     long *cells;  /* nact active cells, in the order they joined (ccap of room) */
+    long *order;  /* nact slots, their cells ascending (ccap of room) */
     long nact, cap, ccap;
     double *f[MC_ANDERSON_MAX_DEPTH + 1], *g[MC_ANDERSON_MAX_DEPTH + 1]; /* width * cap each */
     double *xo;   /* width * cap: the new iterate of a sparse step */
@@ -39,23 +41,19 @@ int mc_anderson_create(long ncells, int width, int depth, mc_anderson **out, mc_
     if (ncells > INT_MAX)
         return mc_fail(err, MC_ERR_LIMIT, "anderson: %ld cells (at most %d)", ncells, INT_MAX);
     mc_anderson *a = mc_calloc(1, sizeof *a);
-    if (!a || !(a->map = mc_malloc((size_t)ncells * sizeof *a->map))) {
-        mc_anderson_destroy(&a);
-        return mc_fail(err, MC_ERR_NOMEM, "anderson: out of memory for %ld cells", ncells);
-    }
+    if (!a)
+        return mc_fail(err, MC_ERR_NOMEM, "anderson: out of memory");
     a->ncells = ncells;
     a->width = width;
     a->depth = depth;
     a->nr = -1;
-    for (long v = 0; v < ncells; v++)
-        a->map[v] = -1;
     *out = a;
     return MC_OK;
 }
 
 void mc_anderson_restart(mc_anderson *a)
 {
-    for (long k = 0; k < a->nact; k++)
+    for (long k = 0; k < a->nact && a->map; k++)
         a->map[a->cells[k]] = -1;
     a->nact = 0;
     a->count = 0;
@@ -141,6 +139,7 @@ void mc_anderson_destroy(mc_anderson **pa)
     }
     mc_free(a->map);
     mc_free(a->cells);
+    mc_free(a->order);
     mc_free(a->xo);
     mc_free(a->part);
     mc_free(a->all);
@@ -233,16 +232,24 @@ static int join(mc_anderson *a, long v, long *need)
     if (*need == a->ccap) {
         long cap = a->ccap ? 2 * a->ccap : 1024;
         cap = cap > a->ncells ? a->ncells : cap;
-        long *nc = mc_malloc((size_t)cap * sizeof *nc);
-        if (!nc)
+        long *nc = mc_malloc((size_t)cap * sizeof *nc), *no = mc_malloc((size_t)cap * sizeof *no);
+        if (!nc || !no) {
+            mc_free(nc);
+            mc_free(no);
             return 0;
-        if (a->cells)
+        }
+        if (a->cells) {
             memcpy(nc, a->cells, (size_t)*need * sizeof *nc);
+            memcpy(no, a->order, (size_t)a->nact * sizeof *no);
+        }
         mc_free(a->cells);
+        mc_free(a->order);
         a->cells = nc;
+        a->order = no;
         a->ccap = cap;
     }
-    a->map[v] = (int)*need;
+    if (a->map)
+        a->map[v] = (int)*need;
     a->cells[(*need)++] = v;
     return 1;
 }
@@ -251,7 +258,7 @@ static int join(mc_anderson *a, long v, long *need)
  * undone and the history dropped (0). */
 static void undo(mc_anderson *a, long need)
 {
-    for (long k = a->nact; k < need; k++)
+    for (long k = a->nact; k < need && a->map; k++)
         a->map[a->cells[k]] = -1;
     mc_anderson_restart(a);
 }
@@ -259,6 +266,11 @@ static void undo(mc_anderson *a, long need)
 static int admit(mc_anderson *a, long need)
 {
     if (grow(a, need)) {
+        /* order: the slots that joined (their cells ascend: both steps join in cell order)
+         * merged into it from the back */
+        long i = a->nact - 1, j = need - 1;
+        for (long k = need - 1; k >= 0 && j >= a->nact; k--)
+            a->order[k] = i >= 0 && a->cells[a->order[i]] > a->cells[j] ? a->order[i--] : j--;
         a->nact = need;
         return 1;
     }
@@ -326,6 +338,17 @@ int mc_anderson_step(mc_anderson *a, double *x, const double *gx, mc_error *err)
 {
     const long N = a->ncells;
     const int w = a->width;
+    if (!a->map) { /* the first dense step (the map of the cells joined so far) */
+        if (!(a->map = mc_malloc((size_t)N * sizeof *a->map))) {
+            mc_anderson_restart(a);
+            memcpy(x, gx, (size_t)w * (size_t)N * sizeof *x);
+            return mc_fail(err, MC_ERR_NOMEM, "anderson: out of memory for %ld cells", N);
+        }
+        for (long v = 0; v < N; v++)
+            a->map[v] = -1;
+        for (long k = 0; k < a->nact; k++)
+            a->map[a->cells[k]] = (int)k;
+    }
     /* cells that turned non-zero join the active set (rows mode: of this rank's rows) */
     long need = a->nact;
     int room = 1;
@@ -375,8 +398,9 @@ int mc_anderson_step_sparse(mc_anderson *a, long nx, const long *xcell, const do
                        stride);
     long need = a->nact;
     int room = 1;
-    /* new cells join in ascending order, as the dense step's scan: the lists merged */
-    for (long ex = 0, eg = 0; (ex < nx || eg < ng) && room;) {
+    /* new cells join in ascending order, as the dense step's scan: the lists merged, and
+     * walked along the active cells in cell order (order) */
+    for (long ex = 0, eg = 0, o = 0; (ex < nx || eg < ng) && room;) {
         const long cx = ex < nx ? xcell[ex] : LONG_MAX, cg = eg < ng ? gcell[eg] : LONG_MAX;
         const long v = cx < cg ? cx : cg;
         int nz = 0;
@@ -385,7 +409,9 @@ int mc_anderson_step_sparse(mc_anderson *a, long nx, const long *xcell, const do
                  (cg == v && gval[(size_t)stride * (size_t)eg + (size_t)q] != 0.0);
         ex += cx == v;
         eg += cg == v;
-        if (nz && a->map[v] < 0)
+        while (o < a->nact && a->cells[a->order[o]] < v)
+            o++;
+        if (nz && !(o < a->nact && a->cells[a->order[o]] == v))
             room = join(a, v, &need);
     }
     if (!room)
@@ -398,19 +424,23 @@ int mc_anderson_step_sparse(mc_anderson *a, long nx, const long *xcell, const do
     const size_t len = (size_t)a->nact * (size_t)w;
     memset(fc, 0, len * sizeof *fc);
     memset(gc, 0, len * sizeof *gc);
-    for (long e = 0; e < ng; e++) {
-        const int s = a->map[gcell[e]];
-        if (s < 0)
-            continue; /* (a zero entry of a cell that never joined) */
-        for (int q = 0; q < w; q++)
-            fc[(size_t)s * w + q] = gc[(size_t)s * w + q] = gval[(size_t)stride * e + q];
-    }
-    for (long e = 0; e < nx; e++) {
-        const int s = a->map[xcell[e]];
-        if (s < 0)
-            continue;
-        for (int q = 0; q < w; q++)
-            fc[(size_t)s * w + q] = gc[(size_t)s * w + q] - xval[(size_t)stride * e + q];
+    for (int l = 0; l < 2; l++) { /* g's entries, then x's (each list and order ascend) */
+        const long cnt = l ? nx : ng, *cl = l ? xcell : gcell;
+        const double *vl = l ? xval : gval;
+        for (long e = 0, o = 0; e < cnt; e++) {
+            while (o < a->nact && a->cells[a->order[o]] < cl[e])
+                o++;
+            if (!(o < a->nact && a->cells[a->order[o]] == cl[e]))
+                continue; /* (a zero entry of a cell that never joined) */
+            const size_t sw = (size_t)a->order[o] * (size_t)w;
+            for (int q = 0; q < w; q++) {
+                const double v = vl[(size_t)stride * (size_t)e + (size_t)q];
+                if (l)
+                    fc[sw + q] = gc[sw + q] - v;
+                else
+                    fc[sw + q] = gc[sw + q] = v;
+            }
+        }
     }
     mix_into(a, a->xo, 0);
     *n = a->nact;

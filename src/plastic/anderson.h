@@ -13,8 +13,9 @@
  *
  * Storage is restricted to the active cells: a cell joins when x or g(x) is non-zero on it and
  * stays until the next restart; its earlier history entries are zero, which is exact (x and g(x)
- * were zero there). Memory: (2 (m + 1) + 1) width doubles and an index per active cell, plus a
- * map of ncells ints (4 bytes per cell; at most INT_MAX cells).
+ * were zero there). Memory: (2 (m + 1) + 1) width doubles and two indices per active cell, plus,
+ * once a dense step is taken, a map of ncells ints (4 bytes per cell; at most INT_MAX cells; the
+ * sparse steps find their cells through the active cells sorted by cell instead).
  * Fields are component-major: value q of cell v at [q * ncells + v], q < width.
  */
 #ifndef MC_ANDERSON_H

@@ -1773,9 +1773,9 @@ double mc_plastic_loop_bytes(const mc_grid *g, const mc_eigen_volume *v, int and
         per_vol += fallback ? (6 + 6 + 6 + 1 + 1) * 8.0 : 0.0;
     } else
         per_vol += (6 + 6 + 1 + 1) * 8.0 + (!whole || fallback ? 6 * 8.0 : 0.0);
-    if (anderson > 0) {
-        per_vol += 4;                                      /* the map of the active cells */
-        per_yield += 2.0 * (anderson + 1) * 6 * 8 + 6 * 8 + 8; /* histories, iterate, list */
+    if (anderson > 0) { /* the map of the active cells (dense steps); histories, iterate, lists */
+        per_vol += sparse && !fallback ? 0.0 : 4.0;
+        per_yield += 2.0 * (anderson + 1) * 6 * 8 + 6 * 8 + 16;
     }
     if (near_reach > 0) {
         per_vol += 4;                  /* the active index */

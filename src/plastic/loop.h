@@ -283,9 +283,9 @@ void mc_plastic_result_free(mc_plastic_result *res);
  *     first need, i.e. in the fallback), Anderson's map (4), the near field's index (4).
  *   Sparse increment (theory §9.9: the spectral kernel, a volume under the whole grid, Anderson,
  *     no near field; the default joint iteration on one process): sig_r, eps_p, peq (104 bytes
- *     per volume cell), Anderson's map (4), one layer of 7 values; the fallback makes d_eps,
- *     tot, dp, dp_new and sig_e (160 bytes per volume cell).
- * Per yielding cell: the warm start (64 bytes), Anderson's history (96 (anderson + 1) + 56), the
+ *     per volume cell), one layer of 7 values; the fallback makes d_eps, tot, dp, dp_new and
+ *     sig_e and Anderson's map (164 bytes per volume cell).
+ * Per yielding cell: the warm start (64 bytes), Anderson's history (96 (anderson + 1) + 64), the
  * near-field lists (160), the sparse increment's three lists (192) and its sort (16); and the
  * surface arrays. The arrays a problem lends (state_eps_p, state_peq, state_sig_r, work_sig_e)
  * are counted too: the caller holds them instead of the loop. A split load step's copy of the
