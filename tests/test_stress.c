@@ -183,6 +183,25 @@ static void ref_tables(const mc_grid *g, int tx, int ty, mc_stress_kernel kernel
                 k[c][(size_t)jt * tx + it] = acc[c];
         }
     }
+    /* with a periodic axis the tables are made exactly even or odd (stress_table.c: the image
+     * sum's truncation is not symmetric at the offset n/2): the mirror entries averaged, with the
+     * kernel's parities (kernel.h; bit 0 odd in x, bit 1 odd in y; p, q_x, q_y by rows), written
+     * here apart from the module's table */
+    static const int odd[3][MC_NSTRESS] = {{0, 0, 0, 3, 2, 1}, {1, 1, 1, 2, 3, 0}, {2, 2, 2, 1, 0, 3}};
+    for (int c = 0; c < MC_NSTRESS && (g->periodic_x || g->periodic_y); c++) {
+        const double sx = (odd[li][c] & 1) ? -1.0 : 1.0, sy = (odd[li][c] & 2) ? -1.0 : 1.0;
+        double *m = mc_zeros((size_t)tx * ty);
+        ck_assert(m);
+        for (int jt = 0; jt < ty; jt++)
+            for (int it = 0; it < tx; it++) {
+                const int jm = (ty - jt) % ty, im = (tx - it) % tx;
+                m[(size_t)jt * tx + it] =
+                    0.25 * (k[c][(size_t)jt * tx + it] + sx * k[c][(size_t)jt * tx + im] +
+                            sy * k[c][(size_t)jm * tx + it] + sx * sy * k[c][(size_t)jm * tx + im]);
+            }
+        memcpy(k[c], m, (size_t)tx * ty * sizeof *m);
+        mc_free(m);
+    }
     if (g->periodic_x && g->periodic_y) {
         const size_t n = (size_t)tx * ty;
         for (int c = 0; c < MC_NSTRESS; c++) {

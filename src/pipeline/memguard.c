@@ -107,7 +107,8 @@ double mc_memory_estimate_ranks(const mc_scene *s, int ranks)
 
 /* The kernel spectra that a stress plan of the volume's layers keeps (stress.h: every layer when
  * they fit MC_STRESS_CACHE_BYTES, for a plan made `repeated` or on a periodic grid): 6 per layer
- * and load, complex on a periodic grid, real quadrants of (m_x + 1)(m_y + 1) on free axes; under
+ * and load (mc_stress_cache_layer_bytes: compact spectra on a periodic grid, real quadrants of
+ * (m_x + 1)(m_y + 1) on free axes); under
  * mpirun a repeated plan keeps its rank's layers (mc_dist_share: at most ceil(nz / P)). */
 static double stress_cache(const mc_scene *s, const mc_grid *g, const mc_eigen_volume *v,
                            int repeated)
@@ -115,13 +116,9 @@ static double stress_cache(const mc_scene *s, const mc_grid *g, const mc_eigen_v
     const int periodic = g->periodic_x || g->periodic_y;
     if (!repeated && !periodic)
         return 0.0;
-    const double tx = axis_len(g->nx, g->periodic_x), ty = axis_len(g->ny, g->periodic_y);
-    const double spec = 16 * ty * (tx / 2 + 1);
-    const double quad = (mc_fftsize_good(g->nx < 2 ? 2 : g->nx) + 1.0) *
-                        (mc_fftsize_good(g->ny < 2 ? 2 : g->ny) + 1.0) * 8;
     const int ranks = repeated && mc_dist_active() ? mc_dist_size() : 1;
     const int loads = s->plasticity.friction > 0 ? 2 : 1;
-    const double cache = ceil((double)v->nz / ranks) * loads * 6 * (periodic ? spec : quad);
+    const double cache = ceil((double)v->nz / ranks) * loads * mc_stress_cache_layer_bytes(g);
     return cache <= (double)MC_STRESS_CACHE_BYTES ? cache : 0.0;
 }
 

@@ -881,12 +881,7 @@ static int whole_window(const mc_eigen_stress *op)
 
 static double spectral_loads_cache(const mc_grid *g, int nz, int nloads)
 {
-    const int px = g->periodic_x, py = g->periodic_y;
-    const double tx = px ? g->nx : mc_fftsize_good(2 * g->nx - 1);
-    const double ty = py ? g->ny : mc_fftsize_good(2 * g->ny - 1);
-    const double quad = (mc_fftsize_good(g->nx < 2 ? 2 : g->nx) + 1.0) *
-                        (mc_fftsize_good(g->ny < 2 ? 2 : g->ny) + 1.0) * 8;
-    return (double)nz * nloads * 6 * (px || py ? 16 * ty * (tx / 2 + 1) : quad);
+    return (double)nz * nloads * mc_stress_cache_layer_bytes(g);
 }
 
 static int spectral_loads_repeated(const mc_grid *g, int nz, int nloads)

@@ -13,6 +13,7 @@
 
 #include "core/alloc.h"
 #include "core/dist.h"
+#include "core/fftsize.h"
 #include "kernels/kernel.h"
 #include "stress/stress_internal.h"
 
@@ -80,7 +81,9 @@ struct mc_stress_plan {
     int nslots;
     int ck0, cnk;           /* the layers kept: all, or under MPI a repeated plan's own block
                              * (mc_dist_share, the layers mc_stress_field_split computes here) */
-    size_t klen;
+    size_t klen;            /* doubles per cached kernel array */
+    int compact;            /* 1: the cache holds the general engine's spectra in their compact
+                             * form (compact_spectrum: a quarter of the doubles) */
     mc_stress_timing timing;
 };
 
@@ -168,6 +171,60 @@ static int create_engine(mc_stress_plan *plan, mc_backend backend, const mc_stre
     return mc_stress_tables_create(g, tx, ty, opt->kernel, opt->nu, 0, &plan->tb, err);
 }
 
+/* The compact form of a kernel spectrum of the general engine (ty rows of hx = tx/2 + 1 complex
+ * values, operator/padfft.h): a real table of parity par (mc_stress_parity: bit 0 odd in x,
+ * bit 1 odd in y) has a spectrum F that is real when both parities agree and imaginary when
+ * they differ (F(-kx, -ky) = conj F and F(-kx, ky) = sx F), with F(kx, -ky) = sy F(kx, ky);
+ * so rows 0 .. ty/2 of its real or imaginary part hold it: (ty/2 + 1) hx doubles against
+ * 2 ty hx. The periodic axes' image sums make these spectra cost ~100x a free table's to build,
+ * so a plan on such a grid keeps every layer's (theory.md §9.9: at 256^2 x 32 on a strip, 96 ->
+ * 24 bytes per volume cell). Compressing averages F(kx, ky) and sy F(kx, -ky) and drops the other
+ * part: it projects the spectrum on its exact symmetry, removing only round-off. */
+static size_t compact_len(const mc_stress_plan *plan)
+{
+    return (size_t)(plan->ty / 2 + 1) * (size_t)(plan->tx / 2 + 1);
+}
+
+static void compact_spectrum(const mc_stress_plan *plan, int par, const double *spec,
+                             double *cmp)
+{
+    const int hx = plan->tx / 2 + 1, ty = plan->ty, part = (par & 1) != ((par >> 1) & 1);
+    const double sy = (par & 2) ? -1.0 : 1.0;
+    for (int r = 0; r <= ty / 2; r++) {
+        const int m = (ty - r) % ty; /* the row of -ky */
+        for (int kx = 0; kx < hx; kx++)
+            cmp[(size_t)r * hx + kx] = 0.5 * (spec[2 * ((size_t)r * hx + kx) + part] +
+                                              sy * spec[2 * ((size_t)m * hx + kx) + part]);
+    }
+}
+
+static void expand_spectrum(const mc_stress_plan *plan, int par, const double *cmp,
+                            double *spec)
+{
+    const int hx = plan->tx / 2 + 1, ty = plan->ty, part = (par & 1) != ((par >> 1) & 1);
+    const double sy = (par & 2) ? -1.0 : 1.0;
+    for (int ky = 0; ky < ty; ky++) {
+        const int r = ky <= ty / 2 ? ky : ty - ky;
+        const double s = ky <= ty / 2 ? 1.0 : sy;
+        for (int kx = 0; kx < hx; kx++) {
+            const size_t q = (size_t)ky * hx + kx;
+            spec[2 * q + part] = s * cmp[(size_t)r * hx + kx];
+            spec[2 * q + 1 - part] = 0.0;
+        }
+    }
+}
+
+double mc_stress_cache_layer_bytes(const mc_grid *g)
+{
+    const int px = g->periodic_x, py = g->periodic_y;
+    const double tx = px ? g->nx : mc_fftsize_good(2 * g->nx - 1);
+    const double ty = py ? g->ny : mc_fftsize_good(2 * g->ny - 1);
+    const double quad = (mc_fftsize_good(g->nx < 2 ? 2 : g->nx) + 1.0) *
+                        (mc_fftsize_good(g->ny < 2 ? 2 : g->ny) + 1.0) * 8;
+    const double half = (tx / 2 + 1) * ty * 16, compact = (tx / 2 + 1) * (ty / 2 + 1) * 8;
+    return MC_NSTRESS * (!px && !py ? quad : mc_dist_active() ? half : compact);
+}
+
 int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
                            const mc_stress_tuning *tune, mc_stress_plan **out, mc_error *err)
 {
@@ -228,12 +285,17 @@ int mc_stress_create_tuned(const mc_grid *g, const mc_stress_options *opt,
     plan->cnk = opt->nlayers;
     if (opt->repeated && mc_dist_active())
         mc_dist_share(opt->nlayers, &plan->ck0, &plan->cnk);
-    const size_t ncache = (size_t)plan->cnk * plan->nslots * MC_NSTRESS * klen;
+    /* the general engine's spectra by their parity (one process, fft backend): a quarter */
+    int r0, nr;
+    plan->compact = !plan->sym && mc_conv_backend(plan->conv) == MC_BACKEND_FFT &&
+                    !mc_conv_rows(plan->conv, &r0, &nr);
+    const size_t kcache_len = plan->compact ? compact_len(plan) : klen;
+    const size_t ncache = (size_t)plan->cnk * plan->nslots * MC_NSTRESS * kcache_len;
     if ((opt->repeated || g->periodic_x || g->periodic_y) &&
         ncache <= MC_STRESS_CACHE_BYTES / sizeof(double)) {
         plan->kcache = mc_malloc(ncache * sizeof *plan->kcache);
         plan->kcached = mc_calloc((size_t)plan->cnk * plan->nslots + 1, 1);
-        plan->klen = klen;
+        plan->klen = kcache_len;
         if (!plan->kcache || !plan->kcached) {
             mc_stress_destroy(&plan);
             return mc_fail(err, MC_ERR_NOMEM, "stress: out of memory for the kernel spectra of "
@@ -347,12 +409,18 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
     for (int i = 0; i < ng; i++) {
         const int ck = k - plan->ck0; /* the layer's place in the cache */
         const int cache = plan->kcache && !plan->sparse && ck >= 0 && ck < plan->cnk;
-        for (int c = 0; c < MC_NSTRESS; c++)
-            kuse[i][c] = cache ? plan->kcache + (((size_t)ck * plan->nslots + plan->slot[li[i]]) *
-                                                         MC_NSTRESS + c) * plan->klen
-                               : plan->kspec[li[i]][c];
-        if (cache && plan->kcached[(size_t)ck * plan->nslots + plan->slot[li[i]]])
+        double *kept[MC_NSTRESS]; /* the cached arrays (compact: not the ones used) */
+        for (int c = 0; c < MC_NSTRESS; c++) {
+            kept[c] = cache ? plan->kcache + (((size_t)ck * plan->nslots + plan->slot[li[i]]) *
+                                                  MC_NSTRESS + c) * plan->klen
+                            : NULL;
+            kuse[i][c] = cache && !plan->compact ? kept[c] : plan->kspec[li[i]][c];
+        }
+        if (cache && plan->kcached[(size_t)ck * plan->nslots + plan->slot[li[i]]]) {
+            for (int c = 0; c < MC_NSTRESS && plan->compact; c++)
+                expand_spectrum(plan, mc_stress_parity(load_bit[li[i]], c), kept[c], kuse[i][c]);
             continue;
+        }
         const double t0 = omp_get_wtime();
         /* the symmetric engine transforms its quadrants in place: straight into the cache */
         int rc = build_tables(plan, li[i], plan->depths[k], cache && plan->sym ? kuse[i] : NULL,
@@ -373,6 +441,12 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
         plan->timing.kernels += omp_get_wtime() - t1;
         if (rc)
             return rc;
+        for (int c = 0; c < MC_NSTRESS && cache && plan->compact; c++) {
+            /* kept compact, and used as kept: the first use gives the later ones' bits */
+            const int par = mc_stress_parity(load_bit[li[i]], c);
+            compact_spectrum(plan, par, kuse[i][c], kept[c]);
+            expand_spectrum(plan, par, kept[c], kuse[i][c]);
+        }
         if (cache)
             plan->kcached[(size_t)ck * plan->nslots + plan->slot[li[i]]] = 1;
     }

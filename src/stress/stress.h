@@ -57,6 +57,12 @@ enum { MC_TRACTION_P = 1, MC_TRACTION_QX = 2, MC_TRACTION_QY = 4 };
  * this many bytes (stress.c). */
 #define MC_STRESS_CACHE_BYTES ((size_t)256 << 20)
 
+/* Bytes of the kernel spectra a plan on grid g keeps per layer and load (its cache, stress.c): six
+ * arrays, real quadrants of the symmetric engine on free axes (fft), the compact parity form of
+ * the general engine's spectra with a periodic axis on one process (a quarter of the half
+ * spectrum), the half spectrum itself under mpirun. */
+double mc_stress_cache_layer_bytes(const mc_grid *g);
+
 /* Depth (in periods of an axis) from which the image sum along that axis is the smeared load. */
 #define MC_STRESS_SMEAR_DEPTH 4.5
 

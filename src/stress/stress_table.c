@@ -329,6 +329,40 @@ static void add_point_images(const mc_stress_tables *tb, int li, double z, const
     }
 }
 
+/* Tables with a periodic axis made exactly even or odd in each offset (their parity,
+ * mc_stress_parity): the entry at o and the one at -o (index t and (len - t) mod len, on both
+ * kinds of axis) averaged with the parity's sign. The kernel has that symmetry, but an image sum
+ * truncated at M images per side is not symmetric at the offset n/2 of an even period (its images
+ * run from -M to M on one side, -M - 1 to M - 1 on the other): the average halves that tail's
+ * asymmetry, and the tables' spectra become exactly real or imaginary and even or odd in ky, so
+ * that the plan keeps a quarter of them (stress.c compact_spectrum; theory.md §9.9). */
+static void make_symmetric(const mc_stress_tables *tb, int load, double *const k[6])
+{
+    const int tx = tb->tx, ty = tb->ty;
+    for (int c = 0; c < MC_NSTRESS; c++) {
+        const int par = mc_stress_parity(load, c);
+        const double sx = (par & 1) ? -1.0 : 1.0, sy = (par & 2) ? -1.0 : 1.0;
+        double *a = k[c];
+        for (int u = 0; u < ty; u++) {
+            const int um = (ty - u) % ty;
+            if (um < u)
+                continue; /* (done with its mirror) */
+            for (int t = 0; t < tx; t++) {
+                const int tm = (tx - t) % tx;
+                if (um == u && tm < t)
+                    continue;
+                const size_t i00 = (size_t)u * tx + t, i10 = (size_t)u * tx + tm,
+                             i01 = (size_t)um * tx + t, i11 = (size_t)um * tx + tm;
+                const double v = 0.25 * (a[i00] + sx * a[i10] + sy * a[i01] + sx * sy * a[i11]);
+                a[i00] = v;
+                a[i10] = sx * v;
+                a[i01] = sy * v;
+                a[i11] = sx * sy * v;
+            }
+        }
+    }
+}
+
 /* Fully periodic: the mean (Fourier mode 0) of each table, set exactly (stress.h). */
 static void set_means(const mc_stress_tables *tb, int li, double *const k[6])
 {
@@ -416,6 +450,8 @@ int mc_stress_tables_build(mc_stress_tables *tb, int load, double z, double *con
     }
     if (point && rx.M >= 0 && ry.M >= 0)
         add_point_images(tb, li, z, &rx, &ry, k);
+    if (ax->periodic || ay->periodic)
+        make_symmetric(tb, load, k);
     if (ax->periodic && ay->periodic)
         set_means(tb, li, k);
     return MC_OK;
