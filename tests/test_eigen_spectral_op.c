@@ -119,6 +119,91 @@ START_TEST(test_backends)
 }
 END_TEST
 
+/* ---- a dense field plus a sparse addend (theory.md §9.9) ------------------------------------- */
+
+/* eps + inc read value by value (mc_eigen_spectral_apply_sum, _apply_uz_sum) gives the bits of
+ * applying the summed field, on every case and both backends; through the eigen_op interface
+ * too, and with the displacement object borrowing the stress object's workspaces (the same bits
+ * as its own, both objects applied in turn); objects of the cuboid kernel refuse. */
+START_TEST(test_sum_input)
+{
+    const scase *sc = &cases[_i / 2];
+    const mc_backend be = (_i & 1) ? MC_BACKEND_DIRECT : MC_BACKEND_FFT;
+    const mc_grid g = grid_of(sc);
+    mc_eigen_volume v = vol_of(sc, MC_EIG_CELL_AVERAGE);
+    const size_t ns = (size_t)g.nx * g.ny, n = ns * v.nz;
+    double *eps[6], *tot[6], *s1[6], *s2[6];
+    double *b1 = eig_fields(n, eps), *b2 = eig_fields(n, tot), *b3 = eig_fields(n, s1),
+           *b4 = eig_fields(n, s2);
+    test_random_field(b1, 6 * n, 31 + (unsigned)_i);
+    /* every third cell, and the last one, carry an addend of 7 values (the loop's stride) */
+    long cell[64];
+    double val[7 * 64];
+    long m = 0;
+    for (long k = 0; k < (long)n && m < 64; k += 3)
+        cell[m++] = k;
+    if (cell[m - 1] != (long)n - 1 && m < 64)
+        cell[m++] = (long)n - 1;
+    test_random_field(val, (size_t)(7 * m), 41 + (unsigned)_i);
+    memcpy(b2, b1, 6 * n * sizeof *b2);
+    for (long k = 0; k < m; k++)
+        for (int c = 0; c < 6; c++)
+            tot[c][cell[k]] = eps[c][cell[k]] + val[7 * k + c];
+    const mc_eigen_sparse inc = {m, cell, val, 7};
+    double *u1 = malloc(ns * sizeof *u1), *u2 = malloc(ns * sizeof *u2);
+    mc_eigen_spectral *op = spec_op(&g, &v, be), *ou = NULL;
+    mc_eigen_spectral_apply(op, (const double *const *)tot, G_MOD, s1, u1);
+    mc_eigen_spectral_apply_sum(op, (const double *const *)eps, &inc, G_MOD, s2, u2);
+    ck_assert_msg(memcmp(b3, b4, 6 * n * sizeof *b3) == 0, "case %d: stresses differ", _i);
+    ck_assert_msg(memcmp(u1, u2, ns * sizeof *u1) == 0, "case %d: u_z differs", _i);
+    mc_error err = {0};
+    ck_assert_int_eq(mc_eigen_spectral_create_uz(&g, &v, NU, be, &ou, &err), MC_OK);
+    mc_eigen_spectral_apply_uz(ou, (const double *const *)tot, u1);
+    mc_eigen_spectral_apply_uz_sum(ou, (const double *const *)eps, &inc, u2);
+    ck_assert_msg(memcmp(u1, u2, ns * sizeof *u1) == 0, "case %d: u_z alone differs", _i);
+    /* borrowed workspaces (the fft backend): the same bits, applied in turn with the stress */
+    const size_t own = mc_eigen_spectral_bytes(ou);
+    ck_assert_int_eq(mc_eigen_spectral_borrow(ou, op), be == MC_BACKEND_FFT);
+    if (be == MC_BACKEND_FFT)
+        ck_assert(mc_eigen_spectral_bytes(ou) < own);
+    mc_eigen_spectral_apply(op, (const double *const *)eps, G_MOD, s2, NULL);
+    mc_eigen_spectral_apply_uz_sum(ou, (const double *const *)eps, &inc, u2);
+    ck_assert_msg(memcmp(u1, u2, ns * sizeof *u1) == 0, "case %d: borrowed u_z differs", _i);
+    mc_eigen_spectral_apply_sum(op, (const double *const *)eps, &inc, G_MOD, s2, NULL);
+    ck_assert(memcmp(b3, b4, 6 * n * sizeof *b3) == 0);
+    mc_eigen_spectral_destroy(&ou);
+    /* through eigen_op.h: the spectral kernel takes the sum, the cuboid one refuses */
+    for (int k = 0; k < 2 && !sc->graded; k++) {
+        v.kernel = k ? MC_EIG_KERNEL_CUBOID : MC_EIG_KERNEL_SPECTRAL;
+        if (g.periodic_x && !g.periodic_y)
+            continue; /* (eigen_op.h refuses x periodic alone) */
+        mc_eigen_stress *os = eig_stress_op(&g, &v, NU, be);
+        mc_eigen_disp *od = eig_disp_op(&g, &v, NU, be);
+        ck_assert_int_eq(mc_eigen_stress_takes_sum(os), !k);
+        ck_assert_int_eq(mc_eigen_disp_takes_sum(od), !k);
+        const int rs = mc_eigen_stress_apply_sum(os, (const double *const *)eps, &inc, G_MOD,
+                                                 NULL, NULL, s2);
+        const int rd = mc_eigen_disp_apply_sum(od, (const double *const *)eps, &inc, u2);
+        ck_assert_int_eq(rs, k ? MC_ERR_LIMIT : MC_OK);
+        ck_assert_int_eq(rd, k ? MC_ERR_LIMIT : MC_OK);
+        if (!k) {
+            ck_assert(memcmp(b3, b4, 6 * n * sizeof *b3) == 0);
+            ck_assert(memcmp(u1, u2, ns * sizeof *u1) == 0);
+            ck_assert_int_eq(mc_eigen_disp_borrow(od, os), be == MC_BACKEND_FFT);
+            ck_assert_int_eq(mc_eigen_disp_apply_sum(od, (const double *const *)eps, &inc, u2),
+                             MC_OK);
+            ck_assert(memcmp(u1, u2, ns * sizeof *u1) == 0);
+        } else {
+            ck_assert_int_eq(mc_eigen_disp_borrow(od, os), 0);
+        }
+        mc_eigen_disp_destroy(&od);
+        mc_eigen_stress_destroy(&os);
+    }
+    mc_eigen_spectral_destroy(&op);
+    free(u1), free(u2), free(b1), free(b2), free(b3), free(b4);
+}
+END_TEST
+
 /* ---- against the cuboid operators ------------------------------------------------------------- */
 
 /* A smooth field: per layer and component a random amplitude times a smooth lateral profile that
@@ -444,6 +529,7 @@ Suite *suite_eigen_spectral_op(void)
     TCase *tc = tcase_create("operator");
     tcase_set_timeout(tc, 120);
     tcase_add_loop_test(tc, test_backends, 0, 2 * N_CASES);
+    tcase_add_loop_test(tc, test_sum_input, 0, 2 * N_CASES);
     tcase_add_loop_test(tc, test_converges_to_cuboid, 0, 2);
     tcase_add_test(tc, test_strip_is_line);
     tcase_add_test(tc, test_tiled);

@@ -273,3 +273,23 @@ void mc_eig_fill_rows(double *rows, int tx, const double *field, int nx, int nro
         memset(r + col0 + nx, 0, (size_t)(tx - col0 - nx) * sizeof *r);
     }
 }
+
+/* the first entry of s whose cell is not below at */
+static long sparse_lower(const mc_eigen_sparse *s, long at)
+{
+    long lo = 0, hi = s->n;
+    while (lo < hi) {
+        const long mid = lo + (hi - lo) / 2;
+        if (s->cell[mid] < at)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+void mc_eigen_sparse_range(const mc_eigen_sparse *s, long first, long last, long *k0, long *k1)
+{
+    *k0 = sparse_lower(s, first);
+    *k1 = sparse_lower(s, last);
+}

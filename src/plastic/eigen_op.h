@@ -142,6 +142,9 @@ typedef struct {
     int stride;
 } mc_eigen_sparse;
 
+/* The entries of s whose cells lie in first <= cell < last: k0 .. k1 - 1 (binary search). */
+void mc_eigen_sparse_range(const mc_eigen_sparse *s, long first, long last, long *k0, long *k1);
+
 /* The volume of nz layers of thickness dz under the whole surface grid g. */
 static inline mc_eigen_volume mc_eigen_volume_full(const mc_grid *g, int nz, double dz)
 {

@@ -283,35 +283,16 @@ static int stream_prepare(mc_eigen_spectral *op, mc_error *err)
     return MC_OK;
 }
 
-/* The entries of the sparse addend inc (NULL: none) in layer l of layers of `layer` cells:
- * k0 .. k1 - 1 (its cells ascend). */
-static void sparse_layer(const mc_eigen_sparse *inc, size_t layer, int l, long *k0, long *k1)
-{
-    *k0 = *k1 = 0;
-    if (!inc || inc->n <= 0)
-        return;
-    for (int e = 0; e < 2; e++) { /* the first entry at or after the layer's (l + e)-th cell */
-        const long at = (long)((size_t)(l + e) * layer);
-        long lo = 0, hi = inc->n;
-        while (lo < hi) {
-            const long mid = lo + (hi - lo) / 2;
-            if (inc->cell[mid] < at)
-                lo = mid + 1;
-            else
-                hi = mid;
-        }
-        *(e ? k1 : k0) = lo;
-    }
-}
-
 /* rows (pitch values per row, layer l's values of component c in place) += the entries of inc
  * in layer l: the sum eps + inc formed value by value, the bits of a summed field */
 static void sparse_add(const mc_eigen_spectral *op, const mc_eigen_sparse *inc, int l, int c,
                        double *rows, int pitch)
 {
     const size_t layer = (size_t)op->nx * op->ny;
-    long k0, k1;
-    sparse_layer(inc, layer, l, &k0, &k1);
+    long k0 = 0, k1 = 0;
+    if (inc)
+        mc_eigen_sparse_range(inc, (long)((size_t)l * layer), (long)((size_t)(l + 1) * layer), &k0,
+                              &k1);
     for (long k = k0; k < k1; k++) {
         const size_t at = (size_t)inc->cell[k] - (size_t)l * layer;
         rows[(at / (size_t)op->nx) * (size_t)pitch + at % (size_t)op->nx] +=

@@ -62,24 +62,10 @@ int mc_incr_scaled(mc_plastic_incr *dst, const mc_plastic_incr *src, double s)
     return 1;
 }
 
-/* the first entry whose cell is not below at */
-static long lower(const mc_plastic_incr *a, long at)
-{
-    long lo = 0, hi = a->n;
-    while (lo < hi) {
-        const long mid = lo + (hi - lo) / 2;
-        if (a->cell[mid] < at)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
-}
-
 void mc_incr_range(const mc_plastic_incr *a, long first, long last, long *k0, long *k1)
 {
-    *k0 = lower(a, first);
-    *k1 = lower(a, last);
+    const mc_eigen_sparse v = mc_incr_strain(a);
+    mc_eigen_sparse_range(&v, first, last, k0, k1);
 }
 
 typedef struct {

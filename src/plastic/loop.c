@@ -1042,152 +1042,6 @@ static int contact_on_ur(loop_ctx *c, mc_contact_solver *solver, double load, in
                : mc_contact_solve(solver, &cp, p, u, gap, sum, err);
 }
 
-/* The joint iteration (docs/theory.md §9.8): Anderson mixing of the plastic strain increment x
- * through the whole coupled map, one contact solve and one residual stress application per
- * evaluation,
- *     u_r = D(eps_p + x),  p = contact(h + u_r),  x' = R(sigma_e(p) + S(eps_p + x) + 2 G x),
- * instead of an outer iteration on u_r around a plastic fixed point solved anew for every
- * contact solve. Its fixed point is the nested loop's, and so is its acceptance: the sweep
- * changes x by at most tol_plastic (the tight inner test of §9.4) and the residual displacement
- * of the image, D(eps_p + x'), differs from u_r by at most tol_outer (the outer test of §9.1);
- * the image is then the increment. *done 0: not converged within max_outer evaluations, or no
- * progress in JOINT_PATIENCE evaluations (the relative change of the sweep not below its least
- * so far), or a blow-up (the increment is then cleared: a cold start): the nested iteration goes
- * on from the state left in c->d_eps, c->dp. *contact_failed 1: the contact solve did not
- * converge (the run stops, §9.5). */
-#define JOINT_PATIENCE 6
-
-static int joint_body(loop_ctx *c, mc_contact_solver *solver, double load, int warm,
-                      double *p, double *u, double *gap, mc_contact_summary *sum,
-                      mc_plastic_result *res, mc_plastic_step *st, int *done,
-                      int *contact_failed, mc_error *err)
-{
-    const mc_plastic_problem *pb = c->pb;
-    const size_t nv6 = 6 * (size_t)c->nvol;
-    const double elastic_below = surely_elastic_below(pb->law);
-    double least = INFINITY;
-    int since_least = 0;
-    int exact = 0; /* 1: the next contact step settles the caller's equilibrium (not inexact) */
-    *done = 0;
-    *contact_failed = 0;
-    mc_anderson_restart(c->aa);
-    for (int k = 1; k <= pb->max_outer; k++) {
-        if (pb->stop && pb->stop(pb->stop_ctx))
-            return mc_fail(err, MC_ERR_INTERRUPTED, "plastic loop: stopped on request");
-        st->joint_evaluations++;
-        st->outer_iterations++;
-        st->plastic_iterations++;
-        const int any = sum_kept(c, 6, res->eps_p, c->d_eps, c->tot);
-        if (any && c->shared) { /* one forward transform of tot for u_r and the sweep */
-            const double *e[6];
-            split6(c, c->tot, e);
-            mc_eigen_disp_apply_shared(c->disp, c->resid, e, c->u_r);
-        } else if (any) {
-            residual_displacement(c, c->tot, c->u_r);
-        } else {
-            memset(c->u_r, 0, c->ncell * sizeof *c->u_r);
-        }
-        int settled;
-        int rc = contact_on_ur(c, solver, load, warm || k > 1, !exact, p, u, gap, sum, &settled,
-                               st, err);
-        if (rc == MC_NOT_CONVERGED) {
-            *contact_failed = 1;
-            return MC_OK;
-        }
-        if (rc != MC_OK)
-            return rc;
-        if (!c->folded && (rc = elastic_stresses(c, p, err)) != MC_OK)
-            return rc;
-        int plastic = 0, had = 0;
-        double change = 0, size = 0;
-        const int bad = sweep(c, res->eps_p, res->peq, c->folded ? p : NULL, c->shared,
-                              elastic_below, &change, &size, &plastic, &had);
-        if (bad || !(size <= DIVERGED_STRAIN)) { /* blew up: the nested loop starts cold */
-            memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
-            memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
-            memcpy(c->u_r, res->u_r, c->ncell * sizeof *c->u_r);
-            return MC_OK;
-        }
-        if (!plastic && !had) { /* nothing yields and nothing has: the increment is elastic */
-            memset(c->d_eps, 0, nv6 * sizeof *c->d_eps);
-            memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
-            res->yield_skips++;
-            *done = 1;
-            return MC_OK;
-        }
-        const double rel = change / fmax(size, 1e-3);
-        if (rel <= pb->tol_plastic) {
-            /* the tight inner test met: the image becomes the iterate (a plain step) and the
-             * outer test compares its residual displacement with u_r. d_new shares its array
-             * with tot (ctx_init), so eps_p + d_new is formed in d_eps, which the image then
-             * overwrites. */
-            (void)sum_kept(c, 6, res->eps_p, c->d_new, c->d_eps);
-            residual_displacement(c, c->d_eps, c->u_new);
-            copy_kept(c, 6, c->d_eps, c->d_new);
-            copy_kept(c, 1, c->dp, c->dp_new);
-            double uch = 0, usz = 0;
-            for (size_t i = 0; i < c->ncell; i++) {
-                uch = fmax(uch, fabs(c->u_new[i] - c->u_r[i]));
-                usz = fmax(usz, fabs(c->u_new[i]));
-            }
-            if (uch <= pb->tol_outer * usz && settled) {
-                memcpy(c->u_r, c->u_new, c->ncell * sizeof *c->u_r);
-                res->inner_change = fmax(res->inner_change, rel);
-                *done = 1;
-                return MC_OK;
-            }
-            exact |= !settled; /* the caller's equilibrium lags: settle it in the next step */
-            continue; /* (the history keeps its pairs: the next one spans this step too) */
-        }
-        if (rel < least) {
-            least = rel;
-            since_least = 0;
-        } else if (++since_least >= JOINT_PATIENCE)
-            break;
-        mc_error aerr;
-        if (mc_anderson_step(c->aa, c->d_eps, c->d_new, &aerr) != MC_OK) {
-            mc_anderson_destroy(&c->aa); /* no memory to mix: the nested loop, unaccelerated */
-            break;
-        }
-        copy_kept(c, 1, c->dp, c->dp_new);
-    }
-    st->joint_fallback = 1;
-    return MC_OK;
-}
-
-/* joint_body, distributed with one forward for u_r and the sweep (rows_ok): each rank keeps to
- * its rows of the volume (theory §8.4) - the sums eps_p + x, the residual stress (not gathered),
- * the sweep (its increments not gathered) and Anderson's mixing (its dot products summed row by
- * row over the ranks) - and the increment x and dp are gathered whole once at the end, instead of
- * the stresses and the increments at every evaluation. */
-static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, int warm,
-                           double *p, double *u, double *gap, mc_contact_summary *sum,
-                           mc_plastic_result *res, mc_plastic_step *st, int *done,
-                           int *contact_failed, mc_error *err)
-{
-    const int nz = c->pb->volume.nz;
-    int r0, nr;
-    if (c->rows_ok) { /* every rank alike: one that lacks the memory keeps them all whole */
-        const int ok = mc_anderson_rows(c->aa, nz, (int)c->nwy, (int)c->nwx, c->row0, c->rows);
-        c->kept = !mc_dist_max_int(!ok);
-        if (ok && !c->kept)
-            mc_anderson_rows(c->aa, 0, 0, 0, 0, -1);
-    }
-    if (c->kept)
-        mc_eigen_stress_keep_rows(c->resid, 1, &r0, &nr);
-    const int rc = joint_body(c, solver, load, warm, p, u, gap, sum, res, st, done,
-                              contact_failed, err);
-    if (!c->kept)
-        return rc;
-    c->kept = 0;
-    mc_eigen_stress_keep_rows(c->resid, 0, &r0, &nr);
-    if (c->aa)
-        mc_anderson_rows(c->aa, 0, 0, 0, 0, -1);
-    mc_dist_gather_blocks(c->d_eps, 6 * nz, (int)c->nwy, (int)c->nwx, c->row0, c->rows);
-    mc_dist_gather_blocks(c->dp, nz, (int)c->nwy, (int)c->nwx, c->row0, c->rows);
-    return rc;
-}
-
 /* The sweep on the sparse increment (theory §9.9): sig_r = sigma_e(p) + S(eps_p + inc) from one
  * apply (the operators read the sum as they read their input), then layer by layer the return
  * map of every cell from the trial stress sig_r + 2 G d, d the layer's entries of inc spread
@@ -1330,13 +1184,84 @@ static int sparse_mix(loop_ctx *c, mc_error *err)
     return MC_OK;
 }
 
-/* joint_body on the sparse increment (theory §9.9): the same iteration, evaluations and tests,
- * with inc for (d_eps, dp), inc_new for (d_new, dp_new) and the sums eps_p + inc formed inside
- * the operators. One process (ctx_init). */
-static int joint_sparse(loop_ctx *c, mc_contact_solver *solver, double load, int warm,
-                        double *p, double *u, double *gap, mc_contact_summary *sum,
-                        mc_plastic_result *res, mc_plastic_step *st, int *done,
-                        int *contact_failed, mc_error *err)
+/* The parts of the joint iteration that depend on how the increment is held (dense arrays, or
+ * the sparse increment of theory §9.9): the same values either way. */
+
+/* u_r = D(eps_p + x) (0 when that is zero everywhere); dense: tot = eps_p + x is left for the
+ * sweep and, shared, the stress operator's forward made */
+static void joint_displacement(loop_ctx *c, const mc_plastic_result *res)
+{
+    int any;
+    if (c->sparse) {
+        if ((any = c->eps_any || mc_incr_any(&c->inc)))
+            sparse_displacement(c, res->eps_p, c->u_r);
+    } else if ((any = sum_kept(c, 6, res->eps_p, c->d_eps, c->tot)) && c->shared) {
+        const double *e[6]; /* one forward transform of tot for u_r and the sweep */
+        split6(c, c->tot, e);
+        mc_eigen_disp_apply_shared(c->disp, c->resid, e, c->u_r);
+    } else if (any) {
+        residual_displacement(c, c->tot, c->u_r);
+    }
+    if (!any)
+        memset(c->u_r, 0, c->ncell * sizeof *c->u_r);
+}
+
+/* x = 0, dp = 0 */
+static void joint_clear(loop_ctx *c)
+{
+    c->inc.n = 0;
+    if (!c->sparse) {
+        memset(c->d_eps, 0, 6 * (size_t)c->nvol * sizeof *c->d_eps);
+        memset(c->dp, 0, (size_t)c->nvol * sizeof *c->dp);
+    }
+}
+
+/* The image becomes the iterate, and u_new = D(eps_p + image). Dense: d_new shares its array
+ * with tot (ctx_init), so eps_p + d_new is formed in d_eps, which the image then overwrites. */
+static void joint_take_image(loop_ctx *c, const mc_plastic_result *res)
+{
+    if (c->sparse) {
+        incr_swap(&c->inc, &c->inc_new);
+        sparse_displacement(c, res->eps_p, c->u_new);
+        return;
+    }
+    (void)sum_kept(c, 6, res->eps_p, c->d_new, c->d_eps);
+    residual_displacement(c, c->d_eps, c->u_new);
+    copy_kept(c, 6, c->d_eps, c->d_new);
+    copy_kept(c, 1, c->dp, c->dp_new);
+}
+
+/* Anderson's step from x and its image (dp the image's); MC_ERR_NOMEM when it cannot mix */
+static int joint_mix(loop_ctx *c)
+{
+    mc_error aerr;
+    if (c->sparse)
+        return sparse_mix(c, &aerr);
+    if (mc_anderson_step(c->aa, c->d_eps, c->d_new, &aerr) != MC_OK)
+        return MC_ERR_NOMEM;
+    copy_kept(c, 1, c->dp, c->dp_new);
+    return MC_OK;
+}
+
+/* The joint iteration (docs/theory.md §9.8): Anderson mixing of the plastic strain increment x
+ * through the whole coupled map, one contact solve and one residual stress application per
+ * evaluation,
+ *     u_r = D(eps_p + x),  p = contact(h + u_r),  x' = R(sigma_e(p) + S(eps_p + x) + 2 G x),
+ * instead of an outer iteration on u_r around a plastic fixed point solved anew for every
+ * contact solve. Its fixed point is the nested loop's, and so is its acceptance: the sweep
+ * changes x by at most tol_plastic (the tight inner test of §9.4) and the residual displacement
+ * of the image, D(eps_p + x'), differs from u_r by at most tol_outer (the outer test of §9.1);
+ * the image is then the increment. *done 0: not converged within max_outer evaluations, or no
+ * progress in JOINT_PATIENCE evaluations (the relative change of the sweep not below its least
+ * so far), or a blow-up (the increment is then cleared: a cold start): the nested iteration goes
+ * on from the state left in c->d_eps, c->dp. *contact_failed 1: the contact solve did not
+ * converge (the run stops, §9.5). */
+#define JOINT_PATIENCE 6
+
+static int joint_body(loop_ctx *c, mc_contact_solver *solver, double load, int warm,
+                      double *p, double *u, double *gap, mc_contact_summary *sum,
+                      mc_plastic_result *res, mc_plastic_step *st, int *done,
+                      int *contact_failed, mc_error *err)
 {
     const mc_plastic_problem *pb = c->pb;
     const size_t nv6 = 6 * (size_t)c->nvol;
@@ -1346,8 +1271,8 @@ static int joint_sparse(loop_ctx *c, mc_contact_solver *solver, double load, int
     int exact = 0; /* 1: the next contact step settles the caller's equilibrium (not inexact) */
     *done = 0;
     *contact_failed = 0;
-    c->eps_any = 0;
-    for (size_t i = 0; i < nv6 && !c->eps_any; i++)
+    c->eps_any = 0; /* (the sparse increment's "eps_p + x is zero" test reads it) */
+    for (size_t i = 0; c->sparse && i < nv6 && !c->eps_any; i++)
         c->eps_any = res->eps_p[i] != 0.0;
     mc_anderson_restart(c->aa);
     for (int k = 1; k <= pb->max_outer; k++) {
@@ -1356,10 +1281,7 @@ static int joint_sparse(loop_ctx *c, mc_contact_solver *solver, double load, int
         st->joint_evaluations++;
         st->outer_iterations++;
         st->plastic_iterations++;
-        if (c->eps_any || mc_incr_any(&c->inc))
-            sparse_displacement(c, res->eps_p, c->u_r);
-        else
-            memset(c->u_r, 0, c->ncell * sizeof *c->u_r);
+        joint_displacement(c, res);
         int settled;
         int rc = contact_on_ur(c, solver, load, warm || k > 1, !exact, p, u, gap, sum, &settled,
                                st, err);
@@ -1369,27 +1291,33 @@ static int joint_sparse(loop_ctx *c, mc_contact_solver *solver, double load, int
         }
         if (rc != MC_OK)
             return rc;
+        if (!c->folded && (rc = elastic_stresses(c, p, err)) != MC_OK)
+            return rc;
         int plastic = 0, had = 0, nomem = 0;
         double change = 0, size = 0;
-        const int bad = sparse_sweep(c, res->eps_p, res->peq, p, elastic_below, &change, &size,
-                                     &plastic, &had, &nomem);
+        const int bad = c->sparse ? sparse_sweep(c, res->eps_p, res->peq, p, elastic_below,
+                                                 &change, &size, &plastic, &had, &nomem)
+                                  : sweep(c, res->eps_p, res->peq, c->folded ? p : NULL,
+                                          c->shared, elastic_below, &change, &size, &plastic,
+                                          &had);
         if (nomem)
             return mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the increment");
         if (bad || !(size <= DIVERGED_STRAIN)) { /* blew up: the nested loop starts cold */
-            c->inc.n = 0;
+            joint_clear(c);
             memcpy(c->u_r, res->u_r, c->ncell * sizeof *c->u_r);
             return MC_OK;
         }
         if (!plastic && !had) { /* nothing yields and nothing has: the increment is elastic */
-            c->inc.n = 0;
+            joint_clear(c);
             res->yield_skips++;
             *done = 1;
             return MC_OK;
         }
         const double rel = change / fmax(size, 1e-3);
-        if (rel <= pb->tol_plastic) { /* as joint_body: the image becomes the iterate */
-            incr_swap(&c->inc, &c->inc_new);
-            sparse_displacement(c, res->eps_p, c->u_new);
+        if (rel <= pb->tol_plastic) {
+            /* the tight inner test met: the image becomes the iterate (a plain step) and the
+             * outer test compares its residual displacement with u_r */
+            joint_take_image(c, res);
             double uch = 0, usz = 0;
             for (size_t i = 0; i < c->ncell; i++) {
                 uch = fmax(uch, fabs(c->u_new[i] - c->u_r[i]));
@@ -1401,22 +1329,54 @@ static int joint_sparse(loop_ctx *c, mc_contact_solver *solver, double load, int
                 *done = 1;
                 return MC_OK;
             }
-            exact |= !settled;
-            continue;
+            exact |= !settled; /* the caller's equilibrium lags: settle it in the next step */
+            continue; /* (the history keeps its pairs: the next one spans this step too) */
         }
         if (rel < least) {
             least = rel;
             since_least = 0;
         } else if (++since_least >= JOINT_PATIENCE)
             break;
-        mc_error aerr;
-        if (sparse_mix(c, &aerr) != MC_OK) {
+        if (joint_mix(c) != MC_OK) {
             mc_anderson_destroy(&c->aa); /* no memory to mix: the nested loop, unaccelerated */
             break;
         }
     }
     st->joint_fallback = 1;
     return MC_OK;
+}
+
+/* joint_body, distributed with one forward for u_r and the sweep (rows_ok): each rank keeps to
+ * its rows of the volume (theory §8.4) - the sums eps_p + x, the residual stress (not gathered),
+ * the sweep (its increments not gathered) and Anderson's mixing (its dot products summed row by
+ * row over the ranks) - and the increment x and dp are gathered whole once at the end, instead of
+ * the stresses and the increments at every evaluation. */
+static int joint_iteration(loop_ctx *c, mc_contact_solver *solver, double load, int warm,
+                           double *p, double *u, double *gap, mc_contact_summary *sum,
+                           mc_plastic_result *res, mc_plastic_step *st, int *done,
+                           int *contact_failed, mc_error *err)
+{
+    const int nz = c->pb->volume.nz;
+    int r0, nr;
+    if (c->rows_ok) { /* every rank alike: one that lacks the memory keeps them all whole */
+        const int ok = mc_anderson_rows(c->aa, nz, (int)c->nwy, (int)c->nwx, c->row0, c->rows);
+        c->kept = !mc_dist_max_int(!ok);
+        if (ok && !c->kept)
+            mc_anderson_rows(c->aa, 0, 0, 0, 0, -1);
+    }
+    if (c->kept)
+        mc_eigen_stress_keep_rows(c->resid, 1, &r0, &nr);
+    const int rc = joint_body(c, solver, load, warm, p, u, gap, sum, res, st, done,
+                              contact_failed, err);
+    if (!c->kept)
+        return rc;
+    c->kept = 0;
+    mc_eigen_stress_keep_rows(c->resid, 0, &r0, &nr);
+    if (c->aa)
+        mc_anderson_rows(c->aa, 0, 0, 0, 0, -1);
+    mc_dist_gather_blocks(c->d_eps, 6 * nz, (int)c->nwy, (int)c->nwx, c->row0, c->rows);
+    mc_dist_gather_blocks(c->dp, nz, (int)c->nwy, (int)c->nwx, c->row0, c->rows);
+    return rc;
 }
 
 static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double dload,
@@ -1455,10 +1415,8 @@ static int increment(loop_ctx *c, mc_contact_solver *solver, double load, double
     }
     int joint_done = 0, joint_contact = 0, rc = MC_OK;
     if (pb->iteration == MC_PLASTIC_JOINT && c->aa && !c->near && !pb->tight_inner &&
-        (rc = c->sparse ? joint_sparse(c, solver, load, warm, p, u, gap, sum, res, st,
-                                       &joint_done, &joint_contact, err)
-                        : joint_iteration(c, solver, load, warm, p, u, gap, sum, res, st,
-                                          &joint_done, &joint_contact, err)) != MC_OK)
+        (rc = joint_iteration(c, solver, load, warm, p, u, gap, sum, res, st, &joint_done,
+                              &joint_contact, err)) != MC_OK)
         return rc;
     if (joint_contact)
         *why = MC_PLASTIC_STOP_CONTACT;
