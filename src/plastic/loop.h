@@ -11,7 +11,9 @@
  * is of the same material and sees the same contact stresses mirrored, so it deforms alike: the
  * gap opens by twice the residual displacement of body 1 (an assumption stated in the docs).
  * The volume grid is nz layers of cuboids of thickness dz under a window of surface columns;
- * the rest of the half-space stays elastic. Pure numerics: no scene, no printing.
+ * the rest of the half-space stays elastic. With operators that read a dense field plus a sparse
+ * addend (the spectral kernel) the joint iteration holds the step's increment on its cells alone
+ * (plastic/increment.h, docs/theory.md §9.9). Pure numerics: no scene, no printing.
  */
 #ifndef MC_PLASTIC_LOOP_H
 #define MC_PLASTIC_LOOP_H
