@@ -41,7 +41,8 @@ struct mc_eigen_spectral {
                                 thickness: the mean over the directions the free axes allow */
     int nthr;
     int uz_only;             /* 1: made by mc_eigen_spectral_create_uz (no stresses) */
-    int borrowed;            /* 1: lay, lrows and U are another object's (mc_eigen_spectral_borrow) */
+    int borrowed;            /* 1: lay, lrows and U are another object's
+                                (mc_eigen_spectral_borrow) */
     /* fft, u_z only: one layer's six spectra at a time (py x hx each) and its padded rows */
     fftw_complex *lay;
     double *lrows;
@@ -291,8 +292,8 @@ static void sparse_add(const mc_eigen_spectral *op, const mc_eigen_sparse *inc, 
     const size_t layer = (size_t)op->nx * op->ny;
     long k0 = 0, k1 = 0;
     if (inc)
-        mc_eigen_sparse_range(inc, (long)((size_t)l * layer), (long)((size_t)(l + 1) * layer), &k0,
-                              &k1);
+        mc_eigen_sparse_range(inc, (long)((size_t)l * layer), (long)((size_t)(l + 1) * layer),
+                              &k0, &k1);
     for (long k = k0; k < k1; k++) {
         const size_t at = (size_t)inc->cell[k] - (size_t)l * layer;
         rows[(at / (size_t)op->nx) * (size_t)pitch + at % (size_t)op->nx] +=

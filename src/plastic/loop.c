@@ -102,7 +102,7 @@ typedef struct {
     int dense_now;               /* 1: this increment's state is in the dense arrays */
     int eps_any;                 /* 1: the committed eps_p is not zero somewhere */
     mc_plastic_incr inc, inc_new, inc_tmp;
-    double *lay7;                /* 7 x one layer of the window: the sweep's per-layer values */
+    double *lay7;                /* 7 x one layer of the window: the sweep's values per layer */
 } loop_ctx;
 
 static void ctx_free(loop_ctx *c)
@@ -352,7 +352,8 @@ static int warm_keep(loop_ctx *c, mc_error *err)
 {
     const int ok = c->dense_now ? mc_incr_gather(&c->warm, c->nvol, c->d_eps, c->dp)
                                 : mc_incr_scaled(&c->warm, &c->inc, 1.0);
-    return ok ? MC_OK : mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the warm start");
+    return ok ? MC_OK
+              : mc_fail(err, MC_ERR_NOMEM, "plastic loop: out of memory for the warm start");
 }
 
 /* The accepted increment as the next one's warm start (theory §9.6): its cells (warm_keep) and
