@@ -13,6 +13,7 @@
 #include <string.h>
 
 void mc_spec_coef_sparse(mc_spec_coef *k);
+void mc_spec_coef_real(mc_spec_coef *k);
 
 void mc_spec_coef_init(double nu, mc_spec_coef *k)
 {
@@ -66,6 +67,7 @@ void mc_spec_coef_init(double nu, mc_spec_coef *k)
     k->T1[5] = I;
     k->uz0 = 2.0 - 2.0 * nu;
     mc_spec_coef_sparse(k);
+    mc_spec_coef_real(k);
 }
 
 void mc_spec_to_frame(double c, double s, const double complex e[6], double complex f[6])
@@ -581,153 +583,232 @@ void mc_spec_uz_layers(const mc_spec_coef *k, double kx, double ky, int nz, cons
 
 /* ---- the depth step streamed layer by layer ---------------------------------------------------- */
 
-void mc_spec_state_init(mc_spec_state *st, double kx, double ky)
+/* The real form (eigen_spectral.h): M~[r][c] = M[r][c] d_c / d_r, d = (1, 1, 1, 1, i, i). */
+static void real_form(const double complex M[6][6], double R[6][6])
+{
+    for (int r = 0; r < 6; r++)
+        for (int c = 0; c < 6; c++) {
+            const double complex d = (c >= 4 ? I : 1.0) / (r >= 4 ? I : 1.0);
+            R[r][c] = creal(M[r][c] * d); /* (the imaginary part is zero: theory §8.10) */
+        }
+}
+
+void mc_spec_coef_real(mc_spec_coef *k)
+{
+    double complex S[6][6], B[6][6], M[6][6];
+    for (int i = 0; i < 6; i++)
+        for (int c = 0; c < 6; c++) {
+            S[i][c] = k->Ap[i][c] + k->Am[i][c];
+            B[i][c] = k->Bp[i][c] + k->Bm[i][c];
+            M[i][c] = k->Minf[i][c];
+        }
+    real_form((const double complex(*)[6])k->Ap, k->rAp);
+    real_form((const double complex(*)[6])k->Bp, k->rBp);
+    real_form((const double complex(*)[6])k->Am, k->rAm);
+    real_form((const double complex(*)[6])k->Bm, k->rBm);
+    real_form((const double complex(*)[6])S, k->rAs);
+    real_form((const double complex(*)[6])B, k->rBs);
+    real_form((const double complex(*)[6])M, k->rMinf);
+    for (int r = 0; r < 6; r++) {
+        k->rT0[r] = creal(k->T0[r] / (r >= 4 ? I : 1.0));
+        k->rT1[r] = creal(k->T1[r] / (r >= 4 ? I : 1.0));
+    }
+}
+
+/* y += M x on re/im pairs, for the pattern of A (the in-plane block x'x', y'y', zz, x'z and the
+ * anti-plane block x'y', y'z: 17 entries), of B (rows and columns x'x', zz, x'z: 9) and of the
+ * local term (x'x', y'y' and x'y': 5). The patterns hold every entry that is not zero (a check in
+ * tests/test_eigen_spectral.c). */
+#define PAIR(r, c) y[2 * r] += M[r][c] * x[2 * c], y[2 * r + 1] += M[r][c] * x[2 * c + 1]
+static inline void prod_a(const double M[6][6], const double *restrict x, double *restrict y)
+{
+    PAIR(0, 0), PAIR(0, 1), PAIR(0, 2), PAIR(0, 5);
+    PAIR(1, 0), PAIR(1, 2), PAIR(1, 5);
+    PAIR(2, 0), PAIR(2, 1), PAIR(2, 2);
+    PAIR(3, 3), PAIR(3, 4), PAIR(4, 3), PAIR(4, 4);
+    PAIR(5, 0), PAIR(5, 1), PAIR(5, 5);
+}
+
+static inline void prod_b(const double M[6][6], const double *restrict x, double *restrict y)
+{
+    PAIR(0, 0), PAIR(0, 2), PAIR(0, 5);
+    PAIR(2, 0), PAIR(2, 2), PAIR(2, 5);
+    PAIR(5, 0), PAIR(5, 2), PAIR(5, 5);
+}
+
+static inline void prod_local(const double M[6][6], const double *restrict x, double *restrict y)
+{
+    PAIR(0, 0), PAIR(0, 1), PAIR(1, 0), PAIR(1, 1), PAIR(3, 3);
+}
+#undef PAIR
+
+/* lab (complex) -> the real form of the frame, as re/im pairs */
+static inline void frame_real(double c, double s, const double complex e[6], double f[12])
+{
+    const double cc = c * c, ss = s * s, cs = c * s;
+    const double complex f0 = cc * e[0] + ss * e[1] + 2.0 * cs * e[3];
+    const double complex f1 = ss * e[0] + cc * e[1] - 2.0 * cs * e[3];
+    const double complex f3 = cs * (e[1] - e[0]) + (cc - ss) * e[3];
+    const double complex f4 = c * e[4] - s * e[5], f5 = c * e[5] + s * e[4];
+    f[0] = creal(f0), f[1] = cimag(f0);
+    f[2] = creal(f1), f[3] = cimag(f1);
+    f[4] = creal(e[2]), f[5] = cimag(e[2]);
+    f[6] = creal(f3), f[7] = cimag(f3);
+    f[8] = cimag(f4), f[9] = -creal(f4); /* -i f4 */
+    f[10] = cimag(f5), f[11] = -creal(f5);
+}
+
+/* the real form of the frame -> lab (mc_spec_from_frame of D f) */
+static inline void lab_real(double c, double s, const double f[12], double complex e[6])
+{
+    double complex g[6];
+    for (int m = 0; m < 4; m++)
+        g[m] = f[2 * m] + I * f[2 * m + 1];
+    g[4] = -f[9] + I * f[8]; /* i f~4 */
+    g[5] = -f[11] + I * f[10];
+    mc_spec_from_frame(c, s, g, e);
+}
+
+void mc_spec_state_init_q(mc_spec_state *st, double q, double cq, double sq)
 {
     memset(st, 0, sizeof *st);
     st->et = 1.0;
     st->h = -1.0;
-    st->q = hypot(kx, ky);
-    st->cq = st->q > 0.0 ? kx / st->q : 1.0;
-    st->sq = st->q > 0.0 ? ky / st->q : 0.0;
+    st->q = q;
+    st->cq = cq;
+    st->sq = sq;
 }
 
-/* the state's cached scalars of thickness h */
-static void state_scalars(mc_spec_state *st, double h)
+void mc_spec_state_init(mc_spec_state *st, double kx, double ky)
+{
+    const double q = hypot(kx, ky);
+    mc_spec_state_init_q(st, q, q > 0.0 ? kx / q : 1.0, q > 0.0 ? ky / q : 0.0);
+}
+
+void mc_spec_weights_of(double h, mc_spec_point pt, double w[MC_SPEC_WEIGHTS])
+{
+    memset(w, 0, MC_SPEC_WEIGHTS * sizeof *w);
+    if (!(h > 0.0))
+        return;
+    layer_scalars L = {-1.0, 0, 0, 0, 0, 0, 0, 0, 0};
+    scalars(h, &L);
+    w[MC_SPEC_H] = h, w[MC_SPEC_EH] = L.eh, w[MC_SPEC_P0] = L.p0, w[MC_SPEC_P1] = L.p1;
+    if (pt == MC_SPEC_AVERAGE) { /* A (p0/h U) + B (p0/h V + p1/h U); q0/h As + q1/h Bs */
+        w[MC_SPEC_AL] = L.p0 / h, w[MC_SPEC_GA] = L.p1 / h;
+        w[MC_SPEC_SA] = L.q0 / h, w[MC_SPEC_SB] = L.q1 / h;
+    } else { /* the sums moved by h/2 to the centre: e^{-h/2} (U, V + h/2 U) */
+        w[MC_SPEC_AL] = L.ehalf, w[MC_SPEC_GA] = L.ehalf * 0.5 * h;
+        w[MC_SPEC_SA] = L.p0h2, w[MC_SPEC_SB] = L.p1h2;
+    }
+}
+
+/* the state's weights of thickness h (cached: uniform layers repeat it) */
+static void state_scalars(mc_spec_state *st, double h, mc_spec_point pt)
 {
     if (fabs(st->h - h) <= 1e-14 * h)
         return;
-    layer_scalars L = {st->h, st->eh, st->p0, st->p1, st->ehalf, st->p0h2, st->p1h2, st->q0, st->q1};
-    scalars(h, &L);
-    st->h = L.h, st->eh = L.eh, st->p0 = L.p0, st->p1 = L.p1, st->ehalf = L.ehalf;
-    st->p0h2 = L.p0h2, st->p1h2 = L.p1h2, st->q0 = L.q0, st->q1 = L.q1;
+    double w[MC_SPEC_WEIGHTS];
+    mc_spec_weights_of(h, pt, w);
+    st->h = h, st->eh = w[MC_SPEC_EH], st->p0 = w[MC_SPEC_P0], st->p1 = w[MC_SPEC_P1];
+    st->al = w[MC_SPEC_AL], st->ga = w[MC_SPEC_GA], st->sa = w[MC_SPEC_SA], st->sb = w[MC_SPEC_SB];
 }
 
-static void frame_of(double cq, double sq, const double complex eps[6], double e[12])
+/* out = A (al U) + B (al V + ga U) of the state's sums */
+static inline void observe(const double A[6][6], const double B[6][6], const mc_spec_state *st,
+                           double *restrict out)
 {
-    double complex f[6];
-    mc_spec_to_frame(cq, sq, eps, f);
-    for (int c = 0; c < 6; c++) {
-        e[2 * c] = creal(f[c]);
-        e[2 * c + 1] = cimag(f[c]);
+    double u[12], v[12];
+    for (int m = 0; m < 12; m++) {
+        u[m] = st->al * st->U[m];
+        v[m] = st->al * st->V[m] + st->ga * st->U[m];
     }
+    prod_a(A, u, out);
+    prod_b(B, v, out);
 }
 
-static void lab_of(double cq, double sq, const double a[12], double complex sig[6])
+/* past a layer of scaled thickness h: U = e^{-h} U + p0 e, V = e^{-h} (V + h U) + p1 e */
+static inline void advance(mc_spec_state *st, const double *e)
 {
-    double complex f[6];
-    for (int m = 0; m < 6; m++)
-        f[m] = a[2 * m] + I * a[2 * m + 1];
-    mc_spec_from_frame(cq, sq, f, sig);
-}
-
-/* out += A (a U) + B (a V + c U) (average) or A Uc + B Vc with the sums moved by h/2 (centre) */
-static void observe(const mc_spec_sparse *A, const mc_spec_sparse *B, const mc_spec_state *st,
-                    const double *U, const double *V, int avg, double *out)
-{
-    double Uc[12], Vc[12];
-    if (avg) {
-        const double a = st->p0 / st->h, c = st->p1 / st->h;
-        for (int m = 0; m < 12; m++) {
-            Uc[m] = a * U[m];
-            Vc[m] = a * V[m] + c * U[m];
-        }
-    } else {
-        const double e = st->ehalf, d = 0.5 * st->h;
-        for (int m = 0; m < 12; m++) {
-            Uc[m] = e * U[m];
-            Vc[m] = e * (V[m] + d * U[m]);
-        }
+    for (int m = 0; m < 12; m++) {
+        st->V[m] = st->eh * (st->V[m] + st->h * st->U[m]) + st->p1 * e[m];
+        st->U[m] = st->eh * st->U[m] + st->p0 * e[m];
     }
-    sp_add(out, 1.0, A, Uc);
-    sp_add(out, 1.0, B, Vc);
 }
 
 void mc_spec_down_layer(const mc_spec_coef *k, double top, double bottom, mc_spec_point pt,
                         const double complex eps[6], mc_spec_state *st, double complex sig[6])
 {
-    const double q = st->q, cq = st->cq, sq = st->sq, x = q * top, h = q * (bottom - top);
-    const int avg = pt == MC_SPEC_AVERAGE;
-    state_scalars(st, h);
-    double e[12], out[12] = {0};
-    frame_of(cq, sq, eps, e);
-    observe(&k->sAp, &k->sBp, st, st->U, st->V, avg, out); /* the layers above */
-    const double sa = avg ? st->q0 / h : st->p0h2, sb = avg ? st->q1 / h : st->p1h2;
-    sp_add(out, sa, &k->sAs, e); /* its own */
-    sp_add(out, sb, &k->sBs, e);
-    for (int m = 0; m < 6; m++)
-        for (int c = 0; c < 6; c++) {
-            out[2 * m] += k->Minf[m][c] * e[2 * c];
-            out[2 * m + 1] += k->Minf[m][c] * e[2 * c + 1];
-        }
-    lab_of(cq, sq, out, sig);
-    for (int m = 0; m < 12; m++) { /* past the layer; the totals */
-        st->V[m] = st->eh * (st->V[m] + h * st->U[m]) + st->p1 * e[m];
-        st->U[m] = st->eh * st->U[m] + st->p0 * e[m];
-        st->W0[m] += st->et * st->p0 * e[m];
-        st->W1[m] += st->et * (x * st->p0 + st->p1) * e[m];
+    const double q = st->q, x = q * top;
+    state_scalars(st, q * (bottom - top), pt);
+    double e[12], out[12] = {0}, es[12], eb[12];
+    frame_real(st->cq, st->sq, eps, e);
+    observe(k->rAp, k->rBp, st, out); /* the layers above */
+    for (int m = 0; m < 12; m++) {
+        es[m] = st->sa * e[m];
+        eb[m] = st->sb * e[m];
     }
+    prod_a(k->rAs, es, out); /* its own */
+    prod_b(k->rBs, eb, out);
+    prod_local(k->rMinf, e, out);
+    lab_real(st->cq, st->sq, out, sig);
+    const double w0 = st->et * st->p0, w1 = st->et * (x * st->p0 + st->p1);
+    for (int m = 0; m < 12; m++) { /* the totals */
+        st->W0[m] += w0 * e[m];
+        st->W1[m] += w1 * e[m];
+    }
+    advance(st, e);
     st->et *= st->eh;
 }
 
 double complex mc_spec_turn(const mc_spec_coef *k, mc_spec_state *st)
 {
-    const double q = st->q;
-    double re = 0.0, im = 0.0;
-    for (int c = 0; c < 6; c++) {
-        const double complex am = k->Am[2][c], bm = k->Bm[2][c];
-        re += 2.0 * (creal(am) * st->W0[2 * c] - cimag(am) * st->W0[2 * c + 1] +
-                     creal(bm) * st->W1[2 * c] - cimag(bm) * st->W1[2 * c + 1]);
-        im += 2.0 * (creal(am) * st->W0[2 * c + 1] + cimag(am) * st->W0[2 * c] +
-                     creal(bm) * st->W1[2 * c + 1] + cimag(bm) * st->W1[2 * c]);
+    /* p3 = 2 sigma_zz of S1 on z = 0 (row zz is even: the real form's row is its own) */
+    double p3[2] = {0.0, 0.0};
+    for (int c = 0; c < 6; c++)
+        for (int j = 0; j < 2; j++)
+            p3[j] += 2.0 * (k->rAm[2][c] * st->W0[2 * c + j] + k->rBm[2][c] * st->W1[2 * c + j]);
+    /* the mirror layers (R W: y'z, x'z flipped) and S3, as seen from a layer of top t:
+     * e^{-t} (al P + (al t + ga) Q), P = Ap R W0 + Bp R W1 + T0 p3, Q = Bp R W0 + T1 p3 */
+    double r0[12], r1[12], P[12] = {0}, Q[12] = {0};
+    for (int m = 0; m < 12; m++) {
+        r0[m] = m >= 8 ? -st->W0[m] : st->W0[m];
+        r1[m] = m >= 8 ? -st->W1[m] : st->W1[m];
     }
-    st->p3[0] = re;
-    st->p3[1] = im;
+    prod_a(k->rAp, r0, P);
+    prod_b(k->rBp, r1, P);
+    prod_b(k->rBp, r0, Q);
+    for (int c = 0; c < 6; c++)
+        for (int j = 0; j < 2; j++) {
+            P[2 * c + j] += k->rT0[c] * p3[j];
+            Q[2 * c + j] += k->rT1[c] * p3[j];
+        }
+    memcpy(st->W0, P, sizeof P);
+    memcpy(st->W1, Q, sizeof Q);
+    st->p3 = p3[0] + I * p3[1];
     memset(st->U, 0, sizeof st->U);
     memset(st->V, 0, sizeof st->V);
-    return k->uz0 * (re + I * im) / q;
+    return k->uz0 * st->p3 / st->q;
 }
+
+/* below this e^{-q z} the up pass takes e^{-q top} from exp() instead of dividing by e^{-h} */
+#define ET_DIVIDE_ABOVE 1e-200
 
 void mc_spec_up_layer(const mc_spec_coef *k, double top, double bottom, mc_spec_point pt,
                       const double complex eps[6], mc_spec_state *st, double complex sig[6])
 {
-    const double q = st->q, cq = st->cq, sq = st->sq, x = q * top, h = q * (bottom - top);
-    const int avg = pt == MC_SPEC_AVERAGE;
-    state_scalars(st, h);
-    double e[12], out[12] = {0}, Um[12], Vm[12];
-    frame_of(cq, sq, eps, e);
-    observe(&k->sAm, &k->sBm, st, st->U, st->V, avg, out); /* the layers below */
-    /* the mirror layers, all above: the totals seen from the layer's top, R (yz, xz) flipped */
-    const double em = exp(-x);
-    for (int m = 0; m < 12; m++) {
-        const double r = m >= 8 ? -1.0 : 1.0;
-        Um[m] = em * r * st->W0[m];
-        Vm[m] = em * r * (x * st->W0[m] + st->W1[m]);
-    }
-    if (avg) {
-        observe(&k->sAp, &k->sBp, st, Um, Vm, 1, out);
-    } else { /* (observe moves them by h/2 to the centre) */
-        observe(&k->sAp, &k->sBp, st, Um, Vm, 0, out);
-    }
-    /* S3 */
-    double tw0, tw1;
-    if (avg) {
-        tw0 = em * st->p0 / h;
-        tw1 = em * (x * st->p0 + st->p1) / h;
-    } else {
-        const double c = x + 0.5 * h;
-        tw0 = em * st->ehalf;
-        tw1 = tw0 * c;
-    }
-    for (int m = 0; m < 6; m++) {
-        const double complex t = (tw0 * k->T0[m] + tw1 * k->T1[m]) * (st->p3[0] + I * st->p3[1]);
-        out[2 * m] += creal(t);
-        out[2 * m + 1] += cimag(t);
-    }
-    lab_of(cq, sq, out, sig);
-    for (int m = 0; m < 12; m++) { /* above the layer */
-        st->V[m] = st->eh * (st->V[m] + h * st->U[m]) + st->p1 * e[m];
-        st->U[m] = st->eh * st->U[m] + st->p0 * e[m];
-    }
+    const double q = st->q, x = q * top;
+    state_scalars(st, q * (bottom - top), pt);
+    /* e^{-x}: the bottom's e^{-q bottom} (after the down pass: the volume's) divided by e^{-h} */
+    const double em = st->et > ET_DIVIDE_ABOVE ? st->et / st->eh : exp(-x);
+    st->et = em;
+    double e[12], out[12] = {0};
+    frame_real(st->cq, st->sq, eps, e);
+    observe(k->rAm, k->rBm, st, out); /* the layers below */
+    const double wp = em * st->al, wq = em * (st->al * x + st->ga);
+    for (int m = 0; m < 12; m++) /* the mirror layers and S3 */
+        out[m] += wp * st->W0[m] + wq * st->W1[m];
+    lab_real(st->cq, st->sq, out, sig);
+    advance(st, e);
 }
 
 /* ---- the surface displacement, layer by layer ---------------------------------------------- */

@@ -44,6 +44,11 @@ typedef struct {
     double uz0;
     double nu;
     mc_spec_sparse sAp, sBp, sAm, sBm, sAs, sBs; /* sAs = Ap + Am, sBs = Bp + Bm (self terms) */
+    /* The same matrices made real for the streamed step (theory §8.10): with the odd components
+     * y'z, x'z multiplied by -i (e~ = D^-1 e, D = diag(1, 1, 1, 1, i, i)) every entry is real,
+     * so a product is a real 6 x 6 one applied to the real and the imaginary parts alike. */
+    double rAp[6][6], rBp[6][6], rAm[6][6], rBm[6][6], rAs[6][6], rBs[6][6], rMinf[6][6];
+    double rT0[6], rT1[6];
 } mc_spec_coef;
 
 /* Fill k for Poisson ratio nu in (-1, 0.5). */
@@ -91,16 +96,22 @@ void mc_spec_uz_layers(const mc_spec_coef *k, double kx, double ky, int nz, cons
  * mc_spec_depth's result to round-off. The state holds a mode's running sums (re/im pairs), the
  * totals of the down pass and the scalars of the last layer thickness. q > 0. */
 typedef struct {
-    double U[12], V[12];   /* the running sums of the pass */
-    double W0[12], W1[12]; /* the down pass's totals sum e^{-t1} P0 e, sum e^{-t1} (t1 P0 + P1) e */
-    double et;             /* e^{-q top} of the next layer of the down pass */
-    double p3[2];          /* after mc_spec_turn: p3 per 2G (re, im) */
-    double h, eh, p0, p1, ehalf, p0h2, p1h2, q0, q1; /* the last thickness' scalars (h < 0: none) */
+    double U[12], V[12];   /* the running sums of the pass (the real form of the frame, re/im) */
+    double W0[12], W1[12]; /* down: the totals sum e^{-t1} P0 e, sum e^{-t1} (t1 P0 + P1) e;
+                              after mc_spec_turn: the mirror layers' and S3's vectors P, Q (the
+                              stress at a layer of top t is e^{-t} (al P + (al t + ga) Q)) */
+    double et;             /* down: e^{-q top} of the next layer; up: e^{-q bottom} of it */
+    double al, ga, sa, sb; /* the last thickness' weights: the sums seen from the layer
+                              al A U + B (al V + ga U), its own sa As e + sb Bs e */
+    double h, eh, p0, p1;  /* the last scaled thickness h (< 0: none), e^{-h} and the integrals */
     double q, cq, sq;      /* |k| and the frame's direction */
+    double complex p3;     /* after mc_spec_turn: p3 per 2G */
 } mc_spec_state;
 
 /* a fresh state for the mode (kx, ky) (1/m) */
 void mc_spec_state_init(mc_spec_state *st, double kx, double ky);
+/* the same with q = |k| > 0 and the frame (cq, sq) = (kx, ky) / q given (the operator's tables) */
+void mc_spec_state_init_q(mc_spec_state *st, double q, double cq, double sq);
 /* top, bottom: the layer's depths, m; eps (lab), sig (lab, per 2G) written (not added) */
 void mc_spec_down_layer(const mc_spec_coef *k, double top, double bottom, mc_spec_point pt,
                         const double complex eps[6], mc_spec_state *st, double complex sig[6]);
@@ -108,6 +119,45 @@ void mc_spec_down_layer(const mc_spec_coef *k, double top, double bottom, mc_spe
 double complex mc_spec_turn(const mc_spec_coef *k, mc_spec_state *st);
 void mc_spec_up_layer(const mc_spec_coef *k, double top, double bottom, mc_spec_point pt,
                       const double complex eps[6], mc_spec_state *st, double complex sig[6]);
+
+/* The scalars of a layer of scaled thickness h = q t for the streamed step (all 0 at h = 0):
+ * w[MC_SPEC_AL], [GA] (the sums seen from the layer: al A U + B (al V + ga U)), [SA], [SB] (its
+ * own: sa As + sb Bs), [H] = h, [EH] = e^{-h}, [P0], [P1] (the integrals of e^{-s}, s e^{-s}). */
+enum { MC_SPEC_AL, MC_SPEC_GA, MC_SPEC_SA, MC_SPEC_SB, MC_SPEC_H, MC_SPEC_EH, MC_SPEC_P0,
+       MC_SPEC_P1, MC_SPEC_WEIGHTS };
+void mc_spec_weights_of(double h, mc_spec_point pt, double w[MC_SPEC_WEIGHTS]);
+
+/* ---- the streamed step on many modes at once (eigen_spectral_modes.c) --------------------------
+ * The states of n lateral modes as a structure of arrays: field f of mode i at st[f n + i], the
+ * fields of mc_spec_state (U, V, W0 / P, W1 / Q, e^{-q z}); per mode q > 0 and the frame; the
+ * scalars of one layer thickness per mode in wt (mc_spec_modes_weights). The caller owns every
+ * array. Modes with q = 0 must stay out of the passes. */
+enum { MC_SPEC_U = 0, MC_SPEC_V = 12, MC_SPEC_W0 = 24, MC_SPEC_W1 = 36, MC_SPEC_ET = 48,
+       MC_SPEC_FIELDS = 49 };
+typedef struct {
+    long n;
+    double *st;                  /* MC_SPEC_FIELDS x n */
+    const double *q, *cq, *sq;   /* n each */
+    double *wt;                  /* MC_SPEC_WEIGHTS x n */
+} mc_spec_modes;
+
+/* every state fresh (as mc_spec_state_init) */
+void mc_spec_modes_clear(mc_spec_modes *m);
+/* the scalars of layer thickness t (m) for the modes i0 .. i1 - 1 */
+void mc_spec_modes_weights(mc_spec_modes *m, long i0, long i1, double t, mc_spec_point pt);
+/* One visit of the modes i0 .. i1 - 1 for nb layers of the thickness of wt, in the pass's order
+ * (down: mc_spec_down_layer; up, after mc_spec_modes_turn: mc_spec_up_layer): layer s has its top
+ * at tops[s] (m), its strain (lab) of mode i at e[s][c][i], and its stress (per 2G, lab) times
+ * wgt[i] goes to out[s][c][i] (written, or added when add; out may be e). divide (up): e^{-q top}
+ * by dividing the bottom's by e^{-q t}, which needs e^{-q depth} of the deepest mode above
+ * underflow; 0 takes exp(). */
+void mc_spec_modes_pass(const mc_spec_coef *k, mc_spec_modes *m, long i0, long i1, int up,
+                        int nb, const double *tops, int divide,
+                        const double complex *const (*e)[6], const double *wgt,
+                        double complex *const (*out)[6], int add);
+/* mc_spec_turn of the modes i0 .. i1 - 1: p3[i] (per 2G) and uz[i] (m) */
+void mc_spec_modes_turn(const mc_spec_coef *k, mc_spec_modes *m, long i0, long i1,
+                        double complex *p3, double complex *uz);
 
 /* The surface displacement alone, layer by layer in order from the top (the displacement
  * operator): a mode's state, then per layer D (lab, m per unit eigenstrain column). */

@@ -300,6 +300,19 @@ int mc_eigen_disp_takes_sum(const mc_eigen_disp *op);
 int mc_eigen_disp_apply_sum(mc_eigen_disp *op, const double *const eps[6],
                             const mc_eigen_sparse *inc, double *uz);
 
+/* The sum's apply in two halves around the contact solve (the spectral kernel's objects; others
+ * MC_ERR_LIMIT): begin_sum writes u_z (grid, m) of eps + inc and a part of its stresses into sig,
+ * end_sum adds the rest and the folded loads' stresses of p and qx, so that sig is then what
+ * mc_eigen_stress_apply_sum gives, with the same bits. The joint iteration takes u_z from the
+ * stress operator this way instead of a displacement apply (theory §9.9). eps and inc must not
+ * change in between, nor op be applied otherwise. */
+int mc_eigen_stress_begin_sum(mc_eigen_stress *op, const double *const eps[6],
+                              const mc_eigen_sparse *inc, double G, double *const sig[6],
+                              double *uz);
+int mc_eigen_stress_end_sum(mc_eigen_stress *op, const double *const eps[6],
+                            const mc_eigen_sparse *inc, double G, const double *p,
+                            const double *qx, double *const sig[6]);
+
 /* The forward transforms of one strain field shared by both operators (theory.md §8.9): the
  * joint iteration needs u_z and the stresses of the same eps in one evaluation, with the contact
  * solve between them. mc_eigen_stress_forward(op, eps) transforms eps into the stress operator's

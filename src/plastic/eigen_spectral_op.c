@@ -21,6 +21,7 @@
 #include <math.h>
 #include <omp.h>
 #include <string.h>
+#include <stdlib.h>
 
 #include "core/alloc.h"
 #include "core/fftsize.h"
@@ -51,6 +52,8 @@ struct mc_eigen_spectral {
     /* fft, streamed (two passes over the layers, theory §8.10): per lateral bin its wave vectors
      * (two or four at a Nyquist index, weighted), each with its depth state */
     int nbins, nent;
+    int nblk;                /* layers per visit of the states (stream_block) */
+    int down_done;           /* 1: the down pass of mc_eigen_spectral_begin_sum has run */
     int *bin_first;          /* nbins + 1: the entries of bin b are bin_first[b] .. [b + 1] - 1 */
     double *ent_k;           /* 3 per entry: kx, ky, weight */
     mc_spec_state *st;       /* nent */
@@ -118,6 +121,9 @@ static void shape(const mc_grid *g, const mc_eigen_volume *v, mc_eigen_spectral 
     op->px = free_axis_pad(g->nx, g->periodic_x);
     op->py = free_axis_pad(g->ny, g->periodic_y);
     op->hx = op->px / 2 + 1;
+    /* a lateral mode costs ~300 flops per layer and pass: threads pay from ~32k modes (the
+     * team's wake-ups dominated a 44^2 run, 36 % of its time in the scheduler) */
+    op->nthr = mc_eig_threads(8 * (size_t)op->hx * op->py);
 }
 
 static size_t stream_entries(const mc_eigen_spectral *op);
@@ -160,13 +166,16 @@ static size_t stream_entries(const mc_eigen_spectral *op)
     return n;
 }
 
+static int stream_block(const mc_eigen_spectral *op);
+static size_t stream_rows(const mc_eigen_spectral *op);
+
 static size_t stream_bytes(const mc_eigen_spectral *op)
 {
     const size_t bins = (size_t)op->py * op->hx, nent = stream_entries(op);
     return nent * (sizeof(mc_spec_state) + 3 * sizeof(double)) + (bins + 1) * sizeof(int) +
-           7 * bins * sizeof(fftw_complex) /* sp6 and U */ +
+           (6 * (size_t)stream_block(op) + 1) * bins * sizeof(fftw_complex) /* sp6 and U */ +
            (size_t)op->nx * op->ny * sizeof(double) /* p3 */ +
-           (size_t)op->py * op->px * sizeof(double) + ((size_t)op->nz + 1) * sizeof(double) +
+           stream_rows(op) * sizeof(double) + ((size_t)op->nz + 1) * sizeof(double) +
            sizeof(mc_eigen_spectral);
 }
 
@@ -246,18 +255,43 @@ static void entries_fill(mc_eigen_spectral *op)
 
 /* ---- fft, streamed: two passes over the layers, no layer spectra kept ---------------------- */
 
+/* Layers per visit of the states: the mode loop streams every state (~0.5 kB per wave vector)
+ * once per block of layers instead of once per layer (theory §8.10: the loop is bound by that
+ * traffic). A block holds its layers' six spectra, so the extra spectra stay within
+ * STREAM_BLOCK_SHARE of the states' bytes. */
+#define STREAM_BLOCK_MAX 4
+#define STREAM_BLOCK_SHARE 0.35
+
+static int stream_block(const mc_eigen_spectral *op)
+{
+    const double sp6 = 6.0 * op->py * op->hx * sizeof(fftw_complex);
+    const double states = (double)stream_entries(op) * sizeof(mc_spec_state);
+    int nb = 1 + (int)(STREAM_BLOCK_SHARE * states / sp6);
+    nb = nb < STREAM_BLOCK_MAX ? nb : STREAM_BLOCK_MAX;
+    return nb < op->nz ? nb : op->nz;
+}
+
+/* the padded rows: one set of ny rows per thread (the transforms run per layer and component),
+ * and at least the py x px that a borrowing displacement object takes as its lrows */
+static size_t stream_rows(const mc_eigen_spectral *op)
+{
+    const size_t per = (size_t)op->ny * op->px, all = (size_t)op->py * op->px;
+    return (size_t)op->nthr * per > all ? (size_t)op->nthr * per : all;
+}
+
 static int stream_prepare(mc_eigen_spectral *op, mc_error *err)
 {
     const int px = op->px, py = op->py, hx = op->hx, ny = op->ny;
     const size_t bins = (size_t)py * hx, nent = stream_entries(op);
     op->nbins = (int)bins;
     op->nent = (int)nent;
+    op->nblk = stream_block(op);
     op->bin_first = mc_malloc((bins + 1) * sizeof *op->bin_first);
     op->ent_k = mc_malloc(3 * nent * sizeof *op->ent_k);
     op->st = mc_malloc(nent * sizeof *op->st);
-    op->sp6 = mc_malloc(6 * bins * sizeof *op->sp6);
+    op->sp6 = mc_malloc(6 * (size_t)op->nblk * bins * sizeof *op->sp6);
     op->U = mc_malloc(bins * sizeof *op->U);
-    op->prow = mc_malloc((size_t)py * px * sizeof *op->prow);
+    op->prow = mc_malloc(stream_rows(op) * sizeof *op->prow);
     op->p3 = mc_zeros((size_t)op->nx * op->ny);
     if (!op->bin_first || !op->ent_k || !op->st || !op->sp6 || !op->U || !op->prow || !op->p3)
         return mc_fail(err, MC_ERR_NOMEM, "spectral eigen operator: out of memory (%zu bytes)",
@@ -266,7 +300,9 @@ static int stream_prepare(mc_eigen_spectral *op, mc_error *err)
     int rc = mc_fftw_prepare(err);
     if (rc)
         return rc;
-    fftw_plan_with_nthreads(op->nthr);
+    /* one thread per plan: the threads take the layers' components in parallel, and the bits do
+     * not depend on how many there are */
+    fftw_plan_with_nthreads(1);
     const unsigned fl = FFTW_ESTIMATE | FFTW_UNALIGNED;
     int nxp[1] = {px}, nyp[1] = {py};
     /* forward: the ny rows along x (the padded rows are zero), then every column along y */
@@ -301,130 +337,188 @@ static void sparse_add(const mc_eigen_spectral *op, const mc_eigen_sparse *inc, 
     }
 }
 
-/* layer l's six components of eps + inc (inc NULL: eps alone) into op->sp6 (spectra) */
+/* the spectrum of component c of block slot s */
+static fftw_complex *slot(const mc_eigen_spectral *op, int s, int c)
+{
+    return op->sp6 + ((size_t)s * 6 + (size_t)c) * (size_t)op->nbins;
+}
+
+/* The block's nb layers of eps + inc (inc NULL: eps alone) into its spectra, slot s for layer
+ * first + dir s (dir 1 down, -1 up; the layers' components in parallel, one thread each). */
 static void stream_forward(mc_eigen_spectral *op, const double *const eps[6],
-                           const mc_eigen_sparse *inc, int l)
+                           const mc_eigen_sparse *inc, int first, int dir, int nb)
 {
     const int nx = op->nx, ny = op->ny, px = op->px, py = op->py, hx = op->hx;
-    const size_t bins = (size_t)py * hx, layer = (size_t)nx * ny;
-    for (int c = 0; c < 6; c++) {
+    const size_t layer = (size_t)nx * ny;
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+    for (int t = 0; t < 6 * nb; t++) {
+        const int s = t / 6, c = t % 6, l = first + dir * s;
+        double *rows = op->prow + (size_t)omp_get_thread_num() * ny * px;
         const double *f = eps[c] + (size_t)l * layer;
         for (int j = 0; j < ny; j++) {
-            memcpy(op->prow + (size_t)j * px, f + (size_t)j * nx, (size_t)nx * sizeof *op->prow);
-            memset(op->prow + (size_t)j * px + nx, 0, (size_t)(px - nx) * sizeof *op->prow);
+            memcpy(rows + (size_t)j * px, f + (size_t)j * nx, (size_t)nx * sizeof *rows);
+            memset(rows + (size_t)j * px + nx, 0, (size_t)(px - nx) * sizeof *rows);
         }
-        sparse_add(op, inc, l, c, op->prow, px);
-        fftw_complex *S = op->sp6 + c * bins;
-        fftw_execute_dft_r2c(op->a_r2c, op->prow, S);
+        sparse_add(op, inc, l, c, rows, px);
+        fftw_complex *S = slot(op, s, c);
+        fftw_execute_dft_r2c(op->a_r2c, rows, S);
         memset(S + (size_t)ny * hx, 0, (size_t)(py - ny) * hx * sizeof *S);
         fftw_execute_dft(op->b_fwd, S, S);
     }
 }
 
-/* op->sp6 (spectra) back into layer l of sig, scaled; added when add */
-static void stream_inverse(mc_eigen_spectral *op, double scale, double *const sig[6], int l,
-                           int add)
+/* The block's spectra (already scaled) back into its layers of sig (as stream_forward); added
+ * going up. */
+static void stream_inverse(mc_eigen_spectral *op, double *const sig[6], int first, int dir,
+                           int nb)
 {
-    const int nx = op->nx, ny = op->ny, px = op->px, py = op->py, hx = op->hx;
-    const size_t bins = (size_t)py * hx, layer = (size_t)nx * ny;
-    for (int c = 0; c < 6; c++) {
-        fftw_complex *S = op->sp6 + c * bins;
+    const int nx = op->nx, ny = op->ny, px = op->px;
+    const size_t layer = (size_t)nx * ny;
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+    for (int t = 0; t < 6 * nb; t++) {
+        const int s = t / 6, c = t % 6;
+        double *rows = op->prow + (size_t)omp_get_thread_num() * ny * px;
+        fftw_complex *S = slot(op, s, c);
         fftw_execute_dft(op->c_bwd, S, S);
-        fftw_execute_dft_c2r(op->d_c2r, S, op->prow);
-        double *f = sig[c] + (size_t)l * layer;
-        for (int j = 0; j < ny; j++)
-            for (int i = 0; i < nx; i++) {
-                const double v = scale * op->prow[(size_t)j * px + i];
-                f[(size_t)j * nx + i] = add ? f[(size_t)j * nx + i] + v : v;
-            }
+        fftw_execute_dft_c2r(op->d_c2r, S, rows);
+        double *f = sig[c] + (size_t)(first + dir * s) * layer;
+        for (int j = 0; j < ny; j++) {
+            const double *r = rows + (size_t)j * px;
+            double *o = f + (size_t)j * nx;
+            if (dir < 0)
+                for (int i = 0; i < nx; i++)
+                    o[i] += r[i];
+            else
+                memcpy(o, r, (size_t)nx * sizeof *o);
+        }
     }
+}
+
+/* One visit of every state for the block's nb layers (slot s: layer first + s, or first - s
+ * going up): each bin's spectra replaced by its stresses, scaled by scale (the pass's part). */
+static void stream_modes(mc_eigen_spectral *op, int up, int first, int nb, double scale)
+{
+    const size_t bins = (size_t)op->nbins;
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+    for (size_t b = 0; b < bins; b++) {
+        double complex e[STREAM_BLOCK_MAX][6], out[STREAM_BLOCK_MAX][6], one[6];
+        for (int s = 0; s < nb; s++)
+            for (int c = 0; c < 6; c++) {
+                e[s][c] = slot(op, s, c)[b];
+                out[s][c] = 0.0;
+            }
+        for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++) {
+            const double w = scale * op->ent_k[3 * en + 2];
+            mc_spec_state *st = &op->st[en];
+            if (st->q == 0.0) { /* k = 0, the layer: local stresses only */
+                if (!up)
+                    for (int s = 0; s < nb; s++)
+                        for (int m = 0; m < 6; m++)
+                            for (int c = 0; c < 6; c++)
+                                out[s][m] += w * op->coef.Minf[m][c] * e[s][c];
+                continue;
+            }
+            for (int s = 0; s < nb; s++) {
+                const int l = up ? first - s : first + s;
+                const double top = op->b[l], bottom = op->b[l + 1];
+                if (up)
+                    mc_spec_up_layer(&op->coef, top, bottom, op->pt, e[s], st, one);
+                else
+                    mc_spec_down_layer(&op->coef, top, bottom, op->pt, e[s], st, one);
+                for (int c = 0; c < 6; c++)
+                    out[s][c] += w * one[c];
+            }
+        }
+        for (int s = 0; s < nb; s++)
+            for (int c = 0; c < 6; c++)
+                slot(op, s, c)[b] = out[s][c];
+    }
+}
+
+/* the grid (ny x nx) of a spectrum (py x hx, destroyed), times scale */
+static void stream_grid(mc_eigen_spectral *op, fftw_complex *S, double scale, double *grid)
+{
+    const int nx = op->nx, ny = op->ny, px = op->px;
+    fftw_execute_dft(op->c_bwd, S, S);
+    fftw_execute_dft_c2r(op->d_c2r, S, op->prow);
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            grid[(size_t)j * nx + i] = scale * op->prow[(size_t)j * px + i];
+}
+
+/* The down pass (theory §8.10): every layer's stresses of the layers above, its own and the
+ * local term written into sig (sig NULL: the displacement alone), then the turn: u_z and p3.
+ * The states then hold what stream_up needs; eps and inc must not change in between. */
+static void stream_down(mc_eigen_spectral *op, const double *const eps[6],
+                        const mc_eigen_sparse *inc, double G, double *const sig[6], double *uz)
+{
+    const int nz = op->nz, nb = op->nblk;
+    const size_t bins = (size_t)op->nbins;
+    const double scale = 2.0 * G / ((double)op->px * op->py);
+    double complex u0 = 0.0; /* the mode k = 0's surface displacement (bin 0) */
+    for (int e = 0; e < op->nent; e++)
+        mc_spec_state_init(&op->st[e], op->ent_k[3 * e], op->ent_k[3 * e + 1]);
+    for (int first = 0; first < nz; first += nb) {
+        const int n = first + nb <= nz ? nb : nz - first;
+        stream_forward(op, eps, inc, first, 1, n);
+        for (int s = 0; s < n; s++)
+            u0 -= (op->b[first + s + 1] - op->b[first + s]) *
+                  (op->uz0[0] * slot(op, s, 0)[0] + op->uz0[1] * slot(op, s, 1)[0] +
+                   op->uz0[2] * slot(op, s, 2)[0]);
+        if (!sig) { /* the states' totals alone */
+            stream_modes(op, 0, first, n, 0.0);
+            continue;
+        }
+        stream_modes(op, 0, first, n, scale);
+        stream_inverse(op, sig, first, 1, n);
+    }
+    /* the turn: p3 of every mode, the surface displacement */
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+    for (size_t b = 0; b < bins; b++) {
+        double complex u = 0.0;
+        for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++)
+            if (op->st[en].q > 0.0)
+                u += op->ent_k[3 * en + 2] * mc_spec_turn(&op->coef, &op->st[en]);
+        op->U[b] = u;
+    }
+    op->U[0] = u0;
+    if (sig) { /* p3 of every mode (the states hold it after the turn), Pa */
+        fftw_complex *S = slot(op, 0, 0);
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+        for (size_t b = 0; b < bins; b++) {
+            double complex v = 0.0;
+            for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++)
+                v += op->ent_k[3 * en + 2] * op->st[en].p3;
+            S[b] = v;
+        }
+        stream_grid(op, S, scale, op->p3);
+    }
+    if (uz)
+        stream_grid(op, op->U, 1.0 / ((double)op->px * op->py), uz);
+    op->down_done = sig != NULL;
+}
+
+/* The up pass: the layers below, the mirror layers and S3 added to sig. */
+static void stream_up(mc_eigen_spectral *op, const double *const eps[6],
+                      const mc_eigen_sparse *inc, double G, double *const sig[6])
+{
+    const int nz = op->nz, nb = op->nblk;
+    const double scale = 2.0 * G / ((double)op->px * op->py);
+    for (int last = nz - 1; last >= 0; last -= nb) {
+        const int n = last + 1 >= nb ? nb : last + 1; /* slot s: layer last - s */
+        stream_forward(op, eps, inc, last, -1, n);
+        stream_modes(op, 1, last, n, scale);
+        stream_inverse(op, sig, last, -1, n);
+    }
+    op->down_done = 0;
 }
 
 static void stream_apply(mc_eigen_spectral *op, const double *const eps[6],
                          const mc_eigen_sparse *inc, double G, double *const sig[6], double *uz)
 {
-    const int nz = op->nz, nx = op->nx, ny = op->ny, px = op->px, py = op->py;
-    const size_t bins = (size_t)op->nbins;
-    const double scale = 2.0 * G / ((double)px * py);
-    double complex u0 = 0.0; /* the mode k = 0's surface displacement (bin 0) */
-    for (int e = 0; e < op->nent; e++)
-        mc_spec_state_init(&op->st[e], op->ent_k[3 * e], op->ent_k[3 * e + 1]);
-    for (int pass = 0; pass < 2; pass++) {
-        for (int n = 0; n < nz; n++) {
-            const int l = pass ? nz - 1 - n : n;
-            const double top = op->b[l], bottom = op->b[l + 1];
-            stream_forward(op, eps, inc, l);
-            if (pass == 0) {
-                const fftw_complex *S = op->sp6;
-                u0 -= (bottom - top) * (op->uz0[0] * S[0] + op->uz0[1] * S[bins] +
-                                        op->uz0[2] * S[2 * bins]);
-            }
-#pragma omp parallel for schedule(static) num_threads(op->nthr)
-            for (size_t b = 0; b < bins; b++) {
-                double complex e[6], out[6] = {0}, one[6];
-                for (int c = 0; c < 6; c++)
-                    e[c] = op->sp6[c * bins + b];
-                for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++) {
-                    const double kx = op->ent_k[3 * en], ky = op->ent_k[3 * en + 1],
-                                 w = op->ent_k[3 * en + 2];
-                    if (kx == 0.0 && ky == 0.0) { /* the layer: local stresses only */
-                        if (pass == 0)
-                            for (int m = 0; m < 6; m++)
-                                for (int c = 0; c < 6; c++)
-                                    out[m] += op->coef.Minf[m][c] * e[c];
-                        continue;
-                    }
-                    if (pass == 0)
-                        mc_spec_down_layer(&op->coef, top, bottom, op->pt, e, &op->st[en], one);
-                    else
-                        mc_spec_up_layer(&op->coef, top, bottom, op->pt, e, &op->st[en], one);
-                    for (int c = 0; c < 6; c++)
-                        out[c] += w * one[c];
-                }
-                for (int c = 0; c < 6; c++)
-                    op->sp6[c * bins + b] = out[c];
-            }
-            if (sig)
-                stream_inverse(op, scale, sig, l, pass);
-        }
-        if (pass == 0) { /* the turn: p3 of every mode, the surface displacement */
-#pragma omp parallel for schedule(static) num_threads(op->nthr)
-            for (size_t b = 0; b < bins; b++) {
-                double complex u = 0.0;
-                for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++) {
-                    const double kx = op->ent_k[3 * en], ky = op->ent_k[3 * en + 1];
-                    if (kx != 0.0 || ky != 0.0)
-                        u += op->ent_k[3 * en + 2] * mc_spec_turn(&op->coef, &op->st[en]);
-                }
-                op->U[b] = u;
-            }
-            op->U[0] = u0;
-            if (sig) { /* p3 of every mode (the states hold it after the turn), Pa */
-#pragma omp parallel for schedule(static) num_threads(op->nthr)
-                for (size_t b = 0; b < bins; b++) {
-                    double complex v = 0.0;
-                    for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++)
-                        v += op->ent_k[3 * en + 2] * (op->st[en].p3[0] + I * op->st[en].p3[1]);
-                    op->sp6[b] = v;
-                }
-                fftw_execute_dft(op->c_bwd, op->sp6, op->sp6);
-                fftw_execute_dft_c2r(op->d_c2r, op->sp6, op->prow);
-                for (int j = 0; j < ny; j++)
-                    for (int i = 0; i < nx; i++)
-                        op->p3[(size_t)j * nx + i] = scale * op->prow[(size_t)j * px + i];
-            }
-            if (uz) {
-                fftw_execute_dft(op->c_bwd, op->U, op->U);
-                fftw_execute_dft_c2r(op->d_c2r, op->U, op->prow);
-                const double us = 1.0 / ((double)px * py);
-                for (int j = 0; j < ny; j++)
-                    for (int i = 0; i < nx; i++)
-                        uz[(size_t)j * nx + i] = us * op->prow[(size_t)j * px + i];
-            }
-            if (!sig)
-                return; /* the displacement alone */
-        }
-    }
+    stream_down(op, eps, inc, G, sig, uz);
+    if (sig)
+        stream_up(op, eps, inc, G, sig);
 }
 
 /* ---- fft, the surface displacement alone: one layer at a time, D evaluated per mode ---------- */
@@ -653,9 +747,6 @@ static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_back
     op->uz_only = uz_only;
     op->pt = v->stress_points == MC_EIG_CELL_CENTRE ? MC_SPEC_CENTRE : MC_SPEC_AVERAGE;
     mc_spec_coef_init(nu, &op->coef);
-    /* a lateral mode costs ~500 flops per layer and pass: threads pay from ~32k modes (the
-     * team's wake-ups dominated a 44^2 run, 36 % of its time in the scheduler) */
-    op->nthr = mc_eig_threads(8 * (size_t)op->hx * op->py);
     /* the surface displacement of the mode k = 0 per unit thickness: u_z = -t (a e_xx + b e_yy
      * + e_zz). Over a periodic axis the field is uniform along it; along a free axis the mode
      * stands for the limit k -> 0 (theory §8.10): the laterally constrained layer when both
@@ -734,6 +825,28 @@ void mc_eigen_spectral_apply_sum(mc_eigen_spectral *op, const double *const eps[
         stream_apply(op, eps, inc, G, sig, uz);
     else
         direct_apply(op, direct_input(op, eps, inc, o), G, sig, uz);
+}
+
+void mc_eigen_spectral_begin_sum(mc_eigen_spectral *op, const double *const eps[6],
+                                 const mc_eigen_sparse *inc, double G, double *const sig[6],
+                                 double *uz)
+{
+    if (op->backend == MC_BACKEND_FFT && !op->uz_only) {
+        stream_down(op, eps, inc, G, sig, uz);
+        return;
+    }
+    mc_eigen_spectral_apply_sum(op, eps, inc, G, sig, uz); /* the whole of it */
+}
+
+void mc_eigen_spectral_end_sum(mc_eigen_spectral *op, const double *const eps[6],
+                               const mc_eigen_sparse *inc, double G, double *const sig[6])
+{
+    if (op->backend != MC_BACKEND_FFT || op->uz_only)
+        return; /* (begin made it all) */
+    if (op->down_done)
+        stream_up(op, eps, inc, G, sig);
+    else /* (no down pass to finish: the whole apply) */
+        stream_apply(op, eps, inc, G, sig, NULL);
 }
 
 void mc_eigen_spectral_apply(mc_eigen_spectral *op, const double *const eps[6], double G,

@@ -67,6 +67,18 @@ void mc_eigen_spectral_apply_sum(mc_eigen_spectral *op, const double *const eps[
                                  const mc_eigen_sparse *inc, double G, double *const sig[6],
                                  double *uz);
 
+/* The same apply in two halves, for the plastic loop's evaluation (theory §9.9): begin makes
+ * the down pass (the stresses of the layers above each layer, its own and the local term, into
+ * sig) and u_z; end_sum adds the rest (the layers below, the mirror layers, S3) to sig. sig then
+ * holds what apply_sum gives, with the same bits. Between the two, eps and inc must not change and
+ * op must not be applied otherwise (a borrowing displacement object may be); sig holds a part.
+ * The direct backend and the displacement alone make it all in begin. */
+void mc_eigen_spectral_begin_sum(mc_eigen_spectral *op, const double *const eps[6],
+                                 const mc_eigen_sparse *inc, double G, double *const sig[6],
+                                 double *uz);
+void mc_eigen_spectral_end_sum(mc_eigen_spectral *op, const double *const eps[6],
+                               const mc_eigen_sparse *inc, double G, double *const sig[6]);
+
 /* The surface displacement alone (the displacement operator of eigen_op.h with the spectral
  * kernel): an object made by mc_eigen_spectral_create_uz streams the layers one at a time (the
  * fft backend holds one layer's spectra and the surface's: a few hundred bytes per surface cell),

@@ -1051,6 +1051,32 @@ int mc_eigen_stress_apply_sum(mc_eigen_stress *op, const double *const eps[6],
     return MC_OK;
 }
 
+int mc_eigen_stress_begin_sum(mc_eigen_stress *op, const double *const eps[6],
+                              const mc_eigen_sparse *inc, double G, double *const sig[6],
+                              double *uz)
+{
+    if (!op->spec)
+        return MC_ERR_LIMIT;
+    op->fwd = NULL;
+    mc_eigen_spectral_begin_sum(op->spec, eps, inc, G, sig, uz);
+    return MC_OK;
+}
+
+int mc_eigen_stress_end_sum(mc_eigen_stress *op, const double *const eps[6],
+                            const mc_eigen_sparse *inc, double G, const double *p,
+                            const double *qx, double *const sig[6])
+{
+    if (!op->spec)
+        return MC_ERR_LIMIT;
+    mc_eigen_spectral_end_sum(op->spec, eps, inc, G, sig);
+    const double *loads[2] = {NULL, NULL};
+    for (int l = 0; l < op->nloads; l++)
+        loads[l] = op->load_id[l] == MC_TRACTION_P ? p : qx;
+    if (op->nloads)
+        spectral_add_loads(op, loads[0], op->nloads > 1 ? loads[1] : NULL, sig);
+    return MC_OK;
+}
+
 void mc_eigen_stress_apply_forwarded(mc_eigen_stress *op, double G, const double *p,
                                      const double *qx, double *const sig[6])
 {

@@ -101,6 +101,8 @@ typedef struct {
     int sparse;                  /* 1: the joint iteration runs on inc */
     int dense_now;               /* 1: this increment's state is in the dense arrays */
     int eps_any;                 /* 1: the committed eps_p is not zero somewhere */
+    int begun;                   /* 1: joint_displacement began the stress apply of eps_p + inc
+                                    (mc_eigen_stress_begin_sum), which sparse_sweep ends */
     mc_plastic_incr inc, inc_new, inc_tmp;
     double *lay7;                /* 7 x one layer of the window: the sweep's values per layer */
 } loop_ctx;
@@ -601,9 +603,12 @@ static int sweep(loop_ctx *c, const double *eps_p, const double *peq, const doub
             sg[q] = c->sig_r + (size_t)q * (size_t)c->nvol;
         if (forwarded && any) /* the forward of this eps was made for u_r (joint_iteration) */
             mc_eigen_stress_apply_forwarded(c->resid, c->G, p, qx, sg);
+        else if (c->begun && any) /* u_r's evaluation made its first half */
+            (void)mc_eigen_stress_end_sum(c->resid, e, NULL, c->G, p, qx, sg);
         else
             mc_eigen_stress_apply_loaded(c->resid, any ? e : NULL, c->G, p, qx, sg);
         c->stress_applies += any;
+        c->begun = 0;
     } else if (any) {
         residual_stress(c, c->tot);
         c->stress_applies++;
@@ -1063,10 +1068,14 @@ static int sparse_sweep(loop_ctx *c, const double *eps_p, const double *peq, con
         sg[q] = c->sig_r + (size_t)q * (size_t)nvol;
     if (any) { /* (the operators take the sum: ctx_init checked) */
         const mc_eigen_sparse inc = mc_incr_strain(&c->inc);
-        (void)mc_eigen_stress_apply_sum(c->resid, e, &inc, c->G, p, qx, sg);
+        if (c->begun) /* u_r's evaluation made its first half */
+            (void)mc_eigen_stress_end_sum(c->resid, e, &inc, c->G, p, qx, sg);
+        else
+            (void)mc_eigen_stress_apply_sum(c->resid, e, &inc, c->G, p, qx, sg);
         c->stress_applies++;
     } else
         mc_eigen_stress_apply_loaded(c->resid, NULL, c->G, p, qx, sg);
+    c->begun = 0;
     int bad = 0, plastic = 0;
     double change = 0, size = 0;
     double *d7 = c->lay7;
@@ -1193,13 +1202,32 @@ static int sparse_mix(loop_ctx *c, mc_error *err)
 static void joint_displacement(loop_ctx *c, const mc_plastic_result *res)
 {
     int any;
+    c->begun = 0;
     if (c->sparse) {
-        if ((any = c->eps_any || mc_incr_any(&c->inc)))
-            sparse_displacement(c, res->eps_p, c->u_r);
+        if ((any = c->eps_any || mc_incr_any(&c->inc))) {
+            /* u_r from the stress operator's first half, which the sweep then ends (no
+             * displacement apply of its own: theory §9.9) */
+            const double *e[6];
+            double *sg[6];
+            split6(c, res->eps_p, e);
+            for (int q = 0; q < 6; q++)
+                sg[q] = c->sig_r + (size_t)q * (size_t)c->nvol;
+            const mc_eigen_sparse inc = mc_incr_strain(&c->inc);
+            c->begun = mc_eigen_stress_begin_sum(c->resid, e, &inc, c->G, sg, c->u_r) == MC_OK;
+            if (!c->begun)
+                sparse_displacement(c, res->eps_p, c->u_r);
+        }
     } else if ((any = sum_kept(c, 6, res->eps_p, c->d_eps, c->tot)) && c->shared) {
         const double *e[6]; /* one forward transform of tot for u_r and the sweep */
         split6(c, c->tot, e);
         mc_eigen_disp_apply_shared(c->disp, c->resid, e, c->u_r);
+    } else if (any && c->folded && mc_eigen_stress_takes_sum(c->resid)) {
+        const double *e[6]; /* the first half of the sweep's apply, as the sparse branch */
+        double *sg[6];
+        split6(c, c->tot, e);
+        for (int q = 0; q < 6; q++)
+            sg[q] = c->sig_r + (size_t)q * (size_t)c->nvol;
+        c->begun = mc_eigen_stress_begin_sum(c->resid, e, NULL, c->G, sg, c->u_r) == MC_OK;
     } else if (any) {
         residual_displacement(c, c->tot, c->u_r);
     }
@@ -1286,6 +1314,8 @@ static int joint_body(loop_ctx *c, mc_contact_solver *solver, double load, int w
         int settled;
         int rc = contact_on_ur(c, solver, load, warm || k > 1, !exact, p, u, gap, sum, &settled,
                                st, err);
+        if (rc != MC_OK)
+            c->begun = 0; /* (no sweep ends the apply that joint_displacement began) */
         if (rc == MC_NOT_CONVERGED) {
             *contact_failed = 1;
             return MC_OK;
