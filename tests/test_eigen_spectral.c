@@ -167,6 +167,129 @@ START_TEST(test_streamed)
 }
 END_TEST
 
+
+/* the many-modes step (mc_spec_modes_pass, mc_spec_modes_turn) against the single-mode one, in
+ * blocks of one and of two layers of a thickness, with e^{-q top} by division and by exp() */
+START_TEST(test_modes)
+{
+    mc_spec_coef k;
+    mc_spec_coef_init(NU, &k);
+    enum { NM = N_KS + 1 }; /* mode 0: k = 0, kept out of the passes as the operator does */
+    double b[16], mq[3 * NM], st[MC_SPEC_FIELDS * NM], wt[MC_SPEC_WEIGHTS * NM], wgt[NM];
+    for (int m = 0; m < NM; m++) {
+        const double kx = m ? KS[m - 1][0] : 0.0, ky = m ? KS[m - 1][1] : 0.0, q = hypot(kx, ky);
+        mq[m] = q;
+        mq[NM + m] = q > 0 ? kx / q : 1.0;
+        mq[2 * NM + m] = q > 0 ? ky / q : 0.0;
+        wgt[m] = 0.5 + 0.1 * m;
+    }
+    double worst = 0.0;
+    for (int lay = 0; lay < 3; lay++)
+        for (int pt = 0; pt < 2; pt++)
+            for (int variant = 0; variant < 4; variant++) {
+                const int block = variant & 1 ? 2 : 1, divide = variant < 2;
+                const int nz = layering(lay, b);
+                double complex eps[NM][16][6], ref[NM][16][6], p3r[NM], uzr[NM];
+                for (int m = 1; m < NM; m++) { /* the reference, mode by mode */
+                    random_layers(nz, 41 + (unsigned)m, 43 + (unsigned)m, eps[m]);
+                    mc_spec_state s;
+                    mc_spec_state_init(&s, KS[m - 1][0], KS[m - 1][1]);
+                    for (int l = 0; l < nz; l++)
+                        mc_spec_down_layer(&k, b[l], b[l + 1], (mc_spec_point)pt, eps[m][l], &s,
+                                           ref[m][l]);
+                    uzr[m] = mc_spec_turn(&k, &s);
+                    p3r[m] = s.p3;
+                    for (int l = nz - 1; l >= 0; l--) {
+                        double complex add[6];
+                        mc_spec_up_layer(&k, b[l], b[l + 1], (mc_spec_point)pt, eps[m][l], &s,
+                                         add);
+                        for (int c = 0; c < 6; c++)
+                            ref[m][l][c] += add[c];
+                    }
+                }
+                mc_spec_modes sm = {NM, st, mq, mq + NM, mq + 2 * NM, wt};
+                mc_spec_modes_clear(&sm);
+                /* layer l, component c of mode m at in[l][c][m]; results likewise */
+                double complex in[16][6][NM], dn[16][6][NM], up[16][6][NM], p3[NM], uz[NM];
+                for (int l = 0; l < nz; l++)
+                    for (int c = 0; c < 6; c++)
+                        for (int m = 0; m < NM; m++)
+                            in[l][c][m] = m ? eps[m][l][c] : 0.0;
+                for (int pass = 0; pass < 2; pass++) {
+                    for (int n = 0; n < nz;) {
+                        const int l0 = pass ? nz - 1 - n : n, dir = pass ? -1 : 1;
+                        const double t = b[l0 + 1] - b[l0];
+                        int nb = 1;
+                        while (nb < block && n + nb < nz &&
+                               fabs(b[l0 + dir * nb + 1] - b[l0 + dir * nb] - t) <= 1e-12 * t)
+                            nb++;
+                        double tops[2];
+                        const double complex *e[2][6];
+                        double complex *o[2][6];
+                        for (int s = 0; s < nb; s++) {
+                            const int l = l0 + dir * s;
+                            tops[s] = b[l];
+                            for (int c = 0; c < 6; c++) {
+                                e[s][c] = in[l][c];
+                                o[s][c] = pass ? up[l][c] : dn[l][c];
+                            }
+                        }
+                        mc_spec_modes_weights(&sm, 1, NM, t, (mc_spec_point)pt);
+                        mc_spec_modes_pass(&k, &sm, 1, NM, pass, nb, tops, divide,
+                                           (const double complex *const(*)[6])e, wgt, 2.0,
+                                           (double complex *const(*)[6])o, 0);
+                        n += nb;
+                    }
+                    if (!pass)
+                        mc_spec_modes_turn(&k, &sm, 1, NM, p3, uz);
+                }
+                for (int m = 1; m < NM; m++) {
+                    double scale = 0.0;
+                    for (int l = 0; l < nz; l++)
+                        for (int c = 0; c < 6; c++)
+                            scale = fmax(scale, cabs(ref[m][l][c]));
+                    for (int l = 0; l < nz; l++)
+                        for (int c = 0; c < 6; c++) {
+                            const double complex got = (dn[l][c][m] + up[l][c][m]) / (2.0 * wgt[m]);
+                            worst = test_worst(worst, cabs(got - ref[m][l][c]) / scale);
+                        }
+                    worst = test_worst(worst, cabs(uz[m] - uzr[m]) / cabs(uzr[m]));
+                    worst = test_worst(worst, cabs(p3[m] - p3r[m]) / cabs(p3r[m]));
+                }
+            }
+    ck_assert_msg(worst <= TOL_DEPTH, "many modes vs one: %.3g", worst);
+}
+END_TEST
+
+/* The real form of the frame matrices (mc_spec_coef r*): real, with every entry that is not zero
+ * inside the patterns the products unroll (A: 17 entries, B: 9, the local term: 5). */
+START_TEST(test_real_form_patterns)
+{
+    static const char PA[6][7] = {"111001", "101001", "111000", "000110", "000110", "110001"};
+    static const char PB[6][7] = {"101001", "000000", "101001", "000000", "000000", "101001"};
+    static const char PL[6][7] = {"110000", "110000", "000000", "000100", "000000", "000000"};
+    mc_spec_coef k;
+    mc_spec_coef_init(NU, &k);
+    const double(*A[])[6] = {k.rAp, k.rAm, k.rAs}, (*B[])[6] = {k.rBp, k.rBm, k.rBs};
+    int outside = 0;
+    double worst = 0.0;
+    for (int r = 0; r < 6; r++)
+        for (int c = 0; c < 6; c++) {
+            for (int j = 0; j < 3; j++) {
+                outside += PA[r][c] == '0' && A[j][r][c] != 0.0;
+                outside += PB[r][c] == '0' && B[j][r][c] != 0.0;
+            }
+            outside += PL[r][c] == '0' && k.rMinf[r][c] != 0.0;
+            /* D^-1 M D is real: its entries are the complex ones times +-1 or +-i */
+            const double complex d = (c >= 4 ? I : 1.0) / (r >= 4 ? I : 1.0);
+            worst = fmax(worst, fabs(cimag(k.Ap[r][c] * d)) + fabs(cimag(k.Bp[r][c] * d)));
+            worst = fmax(worst, fabs(creal(k.Ap[r][c] * d) - k.rAp[r][c]));
+        }
+    ck_assert_msg(outside == 0, "%d entries outside the unrolled patterns", outside);
+    ck_assert_msg(worst == 0.0, "the real form is not real: %.3g", worst);
+}
+END_TEST
+
 /* ---- boundary conditions, equilibrium, continuity --------------------------------------------- */
 
 START_TEST(test_surface_free)
@@ -421,6 +544,8 @@ Suite *suite_eigen_spectral(void)
     TCase *tc = tcase_create("kernel");
     tcase_add_test(tc, test_depth_vs_pairs);
     tcase_add_test(tc, test_streamed);
+    tcase_add_test(tc, test_modes);
+    tcase_add_test(tc, test_real_form_patterns);
     tcase_add_test(tc, test_against_region_solution);
     tcase_add_test(tc, test_surface_free);
     tcase_add_test(tc, test_equilibrium);

@@ -127,8 +127,8 @@ static void chunk_frame(const mc_spec_modes *m, long i0, int n, const double com
 }
 
 /* the chunk's result (real form of the frame) to lab, times wgt, into out (written, or added) */
-static void chunk_lab(const mc_spec_modes *m, long i0, int n, const double *wgt, chunk_work *w,
-                      double complex *const out[6], int add)
+static void chunk_lab(const mc_spec_modes *m, long i0, int n, const double *wgt, double scale,
+                      chunk_work *w, double complex *const out[6], int add)
 {
     const double *restrict cq = m->cq + i0, *restrict sq = m->sq + i0, *restrict ww = wgt + i0;
     double *restrict o0 = (double *)(out[0] + i0), *restrict o1 = (double *)(out[1] + i0),
@@ -143,11 +143,12 @@ static void chunk_lab(const mc_spec_modes *m, long i0, int n, const double *wgt,
             const double g3 = w->o[6 + j][i];
             const double g4 = j == 0 ? -w->o[9][i] : w->o[8][i];
             const double g5 = j == 0 ? -w->o[11][i] : w->o[10][i];
-            const double s0 = ww[i] * (cc * g0 + ss * g1 + 2.0 * cs * g3);
-            const double s1 = ww[i] * (ss * g0 + cc * g1 - 2.0 * cs * g3);
-            const double s2 = ww[i] * g2;
-            const double s3 = ww[i] * (cs * (g1 - g0) + (cc - ss) * g3);
-            const double s4 = ww[i] * (c * g4 - s * g5), s5 = ww[i] * (c * g5 + s * g4);
+            const double f = scale * ww[i];
+            const double s0 = f * (cc * g0 + ss * g1 + 2.0 * cs * g3);
+            const double s1 = f * (ss * g0 + cc * g1 - 2.0 * cs * g3);
+            const double s2 = f * g2;
+            const double s3 = f * (cs * (g1 - g0) + (cc - ss) * g3);
+            const double s4 = f * (c * g4 - s * g5), s5 = f * (c * g5 + s * g4);
             if (add) {
                 o0[2 * i + j] += s0, o1[2 * i + j] += s1, o2[2 * i + j] += s2;
                 o3[2 * i + j] += s3, o4[2 * i + j] += s4, o5[2 * i + j] += s5;
@@ -192,7 +193,7 @@ static void chunk_advance(const mc_spec_modes *m, long i0, int n, chunk_work *w)
 }
 
 static void chunk_down(const mc_spec_coef *k, mc_spec_modes *m, long i0, int n, double top,
-                       const double complex *const e[6], const double *wgt,
+                       const double complex *const e[6], const double *wgt, double scale,
                        double complex *const out[6], int add, chunk_work *w)
 {
     chunk_frame(m, i0, n, e, w);
@@ -210,7 +211,7 @@ static void chunk_down(const mc_spec_coef *k, mc_spec_modes *m, long i0, int n, 
     prod_a_chunk(k->rAs, w->u, w->o, n);
     prod_b_chunk(k->rBs, w->v, w->o, n);
     prod_local_chunk(k->rMinf, w->f, w->o, n);
-    chunk_lab(m, i0, n, wgt, w, out, add);
+    chunk_lab(m, i0, n, wgt, scale, w, out, add);
     /* the totals seen from the surface: e^{-x} p0 f and e^{-x} (x p0 + p1) f, x = q top */
     double *restrict et = field(m, MC_SPEC_ET) + i0;
     const double *restrict q = m->q + i0, *restrict p0 = weight(m, MC_SPEC_P0) + i0,
@@ -238,7 +239,7 @@ static void chunk_down(const mc_spec_coef *k, mc_spec_modes *m, long i0, int n, 
 
 static void chunk_up(const mc_spec_coef *k, mc_spec_modes *m, long i0, int n, double top,
                      int divide, const double complex *const e[6], const double *wgt,
-                     double complex *const out[6], int add, chunk_work *w)
+                     double scale, double complex *const out[6], int add, chunk_work *w)
 {
     chunk_frame(m, i0, n, e, w);
     chunk_seen(m, i0, n, w);
@@ -270,13 +271,23 @@ static void chunk_up(const mc_spec_coef *k, mc_spec_modes *m, long i0, int n, do
         for (int i = 0; i < n; i++)
             w->o[c][i] += wp[i] * P[i] + wq[i] * Q[i];
     }
-    chunk_lab(m, i0, n, wgt, w, out, add);
+    chunk_lab(m, i0, n, wgt, scale, w, out, add);
     chunk_advance(m, i0, n, w);
 }
 
+/* Built for AVX2 as well where the compiler can (GCC's function clones, picked at load time):
+ * the chunk loops are the same IEEE operations in the same order on wider vectors, so the
+ * results keep their bits (no contraction into FMA: ISO C mode). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+#define MODES_CLONES __attribute__((flatten, target_clones("avx2", "default")))
+#else
+#define MODES_CLONES
+#endif
+
+MODES_CLONES
 void mc_spec_modes_pass(const mc_spec_coef *k, mc_spec_modes *m, long i0, long i1, int up,
                         int nb, const double *tops, int divide,
-                        const double complex *const (*e)[6], const double *wgt,
+                        const double complex *const (*e)[6], const double *wgt, double scale,
                         double complex *const (*out)[6], int add)
 {
     chunk_work w;
@@ -284,9 +295,9 @@ void mc_spec_modes_pass(const mc_spec_coef *k, mc_spec_modes *m, long i0, long i
         const int n = (int)(i1 - c0 < CHUNK ? i1 - c0 : CHUNK);
         for (int s = 0; s < nb; s++) {
             if (up)
-                chunk_up(k, m, c0, n, tops[s], divide, e[s], wgt, out[s], add, &w);
+                chunk_up(k, m, c0, n, tops[s], divide, e[s], wgt, scale, out[s], add, &w);
             else
-                chunk_down(k, m, c0, n, tops[s], e[s], wgt, out[s], add, &w);
+                chunk_down(k, m, c0, n, tops[s], e[s], wgt, scale, out[s], add, &w);
         }
     }
 }

@@ -56,7 +56,18 @@ struct mc_eigen_spectral {
     int down_done;           /* 1: the down pass of mc_eigen_spectral_begin_sum has run */
     int *bin_first;          /* nbins + 1: the entries of bin b are bin_first[b] .. [b + 1] - 1 */
     double *ent_k;           /* 3 per entry: kx, ky, weight */
-    mc_spec_state *st;       /* nent */
+    /* the modes' arrays: bin b's first wave vector at index b (bin 0, k = 0, stays out of the
+     * passes); the others of the Nyquist bins (extras) as single states */
+    mc_spec_modes sm;
+    double *mq;              /* 3 x nbins: q, cq, sq of sm */
+    double *wgt;             /* nbins: the weight of bin b's first wave vector */
+    double wt_t;             /* the layer thickness of sm.wt (m; < 0: none) */
+    int divide;              /* 1: e^{-q depth} of every mode stays above underflow */
+    int nextra;
+    int *extra_bin;          /* nextra: the bin of each extra */
+    double *extra_k;         /* 3 x nextra: kx, ky, weight */
+    mc_spec_state *extra;    /* nextra */
+    double complex *extra_out; /* nextra x STREAM_BLOCK_MAX x 6: a block's results */
     fftw_complex *sp6;       /* 6 spectra py x hx: a layer's six components, in and out */
     double *prow;            /* py x px: padded rows */
     fftw_plan a_r2c, b_fwd, c_bwd, d_c2r; /* x rows, y columns, and back */
@@ -166,13 +177,19 @@ static size_t stream_entries(const mc_eigen_spectral *op)
     return n;
 }
 
+#define STREAM_BLOCK_MAX 4
 static int stream_block(const mc_eigen_spectral *op);
 static size_t stream_rows(const mc_eigen_spectral *op);
 
+/* the modes' arrays per bin: the states, q and the frame, the scalars, the weight */
+#define MODE_VALUES (MC_SPEC_FIELDS + 3 + MC_SPEC_WEIGHTS + 1)
+
 static size_t stream_bytes(const mc_eigen_spectral *op)
 {
-    const size_t bins = (size_t)op->py * op->hx, nent = stream_entries(op);
-    return nent * (sizeof(mc_spec_state) + 3 * sizeof(double)) + (bins + 1) * sizeof(int) +
+    const size_t bins = (size_t)op->py * op->hx, nent = stream_entries(op), extra = nent - bins;
+    return bins * MODE_VALUES * sizeof(double) +
+           extra * (sizeof(mc_spec_state) + sizeof(int) + 3 * sizeof(double) +
+                    STREAM_BLOCK_MAX * 6 * sizeof(double complex)) +
            (6 * (size_t)stream_block(op) + 1) * bins * sizeof(fftw_complex) /* sp6 and U */ +
            (size_t)op->nx * op->ny * sizeof(double) /* p3 */ +
            stream_rows(op) * sizeof(double) + ((size_t)op->nz + 1) * sizeof(double) +
@@ -226,7 +243,14 @@ void mc_eigen_spectral_destroy(mc_eigen_spectral **op)
     mc_free(o->ust);
     mc_free(o->bin_first);
     mc_free(o->ent_k);
-    mc_free(o->st);
+    mc_free(o->sm.st);
+    mc_free(o->sm.wt);
+    mc_free(o->mq);
+    mc_free(o->wgt);
+    mc_free(o->extra_bin);
+    mc_free(o->extra_k);
+    mc_free(o->extra);
+    mc_free(o->extra_out);
     mc_free(o->sp6);
     mc_free(o->prow);
     mc_free(o);
@@ -259,13 +283,12 @@ static void entries_fill(mc_eigen_spectral *op)
  * once per block of layers instead of once per layer (theory §8.10: the loop is bound by that
  * traffic). A block holds its layers' six spectra, so the extra spectra stay within
  * STREAM_BLOCK_SHARE of the states' bytes. */
-#define STREAM_BLOCK_MAX 4
 #define STREAM_BLOCK_SHARE 0.35
 
 static int stream_block(const mc_eigen_spectral *op)
 {
     const double sp6 = 6.0 * op->py * op->hx * sizeof(fftw_complex);
-    const double states = (double)stream_entries(op) * sizeof(mc_spec_state);
+    const double states = (double)op->py * op->hx * MODE_VALUES * sizeof(double);
     int nb = 1 + (int)(STREAM_BLOCK_SHARE * states / sp6);
     nb = nb < STREAM_BLOCK_MAX ? nb : STREAM_BLOCK_MAX;
     return nb < op->nz ? nb : op->nz;
@@ -286,17 +309,52 @@ static int stream_prepare(mc_eigen_spectral *op, mc_error *err)
     op->nbins = (int)bins;
     op->nent = (int)nent;
     op->nblk = stream_block(op);
+    const size_t extra = nent - bins;
+    op->nextra = (int)extra;
     op->bin_first = mc_malloc((bins + 1) * sizeof *op->bin_first);
     op->ent_k = mc_malloc(3 * nent * sizeof *op->ent_k);
-    op->st = mc_malloc(nent * sizeof *op->st);
+    op->sm.n = (long)bins;
+    op->sm.st = mc_malloc((size_t)MC_SPEC_FIELDS * bins * sizeof *op->sm.st);
+    op->sm.wt = mc_malloc((size_t)MC_SPEC_WEIGHTS * bins * sizeof *op->sm.wt);
+    op->mq = mc_malloc(3 * bins * sizeof *op->mq);
+    op->wgt = mc_malloc(bins * sizeof *op->wgt);
+    op->extra_bin = mc_malloc((extra + 1) * sizeof *op->extra_bin);
+    op->extra_k = mc_malloc((3 * extra + 1) * sizeof *op->extra_k);
+    op->extra = mc_malloc((extra + 1) * sizeof *op->extra);
+    op->extra_out = mc_malloc((extra * STREAM_BLOCK_MAX * 6 + 1) * sizeof *op->extra_out);
     op->sp6 = mc_malloc(6 * (size_t)op->nblk * bins * sizeof *op->sp6);
     op->U = mc_malloc(bins * sizeof *op->U);
     op->prow = mc_malloc(stream_rows(op) * sizeof *op->prow);
     op->p3 = mc_zeros((size_t)op->nx * op->ny);
-    if (!op->bin_first || !op->ent_k || !op->st || !op->sp6 || !op->U || !op->prow || !op->p3)
+    if (!op->bin_first || !op->ent_k || !op->sm.st || !op->sm.wt || !op->mq || !op->wgt ||
+        !op->extra_bin || !op->extra_k || !op->extra || !op->extra_out || !op->sp6 || !op->U ||
+        !op->prow || !op->p3)
         return mc_fail(err, MC_ERR_NOMEM, "spectral eigen operator: out of memory (%zu bytes)",
                        stream_bytes(op));
     entries_fill(op);
+    /* each bin's first wave vector into the modes' arrays, the others to the extras */
+    double *q = op->mq, *cq = q + bins, *sq = cq + bins, qmax = 0.0;
+    int x = 0;
+    for (size_t b = 0; b < bins; b++)
+        for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++) {
+            const double kx = op->ent_k[3 * en], ky = op->ent_k[3 * en + 1], r = hypot(kx, ky);
+            qmax = r > qmax ? r : qmax;
+            if (en > op->bin_first[b]) {
+                op->extra_bin[x] = (int)b;
+                memcpy(op->extra_k + 3 * x, op->ent_k + 3 * en, 3 * sizeof *op->extra_k);
+                x++;
+                continue;
+            }
+            q[b] = r;
+            cq[b] = r > 0.0 ? kx / r : 1.0;
+            sq[b] = r > 0.0 ? ky / r : 0.0;
+            op->wgt[b] = op->ent_k[3 * en + 2];
+        }
+    op->sm.q = q, op->sm.cq = cq, op->sm.sq = sq;
+    op->wt_t = -1.0;
+    /* the up pass divides e^{-q z} by e^{-q t} layer by layer from the volume's e^{-q depth}
+     * while that stays far above underflow (e^{-600} ~ 1e-261) */
+    op->divide = qmax * op->b[op->nz] < 600.0;
     int rc = mc_fftw_prepare(err);
     if (rc)
         return rc;
@@ -394,44 +452,93 @@ static void stream_inverse(mc_eigen_spectral *op, double *const sig[6], int firs
     }
 }
 
-/* One visit of every state for the block's nb layers (slot s: layer first + s, or first - s
- * going up): each bin's spectra replaced by its stresses, scaled by scale (the pass's part). */
-static void stream_modes(mc_eigen_spectral *op, int up, int first, int nb, double scale)
+/* The layers from first in direction dir that share first's thickness, at most nb of them (a
+ * visit of the states uses one set of the modes' scalars). */
+static int block_run(const mc_eigen_spectral *op, int first, int dir, int nb)
 {
-    const size_t bins = (size_t)op->nbins;
+    const double t = op->b[first + 1] - op->b[first];
+    int n = 1;
+    while (n < nb) {
+        const int l = first + dir * n;
+        if (l < 0 || l >= op->nz || fabs((op->b[l + 1] - op->b[l]) - t) > 1e-12 * t)
+            break;
+        n++;
+    }
+    return n;
+}
+
+/* the modes' scalars for layer thickness t (m), kept while the thickness stays */
+static void modes_weights(mc_eigen_spectral *op, double t)
+{
+    if (fabs(op->wt_t - t) <= 1e-14 * t)
+        return;
+    const long n = op->sm.n;
 #pragma omp parallel for schedule(static) num_threads(op->nthr)
-    for (size_t b = 0; b < bins; b++) {
-        double complex e[STREAM_BLOCK_MAX][6], out[STREAM_BLOCK_MAX][6], one[6];
-        for (int s = 0; s < nb; s++)
-            for (int c = 0; c < 6; c++) {
-                e[s][c] = slot(op, s, c)[b];
-                out[s][c] = 0.0;
-            }
-        for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++) {
-            const double w = scale * op->ent_k[3 * en + 2];
-            mc_spec_state *st = &op->st[en];
-            if (st->q == 0.0) { /* k = 0, the layer: local stresses only */
-                if (!up)
-                    for (int s = 0; s < nb; s++)
-                        for (int m = 0; m < 6; m++)
-                            for (int c = 0; c < 6; c++)
-                                out[s][m] += w * op->coef.Minf[m][c] * e[s][c];
-                continue;
-            }
-            for (int s = 0; s < nb; s++) {
-                const int l = up ? first - s : first + s;
-                const double top = op->b[l], bottom = op->b[l + 1];
-                if (up)
-                    mc_spec_up_layer(&op->coef, top, bottom, op->pt, e[s], st, one);
-                else
-                    mc_spec_down_layer(&op->coef, top, bottom, op->pt, e[s], st, one);
-                for (int c = 0; c < 6; c++)
-                    out[s][c] += w * one[c];
-            }
-        }
-        for (int s = 0; s < nb; s++)
+    for (long i = 1; i < n; i++)
+        mc_spec_modes_weights(&op->sm, i, i + 1, t, op->pt);
+    op->wt_t = t;
+}
+
+#define MODES_TASK 512 /* modes per task of the mode loop (a multiple of its chunk) */
+
+/* One visit of every state for the block's nb layers (slot s: layer first + dir s, all of one
+ * thickness): each bin's spectra replaced by its stresses, scaled by scale (the pass's part).
+ * One wave vector per bin runs in the modes' arrays; the few others of the Nyquist bins (extras)
+ * one at a time, their results added last. */
+static void stream_modes(mc_eigen_spectral *op, int up, int first, int dir, int nb, double scale)
+{
+    const long bins = op->nbins;
+    modes_weights(op, op->b[first + 1] - op->b[first]);
+    double tops[STREAM_BLOCK_MAX];
+    const double complex *e[STREAM_BLOCK_MAX][6];
+    double complex *out[STREAM_BLOCK_MAX][6];
+    for (int s = 0; s < nb; s++) {
+        tops[s] = op->b[first + dir * s];
+        for (int c = 0; c < 6; c++)
+            e[s][c] = out[s][c] = slot(op, s, c);
+    }
+    /* the extras first (they read the spectra that the arrays' pass then overwrites) */
+    for (int x = 0; x < op->nextra; x++) {
+        const int b = op->extra_bin[x];
+        for (int s = 0; s < nb; s++) {
+            const int l = first + dir * s;
+            double complex in[6], *one = op->extra_out + ((size_t)x * STREAM_BLOCK_MAX + s) * 6;
             for (int c = 0; c < 6; c++)
-                slot(op, s, c)[b] = out[s][c];
+                in[c] = e[s][c][b];
+            if (up)
+                mc_spec_up_layer(&op->coef, op->b[l], op->b[l + 1], op->pt, in, &op->extra[x], one);
+            else
+                mc_spec_down_layer(&op->coef, op->b[l], op->b[l + 1], op->pt, in, &op->extra[x],
+                                   one);
+        }
+    }
+    double complex k0[STREAM_BLOCK_MAX][6]; /* bin 0, k = 0: the layer's local stresses alone */
+    for (int s = 0; s < nb; s++)
+        for (int m = 0; m < 6; m++) {
+            k0[s][m] = 0.0;
+            for (int c = 0; c < 6; c++)
+                k0[s][m] += op->coef.Minf[m][c] * e[s][c][0];
+            k0[s][m] *= up ? 0.0 : scale * op->wgt[0];
+        }
+    const long ntask = (bins - 1 + MODES_TASK - 1) / MODES_TASK;
+#pragma omp parallel for schedule(static) num_threads(op->nthr)
+    for (long t = 0; t < ntask; t++) {
+        const long i0 = 1 + t * MODES_TASK, i1 = i0 + MODES_TASK < bins ? i0 + MODES_TASK : bins;
+        mc_spec_modes_pass(&op->coef, &op->sm, i0, i1, up, nb, tops, op->divide,
+                           (const double complex *const(*)[6])e, op->wgt, scale,
+                           (double complex *const(*)[6])out, 0);
+    }
+    for (int s = 0; s < nb; s++)
+        for (int c = 0; c < 6; c++)
+            out[s][c][0] = k0[s][c];
+    for (int x = 0; x < op->nextra; x++) {
+        const int b = op->extra_bin[x];
+        const double w = scale * op->extra_k[3 * x + 2];
+        for (int s = 0; s < nb; s++) {
+            const double complex *one = op->extra_out + ((size_t)x * STREAM_BLOCK_MAX + s) * 6;
+            for (int c = 0; c < 6; c++)
+                out[s][c][b] += w * one[c];
+        }
     }
 }
 
@@ -452,47 +559,47 @@ static void stream_grid(mc_eigen_spectral *op, fftw_complex *S, double scale, do
 static void stream_down(mc_eigen_spectral *op, const double *const eps[6],
                         const mc_eigen_sparse *inc, double G, double *const sig[6], double *uz)
 {
-    const int nz = op->nz, nb = op->nblk;
-    const size_t bins = (size_t)op->nbins;
+    const int nz = op->nz;
+    const long bins = op->nbins;
     const double scale = 2.0 * G / ((double)op->px * op->py);
     double complex u0 = 0.0; /* the mode k = 0's surface displacement (bin 0) */
-    for (int e = 0; e < op->nent; e++)
-        mc_spec_state_init(&op->st[e], op->ent_k[3 * e], op->ent_k[3 * e + 1]);
-    for (int first = 0; first < nz; first += nb) {
-        const int n = first + nb <= nz ? nb : nz - first;
+    mc_spec_modes_clear(&op->sm);
+    for (int x = 0; x < op->nextra; x++)
+        mc_spec_state_init(&op->extra[x], op->extra_k[3 * x], op->extra_k[3 * x + 1]);
+    for (int first = 0; first < nz;) {
+        const int n = block_run(op, first, 1, op->nblk);
         stream_forward(op, eps, inc, first, 1, n);
         for (int s = 0; s < n; s++)
             u0 -= (op->b[first + s + 1] - op->b[first + s]) *
                   (op->uz0[0] * slot(op, s, 0)[0] + op->uz0[1] * slot(op, s, 1)[0] +
                    op->uz0[2] * slot(op, s, 2)[0]);
-        if (!sig) { /* the states' totals alone */
-            stream_modes(op, 0, first, n, 0.0);
-            continue;
-        }
-        stream_modes(op, 0, first, n, scale);
-        stream_inverse(op, sig, first, 1, n);
+        stream_modes(op, 0, first, 1, n, sig ? scale : 0.0);
+        if (sig)
+            stream_inverse(op, sig, first, 1, n);
+        first += n;
     }
-    /* the turn: p3 of every mode, the surface displacement */
+    /* the turn: p3 of every mode (into slot 0's first spectrum), the surface displacement */
+    fftw_complex *P3 = slot(op, 0, 0);
+    const long ntask = (bins - 1 + MODES_TASK - 1) / MODES_TASK;
 #pragma omp parallel for schedule(static) num_threads(op->nthr)
-    for (size_t b = 0; b < bins; b++) {
-        double complex u = 0.0;
-        for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++)
-            if (op->st[en].q > 0.0)
-                u += op->ent_k[3 * en + 2] * mc_spec_turn(&op->coef, &op->st[en]);
-        op->U[b] = u;
+    for (long t = 0; t < ntask; t++) {
+        const long i0 = 1 + t * MODES_TASK, i1 = i0 + MODES_TASK < bins ? i0 + MODES_TASK : bins;
+        mc_spec_modes_turn(&op->coef, &op->sm, i0, i1, P3, op->U);
+        for (long i = i0; i < i1; i++) {
+            P3[i] *= op->wgt[i];
+            op->U[i] *= op->wgt[i];
+        }
     }
+    P3[0] = 0.0;
     op->U[0] = u0;
-    if (sig) { /* p3 of every mode (the states hold it after the turn), Pa */
-        fftw_complex *S = slot(op, 0, 0);
-#pragma omp parallel for schedule(static) num_threads(op->nthr)
-        for (size_t b = 0; b < bins; b++) {
-            double complex v = 0.0;
-            for (int en = op->bin_first[b]; en < op->bin_first[b + 1]; en++)
-                v += op->ent_k[3 * en + 2] * op->st[en].p3;
-            S[b] = v;
-        }
-        stream_grid(op, S, scale, op->p3);
+    for (int x = 0; x < op->nextra; x++) {
+        const int b = op->extra_bin[x];
+        const double w = op->extra_k[3 * x + 2];
+        op->U[b] += w * mc_spec_turn(&op->coef, &op->extra[x]);
+        P3[b] += w * op->extra[x].p3;
     }
+    if (sig) /* p3, Pa */
+        stream_grid(op, P3, scale, op->p3);
     if (uz)
         stream_grid(op, op->U, 1.0 / ((double)op->px * op->py), uz);
     op->down_done = sig != NULL;
@@ -502,13 +609,13 @@ static void stream_down(mc_eigen_spectral *op, const double *const eps[6],
 static void stream_up(mc_eigen_spectral *op, const double *const eps[6],
                       const mc_eigen_sparse *inc, double G, double *const sig[6])
 {
-    const int nz = op->nz, nb = op->nblk;
     const double scale = 2.0 * G / ((double)op->px * op->py);
-    for (int last = nz - 1; last >= 0; last -= nb) {
-        const int n = last + 1 >= nb ? nb : last + 1; /* slot s: layer last - s */
+    for (int last = op->nz - 1; last >= 0;) {
+        const int n = block_run(op, last, -1, op->nblk); /* slot s: layer last - s */
         stream_forward(op, eps, inc, last, -1, n);
-        stream_modes(op, 1, last, n, scale);
+        stream_modes(op, 1, last, -1, n, scale);
         stream_inverse(op, sig, last, -1, n);
+        last -= n;
     }
     op->down_done = 0;
 }
