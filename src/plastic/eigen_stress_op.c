@@ -943,9 +943,11 @@ static void spectral_add_loads(mc_eigen_stress *op, const double *p, const doubl
     double *s[6];
     for (int c = 0; c < 6; c++)
         s[c] = op->lay6 + c * cells;
+    /* the loads' transforms once, then layer by layer (mc_stress_layer would repeat them) */
+    mc_error e = {0};
+    const int prepared = mc_stress_prepare(op->lplan, p, qx, NULL, &e) == MC_OK;
     for (int k = 0; k < op->v.nz; k++) {
-        mc_error e = {0};
-        if (mc_stress_layer(op->lplan, k, p, qx, NULL, s, &e) != MC_OK) {
+        if (!prepared || mc_stress_compute(op->lplan, k, s, &e) != MC_OK) {
             /* (a prepared plan fails only on loads it was not made for: a caller's slip) */
             for (int c = 0; c < 6; c++)
                 for (size_t i = 0; i < cells; i++)

@@ -208,6 +208,14 @@ int mc_stress_field_split(mc_stress_plan *plan, const double *p, const double *q
 int mc_stress_layer(mc_stress_plan *plan, int k, const double *p, const double *qx,
                     const double *qy, double *const s[6], mc_error *err);
 
+/* The layers of one set of loads, the loads transformed once: mc_stress_prepare takes them (as
+ * mc_stress_field; they must stay alive until the last mc_stress_compute), finds the loaded cells,
+ * chooses the path and transforms the loads if the path needs it; mc_stress_compute gives layer k
+ * into s[c] (ny*nx each), the bits of mc_stress_layer. */
+int mc_stress_prepare(mc_stress_plan *plan, const double *p, const double *qx, const double *qy,
+                      mc_error *err);
+int mc_stress_compute(mc_stress_plan *plan, int k, double *const s[6], mc_error *err);
+
 /* Cumulative wall-clock seconds spent by mc_stress_field / mc_stress_layer of a plan since its
  * creation. */
 typedef struct {

@@ -56,12 +56,7 @@ int mc_stress_check_depth(mc_stress_kernel kernel, double z, const char *what, m
 
 /* ---- the plan, layer by layer (for the stage) ------------------------------------------------ */
 
-/* Take the loads (as mc_stress_field; they must stay alive until the last mc_stress_compute):
- * find the loaded cells, choose the path, transform the loads if the path needs it. */
-int mc_stress_prepare(mc_stress_plan *plan, const double *p, const double *qx, const double *qy,
-                      mc_error *err);
-/* Layer k of the prepared loads into s[c] (ny*nx each). */
-int mc_stress_compute(mc_stress_plan *plan, int k, double *const s[6], mc_error *err);
+/* (mc_stress_prepare and mc_stress_compute are in stress.h) */
 /* 1 when the prepared loads take the sparse sum over the loaded cells. */
 int mc_stress_is_sparse(const mc_stress_plan *plan);
 
