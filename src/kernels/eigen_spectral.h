@@ -148,9 +148,9 @@ void mc_spec_modes_weights(mc_spec_modes *m, long i0, long i1, double t, mc_spec
 /* One visit of the modes i0 .. i1 - 1 for nb layers of the thickness of wt, in the pass's order
  * (down: mc_spec_down_layer; up, after mc_spec_modes_turn: mc_spec_up_layer): layer s has its top
  * at tops[s] (m), its strain (lab) of mode i at e[s][c][i], and its stress (per 2G, lab) times
- * scale wgt[i] goes to out[s][c][i] (written, or added when add; out may be e). divide (up): e^{-q top}
- * by dividing the bottom's by e^{-q t}, which needs e^{-q depth} of the deepest mode above
- * underflow; 0 takes exp(). */
+ * scale wgt[i] goes to out[s][c][i] (written, or added when add; out may be e). divide (up):
+ * e^{-q top} by dividing the bottom's by e^{-q t}, which needs e^{-q depth} of the deepest mode
+ * above underflow; 0 takes exp(). */
 void mc_spec_modes_pass(const mc_spec_coef *k, mc_spec_modes *m, long i0, long i1, int up,
                         int nb, const double *tops, int divide,
                         const double complex *const (*e)[6], const double *wgt, double scale,

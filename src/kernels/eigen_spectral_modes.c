@@ -98,11 +98,12 @@ static void chunk_frame(const mc_spec_modes *m, long i0, int n, const double com
                         chunk_work *w)
 {
     const double *restrict cq = m->cq + i0, *restrict sq = m->sq + i0;
-    const double *restrict e0 = (const double *)(e[0] + i0), *restrict e1 = (const double *)(e[1] + i0),
-                           *restrict e2 = (const double *)(e[2] + i0),
-                           *restrict e3 = (const double *)(e[3] + i0),
-                           *restrict e4 = (const double *)(e[4] + i0),
-                           *restrict e5 = (const double *)(e[5] + i0);
+    const double *restrict e0 = (const double *)(e[0] + i0);
+    const double *restrict e1 = (const double *)(e[1] + i0);
+    const double *restrict e2 = (const double *)(e[2] + i0);
+    const double *restrict e3 = (const double *)(e[3] + i0);
+    const double *restrict e4 = (const double *)(e[4] + i0);
+    const double *restrict e5 = (const double *)(e[5] + i0);
     for (int j = 0; j < 2; j++) { /* re, im */
 #pragma omp simd
         for (int i = 0; i < n; i++) {
@@ -163,9 +164,11 @@ static void chunk_lab(const mc_spec_modes *m, long i0, int n, const double *wgt,
 /* u = al U, v = al V + ga U of the modes i0 .. i0 + n - 1 */
 static void chunk_seen(const mc_spec_modes *m, long i0, int n, chunk_work *w)
 {
-    const double *restrict al = weight(m, MC_SPEC_AL) + i0, *restrict ga = weight(m, MC_SPEC_GA) + i0;
+    const double *restrict al = weight(m, MC_SPEC_AL) + i0;
+    const double *restrict ga = weight(m, MC_SPEC_GA) + i0;
     for (int c = 0; c < 12; c++) {
-        const double *restrict U = field(m, MC_SPEC_U + c) + i0, *restrict V = field(m, MC_SPEC_V + c) + i0;
+        const double *restrict U = field(m, MC_SPEC_U + c) + i0;
+        const double *restrict V = field(m, MC_SPEC_V + c) + i0;
 #pragma omp simd
         for (int i = 0; i < n; i++) {
             w->u[c][i] = al[i] * U[i];
@@ -182,7 +185,8 @@ static void chunk_advance(const mc_spec_modes *m, long i0, int n, chunk_work *w)
                            *restrict p0 = weight(m, MC_SPEC_P0) + i0,
                            *restrict p1 = weight(m, MC_SPEC_P1) + i0;
     for (int c = 0; c < 12; c++) {
-        double *restrict U = field(m, MC_SPEC_U + c) + i0, *restrict V = field(m, MC_SPEC_V + c) + i0;
+        double *restrict U = field(m, MC_SPEC_U + c) + i0;
+        double *restrict V = field(m, MC_SPEC_V + c) + i0;
         const double *restrict f = w->f[c];
 #pragma omp simd
         for (int i = 0; i < n; i++) {
@@ -200,7 +204,8 @@ static void chunk_down(const mc_spec_coef *k, mc_spec_modes *m, long i0, int n, 
     chunk_seen(m, i0, n, w);
     prod_a_chunk(k->rAp, w->u, w->o, n); /* the layers above */
     prod_b_chunk(k->rBp, w->v, w->o, n);
-    const double *restrict sa = weight(m, MC_SPEC_SA) + i0, *restrict sb = weight(m, MC_SPEC_SB) + i0;
+    const double *restrict sa = weight(m, MC_SPEC_SA) + i0;
+    const double *restrict sb = weight(m, MC_SPEC_SB) + i0;
     for (int c = 0; c < 12; c++) { /* its own: As (sa f) + Bs (sb f) + Minf f */
 #pragma omp simd
         for (int i = 0; i < n; i++) {
@@ -223,7 +228,8 @@ static void chunk_down(const mc_spec_coef *k, mc_spec_modes *m, long i0, int n, 
         w1[i] = et[i] * (q[i] * top * p0[i] + p1[i]);
     }
     for (int c = 0; c < 12; c++) {
-        double *restrict W0 = field(m, MC_SPEC_W0 + c) + i0, *restrict W1 = field(m, MC_SPEC_W1 + c) + i0;
+        double *restrict W0 = field(m, MC_SPEC_W0 + c) + i0;
+        double *restrict W1 = field(m, MC_SPEC_W1 + c) + i0;
 #pragma omp simd
         for (int i = 0; i < n; i++) {
             W0[i] += w0[i] * w->f[c][i];
@@ -266,7 +272,8 @@ static void chunk_up(const mc_spec_coef *k, mc_spec_modes *m, long i0, int n, do
         wq[i] = et[i] * (al[i] * (q[i] * top) + ga[i]);
     }
     for (int c = 0; c < 12; c++) { /* the mirror layers and S3: e^{-x} (al P + (al x + ga) Q) */
-        const double *restrict P = field(m, MC_SPEC_W0 + c) + i0, *restrict Q = field(m, MC_SPEC_W1 + c) + i0;
+        const double *restrict P = field(m, MC_SPEC_W0 + c) + i0;
+        const double *restrict Q = field(m, MC_SPEC_W1 + c) + i0;
 #pragma omp simd
         for (int i = 0; i < n; i++)
             w->o[c][i] += wp[i] * P[i] + wq[i] * Q[i];
@@ -278,7 +285,8 @@ static void chunk_up(const mc_spec_coef *k, mc_spec_modes *m, long i0, int n, do
 /* Built for AVX2 as well where the compiler can (GCC's function clones, picked at load time):
  * the chunk loops are the same IEEE operations in the same order on wider vectors, so the
  * results keep their bits (no contraction into FMA: ISO C mode). */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&                           \
+    !defined(__SANITIZE_ADDRESS__)
 #define MODES_CLONES __attribute__((flatten, target_clones("avx2", "default")))
 #else
 #define MODES_CLONES
