@@ -581,7 +581,7 @@ void mc_spec_uz_layers(const mc_spec_coef *k, double kx, double ky, int nz, cons
         mc_spec_uz_next(k, &u, b[l], b[l + 1], D[l]);
 }
 
-/* ---- the depth step streamed layer by layer --------------------------------------------------- */
+/* ---- the depth step streamed layer by layer -------------------------------------------------- */
 
 /* The real form (eigen_spectral.h): M~[r][c] = M[r][c] d_c / d_r, d = (1, 1, 1, 1, i, i). */
 static void real_form(const double complex M[6][6], double R[6][6])
