@@ -18,13 +18,14 @@
  * G; u_z in m, > 0 into the body).
  *
  * Backends behind one interface:
- *   fft    - two passes over the layers (down, then up), each layer transformed when its turn
- *            comes (pruned padded FFTs), per lateral mode the running sums of the depth step
- *            (kernels/eigen_spectral.h mc_spec_down_layer, mc_spec_up_layer): neither the kernel
- *            nor the layers' spectra are stored, only a state of ~60 doubles per mode (~1 kB per
- *            surface cell on a free grid, 1/4 of it doubly periodic) and one layer's spectra;
- *            at 256^2 x 32: 42 (free) and 10 (doubly periodic) bytes per volume cell, one apply
- *            ~1.2 s (free) on this 2-core machine;
+ *   fft    - two passes over the layers (down, then up), each block of layers transformed when
+ *            its turn comes (pruned padded FFTs, the layers' components in parallel), per lateral
+ *            mode the running sums of the depth step (kernels/eigen_spectral.h
+ *            mc_spec_modes_pass: many modes at once): neither the kernel nor the layers' spectra
+ *            are stored, only a state of 61 doubles per lateral bin (~1 kB per surface cell on a
+ *            free grid, 1/4 of it doubly periodic) and a block's spectra (up to 4 layers); at
+ *            256^2 x 32: 46 (free) and 12 (doubly periodic) bytes per volume cell, one apply
+ *            1.3 s (free) on one thread of this 2-core machine;
  *   direct - the kernel per pair of layers (mc_spec_pair) taken to space by a plain inverse DFT
  *            into tables over the period, summed cell by cell in O(N^2 nz^2): the reference, for
  *            small grids.
