@@ -2,7 +2,8 @@
  * docs/theory.md §8.10):
  *   - direct (pair kernels taken to space by a plain DFT, summed cell by cell) against fft (the
  *     running sums per mode, lateral FFTs) on free, strip, doubly periodic (even, odd), x-periodic,
- *     line and graded volumes, centre and layer-average points;
+ *     line, graded and deep (e^{-q depth} beyond the up pass's division) volumes, centre and
+ *     layer-average points;
  *   - against the cuboid operators (plastic/eigen_op.h, an independent discretisation and kernel):
  *     on a smooth field the two converge to each other like h^2 as the grid is refined;
  *   - identities of the trigonometric field: a y-uniform field on a strip equals the line grid,
@@ -43,6 +44,8 @@ static const scase cases[] = {
     {6, 5, 1, 0, 2, 1e-6, 1e-6, 0.5e-6, 0},   /* x periodic alone */
     {10, 1, 0, 1, 3, 1e-6, 1e-6, 0.5e-6, 0},  /* line grid (bars along y) */
     {6, 4, 0, 0, 3, 1e-6, 1e-6, 0.25e-6, 1},  /* graded, free */
+    {6, 5, 0, 0, 3, 1e-6, 1e-6, 60e-6, 0},    /* deep: e^{-q depth} below the up pass's division
+                                                 (q depth up to 800: exp() per layer) */
 };
 #define N_CASES ((int)(sizeof cases / sizeof cases[0]))
 static const int GROUPS[3] = {1, 3, 5};
