@@ -352,6 +352,10 @@ static int stream_prepare(mc_eigen_spectral *op, mc_error *err)
         }
     op->sm.q = q, op->sm.cq = cq, op->sm.sq = sq;
     op->wt_t = -1.0;
+    mc_free(op->ent_k); /* (the arrays and the extras hold all the passes read) */
+    mc_free(op->bin_first);
+    op->ent_k = NULL;
+    op->bin_first = NULL;
     /* the up pass divides e^{-q z} by e^{-q t} layer by layer from the volume's e^{-q depth}
      * while that stays far above underflow (e^{-600} ~ 1e-261) */
     op->divide = qmax * op->b[op->nz] < 600.0;
