@@ -174,6 +174,16 @@ START_TEST(test_sum_input)
     ck_assert_msg(memcmp(u1, u2, ns * sizeof *u1) == 0, "case %d: borrowed u_z differs", _i);
     mc_eigen_spectral_apply_sum(op, (const double *const *)eps, &inc, G_MOD, s2, NULL);
     ck_assert(memcmp(b3, b4, 6 * n * sizeof *b3) == 0);
+    /* in two halves (begin: u_z and the down pass; end: the rest), a borrowing displacement
+     * apply between them as in the joint iteration: the bits of one apply */
+    double *u3 = malloc(ns * sizeof *u3), *u4 = malloc(ns * sizeof *u4);
+    mc_eigen_spectral_apply_sum(op, (const double *const *)eps, &inc, G_MOD, s2, u3);
+    memset(b4, 0, 6 * n * sizeof *b4);
+    mc_eigen_spectral_begin_sum(op, (const double *const *)eps, &inc, G_MOD, s2, u4);
+    mc_eigen_spectral_apply_uz_sum(ou, (const double *const *)eps, &inc, u2);
+    mc_eigen_spectral_end_sum(op, (const double *const *)eps, &inc, G_MOD, s2);
+    ck_assert_msg(memcmp(b3, b4, 6 * n * sizeof *b3) == 0, "case %d: begin + end differ", _i);
+    ck_assert_msg(memcmp(u3, u4, ns * sizeof *u3) == 0, "case %d: begin's u_z differs", _i);
     mc_eigen_spectral_destroy(&ou);
     /* through eigen_op.h: the spectral kernel takes the sum, the cuboid one refuses */
     for (int k = 0; k < 2 && !sc->graded; k++) {
@@ -189,7 +199,18 @@ START_TEST(test_sum_input)
         const int rd = mc_eigen_disp_apply_sum(od, (const double *const *)eps, &inc, u2);
         ck_assert_int_eq(rs, k ? MC_ERR_LIMIT : MC_OK);
         ck_assert_int_eq(rd, k ? MC_ERR_LIMIT : MC_OK);
+        memset(b4, 0, 6 * n * sizeof *b4);
+        const int rb = mc_eigen_stress_begin_sum(os, (const double *const *)eps, &inc, G_MOD, s2,
+                                                 u4);
+        const int re = mc_eigen_stress_end_sum(os, (const double *const *)eps, &inc, G_MOD, NULL,
+                                               NULL, s2);
+        ck_assert_int_eq(rb, k ? MC_ERR_LIMIT : MC_OK);
+        ck_assert_int_eq(re, k ? MC_ERR_LIMIT : MC_OK);
         if (!k) {
+            ck_assert(memcmp(b3, b4, 6 * n * sizeof *b3) == 0);
+            ck_assert(memcmp(u3, u4, ns * sizeof *u3) == 0);
+            ck_assert_int_eq(mc_eigen_stress_apply_sum(os, (const double *const *)eps, &inc,
+                                                       G_MOD, NULL, NULL, s2), MC_OK);
             ck_assert(memcmp(b3, b4, 6 * n * sizeof *b3) == 0);
             ck_assert(memcmp(u1, u2, ns * sizeof *u1) == 0);
             ck_assert_int_eq(mc_eigen_disp_borrow(od, os), be == MC_BACKEND_FFT);
@@ -203,7 +224,7 @@ START_TEST(test_sum_input)
         mc_eigen_stress_destroy(&os);
     }
     mc_eigen_spectral_destroy(&op);
-    free(u1), free(u2), free(b1), free(b2), free(b3), free(b4);
+    free(u1), free(u2), free(u3), free(u4), free(b1), free(b2), free(b3), free(b4);
 }
 END_TEST
 
