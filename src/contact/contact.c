@@ -10,7 +10,7 @@
 #include "core/dist.h"
 
 /* Loops over a rank's rows run on the run's threads from this many cells on. */
-#define PAR_MIN MC_THREADS_MIN_CELLS
+#define PAR_MIN MC_THREADS_MIN_LOOP
 
 typedef int (*method_fn)(mc_contact_solver *, mc_qproblem *, double *, mc_qresult *, mc_error *);
 
@@ -234,6 +234,11 @@ int mc_contact_create(mc_operator *K, const mc_contact_options *opt, mc_contact_
     s->lo = 0;
     s->hi = s->nl;
     s->ps = mc_psum_blocks(n);
+    if (s->ps.nb == 1 && n > MC_THREADS_MIN_LOOP) {
+        /* the sums in pieces the threads share (MC_THREADS_MIN_LOOP): still fixed by n alone */
+        s->ps.blk = MC_THREADS_MIN_LOOP / 2;
+        s->ps.nb = (long)((n + s->ps.blk - 1) / s->ps.blk);
+    }
     /* plow, capq and ulow (K p_lower) are allocated by the first solve that needs them */
     const size_t nl = s->nl;
     double **arrays[] = {&s->htil, &s->q, &s->u, &s->gap, &s->z, &s->dir, &s->kdir};

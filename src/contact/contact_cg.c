@@ -25,10 +25,10 @@
 
 /* The per-cell loops run over the workspaces' cells s->lo .. s->hi - 1 (this rank's rows when
  * distributed, contact_internal.h),
- * on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums go piece by piece through
+ * on the run's threads from MC_THREADS_MIN_LOOP cells on; their sums go piece by piece through
  * mc_contact_totals, so the iterates are the same bits on any thread count, and on any rank
  * count in the MPI executable. */
-#define PAR(s) ((s)->hi - (s)->lo > MC_THREADS_MIN_CELLS)
+#define PAR(s) ((s)->hi - (s)->lo > MC_THREADS_MIN_LOOP)
 
 
 /* Mean of v over the cells with mask != 0. */

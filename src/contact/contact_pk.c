@@ -13,9 +13,9 @@
 
 /* The per-cell loops run over the workspaces' cells s->lo .. s->hi - 1 (this rank's rows when
  * distributed, contact_internal.h),
- * on the run's threads from MC_THREADS_MIN_CELLS cells on; their sums go piece by piece through
+ * on the run's threads from MC_THREADS_MIN_LOOP cells on; their sums go piece by piece through
  * mc_contact_totals (the same bits on any thread count, and on any rank count). */
-#define PAR(s) ((s)->hi - (s)->lo > MC_THREADS_MIN_CELLS)
+#define PAR(s) ((s)->hi - (s)->lo > MC_THREADS_MIN_LOOP)
 
 
 /* sum of a[i] b[i] over the cells of S (b == NULL: of a[i]), and their number in *count */

@@ -16,6 +16,13 @@
  * made a 141 x 141 capped contact 250 times slower (73 s instead of 0.3 s, measured). */
 #define MC_THREADS_MIN_CELLS (1 << 18)
 
+/* The contact solvers' per-cell loops (a few flops per cell, no transform) on more than this many
+ * cells run on the run's threads. Lower than MC_THREADS_MIN_CELLS: on 512 x 256 cells those loops
+ * were a quarter of a running-in step's serial work (theory §8.10); a loop of 2^16 cells takes
+ * about 30 us, a sleeping team's barrier a few. Their sums are the same bits on any thread count
+ * (mc_contact_totals). */
+#define MC_THREADS_MIN_LOOP (1 << 16)
+
 /* Saved state of mc_threads_begin, for mc_threads_end. */
 typedef struct {
     int previous; /* the count before begin (0: the OpenMP default) */

@@ -250,8 +250,9 @@ int mc_precond_set_mask(mc_precond *pc, const unsigned char *mask, mc_error *err
     return set_box(pc, ok, b, err);
 }
 
-/* The O(N) loops run on the run's threads from this many cells on (core/threads.h). */
-#define PAR(n) ((size_t)(n) > MC_THREADS_MIN_CELLS)
+/* The O(N) loops run on the run's threads from this many cells on (core/threads.h; element by
+ * element, so the same bits on any thread count). */
+#define PAR(n) ((size_t)(n) > MC_THREADS_MIN_LOOP)
 
 void mc_precond_apply(mc_precond *pc, const unsigned char *mask, const double *r, double *z)
 {

@@ -954,9 +954,13 @@ static void spectral_add_loads(mc_eigen_stress *op, const double *p, const doubl
                     sig[c][k * cells + i] = NAN;
             continue;
         }
-        for (int c = 0; c < 6; c++)
+        for (int c = 0; c < 6; c++) {
+            double *restrict o = sig[c] + k * cells;
+            const double *restrict a = s[c];
+#pragma omp parallel for schedule(static) if (cells > MC_THREADS_MIN_LOOP)
             for (size_t i = 0; i < cells; i++)
-                sig[c][k * cells + i] += s[c][i];
+                o[i] += a[i];
+        }
     }
 }
 

@@ -431,13 +431,14 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
             return rc;
         if (plan->sparse)
             continue;
-        for (int c = 0; c < MC_NSTRESS && rc == MC_OK; c++) {
-            if (plan->sym)
-                mc_stress_sym_kernel(plan->sym, mc_stress_parity(load_bit[li[i]], c),
-                                     kuse[i][c]);
-            else
-                rc = mc_conv_kernel(plan->conv, &plan->tab[c], kuse[i][c], err);
+        if (plan->sym) {
+            int par[MC_NSTRESS];
+            for (int c = 0; c < MC_NSTRESS; c++)
+                par[c] = mc_stress_parity(load_bit[li[i]], c);
+            mc_stress_sym_kernels(plan->sym, MC_NSTRESS, par, kuse[i]);
         }
+        for (int c = 0; c < MC_NSTRESS && rc == MC_OK && !plan->sym; c++)
+            rc = mc_conv_kernel(plan->conv, &plan->tab[c], kuse[i][c], err);
         plan->timing.kernels += omp_get_wtime() - t1;
         if (rc)
             return rc;

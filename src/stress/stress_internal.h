@@ -41,6 +41,9 @@ size_t mc_stress_sym_spec_len(const mc_stress_sym *s);
 /* Quadrant table (in) -> quadrant spectrum (in place), of parity par (bit 0 odd in x, bit 1 odd
  * in y). Entries along an odd axis at index 0 and m must be 0 (they are: parity, and m >= n). */
 void mc_stress_sym_kernel(mc_stress_sym *s, int par, double *quad);
+/* mc_stress_sym_kernel on n quadrants, side by side on the run's threads where the plans are
+ * one-thread ones (quadrants below MC_THREADS_MIN_CELLS values): the same bits */
+void mc_stress_sym_kernels(mc_stress_sym *s, int n, const int *par, double *const *quad);
 
 /* Load (nx*ny) -> its half spectrum (2my rows of mx + 1 complex values, mc_stress_sym_spec_len). */
 void mc_stress_sym_load(mc_stress_sym *s, const double *field, double *lspec);

@@ -26,6 +26,7 @@ struct mc_stress_sym {
     double *qscratch; /* the quadrant the r2r plans were made on */
     fftw_plan r2r[4]; /* by parity: bit 0 odd in x, bit 1 odd in y */
     int off[4];       /* first entry of the r2r's input in the quadrant, by parity */
+    int one_thread;   /* 1: the r2r plans run on one thread (mc_stress_sym_kernels spreads them) */
 };
 
 void mc_stress_sym_destroy(mc_stress_sym **sp)
@@ -73,7 +74,8 @@ int mc_stress_sym_create(const mc_grid *g, mc_stress_sym **out, mc_error *err)
         return mc_fail(err, MC_ERR_NOMEM, "stress: out of memory for a %d x %d quadrant", qx, qy);
     }
     int ok = 1;
-    if ((size_t)s->qx * (size_t)s->qy < PAR_MIN)
+    s->one_thread = (size_t)s->qx * (size_t)s->qy < PAR_MIN;
+    if (s->one_thread)
         fftw_plan_with_nthreads(1);
     for (int par = 0; par < 4 && ok; par++) {
         const int ox = par & 1, oy = (par >> 1) & 1;
@@ -118,6 +120,14 @@ void mc_stress_sym_kernel(mc_stress_sym *s, int par, double *quad)
 {
     double *q = quad + s->off[par & 3];
     fftw_execute_r2r(s->r2r[par & 3], q, q);
+}
+
+void mc_stress_sym_kernels(mc_stress_sym *s, int n, const int *par, double *const *quad)
+{
+    /* one-thread plans: the arrays' transforms side by side (each the bits of its own call) */
+#pragma omp parallel for schedule(dynamic) if (s->one_thread && n > 1)
+    for (int t = 0; t < n; t++)
+        mc_stress_sym_kernel(s, par[t], quad[t]);
 }
 
 void mc_stress_sym_load(mc_stress_sym *s, const double *field, double *lspec)
