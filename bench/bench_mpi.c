@@ -296,11 +296,13 @@ static void memory_per_rank(vf_ctx *ctx, const char *self, const char *mpi, int 
  * batches, each rank its columns' spectra), so are the elastic stresses (each rank its block of
  * layers) and the sweeps' return maps (each rank its rows of y in every layer, the increments
  * gathered whole); the plastic loop's volume arrays, its whole-volume passes and Anderson's
- * mixing stay replicated on every rank. */
+ * mixing stay replicated on every rank. That is [plasticity] kernel = cuboid, set here: the
+ * default spectral kernel's operators are replicated on every rank (the same bits, no speed-up
+ * of their work; docs/architecture.md "MPI"). */
 static const char *const plastic_sets[] = {
     "mesh.nx=256",          "mesh.ny=128",           "runin.forces=1086N",
     "runin.speeds=350rpm",  "lubrication.rpm=350rpm", "plasticity.dz=0.1875um",
-    "plasticity.depth=3um", "solver.threads=1"};
+    "plasticity.depth=3um", "solver.threads=1",      "plasticity.kernel=cuboid"};
 #define NSETS ((int)(sizeof plastic_sets / sizeof plastic_sets[0]))
 
 /* The value in column name of the first data row of the CSV file path, NAN if absent. */

@@ -121,7 +121,7 @@ static void measure(const mc_results *r, onset_t *o)
     mc_free(col);
 }
 
-static void plastic_keys(mc_scene *sc, double a, double depth, double dz, double margin)
+static void plastic_keys(mc_scene *sc, double a, double depth, double dz)
 {
     sc->plasticity.enabled = 1;
     sc->plasticity.criterion = MC_CRITERION_VON_MISES;
@@ -129,7 +129,6 @@ static void plastic_keys(mc_scene *sc, double a, double depth, double dz, double
     sc->plasticity.yield_stress = YIELD;
     sc->plasticity.depth = depth * a;
     sc->plasticity.dz = dz * a;
-    sc->plasticity.margin = margin * a;
     sc->plasticity.load_steps = 2;
     sc->solver.tolerance = SOLVER_TOL;
 }
@@ -154,7 +153,7 @@ static int run_point(double ratio, int N, onset_t *o, double yscale, mc_error *e
     sc.body2 = (mc_scene_material){E1, NU, 1};
     sc.load.kind = MC_LOAD_FORCE;
     sc.load.value = P;
-    plastic_keys(&sc, hz.a, 0.9, 0.02, 0.25);
+    plastic_keys(&sc, hz.a, 0.9, 0.02);
     sc.plasticity.yield_stress *= yscale;
     mc_results r;
     rc = mc_pipeline_run(&sc, &r, err);
@@ -190,7 +189,7 @@ static int run_line(double ratio, int N, onset_t *o, double yscale, mc_error *er
     sc.body2 = (mc_scene_material){E1, NU, 1};
     sc.load.kind = MC_LOAD_FORCE_PER_LENGTH;
     sc.load.value = w;
-    plastic_keys(&sc, hz.b, LINE_DEPTH, LINE_DZ_DX / N, 0.25);
+    plastic_keys(&sc, hz.b, LINE_DEPTH, LINE_DZ_DX / N);
     sc.plasticity.yield_stress *= yscale;
     mc_results r;
     rc = mc_pipeline_run(&sc, &r, err);

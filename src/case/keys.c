@@ -503,15 +503,16 @@ const case_key mc_keys[] = {
             "checkerboard mode); centre, the cell-centre values (the earlier collocation, whose "
             "operator has energy-releasing checkerboard modes; docs/theory.md §8.5, §8.7)."},
     {.section = "plasticity", .name = "kernel", .kind = K_ENUM, .choices = "cuboid spectral",
-     .def = "cuboid", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
+     .def = "spectral", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
      .off = AT(plasticity.kernel),
-     .doc = "Lateral discretisation of the plastic strain (docs/theory.md §8.10): cuboid, uniform "
-            "cuboids whose kernels are tabulated and kept as spectra (~600 bytes per volume "
-            "cell on a free grid); spectral, sampled trigonometric fields with the kernel "
-            "evaluated per Fourier mode when used (~110 bytes per volume cell free, ~55 doubly "
-            "periodic; no build time; exact laterally for smooth fields). spectral puts the "
-            "volume under the whole grid, takes the elastic stresses from the stress module "
-            "(not folded), and runs on one process."},
+     .doc = "Lateral discretisation of the plastic strain (docs/theory.md §8.10): spectral (the "
+            "default), sampled trigonometric fields with the kernel evaluated per Fourier mode "
+            "when used (~50 bytes per volume cell free, ~12 doubly periodic; a whole run ~190 "
+            "bytes per volume cell; no build time; exact laterally for smooth fields), its "
+            "volume under the whole grid, its operators replicated on every MPI process; "
+            "cuboid, uniform cuboids whose kernels are tabulated and kept as spectra (~600 "
+            "bytes per volume cell on a free grid, a whole run ~1000), its volume a window of "
+            "columns ([plasticity] margin), its operators split over the MPI processes."},
     {.section = "plasticity", .name = "depth", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "auto", .word = "auto", .word_value = 0, .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.depth),
@@ -539,8 +540,9 @@ const case_key mc_keys[] = {
     {.section = "plasticity", .name = "margin", .kind = K_REAL, .unit = MC_UNIT_LENGTH, .lo = 0,
      .lo_open = 1, .hi = 1, .def = "auto", .word = "auto", .word_value = 0, .use = USE_WHEN,
      .use_key = "criterion", .use_values = "von_mises", .off = AT(plasticity.margin),
-     .doc = "Columns of plastic cells: the elastic contact's bounding box widened by this on "
-            "every side; auto: the depth of the volume."},
+     .doc = "Columns of plastic cells with kernel = cuboid: the elastic contact's bounding box "
+            "widened by this on every side; auto: the depth of the volume (the default spectral "
+            "kernel's volume is the whole grid)."},
     {.section = "plasticity", .name = "friction", .kind = K_REAL, .unit = MC_UNIT_NONE, .lo = 0,
      .hi = 1, .def = "0", .use = USE_WHEN, .use_key = "criterion", .use_values = "von_mises",
      .off = AT(plasticity.friction),

@@ -398,14 +398,6 @@ int mc_pipeline_check_ranks(const mc_scene *sc, int ranks, mc_error *err)
                 mc_plan_rigor_name(sc->solver.plans), ranks);
         return blame_key(sc, "solver", "plans", MC_ERR_INPUT, err);
     }
-    if (sc->plasticity.enabled && sc->plasticity.criterion == MC_CRITERION_VON_MISES &&
-        sc->plasticity.kernel == MC_EIG_KERNEL_SPECTRAL) {
-        mc_fail(err, MC_ERR_INPUT,
-                "[plasticity] kernel = spectral: not distributed over MPI processes yet (run it "
-                "with one process, or use kernel = cuboid with %d)",
-                ranks);
-        return blame_key(sc, "plasticity", "kernel", MC_ERR_INPUT, err);
-    }
     return MC_OK;
 }
 

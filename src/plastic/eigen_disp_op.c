@@ -488,12 +488,7 @@ int mc_eigen_disp_create(const mc_grid *g, const mc_eigen_volume *v, double nu, 
         if (backends[r].id == b)
             op->ops = &backends[r];
     if (v->kernel == MC_EIG_KERNEL_SPECTRAL) { /* theory.md §8.10 */
-        if (mc_dist_active() && mc_dist_size() > 1)
-            rc = mc_fail(err, MC_ERR_LIMIT,
-                         "eigen displacement: the spectral kernel is not distributed over MPI "
-                         "ranks yet (run it with one process, or use kernel = cuboid)");
-        else
-            rc = mc_eigen_spectral_create_uz(g, &op->v, nu, b, &op->sp, err);
+        rc = mc_eigen_spectral_create_uz(g, &op->v, nu, b, &op->sp, err);
         if (rc) {
             mc_eigen_disp_destroy(&op);
             return rc;
@@ -660,7 +655,7 @@ size_t mc_eigen_disp_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, 
     if (mc_eig_check(g, v, 0.3, b, "eigen displacement", &err) != MC_OK)
         return 0;
     if (v->kernel == MC_EIG_KERNEL_SPECTRAL) {
-        const size_t s = ranks > 0 ? 0 : mc_eigen_spectral_estimate_uz(g, v, b);
+        const size_t s = mc_eigen_spectral_estimate_uz(g, v, b);
         return s ? sizeof(mc_eigen_disp) + s : 0;
     }
     /* the used offsets and the quadrant as mc_eigen_disp_create and fft_create set them */

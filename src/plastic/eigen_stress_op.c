@@ -729,16 +729,10 @@ int mc_eig_stress_create_replicated(const mc_grid *g, const mc_eigen_volume *v, 
 }
 
 /* The spectral kernel (theory.md §8.10): the whole operator is an mc_eigen_spectral; p3 is not
- * kept (zeros). Not distributed: under mpirun only a replicated object (the near field's). */
-static int create_spectral(mc_eigen_stress *op, int replicated, mc_eigen_stress **out,
-                           mc_error *err)
+ * kept (zeros). Under mpirun every rank holds the whole object and computes the same bits
+ * (one-thread FFTW_ESTIMATE plans): replicated, not split (docs/architecture.md "MPI"). */
+static int create_spectral(mc_eigen_stress *op, mc_eigen_stress **out, mc_error *err)
 {
-    if (mc_dist_active() && mc_dist_size() > 1 && !replicated) {
-        mc_eigen_stress_destroy(&op);
-        return mc_fail(err, MC_ERR_LIMIT,
-                       "eigen stress: the spectral kernel is not distributed over MPI ranks yet "
-                       "(run it with one process, or use kernel = cuboid)");
-    }
     const size_t wc = (size_t)op->v.nx * op->v.ny;
     op->p3 = mc_zeros(wc);
     int rc = op->p3 ? mc_eigen_spectral_create(&op->g, &op->v, op->nu, op->ops->id, &op->spec, err)
@@ -789,7 +783,7 @@ static int create(const mc_grid *g, const mc_eigen_volume *v, double nu, mc_back
         if (backends[r].id == b)
             op->ops = &backends[r];
     if (v->kernel == MC_EIG_KERNEL_SPECTRAL)
-        return create_spectral(op, replicated, out, err);
+        return create_spectral(op, out, err);
     op->ops->size(op);
     op->qlen = ((size_t)op->qx * op->qy + 7) / 8 * 8;
     const size_t wc = (size_t)v->nx * v->ny, nl = 6 * (size_t)v->nz * op->qlen;
@@ -1145,7 +1139,7 @@ size_t mc_eigen_stress_loads_estimate(const mc_grid *g, const mc_eigen_volume *v
     if (!(loads & MC_TRACTION_P) || !shell(g, v, b, &op) || !whole_window(&op))
         return 0;
     if (v->kernel == MC_EIG_KERNEL_SPECTRAL)
-        return ranks > 0 ? 0 : spectral_loads_bytes(g, v->nz, 1 + ((loads & MC_TRACTION_QX) != 0));
+        return spectral_loads_bytes(g, v->nz, 1 + ((loads & MC_TRACTION_QX) != 0));
     const int n = 1 + ((loads & MC_TRACTION_QX) != 0);
     return b == MC_BACKEND_FFT ? mc_eig_stress_fft_loads_bytes(&op, ranks, n)
                                : (size_t)n * 6 * v->nz * op.qlen * sizeof(double);
@@ -1159,8 +1153,6 @@ void mc_eigen_stress_estimate_ranks(const mc_grid *g, const mc_eigen_volume *v, 
     if (!shell(g, v, b, &op))
         return;
     if (v->kernel == MC_EIG_KERNEL_SPECTRAL) { /* create_spectral's parts */
-        if (ranks > 0)
-            return; /* refused under mpirun */
         parts[1] = mc_eigen_spectral_estimate(g, v, b);
         parts[4] = parts[1] ? sizeof op + (size_t)v->nx * v->ny * sizeof(double) +
                                   (2 * (size_t)v->nz + 1) * sizeof(int)

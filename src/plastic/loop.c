@@ -297,6 +297,8 @@ static int ctx_init(loop_ctx *c, const mc_grid *g, const mc_plastic_problem *pb,
                         !mc_plastic_ops_fold(g, &pb->volume), &c->own, err);
         ops = &c->own;
     }
+    if (rc != MC_OK)
+        return rc;
     c->elastic = ops->elastic;
     c->disp = ops->disp;
     c->resid = ops->resid;
