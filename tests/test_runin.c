@@ -478,6 +478,7 @@ START_TEST(plastic_guard)
     scene(&s, "", 2, PLASTIC, 2, set);
     mc_eigen_volume v = mc_eigen_volume_full(&s.grid, 5, 0.4e-6);
     v.stress_points = s.plasticity.stress_points;
+    v.kernel = s.plasticity.kernel;
     const double pre = mc_memory_estimate(&s), need = pre + mc_memory_estimate_runin(&s, &s.grid, &v);
     ck_assert(need > pre + 5 * 32 * 16 * 280.0); /* at least the loop's dense arrays */
     char lim[64];

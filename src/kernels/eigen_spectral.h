@@ -132,8 +132,13 @@ void mc_spec_weights_of(double h, mc_spec_point pt, double w[MC_SPEC_WEIGHTS]);
  * fields of mc_spec_state (U, V, W0 / P, W1 / Q, e^{-q z}); per mode q > 0 and the frame; the
  * scalars of one layer thickness per mode in wt (mc_spec_modes_weights). The caller owns every
  * array. Modes with q = 0 must stay out of the passes. */
-enum { MC_SPEC_U = 0, MC_SPEC_V = 12, MC_SPEC_W0 = 24, MC_SPEC_W1 = 36, MC_SPEC_ET = 48,
-       MC_SPEC_FIELDS = 49 };
+enum { MC_SPEC_U = 0, MC_SPEC_V = 12, MC_SPEC_W0 = 18, MC_SPEC_W1 = 30, MC_SPEC_ET = 36,
+       MC_SPEC_FIELDS = 37 };
+/* V and W1 / Q keep only the real-form entries that the B products read or make (components
+ * xx, zz and x'y', MC_SPEC_BLIVE; theory §8.10): their other entries never reach a result (V
+ * and W1 enter only through B, whose columns are those three) and Q's are zero (B's rows, T1). */
+enum { MC_SPEC_NBLIVE = 6 };
+static const int MC_SPEC_BLIVE[MC_SPEC_NBLIVE] = {0, 1, 4, 5, 10, 11};
 typedef struct {
     long n;
     double *st;                  /* MC_SPEC_FIELDS x n */

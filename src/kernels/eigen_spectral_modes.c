@@ -161,38 +161,51 @@ static void chunk_lab(const mc_spec_modes *m, long i0, int n, const double *wgt,
     }
 }
 
-/* u = al U, v = al V + ga U of the modes i0 .. i0 + n - 1 */
+/* u = al U, v = al V + ga U of the modes i0 .. i0 + n - 1 (v on the entries B reads) */
 static void chunk_seen(const mc_spec_modes *m, long i0, int n, chunk_work *w)
 {
     const double *restrict al = weight(m, MC_SPEC_AL) + i0;
     const double *restrict ga = weight(m, MC_SPEC_GA) + i0;
     for (int c = 0; c < 12; c++) {
         const double *restrict U = field(m, MC_SPEC_U + c) + i0;
-        const double *restrict V = field(m, MC_SPEC_V + c) + i0;
 #pragma omp simd
         for (int i = 0; i < n; i++) {
             w->u[c][i] = al[i] * U[i];
-            w->v[c][i] = al[i] * V[i] + ga[i] * U[i];
             w->o[c][i] = 0.0;
         }
     }
+    for (int k = 0; k < MC_SPEC_NBLIVE; k++) {
+        const int c = MC_SPEC_BLIVE[k];
+        const double *restrict U = field(m, MC_SPEC_U + c) + i0;
+        const double *restrict V = field(m, MC_SPEC_V + k) + i0;
+#pragma omp simd
+        for (int i = 0; i < n; i++)
+            w->v[c][i] = al[i] * V[i] + ga[i] * U[i];
+    }
 }
 
-/* past the layer: V = e^{-h} (V + h U) + p1 f, U = e^{-h} U + p0 f */
+/* past the layer: V = e^{-h} (V + h U) + p1 f (its live entries, from the old U), then
+ * U = e^{-h} U + p0 f */
 static void chunk_advance(const mc_spec_modes *m, long i0, int n, chunk_work *w)
 {
     const double *restrict eh = weight(m, MC_SPEC_EH) + i0, *restrict h = weight(m, MC_SPEC_H) + i0,
                            *restrict p0 = weight(m, MC_SPEC_P0) + i0,
                            *restrict p1 = weight(m, MC_SPEC_P1) + i0;
-    for (int c = 0; c < 12; c++) {
-        double *restrict U = field(m, MC_SPEC_U + c) + i0;
-        double *restrict V = field(m, MC_SPEC_V + c) + i0;
+    for (int k = 0; k < MC_SPEC_NBLIVE; k++) {
+        const int c = MC_SPEC_BLIVE[k];
+        const double *restrict U = field(m, MC_SPEC_U + c) + i0;
+        double *restrict V = field(m, MC_SPEC_V + k) + i0;
         const double *restrict f = w->f[c];
 #pragma omp simd
-        for (int i = 0; i < n; i++) {
+        for (int i = 0; i < n; i++)
             V[i] = eh[i] * (V[i] + h[i] * U[i]) + p1[i] * f[i];
+    }
+    for (int c = 0; c < 12; c++) {
+        double *restrict U = field(m, MC_SPEC_U + c) + i0;
+        const double *restrict f = w->f[c];
+#pragma omp simd
+        for (int i = 0; i < n; i++)
             U[i] = eh[i] * U[i] + p0[i] * f[i];
-        }
     }
 }
 
@@ -229,12 +242,16 @@ static void chunk_down(const mc_spec_coef *k, mc_spec_modes *m, long i0, int n, 
     }
     for (int c = 0; c < 12; c++) {
         double *restrict W0 = field(m, MC_SPEC_W0 + c) + i0;
-        double *restrict W1 = field(m, MC_SPEC_W1 + c) + i0;
 #pragma omp simd
-        for (int i = 0; i < n; i++) {
+        for (int i = 0; i < n; i++)
             W0[i] += w0[i] * w->f[c][i];
+    }
+    for (int b = 0; b < MC_SPEC_NBLIVE; b++) {
+        const int c = MC_SPEC_BLIVE[b];
+        double *restrict W1 = field(m, MC_SPEC_W1 + b) + i0;
+#pragma omp simd
+        for (int i = 0; i < n; i++)
             W1[i] += w1[i] * w->f[c][i];
-        }
     }
     chunk_advance(m, i0, n, w);
     const double *restrict eh = weight(m, MC_SPEC_EH) + i0;
@@ -271,12 +288,19 @@ static void chunk_up(const mc_spec_coef *k, mc_spec_modes *m, long i0, int n, do
         wp[i] = et[i] * al[i];
         wq[i] = et[i] * (al[i] * (q[i] * top) + ga[i]);
     }
-    for (int c = 0; c < 12; c++) { /* the mirror layers and S3: e^{-x} (al P + (al x + ga) Q) */
+    /* the mirror layers and S3: e^{-x} (al P + (al x + ga) Q), Q on its live entries */
+    for (int c = 0, b = 0; c < 12; c++) {
         const double *restrict P = field(m, MC_SPEC_W0 + c) + i0;
-        const double *restrict Q = field(m, MC_SPEC_W1 + c) + i0;
+        if (b < MC_SPEC_NBLIVE && MC_SPEC_BLIVE[b] == c) {
+            const double *restrict Q = field(m, MC_SPEC_W1 + b++) + i0;
 #pragma omp simd
-        for (int i = 0; i < n; i++)
-            w->o[c][i] += wp[i] * P[i] + wq[i] * Q[i];
+            for (int i = 0; i < n; i++)
+                w->o[c][i] += wp[i] * P[i] + wq[i] * Q[i];
+        } else {
+#pragma omp simd
+            for (int i = 0; i < n; i++)
+                w->o[c][i] += wp[i] * P[i];
+        }
     }
     chunk_lab(m, i0, n, wgt, scale, w, out, add);
     chunk_advance(m, i0, n, w);
@@ -310,25 +334,96 @@ void mc_spec_modes_pass(const mc_spec_coef *k, mc_spec_modes *m, long i0, long i
     }
 }
 
+/* mc_spec_turn on a chunk of modes (the same operations; the products' sums in the chunk
+ * order): P, Q into the W0, W1 fields, the sums U, V cleared, p3 and u_z of each mode */
+static void chunk_turn(const mc_spec_coef *k, mc_spec_modes *m, long i0, int n, double complex *p3,
+                       double complex *uz, chunk_work *w)
+{
+    double pr[2][CHUNK];
+    for (int j = 0; j < 2; j++) { /* p3 = 2 sigma_zz of S1 on z = 0 (the A and B rows zz) */
+        for (int i = 0; i < n; i++)
+            pr[j][i] = 0.0;
+        for (int c = 0, b = 0; c < 6; c++) {
+            const double *restrict W0 = field(m, MC_SPEC_W0 + 2 * c + j) + i0;
+            const int live = b < MC_SPEC_NBLIVE && MC_SPEC_BLIVE[b] == 2 * c;
+            const double *restrict W1 = live ? field(m, MC_SPEC_W1 + b + j) + i0 : NULL;
+            b += live ? 2 : 0;
+            const double a0 = k->rAm[2][c], b0 = k->rBm[2][c];
+            if (W1) {
+#pragma omp simd
+                for (int i = 0; i < n; i++)
+                    pr[j][i] += 2.0 * (a0 * W0[i] + b0 * W1[i]);
+            } else {
+#pragma omp simd
+                for (int i = 0; i < n; i++)
+                    pr[j][i] += 2.0 * (a0 * W0[i] + b0 * 0.0);
+            }
+        }
+    }
+    /* the mirror: R W (entries of y'z, x'z flipped) into u (of W0) and v (of W1, live) */
+    for (int c = 0; c < 12; c++) {
+        const double *restrict W0 = field(m, MC_SPEC_W0 + c) + i0;
+        const double sg = c >= 8 ? -1.0 : 1.0;
+#pragma omp simd
+        for (int i = 0; i < n; i++) {
+            w->u[c][i] = sg * W0[i];
+            w->o[c][i] = 0.0; /* P */
+            w->f[c][i] = 0.0; /* Q */
+        }
+    }
+    for (int b = 0; b < MC_SPEC_NBLIVE; b++) {
+        const int c = MC_SPEC_BLIVE[b];
+        const double *restrict W1 = field(m, MC_SPEC_W1 + b) + i0;
+        const double sg = c >= 8 ? -1.0 : 1.0;
+#pragma omp simd
+        for (int i = 0; i < n; i++)
+            w->v[c][i] = sg * W1[i];
+    }
+    prod_a_chunk(k->rAp, w->u, w->o, n); /* P = Ap R W0 + Bp R W1 + T0 p3 */
+    prod_b_chunk(k->rBp, w->v, w->o, n);
+    prod_b_chunk(k->rBp, w->u, w->f, n); /* Q = Bp R W0 + T1 p3 */
+    for (int c = 0; c < 6; c++)
+        for (int j = 0; j < 2; j++) {
+            const double t0 = k->rT0[c], t1 = k->rT1[c];
+#pragma omp simd
+            for (int i = 0; i < n; i++) {
+                w->o[2 * c + j][i] += t0 * pr[j][i];
+                w->f[2 * c + j][i] += t1 * pr[j][i];
+            }
+        }
+    for (int c = 0; c < 12; c++) {
+        double *restrict W0 = field(m, MC_SPEC_W0 + c) + i0;
+        double *restrict U = field(m, MC_SPEC_U + c) + i0;
+#pragma omp simd
+        for (int i = 0; i < n; i++) {
+            W0[i] = w->o[c][i];
+            U[i] = 0.0;
+        }
+    }
+    for (int b = 0; b < MC_SPEC_NBLIVE; b++) {
+        double *restrict W1 = field(m, MC_SPEC_W1 + b) + i0;
+        double *restrict V = field(m, MC_SPEC_V + b) + i0;
+        const double *restrict Q = w->f[MC_SPEC_BLIVE[b]];
+#pragma omp simd
+        for (int i = 0; i < n; i++) {
+            W1[i] = Q[i];
+            V[i] = 0.0;
+        }
+    }
+    const double *restrict q = m->q + i0;
+    for (int i = 0; i < n; i++) {
+        p3[i] = pr[0][i] + I * pr[1][i];
+        uz[i] = k->uz0 * p3[i] / q[i];
+    }
+}
+
+MODES_CLONES
 void mc_spec_modes_turn(const mc_spec_coef *k, mc_spec_modes *m, long i0, long i1,
                         double complex *p3, double complex *uz)
 {
-    for (long i = i0; i < i1; i++) {
-        /* the single-mode turn on mode i's fields (copied in and out) */
-        mc_spec_state st;
-        mc_spec_state_init_q(&st, m->q[i], m->cq[i], m->sq[i]);
-        for (int c = 0; c < 12; c++) {
-            st.W0[c] = field(m, MC_SPEC_W0 + c)[i];
-            st.W1[c] = field(m, MC_SPEC_W1 + c)[i];
-        }
-        const double complex u = mc_spec_turn(k, &st);
-        for (int c = 0; c < 12; c++) {
-            field(m, MC_SPEC_W0 + c)[i] = st.W0[c];
-            field(m, MC_SPEC_W1 + c)[i] = st.W1[c];
-            field(m, MC_SPEC_U + c)[i] = 0.0;
-            field(m, MC_SPEC_V + c)[i] = 0.0;
-        }
-        p3[i] = st.p3;
-        uz[i] = u;
+    chunk_work w;
+    for (long c0 = i0; c0 < i1; c0 += CHUNK) {
+        const int n = (int)(i1 - c0 < CHUNK ? i1 - c0 : CHUNK);
+        chunk_turn(k, m, c0, n, p3 + c0, uz + c0, &w);
     }
 }

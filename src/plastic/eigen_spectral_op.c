@@ -76,6 +76,8 @@ struct mc_eigen_spectral {
     double *prow;            /* py x px: padded rows */
     fftw_plan a_r2c, b_fwd, c_bwd, d_c2r; /* x rows, y columns, and back */
     fftw_complex *U;         /* py x hx: the surface displacement's modes */
+    mc_eigen_spectral_hook hook; /* the up pass's added spectra (mc_eigen_spectral_set_hook) */
+    void *hook_ctx;
     double *p3;              /* ny x nx: p3 of the last apply (stresses), Pa */
     fftw_plan uz_c2r;
     /* direct */
@@ -294,7 +296,7 @@ static void entries_fill(mc_eigen_spectral *op)
  * once per block of layers instead of once per layer (theory §8.10: the loop is bound by that
  * traffic). A block holds its layers' six spectra, so the extra spectra stay within
  * STREAM_BLOCK_SHARE of the states' bytes. */
-#define STREAM_BLOCK_SHARE 0.35
+#define STREAM_BLOCK_SHARE 0.5
 
 static int stream_block(const mc_eigen_spectral *op)
 {
@@ -631,6 +633,15 @@ static void stream_up(mc_eigen_spectral *op, const double *const eps[6],
         const int n = block_run(op, last, -1, op->nblk); /* slot s: layer last - s */
         stream_forward(op, eps, inc, last, -1, n);
         stream_modes(op, 1, last, -1, n, scale);
+        for (int s = 0; s < n && op->hook; s++) {
+            double *sp[6];
+            for (int c = 0; c < 6; c++)
+                sp[c] = (double *)slot(op, s, c);
+            if (op->hook(op->hook_ctx, last - s, sp) != 0)
+                for (int c = 0; c < 6; c++)
+                    for (size_t i = 0; i < 2 * (size_t)op->nbins; i++)
+                        sp[c][i] = NAN;
+        }
         stream_inverse(op, sig, last, -1, n);
         last -= n;
     }
@@ -1026,3 +1037,18 @@ void mc_eigen_spectral_p3(const mc_eigen_spectral *op, double *p3)
 }
 
 size_t mc_eigen_spectral_bytes(const mc_eigen_spectral *op) { return op->bytes; }
+
+void mc_eigen_spectral_set_hook(mc_eigen_spectral *op, mc_eigen_spectral_hook hook, void *ctx)
+{
+    op->hook = hook;
+    op->hook_ctx = ctx;
+}
+
+int mc_eigen_spectral_padded(const mc_eigen_spectral *op, int *px, int *py)
+{
+    if (op->backend != MC_BACKEND_FFT || op->uz_only)
+        return 0;
+    *px = op->px;
+    *py = op->py;
+    return 1;
+}

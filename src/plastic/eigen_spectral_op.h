@@ -80,6 +80,16 @@ void mc_eigen_spectral_begin_sum(mc_eigen_spectral *op, const double *const eps[
 void mc_eigen_spectral_end_sum(mc_eigen_spectral *op, const double *const eps[6],
                                const mc_eigen_sparse *inc, double G, double *const sig[6]);
 
+/* Spectra of the caller's added before the up pass's inverse transforms (the folded loads,
+ * theory §8.10: one inverse per layer and component for both): while a hook is set, the fft
+ * object's up pass calls hook(ctx, l, spec) once per layer l, spec[c] its six half spectra
+ * (py rows of px/2 + 1 complex values) already scaled, so that FFTW's unnormalised c2r gives the
+ * stresses; hook adds its own (it returns 0, or non-zero to make the layer NaN). NULL: none.
+ * mc_eigen_spectral_padded gives px, py of an fft stress object (0 for any other). */
+typedef int (*mc_eigen_spectral_hook)(void *ctx, int layer, double *const spec[6]);
+void mc_eigen_spectral_set_hook(mc_eigen_spectral *op, mc_eigen_spectral_hook hook, void *ctx);
+int mc_eigen_spectral_padded(const mc_eigen_spectral *op, int *px, int *py);
+
 /* The surface displacement alone (the displacement operator of eigen_op.h with the spectral
  * kernel): an object made by mc_eigen_spectral_create_uz streams the layers one at a time (the
  * fft backend holds one layer's spectra and the surface's: a few hundred bytes per surface cell),

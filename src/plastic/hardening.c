@@ -144,6 +144,7 @@ int mc_hardening_linear(double Y0, double H, mc_hardening *h, mc_error *err)
 int mc_hardening_swift(double B, double C, double n, mc_hardening *h, mc_error *err)
 {
     mc_hardening t = {.kind = MC_HARDENING_SWIFT, .swift_B = B, .swift_C = C, .swift_n = n};
+    t.swift_y0 = B * pow(C + SWIFT_MICRO * 0.0, n); /* the bits of sigma_y(0) */
     return install(&t, h, err);
 }
 
@@ -347,6 +348,8 @@ double mc_hardening_sigma_y(const mc_hardening *h, double p)
     case MC_HARDENING_LINEAR:
         return h->yield_stress + h->plastic_modulus * p;
     case MC_HARDENING_SWIFT:
+        if (p == 0.0)
+            return h->swift_y0;
         return h->swift_B * pow(h->swift_C + SWIFT_MICRO * p, h->swift_n);
     case MC_HARDENING_TABLE: {
         size_t n = h->n_rows;

@@ -56,6 +56,8 @@ typedef struct mc_hardening {
     double swift_B;         /* B, Pa (SWIFT), > 0 */
     double swift_C;         /* C, micro-strain (SWIFT), > 0 */
     double swift_n;         /* n (SWIFT), 0 <= n < 1 */
+    double swift_y0;        /* B C^n (SWIFT): sigma_y(0), kept by mc_hardening_swift (the cells
+                               that never yielded ask for it in every sweep: no pow() per cell) */
     double *eps_p;          /* TABLE: n_rows plastic strains, >= 0, strictly increasing; owned */
     double *sigma_y;        /* TABLE: n_rows yield stresses, Pa, > 0, non-decreasing; owned */
     size_t n_rows;          /* TABLE: number of rows, >= 1 */

@@ -401,11 +401,11 @@ static int build_tables(mc_stress_plan *plan, int li, double z, double *const *i
     return mc_stress_tables_build(plan->tb, load_bit[li], z, dst ? dst : full, err);
 }
 
-/* Layer k from the prepared loads li[0..ng-1] into out[c] (ny*nx each). */
-static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[NLOADS],
-                         const int li[], int ng, double *const out[6], mc_error *err)
+/* The kernel arrays of layer k for the prepared loads li[0..ng-1] into kuse (built, or taken
+ * from the cache). */
+static int layer_kernels(mc_stress_plan *plan, int k, const int li[], int ng,
+                         double *kuse[NLOADS][MC_NSTRESS], mc_error *err)
 {
-    double *kuse[NLOADS][MC_NSTRESS]; /* the kernel arrays of this layer, per load */
     for (int i = 0; i < ng; i++) {
         const int ck = k - plan->ck0; /* the layer's place in the cache */
         const int cache = plan->kcache && !plan->sparse && ck >= 0 && ck < plan->cnk;
@@ -451,6 +451,17 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
         if (cache)
             plan->kcached[(size_t)ck * plan->nslots + plan->slot[li[i]]] = 1;
     }
+    return MC_OK;
+}
+
+/* Layer k from the prepared loads li[0..ng-1] into out[c] (ny*nx each). */
+static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[NLOADS],
+                         const int li[], int ng, double *const out[6], mc_error *err)
+{
+    double *kuse[NLOADS][MC_NSTRESS]; /* the kernel arrays of this layer, per load */
+    int rc = layer_kernels(plan, k, li, ng, kuse, err);
+    if (rc)
+        return rc;
     const double t0 = omp_get_wtime();
     for (int c = 0; c < MC_NSTRESS; c++) {
         const double *ks[NLOADS], *ls[NLOADS];
@@ -630,3 +641,37 @@ int mc_stress_compute(mc_stress_plan *plan, int k, double *const s[6], mc_error 
 }
 
 int mc_stress_is_sparse(const mc_stress_plan *plan) { return plan->sparse; }
+
+int mc_stress_spectra_size(const mc_stress_plan *plan, int *tx, int *ty)
+{
+    if (!plan->sym || plan->sparse || plan->ng == 0)
+        return 0;
+    mc_stress_sym_transform(plan->sym, tx, ty);
+    return 1;
+}
+
+int mc_stress_add_spectra(mc_stress_plan *plan, int k, double *const spec[6], mc_error *err)
+{
+    int tx, ty;
+    if (k < 0 || k >= plan->nlayers || !mc_stress_spectra_size(plan, &tx, &ty))
+        return mc_fail(err, MC_ERR_INPUT, "stress: no spectra of layer %d (prepared loads on the "
+                       "symmetric engine, not summed cell by cell, are needed)", k);
+    double *kuse[NLOADS][MC_NSTRESS];
+    int rc = layer_kernels(plan, k, plan->li, plan->ng, kuse, err);
+    if (rc)
+        return rc;
+    const double t0 = omp_get_wtime();
+    for (int c = 0; c < MC_NSTRESS; c++) {
+        const double *ks[NLOADS], *ls[NLOADS];
+        int par[NLOADS];
+        for (int i = 0; i < plan->ng; i++) {
+            ks[i] = kuse[i][c];
+            ls[i] = plan->lspec[plan->li[i]];
+            par[i] = mc_stress_parity(load_bit[plan->li[i]], c);
+        }
+        mc_stress_sym_product_add(plan->sym, plan->ng, ks, par, ls, spec[c]);
+    }
+    plan->timing.apply += omp_get_wtime() - t0;
+    plan->timing.layers++;
+    return MC_OK;
+}

@@ -216,6 +216,15 @@ int mc_stress_prepare(mc_stress_plan *plan, const double *p, const double *qx, c
                       mc_error *err);
 int mc_stress_compute(mc_stress_plan *plan, int k, double *const s[6], mc_error *err);
 
+/* After mc_stress_prepare, layer k's six stresses as half spectra instead of fields, for a caller
+ * that adds spectra of its own before one inverse transform (the spectral eigenstrain operator,
+ * docs/theory.md §8.10): mc_stress_spectra_size says whether the prepared plan can (the
+ * symmetric engine, the loads not summed cell by cell) and the transform's size tx x ty;
+ * mc_stress_add_spectra then adds layer k's spectra to spec[c] (ty rows of tx/2 + 1 complex
+ * values, normalised: FFTW's unnormalised c2r of them gives the stresses). */
+int mc_stress_spectra_size(const mc_stress_plan *plan, int *tx, int *ty);
+int mc_stress_add_spectra(mc_stress_plan *plan, int k, double *const spec[6], mc_error *err);
+
 /* Cumulative wall-clock seconds spent by mc_stress_field / mc_stress_layer of a plan since its
  * creation. */
 typedef struct {

@@ -50,6 +50,13 @@ void mc_stress_sym_load(mc_stress_sym *s, const double *field, double *lspec);
 
 /* out (nx*ny) = sum over t of K_t (*) f_t from quadrant spectra kq[t] of parity par[t] and load
  * spectra ls[t]. Never allocates. */
+/* spec (2my rows of mx + 1 complex values: the layout of the transform's half spectrum, whose
+ * unnormalised c2r gives the field) += sum over t of K_t (*) f_t, as mc_stress_sym_apply makes it
+ * before its inverse. Never allocates. */
+void mc_stress_sym_product_add(const mc_stress_sym *s, int nterms, const double *const *kq,
+                               const int *par, const double *const *ls, double *spec);
+/* the transform's size: 2 mx x 2 my */
+void mc_stress_sym_transform(const mc_stress_sym *s, int *tx, int *ty);
 void mc_stress_sym_apply(mc_stress_sym *s, int nterms, const double *const *kq, const int *par,
                          const double *const *ls, double *out);
 

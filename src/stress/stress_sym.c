@@ -135,13 +135,13 @@ void mc_stress_sym_load(mc_stress_sym *s, const double *field, double *lspec)
     mc_padfft_forward(&s->fft, field, (fftw_complex *)lspec); /* mc_malloc'ed: FFTW's alignment */
 }
 
-void mc_stress_sym_apply(mc_stress_sym *s, int nterms, const double *const *kq, const int *par,
-                         const double *const *ls, double *out)
+/* cb (ty x hx half spectrum) = sum_t K_t f_t, normalised (its c2r gives the field); add: += */
+static void product(const mc_stress_sym *s, int nterms, const double *const *kq, const int *par,
+                    const double *const *ls, double *cb, int add)
 {
     const int tx = 2 * s->mx, ty = 2 * s->my, hx = s->qx;
     const int my = s->my;
     const double scale = 1.0 / ((double)tx * (double)ty); /* FFTW does not normalise */
-    double *cb = (double *)s->fft.cbuf;
 #pragma omp parallel for schedule(static) if ((size_t)ty * hx > PAR_MIN)
     for (int ky = 0; ky < ty; ky++) {
         const int kq_row = ky <= my ? ky : ty - ky; /* K^(2m - k) from K^(k) */
@@ -157,7 +157,7 @@ void mc_stress_sym_apply(mc_stress_sym *s, int nterms, const double *const *kq, 
             const double *k = kq[t] + (size_t)kq_row * hx;
             const double *l = ls[t] + 2 * (size_t)ky * hx;
             if (ox ^ oy) { /* K^ = -i sg k */
-                if (t == 0)
+                if (t == 0 && !add)
                     for (int kx = 0; kx < hx; kx++) {
                         const double a = sg * k[kx];
                         o[2 * kx] = a * l[2 * kx + 1];
@@ -170,7 +170,7 @@ void mc_stress_sym_apply(mc_stress_sym *s, int nterms, const double *const *kq, 
                         o[2 * kx + 1] -= a * l[2 * kx];
                     }
             } else { /* K^ = sg k, real */
-                if (t == 0)
+                if (t == 0 && !add)
                     for (int kx = 0; kx < hx; kx++) {
                         const double a = sg * k[kx];
                         o[2 * kx] = a * l[2 * kx];
@@ -185,7 +185,25 @@ void mc_stress_sym_apply(mc_stress_sym *s, int nterms, const double *const *kq, 
             }
         }
     }
+}
+
+void mc_stress_sym_apply(mc_stress_sym *s, int nterms, const double *const *kq, const int *par,
+                         const double *const *ls, double *out)
+{
+    product(s, nterms, kq, par, ls, (double *)s->fft.cbuf, 0);
     mc_padfft_inverse(&s->fft, out); /* destroys cbuf: it is ours */
+}
+
+void mc_stress_sym_product_add(const mc_stress_sym *s, int nterms, const double *const *kq,
+                               const int *par, const double *const *ls, double *spec)
+{
+    product(s, nterms, kq, par, ls, spec, 1);
+}
+
+void mc_stress_sym_transform(const mc_stress_sym *s, int *tx, int *ty)
+{
+    *tx = 2 * s->mx;
+    *ty = 2 * s->my;
 }
 
 /* ---- sparse sums over the loaded cells -------------------------------------------------------- */
