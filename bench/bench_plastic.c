@@ -1104,8 +1104,8 @@ static void section_spectral(vf_ctx *ctx, int quick)
         r.cuboid = 1;
         ke_solve(64, 8.0, &r);
         vf_text(ctx, "\nThe Kogut-Etsion sphere at 8 P_c in 16 load steps on 64² (the scene of the "
-                     "section below) with kernel = cuboid (opt-in; its volume a window of columns): "
-                     "w/w_c %.4f (%+.2f %% against the KE fit), A/A_c %.2f (%+.1f %%), volume %d x "
+                     "section below) with kernel = cuboid (opt-in; its volume a window of "
+                     "columns): w/w_c %.4f (%+.2f %% against the KE fit), A/A_c %.2f (%+.1f %%), volume %d x "
                      "%d x %d, wall %.1f s, CPU %.1f s, %d outer iterations, %d sweeps, %s.\n",
                 r.w, 100 * r.err_w, r.a, 100 * r.err_a, r.wnx, r.wny, r.nz, r.t, r.cpu, r.outer,
                 r.sweeps, r.converged ? "converged" : "NOT converged");

@@ -153,10 +153,10 @@ START_TEST(graded_layers)
 END_TEST
 
 /* The spectral kernel (docs/theory.md §8.10; [plasticity] kernel = spectral, the default) against
- * the cuboid kernel on the 2 P_c sphere: two lateral discretisations of the same plastic strain, which agree
- * to the discretisation error (the plastic zone spans ~5 cells: a few per cent); both backends of
- * the spectral kernel give the same run (on 12^2: the direct one is O(N^2 nz^2)). Measured: dent
- * +4.3 %, plastic volume -6.4 %, peak plastic strain +2.3 %; direct vs fft 1e-14. */
+ * the cuboid kernel on the 2 P_c sphere: two lateral discretisations of the same plastic strain,
+ * which agree to the discretisation error (the plastic zone spans ~5 cells: a few per cent); both
+ * backends of the spectral kernel give the same run (on 12^2: the direct one is O(N^2 nz^2)).
+ * Measured: dent +4.3 %, plastic volume -6.4 %, peak plastic strain +2.3 %; direct vs fft 1e-14. */
 START_TEST(spectral_kernel)
 {
     const char *tight = "tolerance = 1e-7\nmax_outer = 200\nplastic_tolerance = 1e-10\n"

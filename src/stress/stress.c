@@ -454,9 +454,24 @@ static int layer_kernels(mc_stress_plan *plan, int k, const int li[], int ng,
     return MC_OK;
 }
 
-/* Layer k from the prepared loads li[0..ng-1] into out[c] (ny*nx each). */
-static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[NLOADS],
-                         const int li[], int ng, double *const out[6], mc_error *err)
+/* Component c's terms of the loads li[0..ng-1]: their kernel arrays (of layer_kernels), load
+ * spectra and parities */
+static void component_terms(const mc_stress_plan *plan, double *kuse[NLOADS][MC_NSTRESS],
+                            const int li[], int ng, int c, const double *ks[NLOADS],
+                            const double *ls[NLOADS], int par[NLOADS])
+{
+    for (int i = 0; i < ng; i++) {
+        ks[i] = kuse[i][c];
+        ls[i] = plan->lspec[li[i]];
+        par[i] = mc_stress_parity(load_bit[li[i]], c);
+    }
+}
+
+/* Layer k from the prepared loads li[0..ng-1] into out[c] (ny*nx each), or (spec given: the
+ * symmetric engine, not sparse) its spectra added to spec[c] (mc_stress_add_spectra). */
+static int layer_out(mc_stress_plan *plan, int k, const double *const loads[NLOADS],
+                     const int li[], int ng, double *const out[6], double *const spec[6],
+                     mc_error *err)
 {
     double *kuse[NLOADS][MC_NSTRESS]; /* the kernel arrays of this layer, per load */
     int rc = layer_kernels(plan, k, li, ng, kuse, err);
@@ -467,14 +482,13 @@ static int compute_layer(mc_stress_plan *plan, int k, const double *const loads[
         const double *ks[NLOADS], *ls[NLOADS];
         int par[NLOADS];
         mc_stress_term terms[NLOADS];
-        for (int i = 0; i < ng; i++) {
-            ks[i] = kuse[i][c];
-            ls[i] = plan->lspec[li[i]];
-            par[i] = mc_stress_parity(load_bit[li[i]], c);
+        component_terms(plan, kuse, li, ng, c, ks, ls, par);
+        for (int i = 0; i < ng; i++)
             terms[i] = (mc_stress_term){loads[li[i]], plan->sym ? ks[i] : NULL, plan->qx, par[i],
                                         plan->sym ? NULL : ks[i], plan->tx, plan->ty};
-        }
-        if (plan->sparse)
+        if (spec)
+            mc_stress_sym_product_add(plan->sym, ng, ks, par, ls, spec[c]);
+        else if (plan->sparse)
             mc_stress_sparse_sum(&plan->g, (int)plan->ncells, plan->cells, ng, terms, out[c]);
         else if (plan->sym)
             mc_stress_sym_apply(plan->sym, ng, ks, par, ls, out[c]);
@@ -514,7 +528,7 @@ static int field_block(mc_stress_plan *plan, const double *const loads[NLOADS], 
     for (int k = k0; k < k0 + nk; k++) {
         double *const out[MC_NSTRESS] = {s[0] + k * n, s[1] + k * n, s[2] + k * n,
                                          s[3] + k * n, s[4] + k * n, s[5] + k * n};
-        if ((rc = compute_layer(plan, k, loads, li, ng, out, err)))
+        if ((rc = layer_out(plan, k, loads, li, ng, out, NULL, err)))
             return rc;
     }
     return MC_OK;
@@ -543,7 +557,7 @@ int mc_stress_field_layers(mc_stress_plan *plan, const double *p, const double *
         if (ng == 0) /* no load, no stress */
             for (int c = 0; c < MC_NSTRESS; c++)
                 memset(s[c], 0, sizeof(double) * mc_grid_cells(&plan->g));
-        else if ((rc = compute_layer(plan, k, loads, li, ng, s, err)))
+        else if ((rc = layer_out(plan, k, loads, li, ng, s, NULL, err)))
             return rc;
         if ((rc = visit(ctx, k, s)))
             return rc;
@@ -601,7 +615,7 @@ int mc_stress_layer(mc_stress_plan *plan, int k, const double *p, const double *
         return MC_OK;
     }
     prepare_loads(plan, loads, li, ng);
-    return compute_layer(plan, k, loads, li, ng, s, err);
+    return layer_out(plan, k, loads, li, ng, s, NULL, err);
 }
 
 void mc_stress_timing_get(const mc_stress_plan *plan, mc_stress_timing *t) { *t = plan->timing; }
@@ -637,7 +651,7 @@ int mc_stress_compute(mc_stress_plan *plan, int k, double *const s[6], mc_error 
             memset(s[c], 0, sizeof(double) * mc_grid_cells(&plan->g));
         return MC_OK;
     }
-    return compute_layer(plan, k, plan->cur, plan->li, plan->ng, s, err);
+    return layer_out(plan, k, plan->cur, plan->li, plan->ng, s, NULL, err);
 }
 
 int mc_stress_is_sparse(const mc_stress_plan *plan) { return plan->sparse; }
@@ -656,22 +670,5 @@ int mc_stress_add_spectra(mc_stress_plan *plan, int k, double *const spec[6], mc
     if (k < 0 || k >= plan->nlayers || !mc_stress_spectra_size(plan, &tx, &ty))
         return mc_fail(err, MC_ERR_INPUT, "stress: no spectra of layer %d (prepared loads on the "
                        "symmetric engine, not summed cell by cell, are needed)", k);
-    double *kuse[NLOADS][MC_NSTRESS];
-    int rc = layer_kernels(plan, k, plan->li, plan->ng, kuse, err);
-    if (rc)
-        return rc;
-    const double t0 = omp_get_wtime();
-    for (int c = 0; c < MC_NSTRESS; c++) {
-        const double *ks[NLOADS], *ls[NLOADS];
-        int par[NLOADS];
-        for (int i = 0; i < plan->ng; i++) {
-            ks[i] = kuse[i][c];
-            ls[i] = plan->lspec[plan->li[i]];
-            par[i] = mc_stress_parity(load_bit[plan->li[i]], c);
-        }
-        mc_stress_sym_product_add(plan->sym, plan->ng, ks, par, ls, spec[c]);
-    }
-    plan->timing.apply += omp_get_wtime() - t0;
-    plan->timing.layers++;
-    return MC_OK;
+    return layer_out(plan, k, plan->cur, plan->li, plan->ng, NULL, spec, err);
 }
