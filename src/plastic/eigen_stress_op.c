@@ -937,36 +937,47 @@ static int loads_hook(void *ctx, int layer, double *const spec[6])
     return mc_stress_add_spectra(op->lplan, layer, spec, &e) != MC_OK;
 }
 
-/* Prepares the loads' plan and, where its spectra fit the spectral operator's transform (fft,
- * the same padded size, the loads not summed cell by cell), sets the hook that adds them in the
- * up pass: 1 then (the caller clears the hook after the pass), 0 when spectral_add_loads must add
- * them after. One inverse transform per layer and component for both: 6 nz fewer per apply. */
-static int loads_fused(mc_eigen_stress *op, const double *p, const double *qx)
+/* How an apply adds the folded loads (spectral kernel), decided once per apply by loads_begin */
+enum { LOADS_NONE, LOADS_FAILED, LOADS_AFTER, LOADS_FUSED };
+
+/* Prepares the loads' plan once (p or q_x of the operator's load ids) and, when may_fuse and its
+ * spectra fit the spectral operator's transform (fft, the same padded size, the loads not summed
+ * cell by cell), sets the hook that adds them in the up pass (LOADS_FUSED: one inverse transform
+ * per layer and component for both, 6 nz fewer per apply); else LOADS_AFTER (loads_end adds them
+ * layer by layer), LOADS_FAILED (a plan that refuses the loads: a caller's slip) or LOADS_NONE. */
+static int loads_begin(mc_eigen_stress *op, const double *p, const double *qx, int may_fuse)
 {
-    int px, py, tx, ty;
+    if (!op->nloads)
+        return LOADS_NONE;
+    const double *loads[2] = {NULL, NULL};
+    for (int l = 0; l < op->nloads; l++)
+        loads[l] = op->load_id[l] == MC_TRACTION_P ? p : qx;
     mc_error e = {0};
-    if (!op->nloads || !mc_eigen_spectral_padded(op->spec, &px, &py) ||
-        mc_stress_prepare(op->lplan, p, qx, NULL, &e) != MC_OK ||
+    if (mc_stress_prepare(op->lplan, loads[0], op->nloads > 1 ? loads[1] : NULL, NULL, &e) !=
+        MC_OK)
+        return LOADS_FAILED;
+    int px, py, tx, ty;
+    if (!may_fuse || !mc_eigen_spectral_padded(op->spec, &px, &py) ||
         !mc_stress_spectra_size(op->lplan, &tx, &ty) || tx != px || ty != py)
-        return 0;
+        return LOADS_AFTER;
     mc_eigen_spectral_set_hook(op->spec, loads_hook, op);
-    return 1;
+    return LOADS_FUSED;
 }
 
-/* sig += the loads' stresses, layer by layer (spectral kernel) */
-static void spectral_add_loads(mc_eigen_stress *op, const double *p, const double *qx,
-                               double *const sig[6])
+/* After the apply's passes: the hook cleared, and sig += the loads' stresses layer by layer
+ * where the passes did not add them (NaN where the plan refused them) */
+static void loads_end(mc_eigen_stress *op, int how, double *const sig[6])
 {
+    mc_eigen_spectral_set_hook(op->spec, NULL, NULL);
+    if (how == LOADS_NONE || how == LOADS_FUSED)
+        return;
     const size_t cells = (size_t)op->g.nx * op->g.ny;
     double *s[6];
     for (int c = 0; c < 6; c++)
         s[c] = op->lay6 + c * cells;
-    /* the loads' transforms once, then layer by layer (mc_stress_layer would repeat them) */
     mc_error e = {0};
-    const int prepared = mc_stress_prepare(op->lplan, p, qx, NULL, &e) == MC_OK;
     for (int k = 0; k < op->v.nz; k++) {
-        if (!prepared || mc_stress_compute(op->lplan, k, s, &e) != MC_OK) {
-            /* (a prepared plan fails only on loads it was not made for: a caller's slip) */
+        if (how == LOADS_FAILED || mc_stress_compute(op->lplan, k, s, &e) != MC_OK) {
             for (int c = 0; c < 6; c++)
                 for (size_t i = 0; i < cells; i++)
                     sig[c][k * cells + i] = NAN;
@@ -1037,21 +1048,19 @@ static void apply_loads(mc_eigen_stress *op, const double *const eps[6],
                         const mc_eigen_sparse *inc, double G, const double *p, const double *qx,
                         double *const sig[6])
 {
-    const double *loads[2] = {NULL, NULL};
-    for (int l = 0; l < op->nloads; l++)
-        loads[l] = op->load_id[l] == MC_TRACTION_P ? p : qx;
     if (op->spec) { /* the residual stress, then (or in its up pass) the loads' */
         const size_t n = (size_t)op->v.nx * op->v.ny * op->v.nz;
-        const int fused = eps && loads_fused(op, loads[0], op->nloads > 1 ? loads[1] : NULL);
+        const int how = loads_begin(op, p, qx, eps != NULL);
         if (eps)
             mc_eigen_spectral_apply_sum(op->spec, eps, inc, G, sig, NULL);
         else
             for (int c = 0; c < 6; c++)
                 memset(sig[c], 0, n * sizeof *sig[c]);
-        mc_eigen_spectral_set_hook(op->spec, NULL, NULL);
-        if (op->nloads && !fused)
-            spectral_add_loads(op, loads[0], op->nloads > 1 ? loads[1] : NULL, sig);
+        loads_end(op, how, sig);
     } else {
+        const double *loads[2] = {NULL, NULL};
+        for (int l = 0; l < op->nloads; l++)
+            loads[l] = op->load_id[l] == MC_TRACTION_P ? p : qx;
         op->ops->apply(op, eps, G, op->nloads ? loads : NULL, sig);
     }
     op->fwd = NULL;
@@ -1094,14 +1103,9 @@ int mc_eigen_stress_end_sum(mc_eigen_stress *op, const double *const eps[6],
 {
     if (!op->spec)
         return MC_ERR_LIMIT;
-    const double *loads[2] = {NULL, NULL};
-    for (int l = 0; l < op->nloads; l++)
-        loads[l] = op->load_id[l] == MC_TRACTION_P ? p : qx;
-    const int fused = loads_fused(op, loads[0], op->nloads > 1 ? loads[1] : NULL);
+    const int how = loads_begin(op, p, qx, 1);
     mc_eigen_spectral_end_sum(op->spec, eps, inc, G, sig);
-    mc_eigen_spectral_set_hook(op->spec, NULL, NULL);
-    if (op->nloads && !fused)
-        spectral_add_loads(op, loads[0], op->nloads > 1 ? loads[1] : NULL, sig);
+    loads_end(op, how, sig);
     return MC_OK;
 }
 
